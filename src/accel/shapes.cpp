@@ -1,0 +1,106 @@
+#include "accel/shapes.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace holoray {
+namespace {
+
+// Roots of a*t^2 + 2*b*t + c = 0, ascending; false when none are real.
+bool solve_quadratic(double a, double b, double c, double& t0, double& t1) {
+  if (a == 0) {
+    if (b == 0) return false;
+    t0 = t1 = -c / (2 * b);
+    return true;
+  }
+  const double disc = b * b - a * c;
+  if (disc < 0) return false;
+  // Citardauq form: no cancellation between b and sqrt(disc).
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  if (q == 0) {
+    t0 = t1 = 0;
+    return true;
+  }
+  t0 = q / a;
+  t1 = c / q;
+  if (t0 > t1) std::swap(t0, t1);
+  return true;
+}
+
+}  // namespace
+
+bool intersect_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+  const double r = std::fabs(s.radius);
+  const double a = dot(d, d);
+  const Vec3 oc = o - s.centre;
+  // Project the centre onto the line first: keeps precision when the origin is far away.
+  const double tc = -dot(oc, d) / a;
+  const Vec3 q = oc + d * tc;
+  const double h2 = r * r - dot(q, q);
+  if (h2 < 0) return false;
+  const double h = std::sqrt(h2 / a);
+  const double roots[2] = {tc - h, tc + h};
+  for (double root : roots) {
+    if (!(root > tnear && root < tfar)) continue;
+    const Vec3 nn = (oc + d * root) / r;
+    if (s.radius < 0 && dot(nn, d) <= 0) continue;  // inside-only: the hit must face away from the ray
+    t = root;
+    n = nn;
+    return true;
+  }
+  return false;
+}
+
+bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+  const Vec3 axis_full = c.apex - c.base;
+  const double len = length(axis_full);
+  const Vec3 a = axis_full / len;
+  const double rb = std::fabs(c.base_radius), ra = std::fabs(c.apex_radius);
+  const double k = (ra - rb) / len;  // radius change per unit height
+  const Vec3 w = o - c.base;
+  const double hw = dot(w, a), hd = dot(d, a);
+  const Vec3 wp = w - a * hw, dp = d - a * hd;
+  const double r0 = rb + k * hw;  // radius at the origin's height
+  const double qa = dot(dp, dp) - k * k * hd * hd;
+  const double qb = dot(wp, dp) - k * hd * r0;
+  const double qc = dot(wp, wp) - r0 * r0;
+  double t0, t1;
+  if (!solve_quadratic(qa, qb, qc, t0, t1)) return false;
+  const double roots[2] = {t0, t1};
+  for (double root : roots) {
+    if (!(root > tnear && root < tfar)) continue;
+    const double h = hw + root * hd;
+    if (h < 0 || h > len) continue;
+    if (rb + k * h < 0) continue;  // the mirrored nappe beyond a cone's tip
+    const Vec3 radial = normalize(wp + dp * root);
+    const Vec3 nn = normalize(radial - a * k);
+    if (c.base_radius < 0 && dot(nn, d) <= 0) continue;  // inside-only
+    t = root;
+    n = nn;
+    return true;
+  }
+  return false;
+}
+
+Bounds3 bounds_of(const Sphere& s) {
+  const double r = std::fabs(s.radius);
+  Bounds3 b;
+  b.extend(s.centre - Vec3{r, r, r});
+  b.extend(s.centre + Vec3{r, r, r});
+  return b;
+}
+
+Bounds3 bounds_of(const Cone& c) {
+  // A disc of radius r with unit normal a spans r*sqrt(1 - a_e^2) along axis e.
+  const Vec3 a = normalize(c.apex - c.base);
+  const Vec3 e{std::sqrt(std::fmax(0, 1 - a.x * a.x)), std::sqrt(std::fmax(0, 1 - a.y * a.y)), std::sqrt(std::fmax(0, 1 - a.z * a.z))};
+  Bounds3 b;
+  const double rb = std::fabs(c.base_radius), ra = std::fabs(c.apex_radius);
+  b.extend(c.base - e * rb);
+  b.extend(c.base + e * rb);
+  b.extend(c.apex - e * ra);
+  b.extend(c.apex + e * ra);
+  return b;
+}
+
+}  // namespace holoray

@@ -1,0 +1,31 @@
+// holoray/accel: exact analytic intersection of the NFF curved primitives, in
+// double precision (nff-notes §6, §7). Embree calls these from user-geometry
+// callbacks; the renderer calls them again to refine a hit's t to double.
+#pragma once
+
+#include "math/vec.hpp"
+
+namespace holoray {
+
+/// NFF sphere; negative radius: only the inside surface is visible.
+struct Sphere {
+  Vec3 centre;
+  double radius = 1;
+};
+
+/// NFF open cone (no caps) from base to apex; radii of one sign, both
+/// negative: only the inside surface is visible.
+struct Cone {
+  Vec3 base, apex;
+  double base_radius = 1, apex_radius = 1;
+};
+
+/// Nearest hit of o + t*d with t in (tnear, tfar); d need not be unit.
+/// On a hit, sets t and the outward geometric normal (unit) and returns true.
+bool intersect_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n_outward);
+bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n_outward);
+
+Bounds3 bounds_of(const Sphere& s);
+Bounds3 bounds_of(const Cone& c);
+
+}  // namespace holoray

@@ -1,0 +1,187 @@
+#include "camera/lens_array.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace holoray {
+
+namespace {
+constexpr double kSqrt3 = 1.7320508075688772;
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+const char* to_string(Grid g) {
+  switch (g) {
+    case Grid::square: return "square";
+    case Grid::hex: return "hex";
+    case Grid::lenticular: return "lenticular";
+  }
+  return "?";
+}
+
+const char* to_string(RecordingMode m) {
+  return m == RecordingMode::orthoscopic ? "orthoscopic" : "pseudoscopic";
+}
+
+LensArray::LensArray(const LensArrayDesc& d) : desc_(d) {
+  if (!(d.pitch > 0) || !std::isfinite(d.pitch))
+    throw std::invalid_argument(fmt::format("lens pitch must be positive and finite, got {}", d.pitch));
+  if (!(d.gap > 0) || !std::isfinite(d.gap))
+    throw std::invalid_argument(fmt::format("gap must be positive and finite, got {}", d.gap));
+  if (d.lenses_x < 1 || (d.grid != Grid::lenticular && d.lenses_y < 1))
+    throw std::invalid_argument(fmt::format("lens counts must be at least 1, got {}x{}", d.lenses_x, d.lenses_y));
+  if (d.pixels_per_lens < 1)
+    throw std::invalid_argument(fmt::format("pixels per lens must be at least 1, got {}", d.pixels_per_lens));
+  if (d.rows < 0) throw std::invalid_argument(fmt::format("rows must be at least 1, got {}", d.rows));
+  if (!(d.view_distance > 0))
+    throw std::invalid_argument(fmt::format("view distance must be positive, got {}", d.view_distance));
+
+  const int64_t w = static_cast<int64_t>(d.lenses_x) * d.pixels_per_lens;
+  int64_t h = 0;
+  switch (d.grid) {
+    case Grid::square: h = static_cast<int64_t>(d.lenses_y) * d.pixels_per_lens; break;
+    case Grid::hex: h = d.rows > 0 ? d.rows : std::llround(d.lenses_y * d.pixels_per_lens * kSqrt3 / 2); break;
+    case Grid::lenticular: h = d.rows > 0 ? d.rows : w; break;
+  }
+  constexpr int64_t kMaxDim = int64_t{1} << 30;
+  if (w > kMaxDim || h > kMaxDim || h < 1)
+    throw std::invalid_argument(fmt::format("image of {}x{} pixels: each side must be between 1 and {}", w, h, kMaxDim));
+  width_ = static_cast<int>(w);
+  height_ = static_cast<int>(h);
+  s_ = d.pitch / d.pixels_per_lens;
+  half_w_ = width_ * s_ / 2;
+  half_h_ = height_ * s_ / 2;
+  row_step_ = d.pitch * kSqrt3 / 2;
+  switch (d.grid) {
+    case Grid::square:
+      reach_x_ = reach_y_ = d.pitch / 2;
+      break;
+    case Grid::hex:
+      // Border pixels belong to the nearest centre even outside its hexagon.
+      reach_x_ = d.pitch;
+      reach_y_ = std::max({d.pitch / kSqrt3, d.pitch / 2, height_ * s_ - d.pitch / 2 - (d.lenses_y - 1) * row_step_});
+      break;
+    case Grid::lenticular:
+      reach_x_ = d.pitch / 2;
+      reach_y_ = INFINITY;
+      break;
+  }
+}
+
+double LensArray::lens_fov_deg() const { return 2 * std::atan(desc_.pitch / (2 * desc_.gap)) * 180 / kPi; }
+
+LensIndex LensArray::lens_of_pixel(int i, int j) const {
+  const int P = desc_.pixels_per_lens;
+  if (desc_.grid == Grid::square) return {i / P, j / P};
+  if (desc_.grid == Grid::lenticular) return {i / P, 0};
+  // Hex, in pixel units measured from the top-left corner: x offsets are
+  // multiples of 1/2, so ties within a row are decided exactly.
+  const double px = i + 0.5, py = j + 0.5;
+  const double row_step = P * kSqrt3 / 2;
+  const int ny = desc_.lenses_y, nx = desc_.lenses_x;
+  const int ly0 = std::clamp(static_cast<int>(std::lround((py - P / 2.0) / row_step)), 0, ny - 1);
+  LensIndex best;
+  double best_d2 = INFINITY;
+  for (int ly = std::max(0, ly0 - 1); ly <= std::min(ny - 1, ly0 + 1); ++ly) {
+    const double shift = (ly & 1) ? 0.5 : 0.0;
+    const double cy = P / 2.0 + ly * row_step;
+    const int lx0 = std::clamp(static_cast<int>(std::lround(px / P - 0.5 - shift)), 0, nx - 1);
+    for (int lx = std::max(0, lx0 - 1); lx <= std::min(nx - 1, lx0 + 1); ++lx) {
+      const double dx = px - (lx + 0.5 + shift) * P, dy = py - cy;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 < best_d2) {  // strict: ties keep the lower ly, then the lower lx
+        best_d2 = d2;
+        best = {lx, ly};
+      }
+    }
+  }
+  return best;
+}
+
+Vec3 LensArray::lens_centre_local(LensIndex l) const {
+  const double pitch = desc_.pitch;
+  const double half_array_w = desc_.lenses_x * pitch / 2;
+  switch (desc_.grid) {
+    case Grid::square:
+      return {(l.x + 0.5) * pitch - half_array_w, desc_.lenses_y * pitch / 2 - (l.y + 0.5) * pitch, 0};
+    case Grid::hex:
+      return {(l.x + 0.5 + ((l.y & 1) ? 0.5 : 0.0)) * pitch - half_array_w, half_h_ - pitch / 2 - l.y * row_step_, 0};
+    case Grid::lenticular:
+      return {(l.x + 0.5) * pitch - half_array_w, 0, 0};
+  }
+  return {};
+}
+
+Vec3 LensArray::panel_point_local(int i, int j, double u, double v) const {
+  return {(i + u) * s_ - half_w_, half_h_ - (j + v) * s_, -desc_.gap};
+}
+
+PixelLine LensArray::line_local(int i, int j, double u, double v) const {
+  const Vec3 p = panel_point_local(i, j, u, v);
+  const Vec3 c = lens_centre_local(lens_of_pixel(i, j));
+  if (desc_.grid == Grid::lenticular) {
+    const double dy = std::isinf(desc_.view_distance) ? 0.0 : -p.y / desc_.view_distance;
+    return {{c.x, p.y, 0}, normalize(Vec3{(c.x - p.x) / desc_.gap, dy, 1})};
+  }
+  return {c, normalize(c - p)};
+}
+
+PixelLine LensArray::line(int i, int j, double u, double v) const {
+  const PixelLine l = line_local(i, j, u, v);
+  return {desc_.frame.to_world_point(l.origin), desc_.frame.to_world_dir(l.dir)};
+}
+
+void LensArray::project(const Vec3& p_world, std::vector<PanelHit>& out) const {
+  out.clear();
+  project_local(desc_.frame.to_local_point(p_world), out);
+}
+
+void LensArray::project_local(const Vec3& x, std::vector<PanelHit>& out) const {
+  if (x.z == 0 || !is_finite(x)) return;
+  const double g = desc_.gap, pitch = desc_.pitch;
+  const bool lenticular = desc_.grid == Grid::lenticular;
+  // Lenses whose panel pixels can lie on a line through x: |c - x| <= reach * |x.z| / g per axis.
+  const double rx = reach_x_ * std::fabs(x.z) / g, ry = reach_y_ * std::fabs(x.z) / g;
+  const double half_array_w = desc_.lenses_x * pitch / 2;
+  const auto clamp_x = [&](double v) { return static_cast<int>(std::clamp(v, -1.0, double(desc_.lenses_x))); };
+  const int lx_lo = std::max(0, clamp_x(std::floor((x.x - rx + half_array_w) / pitch - 1)));
+  const int lx_hi = std::min(desc_.lenses_x - 1, clamp_x(std::ceil((x.x + rx + half_array_w) / pitch)));
+  int ly_lo = 0, ly_hi = 0;
+  if (!lenticular) {
+    const double top = desc_.grid == Grid::hex ? half_h_ - pitch / 2 : desc_.lenses_y * pitch / 2 - pitch / 2;
+    const double step = desc_.grid == Grid::hex ? row_step_ : pitch;
+    const auto clamp_y = [&](double v) { return static_cast<int>(std::clamp(v, -1.0, double(desc_.lenses_y))); };
+    ly_lo = std::max(0, clamp_y(std::floor((top - (x.y + ry)) / step - 1)));
+    ly_hi = std::min(desc_.lenses_y - 1, clamp_y(std::ceil((top - (x.y - ry)) / step + 1)));
+  }
+  const bool pseudo = desc_.mode == RecordingMode::pseudoscopic;
+  for (int ly = ly_lo; ly <= ly_hi; ++ly) {
+    for (int lx = lx_lo; lx <= lx_hi; ++lx) {
+      const LensIndex lens{lx, ly};
+      const Vec3 c = lens_centre_local(lens);
+      double px, py;
+      if (lenticular) {
+        px = c.x - g * (x.x - c.x) / x.z;
+        const double k = std::isinf(desc_.view_distance) ? 1.0 : 1.0 - x.z / desc_.view_distance;
+        if (k == 0) continue;
+        py = x.y / k;
+      } else {
+        const double sc = g / x.z;  // p = c + (c - x) * g / x.z lies on z = -g
+        px = c.x + (c.x - x.x) * sc;
+        py = c.y + (c.y - x.y) * sc;
+      }
+      const double fi = (px + half_w_) / s_, fj = (half_h_ - py) / s_;
+      if (!(fi >= 0 && fi < width_ && fj >= 0 && fj < height_)) continue;
+      const int i = static_cast<int>(fi), j = static_cast<int>(fj);
+      if (!(lens_of_pixel(i, j) == lens)) continue;
+      const PixelLine l = line_local(i, j, fi - i, fj - j);
+      const double t = dot(x - l.origin, l.dir);
+      if (pseudo && !(t > 0)) continue;
+      out.push_back({i, j, fi - i, fj - j, t});
+    }
+  }
+}
+
+}  // namespace holoray

@@ -1,0 +1,116 @@
+// holoray/camera: the integral camera, implemented once, exactly as
+// shared/docs/camera-model.md (the contract). Every renderer path and test
+// calls this; nothing else knows the grid geometry.
+//
+// Frames: "local" is the array frame of the contract (origin at the array
+// centre, z the array normal toward the viewer, panel at z = -gap); "world" is
+// the scene's frame. Pixel (i, j): column i from the left, row j from the top.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "math/vec.hpp"
+
+namespace holoray {
+
+/// Lens layout (contract: "Square grid", "Hexagonal grid", "Lenticular sheet").
+enum class Grid { square, hex, lenticular };
+
+/// Which surface a pixel records along its line (contract: "Recording modes").
+enum class RecordingMode {
+  orthoscopic,  ///< the hit with the largest t over the whole line (display-ready)
+  pseudoscopic  ///< the hit with the smallest t > 0 (direct pickup)
+};
+
+const char* to_string(Grid g);
+const char* to_string(RecordingMode m);
+
+/// Everything that fixes the camera, in scene units. Validated by LensArray.
+struct LensArrayDesc {
+  Grid grid = Grid::square;
+  RecordingMode mode = RecordingMode::orthoscopic;
+  int lenses_x = 64;         ///< Nx
+  int lenses_y = 64;         ///< Ny (ignored by the lenticular sheet)
+  int pixels_per_lens = 8;   ///< P, pixels across one lens
+  int rows = 0;              ///< H for hex and lenticular; 0 = the contract's default
+  double pitch = 1;          ///< lens pitch (scene units)
+  double gap = 1;            ///< lens plane to pixel panel (scene units)
+  double view_distance = INFINITY;  ///< lenticular vertical perspective distance V
+  Frame frame;               ///< array placement in the world
+};
+
+/// Lens index: column lx from the left, row ly from the top.
+struct LensIndex {
+  int x = 0, y = 0;
+  friend bool operator==(const LensIndex&, const LensIndex&) = default;
+};
+
+/// The line a pixel records along: L(t) = origin + t*dir (world frame; dir
+/// unit, toward +z of the array). origin is the lens centre c (square, hex) or
+/// the crossing point q on the lens plane (lenticular).
+struct PixelLine {
+  Vec3 origin;
+  Vec3 dir;
+};
+
+/// Where a scene point lands on the panel through one lens: pixel (i, j), the
+/// position inside it (u, v in [0,1), 0.5 = centre; same meaning as the jitter
+/// of LensArray::line) and the signed line parameter t of the point.
+struct PanelHit {
+  int i = 0, j = 0;
+  double u = 0.5, v = 0.5;
+  double t = 0;
+};
+
+/// An integral camera. Immutable after construction; safe to share between threads.
+class LensArray {
+ public:
+  /// Validates and precomputes. Throws std::invalid_argument naming the bad
+  /// value: pitch or gap <= 0 or not finite, zero or negative lens or pixel
+  /// counts, rows < 1, view distance <= 0, image dimensions over 2^30.
+  explicit LensArray(const LensArrayDesc& desc);
+
+  const LensArrayDesc& desc() const { return desc_; }
+  int width() const { return width_; }    ///< W, pixels
+  int height() const { return height_; }  ///< H, pixels
+  int64_t pixel_count() const { return static_cast<int64_t>(width_) * height_; }
+  double pixel_pitch() const { return s_; }  ///< s = pitch / P (scene units)
+  /// Full field of view of one lens, 2*atan(pitch / (2g)), in degrees.
+  double lens_fov_deg() const;
+  int lens_count_x() const { return desc_.lenses_x; }
+  int lens_count_y() const { return desc_.grid == Grid::lenticular ? 1 : desc_.lenses_y; }
+
+  /// The lens a pixel belongs to (hex: nearest centre, ties to lower ly then lx).
+  LensIndex lens_of_pixel(int i, int j) const;
+  /// Lens centre c in the array frame (z = 0). Lenticular: (c_x, 0, 0).
+  Vec3 lens_centre_local(LensIndex l) const;
+  /// Panel point p of pixel (i, j) at offset (u, v) in the pixel, array frame (z = -gap).
+  Vec3 panel_point_local(int i, int j, double u = 0.5, double v = 0.5) const;
+
+  /// The pixel's line in the array frame; (u, v) jitters p inside the pixel
+  /// (contract: "Sampling") and keeps the lens centre fixed.
+  PixelLine line_local(int i, int j, double u = 0.5, double v = 0.5) const;
+  /// The pixel's line in the world frame.
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
+
+  /// Forward projection (contract, property 2): every pixel whose line passes
+  /// through the world point, one per lens whose elemental image contains it,
+  /// appended to `out` (cleared first). Pseudoscopic keeps only t > 0. The
+  /// exact inverse of line(): line(h.i, h.j, h.u, h.v) passes through the
+  /// point at parameter h.t. Points on the lens plane (z = 0) project nowhere.
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
+
+ private:
+  void project_local(const Vec3& x, std::vector<PanelHit>& out) const;
+
+  LensArrayDesc desc_;
+  int width_ = 0, height_ = 0;
+  double s_ = 0;           // pixel pitch
+  double half_w_ = 0, half_h_ = 0;  // W*s/2, H*s/2
+  double row_step_ = 0;    // hex: pitch*sqrt(3)/2
+  double reach_x_ = 0, reach_y_ = 0;  // max |p - c| per axis over the panel (scene units)
+};
+
+}  // namespace holoray

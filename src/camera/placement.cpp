@@ -1,0 +1,53 @@
+#include "camera/placement.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace holoray {
+
+LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>& vp) {
+  LensArrayDesc d;
+  d.grid = s.grid;
+  d.mode = s.mode;
+  d.lenses_x = s.lenses_x;
+  d.lenses_y = s.lenses_y;
+  d.pixels_per_lens = s.pixels_per_lens;
+  d.rows = s.rows;
+  d.view_distance = s.view_distance;
+  if (s.lenses_x < 1 || s.lenses_y < 1)
+    throw std::invalid_argument(fmt::format("lens counts must be at least 1, got {}x{}", s.lenses_x, s.lenses_y));
+
+  const bool explicit_any = s.origin || s.normal || s.up;
+  if (explicit_any) {
+    if (!(s.origin && s.normal && s.up))
+      throw std::invalid_argument("explicit placement needs all of --origin, --normal and --up");
+    if (!s.pitch) throw std::invalid_argument("explicit placement needs --pitch (the lens pitch in scene units)");
+    d.frame = Frame::from_normal_up(*s.origin, *s.normal, *s.up);
+    d.pitch = *s.pitch;
+  } else {
+    if (!vp)
+      throw std::invalid_argument(
+          "the scene has no viewpoint ('v'); place the array with --origin, --normal, --up and --pitch");
+    const Vec3 view = vp->at - vp->from;
+    if (s.mode == RecordingMode::orthoscopic)
+      d.frame = Frame::from_normal_up(vp->at, -view, vp->up);
+    else
+      d.frame = Frame::from_normal_up(vp->from, view, vp->up);
+    const double width = 2 * length(view) * std::tan(vp->angle_deg * 3.14159265358979323846 / 360);
+    d.pitch = s.pitch ? *s.pitch : width / s.lenses_x;
+  }
+
+  if (s.gap && s.fov_lens_deg) throw std::invalid_argument("give either --gap or --fov-lens, not both");
+  if (s.gap) {
+    d.gap = *s.gap;
+  } else {
+    const double fov = s.fov_lens_deg.value_or(kDefaultLensFovDeg);
+    if (!(fov > 0 && fov < 180))
+      throw std::invalid_argument(fmt::format("lens field of view must be between 0 and 180 degrees, got {}", fov));
+    d.gap = d.pitch / (2 * std::tan(fov * 3.14159265358979323846 / 360));
+  }
+  return d;
+}
+
+}  // namespace holoray

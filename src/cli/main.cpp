@@ -1,0 +1,21 @@
+// holoray: command-line entry point. Each subcommand lives in its own file.
+#include <CLI/CLI.hpp>
+
+#include "cli/render_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"holoray: integral image (elemental image array) renderer"};
+  app.require_subcommand(1);
+  holoray::cli::RenderCommandOptions render_opts;
+  CLI::App* render = holoray::cli::add_render_command(app, render_opts);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;  // usage errors: one status whatever CLI11's internal code
+  }
+  if (render->parsed()) return holoray::cli::run_render(render_opts);
+  return 2;
+}

@@ -1,0 +1,58 @@
+#include "cli/option_parsing.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace holoray::cli {
+
+namespace {
+bool to_int(std::string_view s, int& out) {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+  return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+}  // namespace
+
+void parse_lens_count(const std::string& text, int& nx, int& ny) {
+  const auto x = text.find_first_of("xX");
+  const bool ok = x == std::string::npos ? (to_int(text, nx) && (ny = nx, true))
+                                         : (to_int(std::string_view(text).substr(0, x), nx) &&
+                                            to_int(std::string_view(text).substr(x + 1), ny));
+  if (!ok) throw std::invalid_argument(fmt::format("--lenses: expected NXxNY (e.g. 64x64), got '{}'", text));
+  if (nx < 1 || ny < 1) throw std::invalid_argument(fmt::format("--lenses: lens counts must be at least 1, got '{}'", text));
+}
+
+Vec3 parse_vec3(const std::string& option, const std::string& text) {
+  double v[3];
+  std::string_view rest(text);
+  for (int k = 0; k < 3; ++k) {
+    const auto comma = rest.find(',');
+    const std::string_view part = rest.substr(0, comma);
+    const auto r = std::from_chars(part.data(), part.data() + part.size(), v[k]);
+    const bool last = k == 2;
+    if (part.empty() || r.ec != std::errc() || r.ptr != part.data() + part.size() || !std::isfinite(v[k]) ||
+        (last != (comma == std::string_view::npos)))
+      throw std::invalid_argument(fmt::format("{}: expected X,Y,Z (three finite numbers), got '{}'", option, text));
+    if (!last) rest.remove_prefix(comma + 1);
+  }
+  return {v[0], v[1], v[2]};
+}
+
+AovSet parse_aovs(const std::string& text) {
+  AovSet a;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item == "albedo") a.albedo = true;
+    else if (item == "depth") a.depth = true;
+    else if (item == "normal") a.normal = true;
+    else if (item == "id") a.id = true;
+    else throw std::invalid_argument(fmt::format("--aov: unknown AOV '{}' (expected albedo, depth, normal, id)", item));
+  }
+  return a;
+}
+
+}  // namespace holoray::cli

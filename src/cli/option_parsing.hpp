@@ -1,0 +1,19 @@
+// holoray/cli: parsers for option values that CLI11 has no type for. Each
+// throws std::invalid_argument with a message naming the option and value.
+#pragma once
+
+#include <string>
+
+#include "math/vec.hpp"
+#include "render/renderer.hpp"
+
+namespace holoray::cli {
+
+/// "NXxNY" (e.g. "64x64") or a single "N" meaning NxN.
+void parse_lens_count(const std::string& text, int& nx, int& ny);
+/// "X,Y,Z" with finite numbers.
+Vec3 parse_vec3(const std::string& option, const std::string& text);
+/// Comma-separated subset of albedo,depth,normal,id.
+AovSet parse_aovs(const std::string& text);
+
+}  // namespace holoray::cli

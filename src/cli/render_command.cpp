@@ -1,0 +1,173 @@
+#include "cli/render_command.hpp"
+
+#include <fmt/format.h>
+#include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/task_arena.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include "camera/placement.hpp"
+#include "cli/option_parsing.hpp"
+#include "image/image_io.hpp"
+#include "render/renderer.hpp"
+#include "scene/nff_reader.hpp"
+#include "scene/parse_error.hpp"
+
+namespace holoray::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+uint64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) : 0;
+}
+
+ArraySettings resolve_settings(const RenderCommandOptions& o) {
+  ArraySettings s;
+  if (o.grid == "square") s.grid = Grid::square;
+  else if (o.grid == "hex") s.grid = Grid::hex;
+  else if (o.grid == "lenticular") s.grid = Grid::lenticular;
+  else throw std::invalid_argument(fmt::format("--grid: expected square, hex or lenticular, got '{}'", o.grid));
+  if (o.mode == "orthoscopic") s.mode = RecordingMode::orthoscopic;
+  else if (o.mode == "pseudoscopic") s.mode = RecordingMode::pseudoscopic;
+  else throw std::invalid_argument(fmt::format("--mode: expected orthoscopic or pseudoscopic, got '{}'", o.mode));
+  parse_lens_count(o.lenses, s.lenses_x, s.lenses_y);
+  s.pixels_per_lens = o.pixels_per_lens;
+  if (o.pixels_per_lens < 1)
+    throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", o.pixels_per_lens));
+  if (o.rows < 0) throw std::invalid_argument(fmt::format("--rows: must be at least 1, got {}", o.rows));
+  s.rows = o.rows;
+  if (!std::isnan(o.pitch)) s.pitch = o.pitch;
+  if (!std::isnan(o.gap)) s.gap = o.gap;
+  if (!std::isnan(o.fov_lens)) s.fov_lens_deg = o.fov_lens;
+  s.view_distance = o.view_distance;
+  if (!o.origin.empty()) s.origin = parse_vec3("--origin", o.origin);
+  if (!o.normal.empty()) s.normal = parse_vec3("--normal", o.normal);
+  if (!o.up.empty()) s.up = parse_vec3("--up", o.up);
+  return s;
+}
+
+}  // namespace
+
+CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA) from an NFF scene");
+  cmd->add_option("scene", o.scene, "Scene file (NFF)")->required();
+  cmd->add_option("-o,--output", o.output, "Output image: .png (8-bit) or .exr (float)")->required();
+  cmd->add_option("--grid", o.grid, "Lens grid: square, hex or lenticular")->capture_default_str();
+  cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")->capture_default_str();
+  cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();
+  cmd->add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)");
+  cmd->add_option("--fov-lens", o.fov_lens, "Lens field of view in degrees (default 20); sets the gap");
+  cmd->add_option("--gap", o.gap, "Lens plane to pixel panel distance, scene units");
+  cmd->add_option("--pitch", o.pitch, "Lens pitch, scene units (default: NFF view width / NX)");
+  cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")->capture_default_str();
+  cmd->add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)");
+  cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)");
+  cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer");
+  cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
+  cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  return cmd;
+}
+
+int run_render(const RenderCommandOptions& o) {
+  try {
+    // Everything the user typed is checked before the scene is read.
+    if (!is_supported_output(o.output))
+      throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
+    const std::filesystem::path out_dir = std::filesystem::path(o.output).parent_path();
+    if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
+      throw std::invalid_argument(fmt::format("-o: folder '{}' does not exist", out_dir.string()));
+    Encoding encoding;
+    if (o.encoding == "linear") encoding = Encoding::linear;
+    else if (o.encoding == "srgb") encoding = Encoding::srgb;
+    else throw std::invalid_argument(fmt::format("--encoding: expected linear or srgb, got '{}'", o.encoding));
+    if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
+    if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
+    const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
+    const ArraySettings settings = resolve_settings(o);
+
+    std::unique_ptr<tbb::global_control> thread_cap;
+    if (o.threads > 0)
+      thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+
+    const auto t_parse = Clock::now();
+    const SceneDesc desc = read_nff_file(o.scene);
+    const double parse_s = seconds_since(t_parse);
+
+    const LensArray camera(place_array(settings, desc.viewpoint));
+    // Refuse before allocating: buffers plus the 8-bit or float copy made on output.
+    const uint64_t need = frame_bytes(camera, aovs) + static_cast<uint64_t>(camera.pixel_count()) * 12;
+    const uint64_t have = physical_memory_bytes();
+    if (have && need > have / 10 * 8)
+      throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers, more than 80% of this machine's {:.2f} GiB",
+                                          camera.width(), camera.height(), need / 1073741824.0, have / 1073741824.0));
+
+    const auto t_build = Clock::now();
+    const RenderScene scene(desc);
+    const double build_s = seconds_since(t_build);
+
+    const bool tty = !o.quiet && ::isatty(STDERR_FILENO);
+    std::mutex progress_mutex;
+    int shown = -1;
+    RenderOptions ropt;
+    ropt.spp = o.spp;
+    ropt.threads = o.threads;
+    ropt.aovs = aovs;
+    if (tty)
+      ropt.progress = [&](double f) {
+        std::unique_lock lock(progress_mutex, std::try_to_lock);
+        const int pct = static_cast<int>(f * 100);
+        if (!lock.owns_lock() || pct == shown) return;
+        shown = pct;
+        std::fprintf(stderr, "\rtracing %3d%%", pct);
+        std::fflush(stderr);
+      };
+    RenderStats stats;
+    const FrameBuffers fb = render_frame(scene, camera, ropt, stats);
+    if (tty) std::fprintf(stderr, "\r             \r");
+
+    const auto t_write = Clock::now();
+    const std::string ext = std::filesystem::path(o.output).extension().string().substr(1);
+    write_image(o.output, fb.colour, encoding);
+    if (aovs.albedo) write_image(aov_path(o.output, "albedo", ext), fb.albedo, encoding);
+    if (aovs.depth) write_image(aov_path(o.output, "depth", "exr"), fb.depth);
+    if (aovs.normal) write_image(aov_path(o.output, "normal", "exr"), fb.normal);
+    if (aovs.id) write_image(aov_path(o.output, "id", "exr"), fb.id);
+    const double write_s = seconds_since(t_write);
+
+    if (!o.quiet) {
+      const LensArrayDesc& d = camera.desc();
+      fmt::print("scene      {}: {} objects, {} lights{}\n", o.scene, desc.objects.size(), desc.lights.size(),
+                 scene.skipped_polygons() ? fmt::format(" ({} zero-area polygons skipped)", scene.skipped_polygons()) : "");
+      fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", camera.width(), camera.height(), to_string(d.grid),
+                 camera.lens_count_x(), camera.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
+      fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, camera.lens_fov_deg());
+      fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
+      fmt::print("trace      {:.3f} s, {} spp, {} threads\n", stats.trace_seconds, o.spp,
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency());
+      const RayCounts& r = stats.rays;
+      fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
+                 r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);
+      fmt::print("wrote      {} ({:.3f} s)\n", o.output, write_s);
+    }
+    return 0;
+  } catch (const ParseError& e) {
+    fmt::print(stderr, "{}\n", e.what());
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "holoray: error: {}\n", e.what());
+  }
+  return 1;
+}
+
+}  // namespace holoray::cli

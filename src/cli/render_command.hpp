@@ -1,0 +1,27 @@
+// holoray/cli: `holoray render SCENE -o OUT`: one still EIA.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <string>
+
+namespace holoray::cli {
+
+/// Options of `holoray render` as typed; resolved and validated in run_render.
+struct RenderCommandOptions {
+  std::string scene, output;
+  std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "linear";
+  int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0;
+  double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
+  std::string origin, normal, up;
+  bool quiet = false;
+};
+
+/// Registers the subcommand and its options on `app`.
+CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& opts);
+
+/// Runs it; returns the process exit status (0 success, 1 failure). Errors
+/// go to stderr as one message; nothing is written on failure.
+int run_render(const RenderCommandOptions& opts);
+
+}  // namespace holoray::cli

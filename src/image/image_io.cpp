@@ -1,0 +1,99 @@
+#include "image/image_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+namespace holoray {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
+
+}  // namespace
+
+uint8_t encode_8bit(float v, Encoding encoding) {
+  if (std::isnan(v)) return 0;
+  const float e = encoding == Encoding::srgb ? srgb_oetf(std::clamp(v, 0.0f, 1.0f)) : v;
+  const double code = std::floor(255.0 * static_cast<double>(e) + 0.5);
+  return static_cast<uint8_t>(std::clamp(code, 0.0, 255.0));
+}
+
+bool is_supported_output(const std::string& path) {
+  const std::string e = lower_ext(path);
+  return e == ".png" || e == ".exr";
+}
+
+std::string aov_path(const std::string& path, const std::string& aov, const std::string& ext) {
+  const fs::path p(path);
+  return (p.parent_path() / fmt::format("{}.{}.{}", p.stem().string(), aov, ext)).string();
+}
+
+void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding) {
+  const std::string ext = lower_ext(path);
+  if (ext != ".png" && ext != ".exr")
+    throw std::runtime_error(fmt::format("cannot write '{}': unsupported extension '{}' (use .png or .exr)", path, ext));
+  const fs::path dest(path);
+  const fs::path dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw std::runtime_error(fmt::format("cannot write '{}': folder '{}' does not exist", path, dir.string()));
+  // Same folder, same extension (OpenImageIO picks the format by it), hidden name.
+  const fs::path tmp = dir / fmt::format(".{}.tmp{}{}", dest.stem().string(), static_cast<long>(::getpid()), ext);
+
+  const bool png = ext == ".png";
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  if (png) spec.attribute("oiio:ColorSpace", encoding == Encoding::srgb ? "sRGB" : "Linear");
+  else spec.attribute("compression", "zip");
+  auto out = OIIO::ImageOutput::create(tmp.string());
+  if (!out) throw std::runtime_error(fmt::format("cannot write '{}': {}", path, OIIO::geterror()));
+  bool ok = out->open(tmp.string(), spec);
+  if (ok) {
+    if (png) {
+      std::vector<uint8_t> bytes(image.data.size());
+      for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = encode_8bit(image.data[k], encoding);
+      ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    } else {
+      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.data.data());
+    }
+    ok = out->close() && ok;
+  }
+  if (!ok) {
+    std::string reason = out->geterror();
+    if (reason.empty()) reason = std::strerror(errno);
+    fs::remove(tmp, ec);
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
+  }
+  fs::rename(tmp, dest, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, ec.message()));
+  }
+}
+
+ImageBuffer read_image(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error(fmt::format("cannot read image '{}': {}", path, OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  ImageBuffer img(spec.width, spec.height, spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data()))
+    throw std::runtime_error(fmt::format("cannot read image '{}': {}", path, in->geterror()));
+  in->close();
+  return img;
+}
+
+}  // namespace holoray

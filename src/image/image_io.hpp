@@ -1,0 +1,36 @@
+// holoray/image: reading and writing images through OpenImageIO. Every write
+// goes to a temporary name in the destination folder and is renamed into
+// place, so a failed or interrupted write never leaves a partial file.
+#pragma once
+
+#include <string>
+
+#include "image/image.hpp"
+
+namespace holoray {
+
+/// How linear values become 8-bit codes in PNG output.
+enum class Encoding { linear, srgb };
+
+/// 8-bit code of a linear value v (in 0..1 nominal): floor(255*e(v) + 0.5)
+/// clamped to 0..255, where e is the identity (linear) or the sRGB transfer
+/// function (IEC 61966-2-1). NaN gives 0.
+uint8_t encode_8bit(float v, Encoding encoding);
+
+/// Writes `image` to `path`; the format follows the extension: `.png` (8-bit,
+/// encoded as above) or `.exr` (32-bit float, linear). Throws
+/// std::runtime_error naming the path and reason (unknown extension, folder
+/// missing or not writable, disk full); the destination is then untouched.
+void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding = Encoding::linear);
+
+/// Reads any image OpenImageIO can; values as stored (8-bit scaled to 0..1,
+/// no decoding of sRGB). Throws std::runtime_error naming the path.
+ImageBuffer read_image(const std::string& path);
+
+/// True for the extensions write_image accepts (".png", ".exr", any case).
+bool is_supported_output(const std::string& path);
+
+/// `<stem>.<aov>.<ext>` beside `path` (e.g. out.png, depth, exr -> out.depth.exr).
+std::string aov_path(const std::string& path, const std::string& aov, const std::string& ext);
+
+}  // namespace holoray

@@ -1,0 +1,92 @@
+// holoray/math: 3-vectors and orthonormal frames in double precision.
+//
+// The camera and scene work in double so that ray generation and forward
+// projection are inverses to ~1e-12 (camera-model.md, property 2); the
+// conversion to float happens only at the Embree boundary (accel/).
+#pragma once
+
+#include <cmath>
+
+namespace holoray {
+
+/// A point or direction in 3-space. Frame is given by the variable name
+/// (`p_world`, `d_array`), never by the type.
+struct Vec3 {
+  double x = 0, y = 0, z = 0;
+
+  constexpr Vec3() = default;
+  constexpr Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+
+  constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr Vec3 operator-() const { return {-x, -y, -z}; }
+  constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+  constexpr Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
+  constexpr Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+  friend constexpr bool operator==(const Vec3&, const Vec3&) = default;
+};
+
+constexpr Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
+constexpr Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
+constexpr Vec3 operator*(Vec3 a, double s) { return a *= s; }
+constexpr Vec3 operator*(double s, Vec3 a) { return a *= s; }
+constexpr Vec3 operator/(Vec3 a, double s) { return a *= (1.0 / s); }
+/// Component-wise product (colour modulation).
+constexpr Vec3 mul(const Vec3& a, const Vec3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+
+constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+/// Unit vector along `a`; the zero vector stays zero (callers check degeneracy first).
+inline Vec3 normalize(const Vec3& a) {
+  const double l = length(a);
+  return l > 0 ? a / l : a;
+}
+inline bool is_finite(const Vec3& a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+inline Vec3 min(const Vec3& a, const Vec3& b) {
+  return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+}
+inline Vec3 max(const Vec3& a, const Vec3& b) {
+  return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+}
+
+/// Axis-aligned box; empty when lo > hi (the default).
+struct Bounds3 {
+  Vec3 lo{INFINITY, INFINITY, INFINITY};
+  Vec3 hi{-INFINITY, -INFINITY, -INFINITY};
+
+  void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+  void extend(const Bounds3& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  Vec3 centre() const { return (lo + hi) * 0.5; }
+  Vec3 diagonal() const { return hi - lo; }
+};
+
+/// Parameter interval [t0, t1] where the line o + t*d crosses `b` (slab test);
+/// returns false when it misses. d need not be unit; components may be zero.
+bool intersect_line_box(const Vec3& o, const Vec3& d, const Bounds3& b, double& t0, double& t1);
+
+/// Right-handed orthonormal frame: `x` right, `y` up, `z` the normal
+/// (camera-model.md, "Frame"). Maps between world and frame-local coordinates.
+struct Frame {
+  Vec3 origin;
+  Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+
+  /// Builds the frame from a normal and an "up" hint that need not be
+  /// orthogonal to it: x = normalize(up x z), y = z x x. Throws
+  /// std::invalid_argument when the normal is zero or up is parallel to it.
+  static Frame from_normal_up(const Vec3& origin, const Vec3& normal, const Vec3& up);
+
+  Vec3 to_world_point(const Vec3& p_local) const { return origin + x * p_local.x + y * p_local.y + z * p_local.z; }
+  Vec3 to_world_dir(const Vec3& d_local) const { return x * d_local.x + y * d_local.y + z * d_local.z; }
+  Vec3 to_local_point(const Vec3& p_world) const {
+    const Vec3 r = p_world - origin;
+    return {dot(r, x), dot(r, y), dot(r, z)};
+  }
+  Vec3 to_local_dir(const Vec3& d_world) const { return {dot(d_world, x), dot(d_world, y), dot(d_world, z)}; }
+};
+
+}  // namespace holoray

@@ -1,0 +1,66 @@
+// holoray/render: the scene as the renderer needs it, built once from a
+// SceneDesc (architecture.md: "build" step) and immutable afterwards.
+// Polygons are tessellated, `pp` normals flipped into the winding hemisphere,
+// lights given the SPD intensities (nff-notes §4), materials resolved.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "accel/accel_scene.hpp"
+#include "scene/scene_desc.hpp"
+
+namespace holoray {
+
+/// A light ready for shading: position (world) and RGB intensity.
+struct PointLight {
+  Vec3 position;
+  Vec3 intensity;
+};
+
+/// Where a ray met a surface, resolved for shading.
+struct SurfacePoint {
+  Vec3 position;    ///< world
+  Vec3 ng;          ///< unit geometric normal: outward (sphere, cone) or winding (polygon)
+  Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
+  int object = -1;  ///< index in SceneDesc::objects (file order)
+  const Material* material = nullptr;
+};
+
+class RenderScene {
+ public:
+  /// Builds the acceleration structure. Throws std::runtime_error if Embree fails.
+  explicit RenderScene(const SceneDesc& desc);
+
+  const AccelScene& accel() const { return *accel_; }
+  /// Resolves a hit of `ray` (world) into position, normals, object and material.
+  SurfacePoint surface(const Ray& ray, const Hit& hit) const;
+
+  const std::vector<PointLight>& lights() const { return lights_; }
+  const Vec3& ambient() const { return ambient_; }      ///< Ia (nff-notes §4: 1/(2 sqrt(n)))
+  const Vec3& background() const { return background_; }
+  /// Geometry bounds (world); empty for a scene with no geometry.
+  const Bounds3& bounds() const { return accel_->bounds(); }
+  /// Offset for spawning secondary rays, relative to the scene's coordinate scale.
+  double epsilon() const { return epsilon_; }
+  /// Polygons with no area (all vertices collinear or repeated), skipped.
+  size_t skipped_polygons() const { return skipped_polygons_; }
+  size_t object_count() const { return object_material_.size(); }
+
+ private:
+  std::unique_ptr<AccelScene> accel_;
+  std::vector<Material> materials_;        // [0] is the default for objects before any `f`
+  std::vector<uint32_t> object_material_;  // per object
+  std::vector<uint32_t> tri_object_, sphere_object_, cone_object_;
+  std::vector<Vec3> tri_normal_;                 // winding normal per triangle
+  std::vector<int32_t> tri_patch_;               // index into patch_normals_, -1 for flat `p`
+  std::vector<std::array<Vec3, 3>> patch_normals_;
+  std::vector<PointLight> lights_;
+  Vec3 ambient_, background_;
+  double epsilon_ = 1e-6;
+  size_t skipped_polygons_ = 0;
+};
+
+}  // namespace holoray

@@ -1,0 +1,67 @@
+// holoray/render: renders one elemental image array (EIA) through the
+// integral camera. oneTBB over tiles aligned to elemental images; every pixel
+// is computed independently, so the output is identical for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include "camera/lens_array.hpp"
+#include "image/image.hpp"
+#include "render/ray_counts.hpp"
+#include "render/render_scene.hpp"
+
+namespace holoray {
+
+/// Arbitrary output variables besides the colour.
+struct AovSet {
+  bool albedo = false;  ///< flat surface colour C, unlit (3 channels)
+  bool depth = false;   ///< the contract's signed line parameter t; NaN for background (1 channel)
+  bool normal = false;  ///< unit shading normal, world frame, facing the viewer; 0 for background (3)
+  bool id = false;      ///< object index in file order; -1 for background (1)
+};
+
+struct RenderOptions {
+  int spp = 1;      ///< samples per pixel; sample 0 is the pixel centre (the reference)
+  int threads = 0;  ///< 0: all cores
+  AovSet aovs;
+  /// Called from worker threads with the fraction done; must be thread-safe.
+  std::function<void(double)> progress;
+};
+
+/// One rendered EIA: colour (linear RGB) and the requested AOVs (others empty).
+/// AOVs come from the pixel-centre sample.
+struct FrameBuffers {
+  ImageBuffer colour, albedo, depth, normal, id;
+};
+
+struct RenderStats {
+  RayCounts rays;
+  double trace_seconds = 0;
+};
+
+/// Bytes the frame's buffers take (colour plus requested AOVs), computed
+/// without allocating; lets callers refuse absurd sizes up front.
+uint64_t frame_bytes(const LensArray& camera, const AovSet& aovs);
+
+/// Renders the EIA. Throws std::invalid_argument when spp < 1 or threads < 0,
+/// std::length_error when the buffers would exceed `memory_limit_bytes`
+/// (0: no limit), naming both numbers.
+FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, const RenderOptions& options,
+                          RenderStats& stats, uint64_t memory_limit_bytes = 0);
+
+/// The primary ray of one pixel sample, and how to turn its hit distance back
+/// into the contract's line parameter t. Orthoscopic rays start beyond the
+/// scene on the +z side and travel along -d, so the first hit is the largest t;
+/// pseudoscopic rays start at the lens and keep t > 0.
+struct PrimaryRay {
+  Ray ray;            ///< world; dir unit
+  double t_offset;    ///< line t = t_offset + t_sign * ray t
+  double t_sign;
+};
+/// nullopt when the pixel's line cannot meet the scene (records background).
+std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bounds, double margin, int i, int j,
+                                      double u = 0.5, double v = 0.5);
+
+}  // namespace holoray

@@ -1,0 +1,27 @@
+// holoray/render: Whitted shading with the SPD conventions (nff-notes §5, §10):
+//
+//   I = Ia*Kd*C + sum over lights seen  Il*(Kd*C*max(0, N.L) + Ks*max(0, R.V)^Shine)
+//       + Ks*I_reflected + T*I_transmitted
+//
+// Ks is both the mirror weight and the highlight weight; refraction follows
+// Snell's law with total internal reflection; no shadow ray is cast when the
+// normal faces away from the light; shadows are cast by any surface (how
+// transmitters attenuate them is unspecified; we treat them as opaque).
+#pragma once
+
+#include "render/ray_counts.hpp"
+#include "render/render_scene.hpp"
+
+namespace holoray {
+
+/// Ray-tree depth limit, counting the eye ray as depth 1 (nff-notes §10.7).
+inline constexpr int kMaxRayDepth = 5;
+
+/// Colour (linear RGB) seen along `ray` (world, unit dir) at ray-tree `depth`.
+Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts);
+
+/// Colour of a known surface point hit by `ray` (world, unit dir, travelling
+/// toward the surface: the viewer is at -ray.dir).
+Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
+
+}  // namespace holoray
