@@ -2,12 +2,15 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/render_command.hpp"
+#include "cli/subaperture_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"holoray: integral image (elemental image array) renderer"};
   app.require_subcommand(1);
   holoray::cli::RenderCommandOptions render_opts;
   CLI::App* render = holoray::cli::add_render_command(app, render_opts);
+  holoray::cli::SubapertureCommandOptions sub_opts;
+  CLI::App* sub = holoray::cli::add_subaperture_command(app, sub_opts);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -17,5 +20,6 @@ int main(int argc, char** argv) {
     return 2;  // usage errors: one status whatever CLI11's internal code
   }
   if (render->parsed()) return holoray::cli::run_render(render_opts);
+  if (sub->parsed()) return holoray::cli::run_subaperture(sub_opts);
   return 2;
 }

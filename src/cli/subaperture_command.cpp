@@ -1,0 +1,61 @@
+#include "cli/subaperture_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "camera/subaperture.hpp"
+#include "image/image_io.hpp"
+
+namespace holoray::cli {
+
+CLI::App* add_subaperture_command(CLI::App& app, SubapertureCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("subaperture", "Extract a sub-aperture view (pixel u,v of every elemental image)");
+  cmd->add_option("eia", o.input, "Elemental image array (any image OpenImageIO reads)")->required();
+  cmd->add_option("-o,--output", o.output, "Output image (.png or .exr)")->required();
+  cmd->add_option("--grid", o.grid, "Lens grid of the EIA: square, hex or lenticular")->capture_default_str();
+  cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();
+  cmd->add_option("--u", o.u, "Column within the elemental image, 0..P-1 (default P/2)");
+  cmd->add_option("--v", o.v, "Row within the elemental image, 0..P-1 (default P/2)");
+  cmd->add_option("--encoding", o.encoding, "PNG encoding of the output: linear or srgb")->capture_default_str();
+  return cmd;
+}
+
+int run_subaperture(const SubapertureCommandOptions& o) {
+  try {
+    if (!is_supported_output(o.output))
+      throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
+    const int P = o.pixels_per_lens;
+    if (P < 1) throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", P));
+    const ImageBuffer eia = read_image(o.input);
+    LensArrayDesc d;
+    d.pixels_per_lens = P;
+    if (eia.width % P != 0)
+      throw std::invalid_argument(fmt::format("the EIA is {} pixels wide, not a multiple of {} pixels per lens", eia.width, P));
+    d.lenses_x = eia.width / P;
+    if (o.grid == "square") {
+      d.grid = Grid::square;
+      if (eia.height % P != 0)
+        throw std::invalid_argument(fmt::format("the EIA is {} pixels high, not a multiple of {} pixels per lens", eia.height, P));
+      d.lenses_y = eia.height / P;
+    } else if (o.grid == "hex") {
+      d.grid = Grid::hex;
+      d.lenses_y = std::max(1, static_cast<int>(std::lround(eia.height / (P * std::sqrt(3.0) / 2))));
+      d.rows = eia.height;
+    } else if (o.grid == "lenticular") {
+      d.grid = Grid::lenticular;
+      d.rows = eia.height;
+    } else {
+      throw std::invalid_argument(fmt::format("--grid: expected square, hex or lenticular, got '{}'", o.grid));
+    }
+    const LensArray cam(d);
+    const ImageBuffer view = extract_subaperture(eia, cam, o.u < 0 ? P / 2 : o.u, o.v < 0 ? P / 2 : o.v);
+    write_image(o.output, view, o.encoding == "srgb" ? Encoding::srgb : Encoding::linear);
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace holoray::cli
