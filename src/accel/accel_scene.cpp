@@ -126,6 +126,9 @@ AccelScene::AccelScene(TriangleData triangles, std::vector<Sphere> spheres, std:
   if (!m.device) throw std::runtime_error(fmt::format("cannot create the Embree device (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   rtcSetDeviceErrorFunction(m.device, on_embree_error, &m.last_error);
   m.scene = rtcNewScene(m.device);
+  // Robust mode: watertight triangle edges (rays exactly on a shared edge
+  // otherwise fall through; the plane-depth test hits this).
+  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
   m.check("creating the Embree scene");
 
