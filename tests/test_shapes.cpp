@@ -1,0 +1,88 @@
+// Exact sphere and open-cone intersection (nff-notes §6, §7).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "accel/shapes.hpp"
+
+using namespace holoray;
+
+TEST(Sphere, HitsNearRootThenFarRootFromInside) {
+  const Sphere s{{0, 0, 5}, 2};
+  double t;
+  Vec3 n;
+  ASSERT_TRUE(intersect_sphere(s, {0, 0, 0}, {0, 0, 1}, 0, INFINITY, t, n));
+  EXPECT_DOUBLE_EQ(t, 3);
+  EXPECT_EQ(n, (Vec3{0, 0, -1}));
+  ASSERT_TRUE(intersect_sphere(s, {0, 0, 5}, {0, 0, 1}, 0, INFINITY, t, n));  // from the centre
+  EXPECT_DOUBLE_EQ(t, 2);
+  EXPECT_FALSE(intersect_sphere(s, {0, 2.0001, 0}, {0, 0, 1}, 0, INFINITY, t, n));
+}
+
+TEST(Sphere, NegativeRadiusShowsOnlyTheInside) {
+  const Sphere s{{0, 0, 5}, -2};
+  double t;
+  Vec3 n;
+  ASSERT_TRUE(intersect_sphere(s, {0, 0, 0}, {0, 0, 1}, 0, INFINITY, t, n));
+  EXPECT_DOUBLE_EQ(t, 7);  // the far wall, seen from inside
+}
+
+TEST(Sphere, PreciseFromFarAway) {
+  const Sphere s{{0, 0, 0}, 1e-3};
+  double t;
+  Vec3 n;
+  ASSERT_TRUE(intersect_sphere(s, {0, 0, -1e6}, {0, 0, 1}, 0, INFINITY, t, n));
+  EXPECT_NEAR(t, 1e6 - 1e-3, 1e-9);
+}
+
+TEST(Cone, CylinderSideAtTheRadiusWithinItsLength) {
+  const Cone c{{0, 0, 0}, {0, 0, 4}, 1, 1};
+  double t;
+  Vec3 n;
+  ASSERT_TRUE(intersect_cone(c, {-5, 0, 2}, {1, 0, 0}, 0, INFINITY, t, n));
+  EXPECT_NEAR(t, 4, 1e-12);
+  EXPECT_LT(length(n - Vec3{-1, 0, 0}), 1e-12);
+  EXPECT_FALSE(intersect_cone(c, {-5, 0, 4.01}, {1, 0, 0}, 0, INFINITY, t, n));  // beyond the apex end
+}
+
+TEST(Cone, OpenEndsLetAxialRaysThrough) {
+  const Cone c{{0, 0, 0}, {0, 0, 4}, 1, 1};
+  double t;
+  Vec3 n;
+  EXPECT_FALSE(intersect_cone(c, {0, 0, -3}, {0, 0, 1}, 0, INFINITY, t, n));  // no caps
+}
+
+TEST(Cone, TruncatedConeRadiusVariesLinearly) {
+  const Cone c{{0, 0, 0}, {0, 0, 2}, 2, 0.5};  // radius 1.25 at z = 1
+  double t;
+  Vec3 n;
+  ASSERT_TRUE(intersect_cone(c, {-5, 0, 1}, {1, 0, 0}, 0, INFINITY, t, n));
+  EXPECT_NEAR(t, 5 - 1.25, 1e-12);
+  // Outward normal tilts up (toward the apex) by atan(slope) = atan(1.5 / 2).
+  EXPECT_NEAR(n.z / -n.x, 0.75, 1e-12);
+}
+
+TEST(Cone, DoesNotHitTheMirroredNappeBeyondATip) {
+  const Cone c{{0, 0, 0}, {0, 0, 2}, 1, 0};  // true tip at z = 2
+  double t;
+  Vec3 n;
+  EXPECT_FALSE(intersect_cone(c, {-5, 0, 2.5}, {1, 0, 0}, 0, INFINITY, t, n));
+}
+
+TEST(Cone, BoundsContainTheSurface) {
+  const Cone c{{1, 2, 3}, {2, 4, 3.5}, 0.7, 0.2};
+  const Bounds3 b = bounds_of(c);
+  for (int k = 0; k < 64; ++k) {
+    const double a = k * 2 * M_PI / 64;
+    const Vec3 axis = normalize(c.apex - c.base);
+    const Vec3 u = normalize(cross(axis, {0, 0, 1})), w = cross(axis, u);
+    for (double h : {0.0, 1.0}) {
+      const double r = 0.7 + (0.2 - 0.7) * h;
+      const Vec3 p = c.base + (c.apex - c.base) * h + (u * std::cos(a) + w * std::sin(a)) * r;
+      for (int e = 0; e < 3; ++e) {
+        EXPECT_GE(p[e], b.lo[e] - 1e-12);
+        EXPECT_LE(p[e], b.hi[e] + 1e-12);
+      }
+    }
+  }
+}
