@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Renders the README's pictures into docs/images (needs ../shared/scenes for
+# the SPD scenes). For each scene: the EIA at 64x64 lenses x 8 px (512x512)
+# and the centre sub-aperture view of a 200x200-lens x 5 px render.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+h=build/holoray
+out=docs/images
+tmp=$(mktemp -d)
+mkdir -p "$out"
+render() {  # name scene-file
+  "$h" render "$2" -o "$out/$1_eia.png" --lenses 64x64 --pixels-per-lens 8 -q
+  "$h" render "$2" -o "$tmp/$1_big.png" --lenses 200x200 --pixels-per-lens 5 -q
+  "$h" subaperture "$tmp/$1_big.png" --pixels-per-lens 5 -o "$out/$1_view.png"
+}
+for s in balls_s4 gears_s4 teapot_s6 tree_s11; do render "${s%_s*}" "../shared/scenes/nff/$s.nff"; done
+render primitives examples/primitives.nff
+render room examples/room.nff
+# A close-up of the elemental images: the top-left 96x96 pixels of the teapot EIA, 4x.
+oiiotool "$out/teapot_eia.png" --cut 96x96+208+208 --resize 384x384 --filter box -o "$out/teapot_eia_closeup.png" 2>/dev/null ||
+  oiiotool "$out/teapot_eia.png" --cut 96x96+208+208 --resize 384x384 -o "$out/teapot_eia_closeup.png"
+rm -rf "$tmp"
+ls -la "$out"
