@@ -120,7 +120,10 @@ TEST_P(ProjectionRoundTrip, PointsOnAPixelLineProjectBackToThatPixel) {
 
 INSTANTIATE_TEST_SUITE_P(AllGridsAndModes, ProjectionRoundTrip,
                          ::testing::Combine(::testing::Values(Grid::square, Grid::hex, Grid::lenticular),
-                                            ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)));
+                                            ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)),
+                         [](const auto& info) {
+                           return std::string(to_string(std::get<0>(info.param))) + "_" + to_string(std::get<1>(info.param));
+                         });
 
 // Property 2, the "every lens" half: an independent brute force over all lenses
 // of the square grid, straight from the contract's formulas.

@@ -91,7 +91,10 @@ TEST_P(SphereCoverage, MatchesTheAnalyticPrediction) {
 
 INSTANTIATE_TEST_SUITE_P(AllGridsAndModes, SphereCoverage,
                          ::testing::Combine(::testing::Values(Grid::square, Grid::hex, Grid::lenticular),
-                                            ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)));
+                                            ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)),
+                         [](const auto& info) {
+                           return std::string(to_string(std::get<0>(info.param))) + "_" + to_string(std::get<1>(info.param));
+                         });
 
 // A plane at known depth: the depth AOV is the contract's t = z0 / d_z, to 1e-5 relative.
 TEST(RenderAnalytic, PlaneDepthMatchesWithinRelative1em5) {
