@@ -7,6 +7,7 @@
 
 #include "camera/lens_array.hpp"
 #include "camera/placement.hpp"
+#include "test_util.hpp"
 
 using namespace holoray;
 
@@ -121,9 +122,7 @@ TEST_P(ProjectionRoundTrip, PointsOnAPixelLineProjectBackToThatPixel) {
 INSTANTIATE_TEST_SUITE_P(AllGridsAndModes, ProjectionRoundTrip,
                          ::testing::Combine(::testing::Values(Grid::square, Grid::hex, Grid::lenticular),
                                             ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)),
-                         [](const auto& info) {
-                           return std::string(to_string(std::get<0>(info.param))) + "_" + to_string(std::get<1>(info.param));
-                         });
+                         test::grid_mode_name);
 
 // Property 2, the "every lens" half: an independent brute force over all lenses
 // of the square grid, straight from the contract's formulas.

@@ -8,6 +8,7 @@
 #include "camera/lens_array.hpp"
 #include "render/renderer.hpp"
 #include "scene/scene_desc.hpp"
+#include "test_util.hpp"
 
 using namespace holoray;
 
@@ -92,9 +93,7 @@ TEST_P(SphereCoverage, MatchesTheAnalyticPrediction) {
 INSTANTIATE_TEST_SUITE_P(AllGridsAndModes, SphereCoverage,
                          ::testing::Combine(::testing::Values(Grid::square, Grid::hex, Grid::lenticular),
                                             ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)),
-                         [](const auto& info) {
-                           return std::string(to_string(std::get<0>(info.param))) + "_" + to_string(std::get<1>(info.param));
-                         });
+                         test::grid_mode_name);
 
 // A plane at known depth: the depth AOV is the contract's t = z0 / d_z, to 1e-5 relative.
 TEST(RenderAnalytic, PlaneDepthMatchesWithinRelative1em5) {

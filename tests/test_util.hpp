@@ -7,6 +7,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "camera/lens_array.hpp"
 
 namespace holoray::test {
 
@@ -54,6 +59,11 @@ inline void write_text(const std::string& path, const std::string& text) {
   FILE* f = std::fopen(path.c_str(), "wb");
   std::fwrite(text.data(), 1, text.size(), f);
   std::fclose(f);
+}
+
+/// Test name for a (Grid, RecordingMode) parameter, e.g. "hex_orthoscopic".
+inline std::string grid_mode_name(const ::testing::TestParamInfo<std::tuple<Grid, RecordingMode>>& info) {
+  return std::string(to_string(std::get<0>(info.param))) + "_" + to_string(std::get<1>(info.param));
 }
 
 }  // namespace holoray::test
