@@ -170,6 +170,16 @@ TEST(NffReaderErrors, MissingFile) {
   }
 }
 
+TEST(NffReaderErrors, FolderInsteadOfFile) {
+  test::TempDir dir;
+  try {
+    read_nff_file(dir.path.string());
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot read '" + dir.path.string() + "': it is a folder");
+  }
+}
+
 TEST(NffReader, ReadsEveryShippedScene) {
   if (!test::have_shared_scenes()) GTEST_SKIP() << "no ../shared/scenes";
   for (const auto& entry : std::filesystem::directory_iterator(test::shared_dir() + "/scenes/nff")) {

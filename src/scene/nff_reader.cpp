@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -164,6 +165,8 @@ SceneDesc parse_nff(std::string_view text, const std::string& source, const NffL
 }
 
 SceneDesc read_nff_file(const std::string& path, const NffLimits& limits) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(fmt::format("cannot read '{}': it is a folder", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
   std::ostringstream ss;
