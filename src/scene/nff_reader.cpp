@@ -59,7 +59,6 @@ class NffParser {
     const Token up_tok = tok_.peek();
     tok_.expect("up");
     v.up = vec3("an 'up' component");
-    const Token angle_tok = tok_.peek();
     tok_.expect("angle");
     const Token angle_value = tok_.peek();
     v.angle_deg = tok_.number("the view angle in degrees");
@@ -77,7 +76,6 @@ class NffParser {
     if (!(length(v.from - v.at) > 0)) tok_.fail(v.loc, "expected 'from' and 'at' to differ, found the same point");
     if (!(length(cross(v.up, v.at - v.from)) > 1e-12 * length(v.up) * length(v.at - v.from)))
       tok_.fail(up_tok.loc, "expected an 'up' direction not parallel to the view direction, found a parallel or zero one");
-    (void)angle_tok;
     scene_.viewpoint = v;
   }
 
