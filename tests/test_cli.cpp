@@ -87,6 +87,18 @@ TEST(Cli, UnsupportedOutputAndMissingFolderAreRefusedBeforeRendering) {
   EXPECT_EQ(r.output, "holoray: error: -o: folder '" + dir.file("nowhere") + "' does not exist\n");
 }
 
+TEST(Cli, SubapertureRefusesUnknownGridAndEncoding) {
+  test::TempDir dir;
+  write_image(dir.file("e.png"), ImageBuffer(8, 8, 3));
+  auto r = test::run_cli("subaperture " + dir.file("e.png") + " --pixels-per-lens 4 --encoding gamma -o " + dir.file("v.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.output, "holoray: error: --encoding: expected linear or srgb, got 'gamma'\n");
+  r = test::run_cli("subaperture " + dir.file("e.png") + " --pixels-per-lens 4 --grid round -o " + dir.file("v.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.output, "holoray: error: --grid: expected square, hex or lenticular, got 'round'\n");
+  EXPECT_FALSE(fs::exists(dir.file("v.png")));
+}
+
 TEST(Cli, MissingSceneAndUnknownOptions) {
   test::TempDir dir;
   auto r = test::run_cli("render " + dir.file("none.nff") + " -o " + dir.file("o.png"));

@@ -41,6 +41,19 @@ Vec3 parse_vec3(const std::string& option, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
+Grid parse_grid(const std::string& text) {
+  if (text == "square") return Grid::square;
+  if (text == "hex") return Grid::hex;
+  if (text == "lenticular") return Grid::lenticular;
+  throw std::invalid_argument(fmt::format("--grid: expected square, hex or lenticular, got '{}'", text));
+}
+
+Encoding parse_encoding(const std::string& text) {
+  if (text == "linear") return Encoding::linear;
+  if (text == "srgb") return Encoding::srgb;
+  throw std::invalid_argument(fmt::format("--encoding: expected linear or srgb, got '{}'", text));
+}
+
 AovSet parse_aovs(const std::string& text) {
   AovSet a;
   std::stringstream ss(text);

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "camera/lens_array.hpp"
+#include "image/image_io.hpp"
 #include "math/vec.hpp"
 #include "render/renderer.hpp"
 
@@ -13,6 +15,10 @@ namespace holoray::cli {
 void parse_lens_count(const std::string& text, int& nx, int& ny);
 /// "X,Y,Z" with finite numbers.
 Vec3 parse_vec3(const std::string& option, const std::string& text);
+/// "square", "hex" or "lenticular" (--grid).
+Grid parse_grid(const std::string& text);
+/// "linear" or "srgb" (--encoding).
+Encoding parse_encoding(const std::string& text);
 /// Comma-separated subset of albedo,depth,normal,id.
 AovSet parse_aovs(const std::string& text);
 

@@ -31,10 +31,7 @@ uint64_t physical_memory_bytes() {
 
 ArraySettings resolve_settings(const RenderCommandOptions& o) {
   ArraySettings s;
-  if (o.grid == "square") s.grid = Grid::square;
-  else if (o.grid == "hex") s.grid = Grid::hex;
-  else if (o.grid == "lenticular") s.grid = Grid::lenticular;
-  else throw std::invalid_argument(fmt::format("--grid: expected square, hex or lenticular, got '{}'", o.grid));
+  s.grid = parse_grid(o.grid);
   if (o.mode == "orthoscopic") s.mode = RecordingMode::orthoscopic;
   else if (o.mode == "pseudoscopic") s.mode = RecordingMode::pseudoscopic;
   else throw std::invalid_argument(fmt::format("--mode: expected orthoscopic or pseudoscopic, got '{}'", o.mode));
@@ -88,10 +85,7 @@ int run_render(const RenderCommandOptions& o) {
     const std::filesystem::path out_dir = std::filesystem::path(o.output).parent_path();
     if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
       throw std::invalid_argument(fmt::format("-o: folder '{}' does not exist", out_dir.string()));
-    Encoding encoding;
-    if (o.encoding == "linear") encoding = Encoding::linear;
-    else if (o.encoding == "srgb") encoding = Encoding::srgb;
-    else throw std::invalid_argument(fmt::format("--encoding: expected linear or srgb, got '{}'", o.encoding));
+    const Encoding encoding = parse_encoding(o.encoding);
     if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "camera/subaperture.hpp"
+#include "cli/option_parsing.hpp"
 #include "image/image_io.hpp"
 
 namespace holoray::cli {
@@ -25,6 +26,8 @@ int run_subaperture(const SubapertureCommandOptions& o) {
   try {
     if (!is_supported_output(o.output))
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
+    const Grid grid = parse_grid(o.grid);
+    const Encoding encoding = parse_encoding(o.encoding);
     const int P = o.pixels_per_lens;
     if (P < 1) throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", P));
     const ImageBuffer eia = read_image(o.input);
@@ -33,24 +36,20 @@ int run_subaperture(const SubapertureCommandOptions& o) {
     if (eia.width % P != 0)
       throw std::invalid_argument(fmt::format("the EIA is {} pixels wide, not a multiple of {} pixels per lens", eia.width, P));
     d.lenses_x = eia.width / P;
-    if (o.grid == "square") {
-      d.grid = Grid::square;
+    d.grid = grid;
+    if (grid == Grid::square) {
       if (eia.height % P != 0)
         throw std::invalid_argument(fmt::format("the EIA is {} pixels high, not a multiple of {} pixels per lens", eia.height, P));
       d.lenses_y = eia.height / P;
-    } else if (o.grid == "hex") {
-      d.grid = Grid::hex;
+    } else if (grid == Grid::hex) {
       d.lenses_y = std::max(1, static_cast<int>(std::lround(eia.height / (P * std::sqrt(3.0) / 2))));
       d.rows = eia.height;
-    } else if (o.grid == "lenticular") {
-      d.grid = Grid::lenticular;
-      d.rows = eia.height;
     } else {
-      throw std::invalid_argument(fmt::format("--grid: expected square, hex or lenticular, got '{}'", o.grid));
+      d.rows = eia.height;  // lenticular
     }
     const LensArray cam(d);
     const ImageBuffer view = extract_subaperture(eia, cam, o.u < 0 ? P / 2 : o.u, o.v < 0 ? P / 2 : o.v);
-    write_image(o.output, view, o.encoding == "srgb" ? Encoding::srgb : Encoding::linear);
+    write_image(o.output, view, encoding);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "holoray: error: {}\n", e.what());
