@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -105,68 +106,256 @@ RTCRay to_rtc_ray(const Ray& r) {
 
 }  // namespace
 
+// Embree ids: a static group g puts its geometries in the top level as
+// 3g + kind; a movable group is the instance 3g of a child scene that holds
+// its geometries as `kind`.
 struct AccelScene::Impl {
   std::string last_error;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<RTCScene> children;                  // per group; null for static groups
+  std::vector<RTCGeometry> instances;              // per group; null for static groups
 
   void check(const char* what) {
     if (!last_error.empty()) throw std::runtime_error(fmt::format("{}: {}", what, last_error));
   }
   ~Impl() {
+    for (RTCScene s : children)
+      if (s) rtcReleaseScene(s);
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
 };
 
-AccelScene::AccelScene(TriangleData triangles, std::vector<Sphere> spheres, std::vector<Cone> cones)
-    : impl_(std::make_unique<Impl>()), tri_(std::move(triangles)), spheres_(std::move(spheres)), cones_(std::move(cones)) {
-  Impl& m = *impl_;
-  m.device = rtcNewDevice(nullptr);
-  if (!m.device) throw std::runtime_error(fmt::format("cannot create the Embree device (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
-  rtcSetDeviceErrorFunction(m.device, on_embree_error, &m.last_error);
-  m.scene = rtcNewScene(m.device);
-  // Robust mode: watertight triangle edges (rays exactly on a shared edge
-  // otherwise fall through; the plane-depth test hits this).
-  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
-  m.check("creating the Embree scene");
+namespace {
 
-  if (!tri_.indices.empty()) {
-    RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, tri_.positions.data(), 0, 3 * sizeof(float),
-                               tri_.positions.size() / 3);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tri_.indices.data(), 0, 3 * sizeof(uint32_t),
-                               tri_.indices.size() / 3);
+GeometryGroup single_group(TriangleData triangles, std::vector<Sphere> spheres, std::vector<Cone> cones) {
+  GeometryGroup g;
+  g.triangles = std::move(triangles);
+  g.spheres = std::move(spheres);
+  g.cones = std::move(cones);
+  return g;
+}
+
+void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, unsigned id_base) {
+  TriangleData& tri = geo.triangles;
+  if (!tri.indices.empty()) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, tri.positions.data(), 0, 3 * sizeof(float),
+                               tri.positions.size() / 3);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tri.indices.data(), 0, 3 * sizeof(uint32_t),
+                               tri.indices.size() / 3);
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(m.scene, g, static_cast<unsigned>(PrimKind::triangle));
+    rtcAttachGeometryByID(scene, g, id_base + static_cast<unsigned>(PrimKind::triangle));
     rtcReleaseGeometry(g);
-    for (size_t i = 0; i + 2 < tri_.positions.size(); i += 3)
-      bounds_.extend(Vec3{tri_.positions[i], tri_.positions[i + 1], tri_.positions[i + 2]});
   }
   auto add_user = [&](auto& shapes, PrimKind kind) {
     using Shape = typename std::remove_reference_t<decltype(shapes)>::value_type;
     if (shapes.empty()) return;
-    RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_USER);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(shapes.size()));
     rtcSetGeometryUserData(g, shapes.data());
     rtcSetGeometryBoundsFunction(g, shape_bounds<Shape>, nullptr);
     rtcSetGeometryIntersectFunction(g, shape_intersect<Shape>);
     rtcSetGeometryOccludedFunction(g, shape_occluded<Shape>);
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(m.scene, g, static_cast<unsigned>(kind));
+    rtcAttachGeometryByID(scene, g, id_base + static_cast<unsigned>(kind));
     rtcReleaseGeometry(g);
-    for (const Shape& s : shapes) bounds_.extend(bounds_of(s));
   };
-  add_user(spheres_, PrimKind::sphere);
-  add_user(cones_, PrimKind::cone);
+  add_user(geo.spheres, PrimKind::sphere);
+  add_user(geo.cones, PrimKind::cone);
+}
+
+Bounds3 geometry_bounds(const GeometryGroup& geo) {
+  Bounds3 b;
+  const auto& p = geo.triangles.positions;
+  for (size_t i = 0; i + 2 < p.size(); i += 3) b.extend(Vec3{p[i], p[i + 1], p[i + 2]});
+  for (const Sphere& s : geo.spheres) b.extend(bounds_of(s));
+  for (const Cone& c : geo.cones) b.extend(bounds_of(c));
+  return b;
+}
+
+Bounds3 transformed(const Bounds3& b, const Affine& a) {
+  Bounds3 r;
+  if (b.empty()) return r;
+  for (int k = 0; k < 8; ++k)
+    r.extend(a.point(Vec3{(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z}));
+  return r;
+}
+
+void to_rtc_transform(const Affine& a, float out[12]) {
+  // RTC_FORMAT_FLOAT3X4_ROW_MAJOR
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out[4 * r + c] = static_cast<float>(a.m[3 * r + c]);
+    out[4 * r + 3] = static_cast<float>(a.translation[r]);
+  }
+}
+
+}  // namespace
+
+AccelScene::AccelScene(TriangleData triangles, std::vector<Sphere> spheres, std::vector<Cone> cones)
+    : AccelScene([&] {
+        std::vector<GeometryGroup> g;
+        g.push_back(single_group(std::move(triangles), std::move(spheres), std::move(cones)));
+        return g;
+      }()) {}
+
+AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.device = rtcNewDevice(nullptr);
+  if (!m.device) throw std::runtime_error(fmt::format("cannot create the Embree device (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+  rtcSetDeviceErrorFunction(m.device, on_embree_error, &m.last_error);
+  auto new_scene = [&] {
+    RTCScene s = rtcNewScene(m.device);
+    // Robust mode: watertight triangle edges (rays exactly on a shared edge
+    // otherwise fall through; the plane-depth test hits this).
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    return s;
+  };
+  m.scene = new_scene();
+  m.check("creating the Embree scene");
+
+  groups_.resize(groups.size());
+  m.children.assign(groups.size(), nullptr);
+  m.instances.assign(groups.size(), nullptr);
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    Group& g = groups_[gi];
+    g.geo = std::move(groups[gi]);
+    g.object_bounds = geometry_bounds(g.geo);
+    const unsigned base = 3 * static_cast<unsigned>(gi);
+    if (!g.geo.movable) {
+      attach_geometry(m.device, m.scene, g.geo, base);
+      continue;
+    }
+    RTCScene child = new_scene();
+    attach_geometry(m.device, child, g.geo, 0);
+    rtcCommitScene(child);
+    m.children[gi] = child;
+    RTCGeometry inst = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst, child);
+    float xf[12];
+    to_rtc_transform(Affine{}, xf);
+    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xf);
+    rtcCommitGeometry(inst);
+    rtcAttachGeometryByID(m.scene, inst, base);
+    m.instances[gi] = inst;  // owned by the scene; kept to update its transform
+    rtcReleaseGeometry(inst);
+  }
   rtcCommitScene(m.scene);
   m.check("building the Embree scene");
+  for (const Group& g : groups_) bounds_.extend(g.object_bounds);
 }
 
 AccelScene::~AccelScene() = default;
 
+void AccelScene::set_transforms(const std::vector<Affine>& object_to_world) {
+  if (object_to_world.size() != groups_.size())
+    throw std::invalid_argument(fmt::format("expected {} transforms (one per scene file), got {}", groups_.size(),
+                                            object_to_world.size()));
+  Impl& m = *impl_;
+  bool changed = false;
+  bounds_ = Bounds3{};
+  for (size_t gi = 0; gi < groups_.size(); ++gi) {
+    Group& g = groups_[gi];
+    const Affine& a = object_to_world[gi];
+    if (!g.geo.movable) {
+      if (!a.is_identity())
+        throw std::invalid_argument(fmt::format("scene group {} was built static and cannot be moved", gi));
+      bounds_.extend(g.object_bounds);
+      continue;
+    }
+    const Affine inv = a.inverse();  // throws for a singular transform
+    if (a.m != g.to_world.m || a.translation != g.to_world.translation) {
+      g.to_world = a;
+      g.to_object = inv;
+      g.identity = a.is_identity();
+      float xf[12];
+      to_rtc_transform(a, xf);
+      rtcSetGeometryTransform(m.instances[gi], 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xf);
+      rtcCommitGeometry(m.instances[gi]);
+      changed = true;
+    }
+    bounds_.extend(transformed(g.object_bounds, g.to_world));
+  }
+  if (changed) rtcCommitScene(m.scene);
+  m.check("moving the scene's objects");
+}
+
+size_t AccelScene::triangle_count() const {
+  return std::accumulate(groups_.begin(), groups_.end(), size_t{0},
+                         [](size_t n, const Group& g) { return n + g.geo.triangles.indices.size() / 3; });
+}
+size_t AccelScene::sphere_count() const {
+  return std::accumulate(groups_.begin(), groups_.end(), size_t{0},
+                         [](size_t n, const Group& g) { return n + g.geo.spheres.size(); });
+}
+size_t AccelScene::cone_count() const {
+  return std::accumulate(groups_.begin(), groups_.end(), size_t{0},
+                         [](size_t n, const Group& g) { return n + g.geo.cones.size(); });
+}
+
 void* AccelScene::rtc_scene() const { return impl_->scene; }
+
+bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_guess, Hit& hit) const {
+  // Work in the group's object space: there the geometry is exact (double)
+  // and t is the same as in the world because the direction is not renormalised.
+  const Vec3 o = g.identity ? r.org : g.to_object.point(r.org);
+  const Vec3 d = g.identity ? r.dir : g.to_object.dir(r.dir);
+  Vec3 n_obj;
+  switch (hit.kind) {
+    case PrimKind::triangle: {
+      const TriangleData& tri = g.geo.triangles;
+      const uint32_t* idx = &tri.indices[3 * size_t{hit.prim}];
+      auto vtx = [&](int k) {
+        const float* p = &tri.positions[3 * size_t{idx[k]}];
+        return Vec3{p[0], p[1], p[2]};
+      };
+      const Vec3 v0 = vtx(0), e1 = vtx(1) - v0, e2 = vtx(2) - v0;
+      const Vec3 n = normalize(cross(e1, e2));
+      const double dn = dot(d, n);
+      if (dn == 0) {
+        if (strict) return false;
+        hit.t = t_guess;
+      } else {
+        hit.t = dot(v0 - o, n) / dn;
+      }
+      const Vec3 p = o + d * hit.t;
+      const double area = dot(cross(e1, e2), n);
+      hit.u = dot(cross(p - v0, e2), n) / area;
+      hit.v = dot(cross(e1, p - v0), n) / area;
+      if (strict) {
+        constexpr double kTol = 1e-9;
+        if (!(hit.u >= -kTol && hit.v >= -kTol && hit.u + hit.v <= 1 + kTol)) return false;
+        if (!(hit.t > r.tnear && hit.t < r.tfar)) return false;
+      }
+      n_obj = n;
+      break;
+    }
+    case PrimKind::sphere:
+    case PrimKind::cone: {
+      double t;
+      Vec3 n;
+      const double slack = strict ? INFINITY : 1e-4 * std::fabs(t_guess) + 1e-7;
+      const double lo = strict ? r.tnear : t_guess - slack, hi = strict ? r.tfar : t_guess + slack;
+      const bool ok = hit.kind == PrimKind::sphere ? intersect_sphere(g.geo.spheres[hit.prim], o, d, lo, hi, t, n)
+                                                   : intersect_cone(g.geo.cones[hit.prim], o, d, lo, hi, t, n);
+      if (!ok) {
+        if (strict) return false;
+        hit.t = t_guess;  // keep Embree's float answer (and normal, set by the caller)
+        hit.p_object = o + d * hit.t;
+        return true;
+      }
+      hit.t = t;
+      hit.u = hit.v = 0;
+      n_obj = n;
+      break;
+    }
+  }
+  hit.p_object = o + d * hit.t;
+  hit.ng = g.identity ? n_obj : g.to_world.normal(n_obj);
+  return true;
+}
 
 bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence) const {
   RTCIntersectContext ctx;
@@ -179,50 +368,35 @@ bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence) const
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-  hit.kind = static_cast<PrimKind>(rh.hit.geomID);
+  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    hit.group = rh.hit.instID[0] / 3;
+    hit.kind = static_cast<PrimKind>(rh.hit.geomID);
+  } else {
+    hit.group = rh.hit.geomID / 3;
+    hit.kind = static_cast<PrimKind>(rh.hit.geomID % 3);
+  }
   hit.prim = rh.hit.primID;
+  const Group& g = groups_[hit.group];
+  // Embree's normal is in object space; used only if the double refinement fails.
+  const Vec3 ng_obj = normalize(Vec3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
+  hit.ng = g.identity ? ng_obj : g.to_world.normal(ng_obj);
   hit.u = rh.hit.u;
   hit.v = rh.hit.v;
-  hit.t = rh.ray.tfar;
-  // Refine t (and the normal) in double precision: Embree reports float.
-  switch (hit.kind) {
-    case PrimKind::triangle: {
-      const uint32_t* idx = &tri_.indices[3 * size_t{hit.prim}];
-      auto vtx = [&](int k) {
-        const float* p = &tri_.positions[3 * size_t{idx[k]}];
-        return Vec3{p[0], p[1], p[2]};
-      };
-      const Vec3 v0 = vtx(0), v1 = vtx(1), v2 = vtx(2);
-      const Vec3 n = normalize(cross(v1 - v0, v2 - v0));
-      hit.ng = n;
-      const double dn = dot(r.dir, n);
-      if (dn != 0) hit.t = dot(v0 - r.org, n) / dn;
-      break;
-    }
-    case PrimKind::sphere: {
-      double t;
-      Vec3 n;
-      const double slack = 1e-4 * std::fabs(hit.t) + 1e-7;
-      hit.ng = normalize(Vec3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-      if (intersect_sphere(spheres_[hit.prim], r.org, r.dir, hit.t - slack, hit.t + slack, t, n)) {
-        hit.t = t;
-        hit.ng = n;
-      }
-      break;
-    }
-    case PrimKind::cone: {
-      double t;
-      Vec3 n;
-      const double slack = 1e-4 * std::fabs(hit.t) + 1e-7;
-      hit.ng = normalize(Vec3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-      if (intersect_cone(cones_[hit.prim], r.org, r.dir, hit.t - slack, hit.t + slack, t, n)) {
-        hit.t = t;
-        hit.ng = n;
-      }
-      break;
-    }
-  }
+  refine(g, r, false, rh.ray.tfar, hit);
   return true;
+}
+
+bool AccelScene::intersect_primitive(const Ray& r, uint32_t group, PrimKind kind, uint32_t prim, Hit& hit) const {
+  if (group >= groups_.size()) return false;
+  const Group& g = groups_[group];
+  const size_t count = kind == PrimKind::triangle ? g.geo.triangles.indices.size() / 3
+                       : kind == PrimKind::sphere ? g.geo.spheres.size()
+                                                  : g.geo.cones.size();
+  if (prim >= count) return false;
+  hit.group = group;
+  hit.kind = kind;
+  hit.prim = prim;
+  return refine(g, r, true, 0, hit);
 }
 
 bool AccelScene::occluded(const Ray& r) const {

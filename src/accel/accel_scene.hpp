@@ -1,6 +1,8 @@
-// holoray/accel: the only place that includes Embree. An RAII device and
-// scene over three geometries (triangles, exact spheres, exact open cones),
-// queried with single rays; the renderer never sees an Embree type.
+// holoray/accel: the only place that includes Embree. An RAII device and a
+// two-level scene: one group of geometry per scene file (triangles, exact
+// spheres, exact open cones); a group that moves is an Embree instance whose
+// transform changes per frame, a group that never moves sits in the top level
+// at no cost. Queried with single rays; the renderer never sees an Embree type.
 #pragma once
 
 #include <cstdint>
@@ -8,17 +10,26 @@
 #include <vector>
 
 #include "accel/shapes.hpp"
+#include "math/transform.hpp"
 #include "math/vec.hpp"
 
 namespace holoray {
 
-/// Which geometry a hit is on; also its Embree geometry id.
+/// Which geometry a hit is on.
 enum class PrimKind : uint32_t { triangle = 0, sphere = 1, cone = 2 };
 
-/// Triangles as Embree takes them (world frame, float).
+/// Triangles as Embree takes them (object space, float).
 struct TriangleData {
   std::vector<float> positions;    ///< xyz per vertex
   std::vector<uint32_t> indices;   ///< 3 per triangle
+};
+
+/// The geometry of one scene file, in its own (object) space.
+struct GeometryGroup {
+  TriangleData triangles;
+  std::vector<Sphere> spheres;
+  std::vector<Cone> cones;
+  bool movable = false;  ///< instanced: set_transforms may move it
 };
 
 /// A ray segment o + t*d, t in (tnear, tfar), world frame; d need not be unit.
@@ -27,15 +38,18 @@ struct Ray {
   double tnear = 0, tfar = INFINITY;
 };
 
-/// Nearest hit: ray parameter t (refined to double precision), the primitive,
-/// Embree's barycentrics (triangles) and the primitive's outward / winding
-/// geometric normal (unit).
+/// A hit, refined in double precision: ray parameter t, the primitive, its
+/// barycentrics (triangles: weights of vertices 1 and 2), the unit geometric
+/// normal (world; outward for spheres and cones, winding for triangles) and
+/// the hit point in the group's object space (what moves with the object).
 struct Hit {
   double t = INFINITY;
   PrimKind kind = PrimKind::triangle;
+  uint32_t group = 0;
   uint32_t prim = 0;
-  float u = 0, v = 0;
+  double u = 0, v = 0;
   Vec3 ng;
+  Vec3 p_object;
 };
 
 /// Hint for Embree's traversal: primary rays of one lens are coherent.
@@ -43,34 +57,56 @@ enum class RayCoherence { coherent, incoherent };
 
 class AccelScene {
  public:
-  /// Builds the BVH (Embree's build runs on the caller's oneTBB pool, so a
-  /// tbb::global_control caps it). Throws std::runtime_error with Embree's
-  /// message on failure.
+  /// Builds one BVH per movable group and the top level (Embree's build runs
+  /// on the caller's oneTBB pool). Transforms start as the identity. Throws
+  /// std::runtime_error with Embree's message on failure.
+  explicit AccelScene(std::vector<GeometryGroup> groups);
+  /// One static group (a still scene).
   AccelScene(TriangleData triangles, std::vector<Sphere> spheres, std::vector<Cone> cones);
   ~AccelScene();
   AccelScene(const AccelScene&) = delete;
   AccelScene& operator=(const AccelScene&) = delete;
 
+  /// Object-to-world transform per group, for the next queries (not
+  /// thread-safe against them). Throws std::invalid_argument when the count
+  /// is wrong, a transform is singular, or a static group is given anything
+  /// but the identity.
+  void set_transforms(const std::vector<Affine>& object_to_world);
+  const Affine& transform(uint32_t group) const { return groups_[group].to_world; }
+  const Affine& inverse_transform(uint32_t group) const { return groups_[group].to_object; }
+  size_t group_count() const { return groups_.size(); }
+
   /// Nearest hit in (tnear, tfar); false when none.
   bool intersect(const Ray& ray, Hit& hit, RayCoherence coherence = RayCoherence::incoherent) const;
   /// Any hit in (tnear, tfar) (shadow rays).
   bool occluded(const Ray& ray) const;
+  /// The ray against one primitive only, exactly (no BVH; for checking a
+  /// reprojected point, temporal/). Triangles count as hit when the
+  /// barycentrics are inside to 1e-9. Same refinement as intersect(), so the
+  /// same ray and primitive give the same bits.
+  bool intersect_primitive(const Ray& ray, uint32_t group, PrimKind kind, uint32_t prim, Hit& hit) const;
 
-  /// Bounds of all geometry (world); empty for an empty scene.
+  /// Bounds of all geometry at the current transforms (world); empty for an empty scene.
   const Bounds3& bounds() const { return bounds_; }
-  size_t triangle_count() const { return tri_.indices.size() / 3; }
-  size_t sphere_count() const { return spheres_.size(); }
-  size_t cone_count() const { return cones_.size(); }
+  size_t triangle_count() const;
+  size_t sphere_count() const;
+  size_t cone_count() const;
 
   /// Raw handle for the benchmark's plain-Embree yardstick (an RTCScene).
   void* rtc_scene() const;
 
  private:
+  struct Group {
+    GeometryGroup geo;
+    Bounds3 object_bounds;
+    Affine to_world, to_object;
+    bool identity = true;
+  };
+  bool refine(const Group& g, const Ray& ray, bool strict, double t_guess, Hit& hit) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  TriangleData tri_;
-  std::vector<Sphere> spheres_;
-  std::vector<Cone> cones_;
+  std::vector<Group> groups_;
   Bounds3 bounds_;
 };
 

@@ -1,5 +1,6 @@
-// holoray/render: the scene as the renderer needs it, built once from a
-// SceneDesc (architecture.md: "build" step) and immutable afterwards.
+// holoray/render: the scene as the renderer needs it, built once from one or
+// more SceneDescs (architecture.md: "build" step); afterwards only the
+// per-frame object transforms change (set_transforms, between frames).
 // Polygons are tessellated, `pp` normals flipped into the winding hemisphere,
 // lights given the SPD intensities (nff-notes §4), materials resolved.
 #pragma once
@@ -25,14 +26,30 @@ struct SurfacePoint {
   Vec3 position;    ///< world
   Vec3 ng;          ///< unit geometric normal: outward (sphere, cone) or winding (polygon)
   Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
-  int object = -1;  ///< index in SceneDesc::objects (file order)
+  int object = -1;  ///< object id: index in file order, files numbered one after another
   const Material* material = nullptr;
+};
+
+/// One scene file of a shot: its description and whether it ever moves.
+struct ScenePart {
+  const SceneDesc* desc = nullptr;
+  bool movable = false;
 };
 
 class RenderScene {
  public:
-  /// Builds the acceleration structure. Throws std::runtime_error if Embree fails.
+  /// A still scene. Throws std::runtime_error if Embree fails.
   explicit RenderScene(const SceneDesc& desc);
+  /// Several scene files in one world (object ids continue from file to file;
+  /// lights of all files, ambient from their total count; the first file's
+  /// background). Transforms start as the identity.
+  explicit RenderScene(const std::vector<ScenePart>& parts);
+
+  /// Object-to-world transform per part for the frames that follow (paper
+  /// §3). Not thread-safe against rendering. Throws std::invalid_argument as
+  /// AccelScene::set_transforms does.
+  void set_transforms(const std::vector<Affine>& object_to_world);
+  void set_background(const Vec3& colour) { background_ = colour; }
 
   const AccelScene& accel() const { return *accel_; }
   /// Resolves a hit of `ray` (world) into position, normals, object and material.
@@ -48,12 +65,17 @@ class RenderScene {
   /// Polygons with no area (all vertices collinear or repeated), skipped.
   size_t skipped_polygons() const { return skipped_polygons_; }
   size_t object_count() const { return object_material_.size(); }
+  /// Object id of a primitive (as in SurfacePoint::object).
+  int object_of(uint32_t group, PrimKind kind, uint32_t prim) const;
 
  private:
+  void update_epsilon();
+
   std::unique_ptr<AccelScene> accel_;
   std::vector<Material> materials_;        // [0] is the default for objects before any `f`
   std::vector<uint32_t> object_material_;  // per object
   std::vector<uint32_t> tri_object_, sphere_object_, cone_object_;
+  std::vector<std::array<uint32_t, 3>> group_base_;  // per group: first triangle, sphere, cone in the arrays
   std::vector<Vec3> tri_normal_;                 // winding normal per triangle
   std::vector<int32_t> tri_patch_;               // index into patch_normals_, -1 for flat `p`
   std::vector<std::array<Vec3, 3>> patch_normals_;

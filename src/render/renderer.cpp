@@ -1,16 +1,13 @@
 #include "render/renderer.hpp"
 
 #include <fmt/format.h>
-#include <oneapi/tbb/blocked_range.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
-
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "render/shading.hpp"
+#include "render/tiles.hpp"
 
 namespace holoray {
 
@@ -62,11 +59,46 @@ std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bo
   return PrimaryRay{Ray{line.origin, line.dir, std::fmax(0.0, t0 - margin), t1 + margin}, 0, 1};
 }
 
+Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
+                  PrimaryHit* primary, SurfacePoint* surface) {
+  Vec3 sum;
+  if (primary) *primary = PrimaryHit{};
+  for (int k = 0; k < spp; ++k) {
+    double u, v;
+    sample_offset(i, j, k, u, v);
+    Vec3 c = scene.background();
+    const auto pr = primary_ray(camera, scene.bounds(), scene.epsilon(), i, j, u, v);
+    Hit hit;
+    if (pr) {
+      ++counts.eye;
+      if (scene.accel().intersect(pr->ray, hit, RayCoherence::coherent)) {
+        const SurfacePoint sp = scene.surface(pr->ray, hit);
+        c = shade(scene, pr->ray, sp, 1, counts);
+        if (k == 0) {
+          if (surface) *surface = sp;
+          if (primary) {
+            primary->p_object[0] = static_cast<float>(hit.p_object.x);
+            primary->p_object[1] = static_cast<float>(hit.p_object.y);
+            primary->p_object[2] = static_cast<float>(hit.p_object.z);
+            primary->t = static_cast<float>(pr->t_offset + pr->t_sign * hit.t);
+            primary->prim = hit.prim;
+            primary->group = static_cast<uint16_t>(hit.group);
+            primary->kind = static_cast<uint8_t>(hit.kind);
+            primary->status = PrimaryHit::kHit;
+          }
+        }
+      }
+    }
+    sum += c;
+  }
+  return sum * (1.0 / spp);
+}
+
 FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, const RenderOptions& opt,
                           RenderStats& stats, uint64_t memory_limit_bytes) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));
-  const uint64_t need = frame_bytes(camera, opt.aovs);
+  const uint64_t need = frame_bytes(camera, opt.aovs) + (opt.primary_hits ? camera.pixel_count() * sizeof(PrimaryHit) : 0);
   if (memory_limit_bytes && need > memory_limit_bytes)
     throw std::length_error(fmt::format("a {}x{} image needs {:.1f} MiB of buffers, over the limit of {:.1f} MiB",
                                         camera.width(), camera.height(), need / 1048576.0, memory_limit_bytes / 1048576.0));
@@ -78,81 +110,52 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   if (opt.aovs.depth) fb.depth = ImageBuffer(W, H, 1, NAN);
   if (opt.aovs.normal) fb.normal = ImageBuffer(W, H, 3);
   if (opt.aovs.id) fb.id = ImageBuffer(W, H, 1, -1.0f);
+  if (opt.primary_hits) fb.primary.resize(static_cast<size_t>(camera.pixel_count()));
+  const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
-  // Tiles of whole elemental images, about 4096 pixels each.
-  const int P = camera.desc().pixels_per_lens;
-  const int lenses_per_tile = std::max(1, static_cast<int>(std::lround(64.0 / P)));
-  const int tile_w = P * lenses_per_tile, tile_h = P * lenses_per_tile;
-  const int tiles_x = (W + tile_w - 1) / tile_w, tiles_y = (H + tile_h - 1) / tile_h;
-  const int tiles = tiles_x * tiles_y;
-  std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles));
+  const auto start = std::chrono::steady_clock::now();
+  const ElementalTiles tiles(camera);
+  std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
-  const double margin = scene.epsilon();
-  const Bounds3 bounds = scene.bounds();
-  const double inv_spp = 1.0 / opt.spp;
-
-  auto render_tile = [&](int tile) {
+  for_each_tile(tiles, opt.threads, [&](int tile) {
     RayCounts counts;
-    const int x0 = (tile % tiles_x) * tile_w, y0 = (tile / tiles_x) * tile_h;
-    const int x1 = std::min(W, x0 + tile_w), y1 = std::min(H, y0 + tile_h);
-    for (int j = y0; j < y1; ++j) {
-      for (int i = x0; i < x1; ++i) {
-        Vec3 sum;
-        for (int k = 0; k < opt.spp; ++k) {
-          double u, v;
-          sample_offset(i, j, k, u, v);
-          Vec3 c = scene.background();
-          const auto pr = primary_ray(camera, bounds, margin, i, j, u, v);
-          Hit hit;
-          if (pr) {
-            ++counts.eye;
-            if (scene.accel().intersect(pr->ray, hit, RayCoherence::coherent)) {
-              const SurfacePoint sp = scene.surface(pr->ray, hit);
-              c = shade(scene, pr->ray, sp, 1, counts);
-              if (k == 0) {
-                if (opt.aovs.albedo) {
-                  float* a = fb.albedo.at(i, j);
-                  a[0] = static_cast<float>(sp.material->colour.x);
-                  a[1] = static_cast<float>(sp.material->colour.y);
-                  a[2] = static_cast<float>(sp.material->colour.z);
-                }
-                if (opt.aovs.depth) *fb.depth.at(i, j) = static_cast<float>(pr->t_offset + pr->t_sign * hit.t);
-                if (opt.aovs.normal) {
-                  const Vec3 n = dot(sp.ns, pr->ray.dir) <= 0 ? sp.ns : -sp.ns;
-                  float* o = fb.normal.at(i, j);
-                  o[0] = static_cast<float>(n.x);
-                  o[1] = static_cast<float>(n.y);
-                  o[2] = static_cast<float>(n.z);
-                }
-                if (opt.aovs.id) *fb.id.at(i, j) = static_cast<float>(sp.object);
-              }
-            }
-          }
-          sum += c;
-        }
+    const TileRect r = tiles.rect(tile);
+    for (int j = r.y0; j < r.y1; ++j) {
+      for (int i = r.x0; i < r.x1; ++i) {
+        PrimaryHit ph;
+        SurfacePoint sp;
+        const Vec3 c = render_pixel(scene, camera, i, j, opt.spp, counts, &ph, want_surface ? &sp : nullptr);
         float* o = fb.colour.at(i, j);
-        o[0] = static_cast<float>(sum.x * inv_spp);
-        o[1] = static_cast<float>(sum.y * inv_spp);
-        o[2] = static_cast<float>(sum.z * inv_spp);
+        o[0] = static_cast<float>(c.x);
+        o[1] = static_cast<float>(c.y);
+        o[2] = static_cast<float>(c.z);
+        if (opt.primary_hits) fb.primary[static_cast<size_t>(j) * W + i] = ph;
+        if (ph.status != PrimaryHit::kHit || !want_surface) continue;
+        if (opt.aovs.albedo) {
+          float* a = fb.albedo.at(i, j);
+          a[0] = static_cast<float>(sp.material->colour.x);
+          a[1] = static_cast<float>(sp.material->colour.y);
+          a[2] = static_cast<float>(sp.material->colour.z);
+        }
+        if (opt.aovs.depth) *fb.depth.at(i, j) = ph.t;
+        if (opt.aovs.normal) {
+          // Facing the viewer: along +d orthoscopic (it looks back down the
+          // line), along -d pseudoscopic (it sits at the lens).
+          const Vec3 d = camera.line(i, j).dir;
+          const Vec3 toward = camera.desc().mode == RecordingMode::orthoscopic ? d : -d;
+          const Vec3 n = dot(sp.ns, toward) >= 0 ? sp.ns : -sp.ns;
+          float* no = fb.normal.at(i, j);
+          no[0] = static_cast<float>(n.x);
+          no[1] = static_cast<float>(n.y);
+          no[2] = static_cast<float>(n.z);
+        }
+        if (opt.aovs.id) *fb.id.at(i, j) = static_cast<float>(sp.object);
       }
     }
     tile_counts[static_cast<size_t>(tile)] = counts;
     const int done = ++tiles_done;
-    if (opt.progress) opt.progress(static_cast<double>(done) / tiles);
-  };
-
-  const auto start = std::chrono::steady_clock::now();
-  auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int t = r.begin(); t != r.end(); ++t) render_tile(t);
-    });
-  };
-  if (opt.threads > 0) {
-    tbb::task_arena arena(opt.threads);
-    arena.execute(run);
-  } else {
-    run();
-  }
+    if (opt.progress) opt.progress(static_cast<double>(done) / tiles.count());
+  });
   stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.rays = {};
   for (const RayCounts& c : tile_counts) stats.rays += c;

@@ -26,20 +26,42 @@ struct RenderOptions {
   int spp = 1;      ///< samples per pixel; sample 0 is the pixel centre (the reference)
   int threads = 0;  ///< 0: all cores
   AovSet aovs;
+  bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
 };
 
-/// One rendered EIA: colour (linear RGB) and the requested AOVs (others empty).
-/// AOVs come from the pixel-centre sample.
+/// What a pixel's centre ray met: a point image record less its colour
+/// (paper §4; temporal/ keeps these for keyframes). 24 bytes.
+struct PrimaryHit {
+  static constexpr int8_t kHit = 1, kBackground = 0;
+  float p_object[3] = {0, 0, 0};  ///< hit point in its scene file's object space
+  float t = 0;                    ///< the contract's line parameter of the hit
+  uint32_t prim = 0;              ///< primitive within its group and kind
+  uint16_t group = 0;             ///< scene file (RenderScene part)
+  uint8_t kind = 0;               ///< PrimKind
+  int8_t status = kBackground;
+};
+
+/// One rendered EIA: colour (linear RGB) and the requested AOVs (others
+/// empty), plus the primary hits when asked for. AOVs come from the
+/// pixel-centre sample.
 struct FrameBuffers {
   ImageBuffer colour, albedo, depth, normal, id;
+  std::vector<PrimaryHit> primary;  ///< row-major, W*H; empty unless RenderOptions::primary_hits
 };
 
 struct RenderStats {
   RayCounts rays;
   double trace_seconds = 0;
 };
+
+/// Renders one pixel: the colour averaged over `spp` samples (sample 0 at
+/// the centre); `primary` (optional) gets sample 0's hit and `surface`
+/// (optional) its surface point, valid when primary->status is kHit. `margin`
+/// and `bounds` as for primary_ray (the scene's epsilon and bounds).
+Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
+                  PrimaryHit* primary = nullptr, SurfacePoint* surface = nullptr);
 
 /// Bytes the frame's buffers take (colour plus requested AOVs), computed
 /// without allocating; lets callers refuse absurd sizes up front.

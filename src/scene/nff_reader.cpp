@@ -2,12 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
+#include "scene/file_text.hpp"
 #include "scene/tokenizer.hpp"
 
 namespace holoray {
@@ -163,15 +160,7 @@ SceneDesc parse_nff(std::string_view text, const std::string& source, const NffL
 }
 
 SceneDesc read_nff_file(const std::string& path, const NffLimits& limits) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(fmt::format("cannot read '{}': it is a folder", path));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(fmt::format("cannot read '{}': read error", path));
-  const std::string text = ss.str();
-  return parse_nff(text, path, limits);
+  return parse_nff(read_text_file(path), path, limits);
 }
 
 }  // namespace holoray

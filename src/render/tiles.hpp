@@ -1,0 +1,36 @@
+// holoray/render: the tile schedule shared by every per-pixel pass (full
+// tracing, reprojection, filling): tiles of whole elemental images, about
+// 4096 pixels each, run on oneTBB. Every pixel is computed independently of
+// the schedule, so results do not depend on the thread count.
+#pragma once
+
+#include <functional>
+
+#include "camera/lens_array.hpp"
+
+namespace holoray {
+
+/// Pixel rectangle [x0, x1) x [y0, y1).
+struct TileRect {
+  int x0, y0, x1, y1;
+};
+
+/// The EIA cut into tiles of whole elemental images (square grid; hex and
+/// lenticular tiles are P-aligned pixel blocks).
+class ElementalTiles {
+ public:
+  explicit ElementalTiles(const LensArray& camera);
+  int count() const { return tiles_x_ * tiles_y_; }
+  TileRect rect(int tile) const;
+
+ private:
+  int width_, height_, tile_w_, tile_h_, tiles_x_, tiles_y_;
+};
+
+/// Runs fn(tile) for every tile on `threads` threads (0: all cores).
+void for_each_tile(const ElementalTiles& tiles, int threads, const std::function<void(int)>& fn);
+
+/// Runs fn(k) for k in [0, n) on `threads` threads (0: all cores).
+void parallel_for_n(int n, int threads, const std::function<void(int)>& fn);
+
+}  // namespace holoray
