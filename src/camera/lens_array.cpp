@@ -156,32 +156,51 @@ void LensArray::project_local(const Vec3& x, std::vector<PanelHit>& out) const {
     ly_lo = std::max(0, clamp_y(std::floor((top - (x.y + ry)) / step - 1)));
     ly_hi = std::min(desc_.lenses_y - 1, clamp_y(std::ceil((top - (x.y - ry)) / step + 1)));
   }
-  const bool pseudo = desc_.mode == RecordingMode::pseudoscopic;
-  for (int ly = ly_lo; ly <= ly_hi; ++ly) {
-    for (int lx = lx_lo; lx <= lx_hi; ++lx) {
-      const LensIndex lens{lx, ly};
-      const Vec3 c = lens_centre_local(lens);
-      double px, py;
-      if (lenticular) {
-        px = c.x - g * (x.x - c.x) / x.z;
-        const double k = std::isinf(desc_.view_distance) ? 1.0 : 1.0 - x.z / desc_.view_distance;
-        if (k == 0) continue;
-        py = x.y / k;
-      } else {
-        const double sc = g / x.z;  // p = c + (c - x) * g / x.z lies on z = -g
-        px = c.x + (c.x - x.x) * sc;
-        py = c.y + (c.y - x.y) * sc;
-      }
-      const double fi = (px + half_w_) / s_, fj = (half_h_ - py) / s_;
-      if (!(fi >= 0 && fi < width_ && fj >= 0 && fj < height_)) continue;
-      const int i = static_cast<int>(fi), j = static_cast<int>(fj);
-      if (!(lens_of_pixel(i, j) == lens)) continue;
-      const PixelLine l = line_local(i, j, fi - i, fj - j);
-      const double t = dot(x - l.origin, l.dir);
-      if (pseudo && !(t > 0)) continue;
-      out.push_back({i, j, fi - i, fj - j, t});
-    }
+  PanelHit h;
+  for (int ly = ly_lo; ly <= ly_hi; ++ly)
+    for (int lx = lx_lo; lx <= lx_hi; ++lx)
+      if (project_through(x, LensIndex{lx, ly}, h)) out.push_back(h);
+}
+
+LensIndex LensArray::lens_near(const Vec3& p_local) const {
+  const int i = static_cast<int>(std::clamp(std::floor((p_local.x + half_w_) / s_), 0.0, width_ - 1.0));
+  const int j = static_cast<int>(std::clamp(std::floor((half_h_ - p_local.y) / s_), 0.0, height_ - 1.0));
+  return lens_of_pixel(i, j);
+}
+
+bool LensArray::project_through(const Vec3& x, LensIndex lens, PanelHit& out, LensIndex* landing_lens) const {
+  if (x.z == 0 || !is_finite(x)) return false;
+  const double g = desc_.gap;
+  const Vec3 c = lens_centre_local(lens);
+  double px, py;
+  if (desc_.grid == Grid::lenticular) {
+    px = c.x - g * (x.x - c.x) / x.z;
+    const double k = std::isinf(desc_.view_distance) ? 1.0 : 1.0 - x.z / desc_.view_distance;
+    if (k == 0) return false;
+    py = x.y / k;
+  } else {
+    const double sc = g / x.z;  // p = c + (c - x) * g / x.z lies on z = -g
+    px = c.x + (c.x - x.x) * sc;
+    py = c.y + (c.y - x.y) * sc;
   }
+  const double fi = (px + half_w_) / s_, fj = (half_h_ - py) / s_;
+  if (!(fi >= 0 && fi < width_ && fj >= 0 && fj < height_)) {
+    if (landing_lens && std::isfinite(fi) && std::isfinite(fj)) {
+      const int ci = static_cast<int>(std::clamp(fi, 0.0, width_ - 1.0));
+      const int cj = static_cast<int>(std::clamp(fj, 0.0, height_ - 1.0));
+      *landing_lens = lens_of_pixel(ci, cj);
+    }
+    return false;
+  }
+  const int i = static_cast<int>(fi), j = static_cast<int>(fj);
+  const LensIndex owner = lens_of_pixel(i, j);
+  if (landing_lens) *landing_lens = owner;
+  if (!(owner == lens)) return false;
+  const PixelLine l = line_local(i, j, fi - i, fj - j);
+  const double t = dot(x - l.origin, l.dir);
+  if (desc_.mode == RecordingMode::pseudoscopic && !(t > 0)) return false;
+  out = {i, j, fi - i, fj - j, t};
+  return true;
 }
 
 }  // namespace holoray

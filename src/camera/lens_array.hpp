@@ -102,6 +102,18 @@ class LensArray {
   /// point at parameter h.t. Points on the lens plane (z = 0) project nowhere.
   void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
+  /// Forward projection through one lens (array-frame point): true and `out`
+  /// when the point's line through that lens centre lands in the lens's own
+  /// elemental image (pseudoscopic: with t > 0). `landing_lens` (optional)
+  /// gets the lens whose elemental image the landing pixel belongs to
+  /// (clamped to the image), so a caller can try that lens next.
+  bool project_through(const Vec3& x_local, LensIndex lens, PanelHit& out, LensIndex* landing_lens = nullptr) const;
+  /// The lens whose elemental image holds the panel pixel under an
+  /// array-frame point (z ignored; clamped to the array).
+  LensIndex lens_near(const Vec3& p_local) const;
+  /// Row-major lens number, lx + ly * lens_count_x().
+  int lens_number(LensIndex l) const { return l.x + l.y * lens_count_x(); }
+
  private:
   void project_local(const Vec3& x, std::vector<PanelHit>& out) const;
 

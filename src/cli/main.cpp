@@ -1,6 +1,8 @@
 // holoray: command-line entry point. Each subcommand lives in its own file.
 #include <CLI/CLI.hpp>
 
+#include "cli/animate_command.hpp"
+#include "cli/compare_command.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
 
@@ -11,6 +13,10 @@ int main(int argc, char** argv) {
   CLI::App* render = holoray::cli::add_render_command(app, render_opts);
   holoray::cli::SubapertureCommandOptions sub_opts;
   CLI::App* sub = holoray::cli::add_subaperture_command(app, sub_opts);
+  holoray::cli::AnimateCommandOptions animate_opts;
+  CLI::App* animate = holoray::cli::add_animate_command(app, animate_opts);
+  holoray::cli::CompareCommandOptions compare_opts;
+  CLI::App* compare = holoray::cli::add_compare_command(app, compare_opts);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -21,5 +27,7 @@ int main(int argc, char** argv) {
   }
   if (render->parsed()) return holoray::cli::run_render(render_opts);
   if (sub->parsed()) return holoray::cli::run_subaperture(sub_opts);
+  if (animate->parsed()) return holoray::cli::run_animate(animate_opts);
+  if (compare->parsed()) return holoray::cli::run_compare(compare_opts);
   return 2;
 }

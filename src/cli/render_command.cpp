@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "camera/placement.hpp"
+#include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "image/image_io.hpp"
 #include "render/renderer.hpp"
@@ -23,11 +24,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-uint64_t physical_memory_bytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) : 0;
-}
 
 ArraySettings resolve_settings(const RenderCommandOptions& o) {
   ArraySettings s;

@@ -2,6 +2,7 @@
 // row 0 at the top). Colour is linear; encodings happen only on output.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,5 @@
-// holoray/scene: reading a whole text file for the readers, with one set of
-// error messages for every format.
+// holoray/scene: whole text files: reading them for the readers, with one
+// set of error messages for every format, and writing reports atomically.
 #pragma once
 
 #include <string>
@@ -9,5 +9,10 @@ namespace holoray {
 /// The file's bytes. Throws std::runtime_error "cannot read '<path>': <reason>"
 /// (missing, unreadable, a folder, a read error).
 std::string read_text_file(const std::string& path);
+
+/// Writes `text` to a temporary name in the same folder and renames it into
+/// place, so readers never see half a file. Throws std::runtime_error naming
+/// the path and reason.
+void write_text_file(const std::string& path, const std::string& text);
 
 }  // namespace holoray

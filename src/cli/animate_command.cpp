@@ -1,0 +1,174 @@
+#include "cli/animate_command.hpp"
+
+#include <fmt/format.h>
+#include <oneapi/tbb/global_control.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "cli/machine.hpp"
+#include "cli/option_parsing.hpp"
+#include "image/image_io.hpp"
+#include "scene/file_text.hpp"
+#include "scene/parse_error.hpp"
+#include "shot/shot_reader.hpp"
+#include "temporal/report.hpp"
+#include "temporal/sequence.hpp"
+
+namespace holoray::cli {
+
+namespace {
+
+std::string frame_path(const std::string& dir, int frame, int frames, const std::string& ext) {
+  const int digits = std::max(4, static_cast<int>(std::to_string(frames - 1).size()));
+  return (std::filesystem::path(dir) / fmt::format("frame_{:0{}}.{}", frame, digits, ext)).string();
+}
+
+template <class T>
+T pick(const std::string& option, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
+  std::string names;
+  for (const auto& [name, v] : choices) {
+    if (value == name) return v;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
+  }
+  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
+}
+
+}  // namespace
+
+CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("animate", "Render an animated shot (TOML) as numbered EIA frames");
+  cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required();
+  cmd->add_option("-o,--output", o.output, "Output folder (created if missing)")->required();
+  cmd->add_option("--method", o.method, "full (trace every frame) or reproject (keyframes + reprojection)")->capture_default_str();
+  cmd->add_option("--keyframe-interval", o.keyframe_interval, "K: trace every K-th frame and the last")->capture_default_str();
+  cmd->add_option("--reuse", o.reuse, "geometry (re-shade reused hits) or color (keep keyframe colours)")->capture_default_str();
+  cmd->add_option("--fill", o.fill, "Missed pixels: trace or interpolate")->capture_default_str();
+  cmd->add_option("--reach", o.reach, "near (one lens per point) or all (every lens that sees it)")->capture_default_str();
+  cmd->add_flag("--no-leak-check", o.no_leak_check, "Keep points seen through gaps of nearer surfaces");
+  cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
+  cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
+  cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder");
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
+  return cmd;
+}
+
+int run_animate(const AnimateCommandOptions& o) {
+  try {
+    SequenceOptions so;
+    so.method = pick<Method>("--method", o.method, {{"full", Method::full}, {"reproject", Method::reproject}});
+    so.reproject.reuse = pick<Reuse>("--reuse", o.reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
+    so.reproject.reach = pick<Reach>("--reach", o.reach, {{"near", Reach::near}, {"all", Reach::all}});
+    so.fill = pick<Fill>("--fill", o.fill, {{"trace", Fill::trace}, {"interpolate", Fill::interpolate}});
+    so.reproject.detect_leaks = !o.no_leak_check;
+    const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
+    so.encoding = parse_encoding(o.encoding);
+    if (o.keyframe_interval < 1)
+      throw std::invalid_argument(fmt::format("--keyframe-interval: must be at least 1, got {}", o.keyframe_interval));
+    if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
+    so.keyframe_interval = o.keyframe_interval;
+    so.threads = o.threads;
+    so.reproject.threads = o.threads;
+    so.reference = !o.report.empty();
+    std::unique_ptr<tbb::global_control> thread_cap;
+    if (o.threads > 0)
+      thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+
+    ShotFrames shot(read_shot_file(o.shot));
+    const int frames = shot.frame_count();
+    {
+      const LensArray first(shot.camera(0));
+      // Two point images, two z-buffers and the frame: refuse before the first trace.
+      const uint64_t need = static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
+      const uint64_t have = physical_memory_bytes();
+      if (have && need > have / 10 * 8)
+        throw std::length_error(fmt::format("{}x{} frames need {:.2f} GiB while animating, more than 80% of this machine's {:.2f} GiB",
+                                            first.width(), first.height(), need / 1073741824.0, have / 1073741824.0));
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(o.output, ec);
+    if (!std::filesystem::is_directory(o.output))
+      throw std::runtime_error(fmt::format("-o: cannot create the folder '{}'{}", o.output, ec ? ": " + ec.message() : ""));
+    if (!o.report.empty()) {
+      const auto dir = std::filesystem::path(o.report).parent_path();
+      if (!dir.empty() && !std::filesystem::is_directory(dir))
+        throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
+    }
+    if (o.resume) so.done = [&](int f) { return std::filesystem::exists(frame_path(o.output, f, frames, ext)); };
+
+    if (!o.quiet) {
+      const LensArray cam(shot.camera(0));
+      fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
+                 shot.shot().objects.size());
+      fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),
+                 to_string(cam.desc().grid), cam.lens_count_x(), cam.lens_count_y(), cam.desc().pixels_per_lens,
+                 to_string(cam.desc().mode));
+      if (so.method == Method::reproject)
+        fmt::print("method     reproject: keyframe every {}, reuse {}, fill {}, reach {}{}\n", o.keyframe_interval,
+                   o.reuse, o.fill, o.reach, o.no_leak_check ? ", no leak check" : "");
+      else
+        fmt::print("method     full ray tracing\n");
+    }
+
+    std::vector<FrameReport> reports;
+    int written = 0;
+    render_sequence(shot, so, [&](int f, const ImageBuffer& colour, const FrameReport& r) {
+      write_image(frame_path(o.output, f, frames, ext), colour, so.encoding);
+      ++written;
+      reports.push_back(r);
+      if (o.quiet) return;
+      if (r.keyframe) {
+        fmt::print("frame {:>5}  traced       {:.3f} s\n", f, r.seconds);
+      } else {
+        const double px = static_cast<double>(r.pixels);
+        fmt::print("frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", f,
+                   r.seconds, 100 * r.reprojected / px, 100 * r.traced / px, 100 * r.interpolated / px,
+                   r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr_all()) : "");
+        if (o.verbose)
+          fmt::print("             splat {:.3f} s, merge {:.3f} s, leaks {:.3f} s, check {:.3f} s, fill {:.3f} s\n",
+                     r.stages.splat, r.stages.merge, r.stages.leaks, r.stages.check, r.stages.fill);
+      }
+      std::fflush(stdout);
+    });
+
+    const RunSummary s = summarise(reports);
+    if (!o.quiet) {
+      fmt::print("wrote      {} frames to {}{}\n", written, o.output,
+                 o.resume ? fmt::format(" ({} already there)", frames - written) : "");
+      fmt::print("time       {:.3f} s{}\n", s.accelerated_seconds,
+                 so.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
+                                            s.saved_percent(), s.mean_psnr)
+                              : "");
+    }
+    if (!o.report.empty()) {
+      std::string cmdline = fmt::format("holoray animate {} -o {} --method {}", o.shot, o.output, o.method);
+      if (so.method == Method::reproject)
+        cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --reach {}{}", o.keyframe_interval, o.reuse,
+                               o.fill, o.reach, o.no_leak_check ? " --no-leak-check" : "");
+      const LensArray cam(shot.camera(0));
+      write_text_file(o.report,
+                      markdown_report(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
+                                      {fmt::format("- command: `{} --report {}`", cmdline, o.report),
+                                       fmt::format("- EIA: {}x{} px, {} grid, {}x{} lenses x {} px, {}", cam.width(),
+                                                   cam.height(), to_string(cam.desc().grid), cam.lens_count_x(),
+                                                   cam.lens_count_y(), cam.desc().pixels_per_lens, to_string(cam.desc().mode)),
+                                       fmt::format("- machine: {}, {} threads", machine_description(),
+                                                   o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency()))},
+                                      reports));
+      if (!o.quiet) fmt::print("report     {}\n", o.report);
+    }
+    return 0;
+  } catch (const ParseError& e) {
+    fmt::print(stderr, "{}\n", e.what());
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "holoray: error: {}\n", e.what());
+  }
+  return 1;
+}
+
+}  // namespace holoray::cli

@@ -1,0 +1,23 @@
+// holoray/cli: `holoray animate SHOT -o DIR`: an animated shot as numbered
+// frames, fully ray traced or with temporal reprojection between keyframes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace holoray::cli {
+
+struct AnimateCommandOptions {
+  std::string shot, output, method = "reproject", fill = "trace", reuse = "geometry", reach = "near";
+  std::string format = "png", encoding = "linear", report;
+  int keyframe_interval = 8, threads = 0;
+  bool resume = false, no_leak_check = false, quiet = false, verbose = false;
+};
+
+CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& opts);
+
+/// Returns the exit status (0 success, 1 failure). Frames are written as
+/// DIR/frame_NNNN.EXT, each to a temporary name then renamed.
+int run_animate(const AnimateCommandOptions& opts);
+
+}  // namespace holoray::cli

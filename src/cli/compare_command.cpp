@@ -1,0 +1,36 @@
+#include "cli/compare_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "image/image_io.hpp"
+#include "image/metrics.hpp"
+
+namespace holoray::cli {
+
+CLI::App* add_compare_command(CLI::App& app, CompareCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("compare", "Compare two images: MSE, RMSE and PSNR on the 8-bit scale");
+  cmd->add_option("a", o.a, "First image (PNG, EXR, ...)")->required();
+  cmd->add_option("b", o.b, "Second image, same size")->required();
+  return cmd;
+}
+
+int run_compare(const CompareCommandOptions& o) {
+  try {
+    const ImageDifference d = compare_images(read_image(o.a), read_image(o.b));
+    auto db = [](double v) { return std::isinf(v) ? std::string("inf") : fmt::format("{:.3f}", v); };
+    fmt::print("{} x {} pixels\n", read_image(o.a).width, read_image(o.a).height);
+    fmt::print("channel        MSE       RMSE   PSNR dB\n");
+    static constexpr const char* kName[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+      fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", kName[c], d.mse[static_cast<size_t>(c)], d.rmse(c), db(d.psnr(c)));
+    fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", "all", d.mse_all, d.rmse_all(), db(d.psnr_all()));
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "holoray: error: {}\n", e.what());
+  }
+  return 1;
+}
+
+}  // namespace holoray::cli

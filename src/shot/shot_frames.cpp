@@ -1,0 +1,101 @@
+#include "shot/shot_frames.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "camera/placement.hpp"
+#include "scene/nff_reader.hpp"
+
+namespace holoray {
+
+ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
+  descs_.reserve(shot_.objects.size());
+  for (const ShotObject& o : shot_.objects) descs_.push_back(read_nff_file(o.scene));
+  std::vector<ScenePart> parts;
+  for (size_t k = 0; k < descs_.size(); ++k) parts.push_back({&descs_[k], !shot_.objects[k].motion.is_static()});
+  scene_ = std::make_unique<RenderScene>(parts);
+  if (shot_.background) scene_->set_background(*shot_.background);
+
+  const auto nff_view = std::find_if(descs_.begin(), descs_.end(), [](const SceneDesc& d) { return d.viewpoint.has_value(); });
+  if (nff_view != descs_.end()) default_angle_ = nff_view->viewpoint->angle_deg;
+  if (shot_.camera.angle_deg) default_angle_ = *shot_.camera.angle_deg;
+
+  if (!shot_.camera.path.empty()) {
+    if (shot_.camera.distance) {
+      path_distance_ = *shot_.camera.distance;
+    } else {
+      // The scene's centre depth at the first frame, held for the whole shot
+      // so the array keeps its size.
+      scene_->set_transforms(transforms(0));
+      const CameraPathFrame& f = shot_.camera.path[static_cast<size_t>(shot_.camera.path_start)];
+      path_distance_ = dot(scene_->bounds().centre() - f.centre, normalize(f.view));
+      if (!(path_distance_ > 0))
+        throw std::invalid_argument(fmt::format(
+            "{}: the camera path's first frame looks away from the scene (its centre is {:.4g} behind the camera); "
+            "set [camera] distance",
+            shot_.source, -path_distance_));
+    }
+  } else if (shot_.camera.keys.empty() && nff_view == descs_.end()) {
+    throw std::invalid_argument(fmt::format(
+        "{}: no camera: give [camera] keys or a path, or use a scene file with a viewpoint ('v')", shot_.source));
+  }
+  seek(0);
+}
+
+std::vector<Affine> ShotFrames::transforms(double frame) const {
+  std::vector<Affine> out;
+  for (const ShotObject& o : shot_.objects) out.push_back(o.motion.matrix(frame));
+  return out;
+}
+
+Viewpoint ShotFrames::viewpoint(int frame) const {
+  const ShotCamera& cam = shot_.camera;
+  Viewpoint vp;
+  vp.angle_deg = default_angle_;
+  if (!cam.path.empty()) {
+    const CameraPathFrame& f = cam.path[static_cast<size_t>(cam.path_start + frame)];
+    vp.from = f.centre;
+    vp.at = f.centre + normalize(f.view) * path_distance_;
+    vp.up = f.up;
+    return vp;
+  }
+  if (!cam.keys.empty()) {
+    const auto& keys = cam.keys;
+    const double fr = frame;
+    size_t hi = 0;
+    while (hi < keys.size() && keys[hi].frame <= fr) ++hi;
+    const ViewKey& a = keys[hi == 0 ? 0 : hi - 1];
+    const ViewKey& b = keys[std::min(hi, keys.size() - 1)];
+    const double w = (hi == 0 || hi == keys.size()) ? 0.0 : key_weight(fr, a.frame, b.frame, cam.interpolation);
+    auto mix = [w](const Vec3& x, const Vec3& y) { return x + (y - x) * w; };
+    vp.from = mix(a.from, b.from);
+    vp.at = mix(a.at, b.at);
+    vp.up = mix(a.up, b.up);
+    const double angle_a = a.angle_deg.value_or(default_angle_), angle_b = b.angle_deg.value_or(default_angle_);
+    vp.angle_deg = angle_a + (angle_b - angle_a) * w;
+    return vp;
+  }
+  for (const SceneDesc& d : descs_)
+    if (d.viewpoint) {
+      vp = *d.viewpoint;
+      if (shot_.camera.angle_deg) vp.angle_deg = *shot_.camera.angle_deg;
+      return vp;
+    }
+  return vp;  // unreachable: the constructor refused shots without a camera
+}
+
+LensArrayDesc ShotFrames::camera(int frame) const {
+  if (frame < 0 || frame >= shot_.frames)
+    throw std::out_of_range(fmt::format("frame {} is outside the shot (0 to {})", frame, shot_.frames - 1));
+  try {
+    return place_array(shot_.array, viewpoint(frame));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("{}: frame {}: {}", shot_.source, frame, e.what()));
+  }
+}
+
+void ShotFrames::seek(int frame) { scene_->set_transforms(transforms(frame)); }
+
+}  // namespace holoray

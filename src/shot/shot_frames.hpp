@@ -1,0 +1,45 @@
+// holoray/shot: a shot made ready to render frame by frame: its scene files
+// read and built into one RenderScene (a moving file becomes an Embree
+// instance), and for every frame the objects' transforms and the lens array.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "camera/lens_array.hpp"
+#include "render/render_scene.hpp"
+#include "shot/shot.hpp"
+
+namespace holoray {
+
+class ShotFrames {
+ public:
+  /// Reads every scene file (NFF) and builds the scene. Throws what the
+  /// readers throw (ParseError, std::runtime_error) and std::invalid_argument
+  /// when the array cannot be placed (no camera keys, path or NFF viewpoint;
+  /// a path whose first camera looks away from the scene).
+  explicit ShotFrames(Shot shot);
+
+  const Shot& shot() const { return shot_; }
+  int frame_count() const { return shot_.frames; }
+  const RenderScene& scene() const { return *scene_; }
+  const std::vector<SceneDesc>& scenes() const { return descs_; }
+
+  /// Object-to-world transform of every scene file at `frame` (may be fractional).
+  std::vector<Affine> transforms(double frame) const;
+  /// The lens array at `frame` (contract placement from the frame's viewpoint).
+  LensArrayDesc camera(int frame) const;
+  /// The viewpoint the array is placed from at `frame` (world).
+  Viewpoint viewpoint(int frame) const;
+  /// Moves the scene to `frame` (not thread-safe against rendering).
+  void seek(int frame);
+
+ private:
+  Shot shot_;
+  std::vector<SceneDesc> descs_;
+  std::unique_ptr<RenderScene> scene_;
+  double default_angle_ = 45;
+  double path_distance_ = 0;  // camera centre to array, along the view (path cameras)
+};
+
+}  // namespace holoray

@@ -1,0 +1,20 @@
+// holoray/temporal: filling the missed pixels of a reprojected frame (paper
+// §5): every status below zero (missed, leak, rejected) is filled.
+#pragma once
+
+#include "camera/lens_array.hpp"
+#include "render/render_scene.hpp"
+#include "temporal/reproject.hpp"
+
+namespace holoray {
+
+enum class Fill {
+  trace,       ///< ray trace exactly those pixels (one sample at the centre)
+  interpolate  ///< the paper: mean of the valid 8-neighbours in the same elemental
+               ///< image, grown ring by ring; pixels with none are traced
+};
+
+/// Fills `frame` in place; the scene must be at the frame's time.
+void fill_missed(const RenderScene& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame);
+
+}  // namespace holoray

@@ -1,0 +1,29 @@
+// holoray/temporal: the point image of a keyframe (paper §4): for every
+// pixel, what its centre ray met (status, primitive, the hit point in its
+// object's own space so it follows the object's motion, the depth t along the
+// pixel line) and the shaded colour.
+//
+// Memory: 36 bytes per pixel (PrimaryHit 24 + RGB float 12); a 2048x2048 EIA
+// takes 144 MiB per keyframe, and reprojection holds two.
+#pragma once
+
+#include <vector>
+
+#include "camera/lens_array.hpp"
+#include "image/image.hpp"
+#include "render/renderer.hpp"
+
+namespace holoray {
+
+struct PointImage {
+  int frame = 0;
+  LensArray camera;               ///< the keyframe's integral camera
+  std::vector<PrimaryHit> hits;   ///< W*H, row-major
+  ImageBuffer colour;             ///< W x H x 3, linear RGB
+
+  static constexpr size_t kBytesPerPixel = sizeof(PrimaryHit) + 3 * sizeof(float);
+};
+
+static_assert(sizeof(PrimaryHit) == 24, "the point image record is documented as 24 + 12 bytes per pixel");
+
+}  // namespace holoray

@@ -1,0 +1,79 @@
+#include "temporal/report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace holoray {
+
+namespace {
+std::string db(double v) { return std::isinf(v) ? "inf" : fmt::format("{:.2f}", v); }
+double pct(int64_t part, int64_t whole) { return whole > 0 ? 100.0 * part / whole : 0; }
+}  // namespace
+
+RunSummary summarise(const std::vector<FrameReport>& frames) {
+  RunSummary s;
+  double psnr_sum = 0;
+  int psnr_n = 0;
+  s.min_psnr = INFINITY;
+  int64_t px = 0, reprojected = 0, traced = 0, interpolated = 0;
+  for (const FrameReport& f : frames) {
+    ++s.frames;
+    s.full_seconds += f.reference_seconds;
+    s.accelerated_seconds += f.seconds;
+    if (f.keyframe) {
+      ++s.keyframes;
+      continue;
+    }
+    px += f.pixels;
+    reprojected += f.reprojected;
+    traced += f.traced;
+    interpolated += f.interpolated;
+    if (!f.difference) continue;
+    const double p = f.difference->psnr_all();
+    s.min_psnr = std::min(s.min_psnr, p);
+    if (std::isinf(p)) {
+      ++s.exact_frames;
+    } else {
+      psnr_sum += p;
+      ++psnr_n;
+    }
+  }
+  s.mean_psnr = psnr_n ? psnr_sum / psnr_n : INFINITY;
+  s.reprojected_percent = pct(reprojected, px);
+  s.traced_percent = pct(traced, px);
+  s.interpolated_percent = pct(interpolated, px);
+  return s;
+}
+
+std::string markdown_report(const std::string& title, const std::vector<std::string>& context,
+                            const std::vector<FrameReport>& frames) {
+  const RunSummary s = summarise(frames);
+  std::string md = fmt::format("# {}\n\n", title);
+  for (const std::string& line : context) md += fmt::format("{}\n", line);
+  md += "\n## Time (the paper's Table 2)\n\n";
+  md += "| frames | keyframes | full ray tracing s | accelerated s | saved s | saved % | mean PSNR dB | min PSNR dB | exact frames | reprojected % | traced % | interpolated % |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md += fmt::format("| {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.1f} | {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |\n", s.frames,
+                    s.keyframes, s.full_seconds, s.accelerated_seconds, s.saved_seconds(), s.saved_percent(),
+                    db(s.mean_psnr), db(s.min_psnr), s.exact_frames, s.reprojected_percent, s.traced_percent,
+                    s.interpolated_percent);
+  md += "\nPixel shares are of the reprojected (non-key) frames; PSNR = 10 log10(255^2 / MSE) over the 8-bit outputs, "
+        "mean over frames that are not exact.\n";
+  md += "\n## Per frame (the paper's Table 1; its column \"RMSE\" holds the MSE)\n\n";
+  md += "| frame | kind | MSE R | MSE G | MSE B | MSE | PSNR dB | reprojected | missed | leaks | rejected | traced | interpolated | s | full s |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const FrameReport& f : frames) {
+    const std::string mse = f.difference ? fmt::format("{:.4f} | {:.4f} | {:.4f} | {:.4f} | {}", f.difference->mse[0],
+                                                       f.difference->mse[1], f.difference->mse[2], f.difference->mse_all,
+                                                       db(f.difference->psnr_all()))
+                                         : "- | - | - | - | -";
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.4f} | {:.4f} |\n", f.frame,
+                      f.keyframe ? "key" : "reprojected", mse, f.reprojected, f.missed, f.leaks, f.rejected, f.traced,
+                      f.interpolated, f.seconds, f.reference_seconds);
+  }
+  return md;
+}
+
+}  // namespace holoray

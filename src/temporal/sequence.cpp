@@ -1,0 +1,142 @@
+#include "temporal/sequence.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+namespace holoray {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct Traced {
+  FrameBuffers buffers;
+  RenderStats stats;
+  double seconds = 0;
+};
+
+Traced trace_frame(ShotFrames& shot, int frame, bool keep_points, int threads) {
+  shot.seek(frame);
+  const LensArray camera(shot.camera(frame));
+  RenderOptions ro;
+  ro.spp = shot.shot().spp;
+  ro.threads = threads;
+  ro.primary_hits = keep_points;
+  Traced t;
+  const auto start = Clock::now();
+  t.buffers = render_frame(shot.scene(), camera, ro, t.stats);
+  t.seconds = seconds_since(start);
+  return t;
+}
+
+}  // namespace
+
+std::vector<int> keyframes(int frames, int interval) {
+  std::vector<int> keys;
+  if (frames < 1 || interval < 1) return keys;
+  for (int f = 0; f < frames; f += interval) keys.push_back(f);
+  if (keys.back() != frames - 1) keys.push_back(frames - 1);
+  return keys;
+}
+
+void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
+                     const std::function<void(int, const ImageBuffer&, const FrameReport&)>& emit) {
+  const int frames = shot.frame_count();
+  auto done = [&](int f) { return opt.done && opt.done(f); };
+  auto keyframe_report = [&](int f, const Traced& t) {
+    FrameReport r;
+    r.frame = f;
+    r.keyframe = true;
+    r.seconds = r.reference_seconds = t.seconds;
+    r.pixels = static_cast<int64_t>(t.buffers.colour.width) * t.buffers.colour.height;
+    r.traced = r.pixels;
+    r.rays = t.stats.rays;
+    if (opt.reference) r.difference = ImageDifference{{0, 0, 0}, 0, r.pixels};
+    return r;
+  };
+
+  if (opt.method == Method::full) {
+    for (int f = 0; f < frames; ++f) {
+      if (done(f)) continue;
+      const Traced t = trace_frame(shot, f, false, opt.threads);
+      emit(f, t.buffers.colour, keyframe_report(f, t));
+    }
+    return;
+  }
+
+  if (opt.keyframe_interval < 1)
+    throw std::invalid_argument(fmt::format("the keyframe interval must be at least 1, got {}", opt.keyframe_interval));
+  if (shot.shot().spp > 1)
+    throw std::invalid_argument(fmt::format(
+        "reprojection needs spp = 1 (the shot asks for {}): point images hold the pixel-centre sample", shot.shot().spp));
+  const std::vector<int> keys = keyframes(frames, opt.keyframe_interval);
+
+  // Point images of the segment's two keyframes; the later one is reused as
+  // the earlier one of the next segment.
+  std::unique_ptr<PointImage> prev;
+  auto make_point_image = [&](int f, Traced& t) {
+    auto p = std::make_unique<PointImage>(PointImage{f, LensArray(shot.camera(f)), std::move(t.buffers.primary), t.buffers.colour});
+    return p;
+  };
+  auto segment_done = [&](size_t k) {
+    for (int f = keys[k] + 1; f < (k + 1 < keys.size() ? keys[k + 1] : frames); ++f)
+      if (!done(f)) return false;
+    return true;
+  };
+
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const int f0 = keys[k];
+    const bool last = k + 1 == keys.size();
+    const bool need_points = !last && !segment_done(k);
+    if (!prev || prev->frame != f0) {
+      if (done(f0) && !need_points) {
+        prev.reset();
+        continue;
+      }
+      Traced t = trace_frame(shot, f0, true, opt.threads);
+      if (!done(f0)) emit(f0, t.buffers.colour, keyframe_report(f0, t));
+      prev = make_point_image(f0, t);
+    }
+    if (!need_points) continue;
+    const int f1 = keys[k + 1];
+    Traced t1 = trace_frame(shot, f1, true, opt.threads);
+    const FrameReport key1_report = keyframe_report(f1, t1);
+    const ImageBuffer key1_colour = t1.buffers.colour;
+    auto next = make_point_image(f1, t1);
+
+    for (int f = f0 + 1; f < f1; ++f) {
+      if (done(f)) continue;
+      shot.seek(f);
+      const LensArray camera(shot.camera(f));
+      const auto start = Clock::now();
+      ReprojectedFrame rf = reproject(shot.scene(), camera, f, prev.get(), next.get(), opt.reproject);
+      FrameReport r;
+      r.frame = f;
+      r.pixels = camera.pixel_count();
+      r.missed = static_cast<int64_t>(rf.count(PixelStatus::missed));
+      r.leaks = static_cast<int64_t>(rf.count(PixelStatus::leak));
+      r.rejected = static_cast<int64_t>(rf.count(PixelStatus::rejected));
+      r.reprojected = static_cast<int64_t>(rf.count(PixelStatus::reprojected));
+      fill_missed(shot.scene(), camera, opt.fill, opt.threads, rf);
+      r.seconds = seconds_since(start);
+      r.traced = static_cast<int64_t>(rf.count(PixelStatus::traced));
+      r.interpolated = static_cast<int64_t>(rf.count(PixelStatus::interpolated));
+      r.rays = rf.rays;
+      r.stages = rf.seconds;
+      if (opt.reference) {
+        const Traced ref = trace_frame(shot, f, false, opt.threads);
+        r.reference_seconds = ref.seconds;
+        r.difference = compare_images(quantize_8bit(ref.buffers.colour, opt.encoding), quantize_8bit(rf.colour, opt.encoding));
+      }
+      emit(f, rf.colour, r);
+    }
+    if (!done(f1)) emit(f1, key1_colour, key1_report);
+    prev = std::move(next);
+  }
+}
+
+}  // namespace holoray

@@ -1,0 +1,58 @@
+// holoray/temporal: the tracing schedule of an animated shot (paper §4, §7).
+// `full` ray traces every frame. `reproject` ray traces every K-th frame and
+// the last (the keyframes), keeps their point images, and builds each frame
+// between two keyframes by reprojection (reproject.hpp) and filling (fill.hpp).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "image/image_io.hpp"
+#include "image/metrics.hpp"
+#include "shot/shot_frames.hpp"
+#include "temporal/fill.hpp"
+#include "temporal/reproject.hpp"
+
+namespace holoray {
+
+enum class Method { full, reproject };
+
+struct SequenceOptions {
+  Method method = Method::full;
+  int keyframe_interval = 8;  ///< K >= 1
+  ReprojectOptions reproject;
+  Fill fill = Fill::trace;
+  int threads = 0;
+  /// Also ray trace every reprojected frame in full, time it and compare
+  /// (for the report): FrameReport::reference and ::difference.
+  bool reference = false;
+  Encoding encoding = Encoding::linear;  ///< the 8-bit quantisation compared against
+  /// Frames already finished (resume): not emitted; a keyframe among them is
+  /// still traced when a frame after it needs its point image.
+  std::function<bool(int frame)> done;
+};
+
+/// What one frame cost and how it was made (the paper's Tables 1 and 2).
+struct FrameReport {
+  int frame = 0;
+  bool keyframe = false;
+  double seconds = 0;            ///< tracing, or reprojection + filling (no file I/O)
+  double reference_seconds = 0;  ///< full ray tracing of this frame (keyframes: = seconds)
+  int64_t pixels = 0;
+  int64_t reprojected = 0, missed = 0, leaks = 0, rejected = 0, traced = 0, interpolated = 0;
+  RayCounts rays;
+  ReprojectedFrame::Seconds stages;  ///< reprojected frames: time per stage
+  std::optional<ImageDifference> difference;  ///< against the reference (when asked)
+};
+
+/// The keyframes of a shot of `frames` frames at interval K: 0, K, 2K, ... and the last.
+std::vector<int> keyframes(int frames, int interval);
+
+/// Renders the shot in frame order and hands each finished frame to
+/// `emit(frame, colour, report)`. Throws std::invalid_argument for K < 1 or a
+/// shot with spp > 1 under reprojection (point images hold the centre sample).
+void render_sequence(ShotFrames& shot, const SequenceOptions& options,
+                     const std::function<void(int, const ImageBuffer&, const FrameReport&)>& emit);
+
+}  // namespace holoray
