@@ -41,8 +41,8 @@ Vec3 Affine::normal(const Vec3& n) const {
                        a[2] * a[7] - a[1] * a[8], a[0] * a[8] - a[2] * a[6], a[1] * a[6] - a[0] * a[7],
                        a[1] * a[5] - a[2] * a[4], a[2] * a[3] - a[0] * a[5], a[0] * a[4] - a[1] * a[3]};
   const double det = a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
-  const Vec3 r{c[0] * n.x + c[3] * n.y + c[6] * n.z, c[1] * n.x + c[4] * n.y + c[7] * n.z,
-               c[2] * n.x + c[5] * n.y + c[8] * n.z};
+  const Vec3 r{c[0] * n.x + c[1] * n.y + c[2] * n.z, c[3] * n.x + c[4] * n.y + c[5] * n.z,
+               c[6] * n.x + c[7] * n.y + c[8] * n.z};
   return normalize(det < 0 ? -r : r);
 }
 
