@@ -197,7 +197,7 @@ translate = [0, 0, 0.3]
     ASSERT_EQ(cmp.status, 0) << cmp.output;
     EXPECT_NE(cmp.output.find("all         0.0000     0.0000       inf"), std::string::npos) << cmp.output;
   }
-  // Full ray tracing against reprojection: compare reports a finite, high PSNR or identity.
+  // An unknown method is refused with the choices.
   const auto bad = run_cli("animate " + shot + " -o " + dir.file("c") + " --method fast");
   EXPECT_EQ(bad.status, 1);
   EXPECT_NE(bad.output.find("--method: expected one of full, reproject, got 'fast'"), std::string::npos) << bad.output;

@@ -81,8 +81,8 @@ int run_animate(const AnimateCommandOptions& o) {
 
     ShotFrames shot(read_shot_file(o.shot));
     const int frames = shot.frame_count();
+    const LensArray first(shot.camera(0));  // sizes and the printed description
     {
-      const LensArray first(shot.camera(0));
       // Two point images, two z-buffers and the frame: refuse before the first trace.
       const uint64_t need = static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
       const uint64_t have = physical_memory_bytes();
@@ -102,7 +102,7 @@ int run_animate(const AnimateCommandOptions& o) {
     if (o.resume) so.done = [&](int f) { return std::filesystem::exists(frame_path(o.output, f, frames, ext)); };
 
     if (!o.quiet) {
-      const LensArray cam(shot.camera(0));
+      const LensArray& cam = first;
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
                  shot.shot().objects.size());
       fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),
@@ -150,7 +150,7 @@ int run_animate(const AnimateCommandOptions& o) {
       if (so.method == Method::reproject)
         cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --reach {}{}", o.keyframe_interval, o.reuse,
                                o.fill, o.reach, o.no_leak_check ? " --no-leak-check" : "");
-      const LensArray cam(shot.camera(0));
+      const LensArray& cam = first;
       write_text_file(o.report,
                       markdown_report(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
                                       {fmt::format("- command: `{} --report {}`", cmdline, o.report),

@@ -18,9 +18,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommandOptions& o) {
 
 int run_compare(const CompareCommandOptions& o) {
   try {
-    const ImageDifference d = compare_images(read_image(o.a), read_image(o.b));
+    const ImageBuffer a = read_image(o.a);
+    const ImageDifference d = compare_images(a, read_image(o.b));
     auto db = [](double v) { return std::isinf(v) ? std::string("inf") : fmt::format("{:.3f}", v); };
-    fmt::print("{} x {} pixels\n", read_image(o.a).width, read_image(o.a).height);
+    fmt::print("{} x {} pixels\n", a.width, a.height);
     fmt::print("channel        MSE       RMSE   PSNR dB\n");
     static constexpr const char* kName[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)

@@ -14,6 +14,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Traced {
+  LensArray camera;
   FrameBuffers buffers;
   RenderStats stats;
   double seconds = 0;
@@ -21,14 +22,13 @@ struct Traced {
 
 Traced trace_frame(ShotFrames& shot, int frame, bool keep_points, int threads) {
   shot.seek(frame);
-  const LensArray camera(shot.camera(frame));
   RenderOptions ro;
   ro.spp = shot.shot().spp;
   ro.threads = threads;
   ro.primary_hits = keep_points;
-  Traced t;
+  Traced t{LensArray(shot.camera(frame)), {}, {}, 0};
   const auto start = Clock::now();
-  t.buffers = render_frame(shot.scene(), camera, ro, t.stats);
+  t.buffers = render_frame(shot.scene(), t.camera, ro, t.stats);
   t.seconds = seconds_since(start);
   return t;
 }
@@ -78,9 +78,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   // Point images of the segment's two keyframes; the later one is reused as
   // the earlier one of the next segment.
   std::unique_ptr<PointImage> prev;
-  auto make_point_image = [&](int f, Traced& t) {
-    auto p = std::make_unique<PointImage>(PointImage{f, LensArray(shot.camera(f)), std::move(t.buffers.primary), t.buffers.colour});
-    return p;
+  auto make_point_image = [](int f, Traced& t) {
+    return std::make_unique<PointImage>(PointImage{f, t.camera, std::move(t.buffers.primary), t.buffers.colour});
   };
   auto segment_done = [&](size_t k) {
     for (int f = keys[k] + 1; f < (k + 1 < keys.size() ? keys[k + 1] : frames); ++f)
