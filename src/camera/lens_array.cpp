@@ -72,10 +72,8 @@ LensArray::LensArray(const LensArrayDesc& d) : desc_(d) {
 
 double LensArray::lens_fov_deg() const { return 2 * std::atan(desc_.pitch / (2 * desc_.gap)) * 180 / kPi; }
 
-LensIndex LensArray::lens_of_pixel(int i, int j) const {
+LensIndex LensArray::hex_lens_of_pixel(int i, int j) const {
   const int P = desc_.pixels_per_lens;
-  if (desc_.grid == Grid::square) return {i / P, j / P};
-  if (desc_.grid == Grid::lenticular) return {i / P, 0};
   // Hex, in pixel units measured from the top-left corner: x offsets are
   // multiples of 1/2, so ties within a row are decided exactly.
   const double px = i + 0.5, py = j + 0.5;

@@ -83,7 +83,14 @@ class LensArray {
   int lens_count_y() const { return desc_.grid == Grid::lenticular ? 1 : desc_.lenses_y; }
 
   /// The lens a pixel belongs to (hex: nearest centre, ties to lower ly then lx).
-  LensIndex lens_of_pixel(int i, int j) const;
+  /// Square and lenticular grids are a division, inlined because the
+  /// reprojection asks once per neighbour of every pixel.
+  LensIndex lens_of_pixel(int i, int j) const {
+    const int P = desc_.pixels_per_lens;
+    if (desc_.grid == Grid::square) return {i / P, j / P};
+    if (desc_.grid == Grid::lenticular) return {i / P, 0};
+    return hex_lens_of_pixel(i, j);
+  }
   /// Lens centre c in the array frame (z = 0). Lenticular: (c_x, 0, 0).
   Vec3 lens_centre_local(LensIndex l) const;
   /// Panel point p of pixel (i, j) at offset (u, v) in the pixel, array frame (z = -gap).
@@ -115,6 +122,7 @@ class LensArray {
   int lens_number(LensIndex l) const { return l.x + l.y * lens_count_x(); }
 
  private:
+  LensIndex hex_lens_of_pixel(int i, int j) const;
   void project_local(const Vec3& x, std::vector<PanelHit>& out) const;
 
   LensArrayDesc desc_;

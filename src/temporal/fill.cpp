@@ -1,6 +1,6 @@
 #include "temporal/fill.hpp"
 
-#include <atomic>
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -37,55 +37,68 @@ void trace_holes(const RenderScene& scene, const LensArray& camera, int threads,
   for (const RayCounts& c : tile_rays) frame.rays += c;
 }
 
-// One ring of growth: every hole with a valid 8-neighbour in its own
-// elemental image takes their mean. Reads the previous state only, so the
-// result does not depend on the order.
-bool interpolate_ring(const LensArray& camera, int threads, ReprojectedFrame& frame) {
+// Interpolation from valid neighbours in the same elemental image, one ring
+// of growth at a time: every hole with a valid 8-neighbour takes their mean.
+// A ring reads the state before it only (its results are applied after), so
+// the result does not depend on the order or the thread count. Only the
+// holes are visited, so a ring costs what it fills, not the frame.
+void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& frame) {
   const int W = camera.width(), H = camera.height();
-  const std::vector<PixelStatus> before = frame.status;
-  const ImageBuffer colour_before = frame.colour;
-  const ElementalTiles tiles(camera);
-  std::atomic<bool> grew{false};
-  for_each_tile(tiles, threads, [&](int tile) {
-    const TileRect r = tiles.rect(tile);
-    for (int j = r.y0; j < r.y1; ++j)
-      for (int i = r.x0; i < r.x1; ++i) {
-        const size_t p = static_cast<size_t>(j) * W + i;
-        if (!is_hole(before[p])) continue;
+  std::vector<size_t> holes;
+  for (size_t p = 0; p < frame.status.size(); ++p)
+    if (is_hole(frame.status[p])) holes.push_back(p);
+  struct Filled {
+    bool ok = false;
+    float c[3] = {0, 0, 0};
+  };
+  std::vector<Filled> result;
+  constexpr size_t kChunk = 4096;
+  // A hole wider than the elemental image cannot be bridged from inside it.
+  for (int ring = 0; ring < camera.desc().pixels_per_lens && !holes.empty(); ++ring) {
+    result.assign(holes.size(), Filled{});
+    parallel_for_n(static_cast<int>((holes.size() + kChunk - 1) / kChunk), threads, [&](int chunk) {
+      const size_t end = std::min(holes.size(), (chunk + 1) * kChunk);
+      for (size_t h = chunk * kChunk; h < end; ++h) {
+        const int i = static_cast<int>(holes[h] % W), j = static_cast<int>(holes[h] / W);
         const LensIndex lens = camera.lens_of_pixel(i, j);
-        Vec3 sum;
+        float sum[3] = {0, 0, 0};
         int n = 0;
         for (int dj = -1; dj <= 1; ++dj)
           for (int di = -1; di <= 1; ++di) {
             const int ni = i + di, nj = j + dj;
             if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H) continue;
-            const size_t q = static_cast<size_t>(nj) * W + ni;
-            if (is_hole(before[q]) || !(camera.lens_of_pixel(ni, nj) == lens)) continue;
-            const float* c = colour_before.at(ni, nj);
-            sum += Vec3{c[0], c[1], c[2]};
+            if (is_hole(frame.status[static_cast<size_t>(nj) * W + ni]) || !(camera.lens_of_pixel(ni, nj) == lens)) continue;
+            const float* c = frame.colour.at(ni, nj);
+            sum[0] += c[0], sum[1] += c[1], sum[2] += c[2];
             ++n;
           }
         if (n == 0) continue;
-        sum = sum * (1.0 / n);
-        float* o = frame.colour.at(i, j);
-        o[0] = static_cast<float>(sum.x), o[1] = static_cast<float>(sum.y), o[2] = static_cast<float>(sum.z);
-        frame.status[p] = PixelStatus::interpolated;
-        frame.object[p] = -1;
-        grew = true;
+        result[h].ok = true;
+        for (int k = 0; k < 3; ++k) result[h].c[k] = sum[k] / static_cast<float>(n);
       }
-  });
-  return grew;
+    });
+    size_t kept = 0;
+    for (size_t h = 0; h < holes.size(); ++h) {
+      const size_t p = holes[h];
+      if (!result[h].ok) {
+        holes[kept++] = p;
+        continue;
+      }
+      float* o = frame.colour.at(static_cast<int>(p % W), static_cast<int>(p / W));
+      o[0] = result[h].c[0], o[1] = result[h].c[1], o[2] = result[h].c[2];
+      frame.status[p] = PixelStatus::interpolated;
+      frame.object[p] = -1;
+    }
+    if (kept == holes.size()) break;
+    holes.resize(kept);
+  }
 }
 
 }  // namespace
 
 void fill_missed(const RenderScene& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame) {
   const auto start = std::chrono::steady_clock::now();
-  if (fill == Fill::interpolate) {
-    // A hole wider than the elemental image cannot be bridged from inside it.
-    for (int ring = 0; ring < camera.desc().pixels_per_lens; ++ring)
-      if (!interpolate_ring(camera, threads, frame)) break;
-  }
+  if (fill == Fill::interpolate) interpolate_holes(camera, threads, frame);
   trace_holes(scene, camera, threads, frame);
   frame.seconds.fill = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

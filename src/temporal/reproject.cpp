@@ -56,7 +56,15 @@ class Splatter {
   Splatter(const RenderScene& scene, const LensArray& camera, const PointImage& key, Reach reach)
       : scene_(scene), cam_(camera), key_(key), reach_(reach),
         ortho_(camera.desc().mode == RecordingMode::orthoscopic),
-        footprint_(camera.pixel_pitch() / camera.desc().gap) {}
+        footprint_(camera.pixel_pitch() / camera.desc().gap) {
+    // Keyframe array frame -> this frame's array frame, for directions: one
+    // 3x3 product per point instead of two frame changes.
+    const Frame& a = key.camera.desc().frame;
+    const Frame& b = camera.desc().frame;
+    const Vec3 from[3] = {a.x, a.y, a.z}, to[3] = {b.x, b.y, b.z};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) key_to_local_[r][c] = dot(to[r], from[c]);
+  }
 
   void run(ZBuffer& z, int threads) const {
     const LensArray& kc = key_.camera;
@@ -88,7 +96,10 @@ class Splatter {
       // pixel saw it: there it lands at the same place in the elemental
       // image, whether the camera or the object moved.
       const Vec3 x = cam_.desc().frame.to_local_point(p_world);
-      const Vec3 dir = cam_.desc().frame.to_local_dir(kc.line(i, j).dir);
+      const Vec3 d = kc.line_local(i, j).dir;
+      const auto& m = key_to_local_;
+      const Vec3 dir{m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z, m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
+                     m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z};
       if (dir.z == 0) return;
       const LensIndex lens = cam_.lens_near(x - dir * (x.z / dir.z));
       PanelHit ph;
@@ -99,7 +110,7 @@ class Splatter {
     const int W = cam_.width();
     for (const PanelHit& l : landings) {
       const double d = ortho_ ? l.t : -l.t;
-      const double r = std::hypot(l.u - 0.5, l.v - 0.5);
+      const double r = std::sqrt((l.u - 0.5) * (l.u - 0.5) + (l.v - 0.5) * (l.v - 0.5));
       const auto score = static_cast<float>(d - kCentrePenalty * r * footprint(l.t));
       const uint64_t k = (uint64_t{orderable(score)} << 32) | (static_cast<uint64_t>(idx) + 1);
       atomic_max(z[static_cast<size_t>(l.j) * W + l.i], k);
@@ -112,6 +123,7 @@ class Splatter {
   Reach reach_;
   bool ortho_;
   double footprint_;
+  double key_to_local_[3][3];
 };
 
 using Clock = std::chrono::steady_clock;
