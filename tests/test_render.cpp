@@ -44,12 +44,14 @@ SceneDesc square_plane(double z0, double half) {
   return one_object(ObjectDesc{p, 0, {}});
 }
 
-FrameBuffers render(const SceneDesc& desc, const LensArrayDesc& cam_desc, int threads = 0) {
+FrameBuffers render(const SceneDesc& desc, const LensArrayDesc& cam_desc, int threads = 0,
+                    TileOrder order = TileOrder::row_major) {
   const RenderScene scene(desc);
   const LensArray cam(cam_desc);
   RenderOptions opt;
   opt.aovs = {true, true, true, true};
   opt.threads = threads;
+  opt.tile_order = order;
   RenderStats stats;
   return render_frame(scene, cam, opt, stats);
 }
@@ -166,6 +168,25 @@ TEST(RenderDeterminism, IdenticalForAnyThreadCount) {
   EXPECT_EQ(one.colour.data, many.colour.data);
   EXPECT_EQ(one.depth.data.size(), many.depth.data.size());
   EXPECT_EQ(0, std::memcmp(one.depth.data.data(), many.depth.data.data(), one.depth.data.size() * sizeof(float)));
+}
+
+TEST(RenderDeterminism, IdenticalForAnyTileOrder) {
+  SceneDesc s = square_plane(-1.2, 4);
+  s.lights.push_back({{3, 4, 5}, {1, 1, 1}, {}});
+  s.materials.push_back(Material{{1, 1, 1}, 0.1, 0.1, 50, 0.8, 1.5, {}});
+  s.objects.push_back({SphereDesc{{0.2, -0.3, 0.6}, 0.7}, static_cast<int>(s.materials.size()) - 1, {}});
+  for (const Grid grid : {Grid::square, Grid::hex, Grid::lenticular}) {
+    SCOPED_TRACE(to_string(grid));
+    const auto d = flat_array(grid, RecordingMode::pseudoscopic);
+    const FrameBuffers ref = render(s, d, 1, TileOrder::row_major);
+    for (const TileOrder order : {TileOrder::reversed, TileOrder::strided})
+      for (const int threads : {1, 3}) {
+        const FrameBuffers other = render(s, d, threads, order);
+        EXPECT_EQ(ref.colour.data, other.colour.data);
+        EXPECT_EQ(ref.id.data, other.id.data);
+        EXPECT_EQ(0, std::memcmp(ref.normal.data.data(), other.normal.data.data(), ref.normal.data.size() * sizeof(float)));
+      }
+  }
 }
 
 TEST(RenderLimits, RefusesBuffersOverTheMemoryLimitBeforeAllocating) {

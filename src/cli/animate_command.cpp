@@ -4,10 +4,12 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <memory>
 #include <thread>
 
+#include "cli/interrupt.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "image/image_io.hpp"
@@ -34,6 +36,17 @@ T pick(const std::string& option, const std::string& value, std::initializer_lis
     names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
   }
   throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
+}
+
+// A run killed outright (SIGKILL, power loss) can leave the temporary file of
+// the frame it was writing (image_io's ".<stem>.tmp<pid>.<ext>"); a resumed
+// run removes them so the folder ends as an uninterrupted run leaves it.
+void remove_stale_temporaries(const std::string& dir) {
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.starts_with(".frame_") && name.find(".tmp") != std::string::npos) std::filesystem::remove(e.path(), ec);
+  }
 }
 
 }  // namespace
@@ -99,7 +112,12 @@ int run_animate(const AnimateCommandOptions& o) {
       if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
     }
-    if (o.resume) so.done = [&](int f) { return std::filesystem::exists(frame_path(o.output, f, frames, ext)); };
+    if (o.resume) {
+      remove_stale_temporaries(o.output);
+      so.done = [&](int f) { return std::filesystem::exists(frame_path(o.output, f, frames, ext)); };
+    }
+    const StopOnSignal interrupt;
+    so.stop = [&] { return interrupt.requested(); };
 
     if (!o.quiet) {
       const LensArray& cam = first;
@@ -136,6 +154,11 @@ int run_animate(const AnimateCommandOptions& o) {
       std::fflush(stdout);
     });
 
+    if (interrupt.requested()) {
+      fmt::print(stderr, "holoray: interrupted by {} after {} new frames; every frame in '{}' is complete; "
+                 "rerun with --resume to finish\n", interrupt.signal() == SIGINT ? "SIGINT" : "SIGTERM", written, o.output);
+      return interrupt.exit_status();
+    }
     const RunSummary s = summarise(reports);
     if (!o.quiet) {
       fmt::print("wrote      {} frames to {}{}\n", written, o.output,

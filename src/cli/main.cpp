@@ -1,6 +1,8 @@
 // holoray: command-line entry point. Each subcommand lives in its own file.
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+
 #include "cli/animate_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/render_command.hpp"
@@ -17,6 +19,16 @@ int main(int argc, char** argv) {
   CLI::App* animate = holoray::cli::add_animate_command(app, animate_opts);
   holoray::cli::CompareCommandOptions compare_opts;
   CLI::App* compare = holoray::cli::add_compare_command(app, compare_opts);
+  // CLI11 would only say that a subcommand is required.
+  const auto known = [&](const std::string& name) {
+    for (const CLI::App* c : app.get_subcommands([](CLI::App*) { return true; }))
+      if (c->get_name() == name) return true;
+    return false;
+  };
+  if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
+    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate or compare)\n", argv[1]);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -80,7 +80,9 @@ int run_render(const RenderCommandOptions& o) {
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
     const std::filesystem::path out_dir = std::filesystem::path(o.output).parent_path();
     if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
-      throw std::invalid_argument(fmt::format("-o: folder '{}' does not exist", out_dir.string()));
+      throw std::invalid_argument(std::filesystem::exists(out_dir)
+                                      ? fmt::format("-o: '{}' is not a folder", out_dir.string())
+                                      : fmt::format("-o: folder '{}' does not exist", out_dir.string()));
     const Encoding encoding = parse_encoding(o.encoding);
     if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
@@ -94,6 +96,11 @@ int run_render(const RenderCommandOptions& o) {
     const auto t_parse = Clock::now();
     const SceneDesc desc = read_nff_file(o.scene);
     const double parse_s = seconds_since(t_parse);
+    if (!o.quiet) {
+      constexpr size_t kShown = 10;
+      for (size_t k = 0; k < std::min(kShown, desc.warnings.size()); ++k) fmt::print(stderr, "{}\n", desc.warnings[k]);
+      if (desc.warnings.size() > kShown) fmt::print(stderr, "{}: {} more warnings\n", o.scene, desc.warnings.size() - kShown);
+    }
 
     const LensArray camera(place_array(settings, desc.viewpoint));
     // Refuse before allocating: buffers plus the 8-bit or float copy made on output.
@@ -138,8 +145,9 @@ int run_render(const RenderCommandOptions& o) {
 
     if (!o.quiet) {
       const LensArrayDesc& d = camera.desc();
-      fmt::print("scene      {}: {} objects, {} lights{}\n", o.scene, desc.objects.size(), desc.lights.size(),
-                 scene.skipped_polygons() ? fmt::format(" ({} zero-area polygons skipped)", scene.skipped_polygons()) : "");
+      const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
+      fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
+                 scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
       fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", camera.width(), camera.height(), to_string(d.grid),
                  camera.lens_count_x(), camera.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
       fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, camera.lens_fov_deg());

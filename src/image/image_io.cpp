@@ -75,6 +75,8 @@ void write_image(const std::string& path, const ImageBuffer& image, Encoding enc
   if (!ok) {
     std::string reason = out->geterror();
     if (reason.empty()) reason = std::strerror(errno);
+    // The user never named the temporary file: speak of the one they did.
+    for (size_t at; (at = reason.find(tmp.string())) != std::string::npos;) reason.replace(at, tmp.string().size(), path);
     fs::remove(tmp, ec);
     throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
   }

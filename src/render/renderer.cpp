@@ -114,7 +114,7 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
   const auto start = std::chrono::steady_clock::now();
-  const ElementalTiles tiles(camera);
+  const ElementalTiles tiles(camera, opt.tile_order);
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
   for_each_tile(tiles, opt.threads, [&](int tile) {

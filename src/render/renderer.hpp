@@ -11,6 +11,7 @@
 #include "image/image.hpp"
 #include "render/ray_counts.hpp"
 #include "render/render_scene.hpp"
+#include "render/tiles.hpp"
 
 namespace holoray {
 
@@ -27,6 +28,7 @@ struct RenderOptions {
   int threads = 0;  ///< 0: all cores
   AovSet aovs;
   bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
+  TileOrder tile_order = TileOrder::row_major;  ///< never changes the result (tests prove it)
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
 };

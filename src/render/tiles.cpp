@@ -6,18 +6,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 
 namespace holoray {
 
-ElementalTiles::ElementalTiles(const LensArray& camera) : width_(camera.width()), height_(camera.height()) {
+ElementalTiles::ElementalTiles(const LensArray& camera, TileOrder order)
+    : width_(camera.width()), height_(camera.height()), order_(order) {
   const int P = camera.desc().pixels_per_lens;
   const int lenses_per_tile = std::max(1, static_cast<int>(std::lround(64.0 / P)));
   tile_w_ = tile_h_ = P * lenses_per_tile;
   tiles_x_ = (width_ + tile_w_ - 1) / tile_w_;
   tiles_y_ = (height_ + tile_h_ - 1) / tile_h_;
+  if (order_ == TileOrder::strided) {
+    stride_ = std::max(1, count() / 2 + 1);
+    while (std::gcd(stride_, count()) != 1) ++stride_;
+  }
 }
 
-TileRect ElementalTiles::rect(int tile) const {
+TileRect ElementalTiles::rect(int k) const {
+  const int n = count();
+  const int tile = order_ == TileOrder::reversed ? n - 1 - k
+                   : order_ == TileOrder::strided ? static_cast<int>(static_cast<int64_t>(k) * stride_ % n)
+                                                  : k;
   const int x0 = (tile % tiles_x_) * tile_w_, y0 = (tile / tiles_x_) * tile_h_;
   return {x0, y0, std::min(width_, x0 + tile_w_), std::min(height_, y0 + tile_h_)};
 }

@@ -15,16 +15,27 @@ struct TileRect {
   int x0, y0, x1, y1;
 };
 
+/// The order tiles are handed out in. Results never depend on it; the other
+/// orders exist so that tests can prove that (issue 5, determinism).
+enum class TileOrder {
+  row_major,  ///< left to right, top to bottom
+  reversed,   ///< bottom-right first
+  strided,    ///< a fixed permutation far from both (tile k -> k * stride mod n)
+};
+
 /// The EIA cut into tiles of whole elemental images (square grid; hex and
 /// lenticular tiles are P-aligned pixel blocks).
 class ElementalTiles {
  public:
-  explicit ElementalTiles(const LensArray& camera);
+  explicit ElementalTiles(const LensArray& camera, TileOrder order = TileOrder::row_major);
   int count() const { return tiles_x_ * tiles_y_; }
-  TileRect rect(int tile) const;
+  /// The rectangle of the tile handed out k-th, k in [0, count()).
+  TileRect rect(int k) const;
 
  private:
   int width_, height_, tile_w_, tile_h_, tiles_x_, tiles_y_;
+  TileOrder order_;
+  int stride_ = 1;  // coprime with count()
 };
 
 /// Runs fn(tile) for every tile on `threads` threads (0: all cores).

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "scene/file_text.hpp"
+#include "scene/tessellate.hpp"
 #include "scene/tokenizer.hpp"
 
 namespace holoray {
@@ -113,6 +114,7 @@ class NffParser {
     const Token r = tok_.peek();
     s.radius = tok_.number("the sphere radius");
     if (s.radius == 0) tok_.fail(r.loc, "expected a non-zero sphere radius, found 0");
+    if (s.radius < 0) warn(r.loc, "negative sphere radius: only the inside is visible (nff-notes, 's')");
     add(kw, s);
   }
 
@@ -144,7 +146,13 @@ class NffParser {
       p.vertices.push_back(vec3("a vertex coordinate"));
       if (patch) p.normals.push_back(vec3("a vertex normal component"));
     }
+    if (polygon_normal(p.vertices) == Vec3{}) warn(kw.loc, "polygon with no area (collinear or repeated vertices), skipped");
     add(kw, std::move(p));
+  }
+
+  // Accepted but probably not what the author meant; the caller shows them.
+  void warn(SourceLoc loc, std::string_view message) {
+    scene_.warnings.push_back(fmt::format("{}:{}:{}: warning: {}", tok_.source(), loc.line, loc.col, message));
   }
 
   Tokenizer tok_;

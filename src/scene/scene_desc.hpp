@@ -77,6 +77,9 @@ struct SceneDesc {
   std::vector<Light> lights;
   std::vector<Material> materials;
   std::vector<ObjectDesc> objects;
+  /// "file:line:col: warning: ..." for input that was accepted but is
+  /// suspect (a polygon with no area, a negative sphere radius), in file order.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace holoray

@@ -75,7 +75,15 @@ bool Tokenizer::next_is_number() {
 double Tokenizer::number(std::string_view what) {
   const Token tok = next();
   double v;
-  if (!parse_double(tok.text, v)) fail_expected(tok, what);
+  if (!parse_double(tok.text, v)) {
+    std::string_view t = tok.text;
+    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (r.ec == std::errc::result_out_of_range && r.ptr == t.data() + t.size())
+      fail(tok.loc, fmt::format("expected a finite number for {}, found {} (beyond the range of a double)", what,
+                                describe_token(tok)));
+    fail_expected(tok, what);
+  }
   if (!std::isfinite(v)) fail(tok.loc, fmt::format("expected a finite number for {}, found {}", what, describe_token(tok)));
   return v;
 }

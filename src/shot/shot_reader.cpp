@@ -218,7 +218,8 @@ class ShotParser {
         ViewKey key;
         key.frame = static_cast<double>(*integer(k, "frame", 0, kMaxFrames, true));
         if (!cam.keys.empty() && !(key.frame > cam.keys.back().frame))
-          fail(k.get("frame")->source(), "expected camera keys in increasing frame order");
+          fail(k.get("frame")->source(), fmt::format("expected camera keys in increasing frame order, found frame {} after {}",
+                                                   key.frame, cam.keys.back().frame));
         const auto need = [&](std::string_view name) {
           const auto v = vec3(k, name);
           if (!v) fail(k.source(), fmt::format("expected '{}' = [x, y, z] in [[camera.key]]", name));
@@ -253,7 +254,8 @@ class ShotParser {
         TransformKey key;
         key.frame = static_cast<double>(*integer(k, "frame", 0, kMaxFrames, true));
         if (!obj.motion.keys.empty() && !(key.frame > obj.motion.keys.back().frame))
-          fail(k.get("frame")->source(), "expected object keys in increasing frame order");
+          fail(k.get("frame")->source(), fmt::format("expected object keys in increasing frame order, found frame {} after {}",
+                                                   key.frame, obj.motion.keys.back().frame));
         key.translate = vec3(k, "translate").value_or(Vec3{});
         key.rotate_deg = vec3(k, "rotate").value_or(Vec3{});
         key.scale = vec3(k, "scale", true).value_or(Vec3{1, 1, 1});

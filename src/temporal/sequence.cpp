@@ -47,6 +47,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
                      const std::function<void(int, const ImageBuffer&, const FrameReport&)>& emit) {
   const int frames = shot.frame_count();
   auto done = [&](int f) { return opt.done && opt.done(f); };
+  auto stop = [&] { return opt.stop && opt.stop(); };
   auto keyframe_report = [&](int f, const Traced& t) {
     FrameReport r;
     r.frame = f;
@@ -62,6 +63,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   if (opt.method == Method::full) {
     for (int f = 0; f < frames; ++f) {
       if (done(f)) continue;
+      if (stop()) return;
       const Traced t = trace_frame(shot, f, false, opt.threads);
       emit(f, t.buffers.colour, keyframe_report(f, t));
     }
@@ -96,12 +98,14 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         prev.reset();
         continue;
       }
+      if (stop()) return;
       Traced t = trace_frame(shot, f0, true, opt.threads);
       if (!done(f0)) emit(f0, t.buffers.colour, keyframe_report(f0, t));
       prev = make_point_image(f0, t);
     }
     if (!need_points) continue;
     const int f1 = keys[k + 1];
+    if (stop()) return;
     Traced t1 = trace_frame(shot, f1, true, opt.threads);
     const FrameReport key1_report = keyframe_report(f1, t1);
     const ImageBuffer key1_colour = t1.buffers.colour;
@@ -109,6 +113,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
 
     for (int f = f0 + 1; f < f1; ++f) {
       if (done(f)) continue;
+      if (stop()) return;
       shot.seek(f);
       const LensArray camera(shot.camera(f));
       const auto start = Clock::now();

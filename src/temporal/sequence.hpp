@@ -31,6 +31,9 @@ struct SequenceOptions {
   /// Frames already finished (resume): not emitted; a keyframe among them is
   /// still traced when a frame after it needs its point image.
   std::function<bool(int frame)> done;
+  /// Asked before each frame is started (keyframe or reprojected): true stops
+  /// the sequence there, after the frames already emitted (SIGINT, SIGTERM).
+  std::function<bool()> stop;
 };
 
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).

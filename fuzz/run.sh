@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, AddressSanitizer + UBSan) into
+# build-fuzz/ and runs each for FUZZ_SECONDS seconds (default 60), seeded
+# from the repository's scenes and shots, the saved regressions and, when it
+# is there, ../shared/scenes. Fails on the first finding and says where the
+# input is: add it to fuzz/regressions/<target>/ with the fix, and the test
+# suite (FuzzRegressions) replays it on every build from then on.
+# Usage: bash fuzz/run.sh [target...]   (targets: nff shot camera_path)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${FUZZ_SECONDS:-60}
+targets=("$@")
+((${#targets[@]})) || targets=(nff shot camera_path)
+
+command -v clang++ >/dev/null || { echo "fuzz/run.sh: clang++ not found (bash scripts/setup.sh installs it)" >&2; exit 1; }
+cmake -S fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build build-fuzz
+
+shared=../shared/scenes
+seeds() {  # the seed files of one target, small ones only (the fuzzer cuts inputs at -max_len anyway)
+  case $1 in
+    nff) ls examples/*.nff "$shared"/nff/*.nff 2>/dev/null ;;
+    shot) ls bench/shots/*.toml examples/*.toml tests/data/*.toml 2>/dev/null ;;
+    camera_path) ls "$shared"/tachyon/*.cam tests/data/*.cam 2>/dev/null ;;
+  esac | while read -r f; do [ "$(stat -c %s "$f")" -le 65536 ] && echo "$f"; done
+  ls fuzz/regressions/"$1"/* 2>/dev/null || true
+}
+
+for t in "${targets[@]}"; do
+  corpus=build-fuzz/corpus/$t
+  findings=build-fuzz/findings/$t
+  mkdir -p "$corpus" "$findings"
+  seeds "$t" | while read -r f; do cp "$f" "$corpus/"; done
+  echo "== fuzz_$t: ${seconds}s, $(ls "$corpus" | wc -l) inputs in the corpus"
+  if ! build-fuzz/fuzz_"$t" "$corpus" -dict=fuzz/dicts/"$t".dict -max_total_time="$seconds" -max_len=8192 \
+      -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/" 2>build-fuzz/fuzz_"$t".log; then
+    tail -40 build-fuzz/fuzz_"$t".log >&2
+    echo "fuzz_$t found a problem; the input is in $findings/ (replay: build-fuzz/fuzz_$t FILE)" >&2
+    exit 1
+  fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-fuzz/fuzz_"$t".log || true
+done
