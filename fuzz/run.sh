@@ -17,13 +17,18 @@ cmake -S fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_
 cmake --build build-fuzz
 
 shared=../shared/scenes
+shopt -s nullglob
 seeds() {  # the seed files of one target, small ones only (the fuzzer cuts inputs at -max_len anyway)
+  local files=()
   case $1 in
-    nff) ls examples/*.nff "$shared"/nff/*.nff 2>/dev/null ;;
-    shot) ls bench/shots/*.toml examples/*.toml tests/data/*.toml 2>/dev/null ;;
-    camera_path) ls "$shared"/tachyon/*.cam tests/data/*.cam 2>/dev/null ;;
-  esac | while read -r f; do [ "$(stat -c %s "$f")" -le 65536 ] && echo "$f"; done
-  ls fuzz/regressions/"$1"/* 2>/dev/null || true
+    nff) files=(examples/*.nff "$shared"/nff/*.nff) ;;
+    shot) files=(bench/shots/*.toml tests/data/*.toml) ;;
+    camera_path) files=("$shared"/tachyon/*.cam) ;;
+  esac
+  files+=(fuzz/regressions/"$1"/*)
+  for f in "${files[@]}"; do
+    if [ "$(stat -c %s "$f")" -le 65536 ]; then echo "$f"; fi
+  done
 }
 
 for t in "${targets[@]}"; do
