@@ -2,7 +2,6 @@
 // the CLI in a fresh folder and must exit with its status and print its
 // message as a whole line; docs/errors.md holds the same cases as a table and
 // must agree with the file (HOLORAY_UPDATE_DOCS=1 rewrites the table).
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -93,15 +92,10 @@ TEST_P(BadInput, ExitsWithItsStatusAndMessage) {
   // write fail with an error instead of killing the process, as a full disk does.
   const std::string limit =
       c.file_size_limit_kib ? fmt::format("trap '' XFSZ; ulimit -f {}; ", 2 * c.file_size_limit_kib) : std::string();
-  const std::string cmd = fmt::format("cd '{}' && {}{} {} 2>&1", dir.path.string(), limit, HOLORAY_CLI, c.command);
-  FILE* p = ::popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string output;
-  char buf[4096];
-  for (size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) output.append(buf, n);
-  const int st = ::pclose(p);
-  ASSERT_TRUE(WIFEXITED(st)) << c.id << " did not exit normally (crashed?)\n" << output;
-  EXPECT_EQ(WEXITSTATUS(st), c.status) << output;
+  const auto r = test::run_shell(fmt::format("cd '{}' && {}{} {}", dir.path.string(), limit, HOLORAY_CLI, c.command));
+  const std::string& output = r.output;
+  ASSERT_NE(r.status, -1) << c.id << " did not exit normally (crashed?)\n" << output;
+  EXPECT_EQ(r.status, c.status) << output;
   std::istringstream lines(output);
   bool found = false;
   for (std::string line; std::getline(lines, line);)

@@ -3,8 +3,6 @@
 // in the plain build and in the sanitizer build alike. Each body throws only
 // the reader's documented error type; anything else fails here.
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -30,8 +28,7 @@ void replay(const std::string& target, Body body) {
   const auto files = saved_inputs(target);
   for (const auto& f : files) {
     SCOPED_TRACE(f.string());
-    std::ifstream in(f, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = test::read_bytes(f.string());
     EXPECT_NO_THROW(body(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
   }
   ::testing::Test::RecordProperty("inputs", static_cast<int>(files.size()));

@@ -10,8 +10,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <string>
 #include <thread>
@@ -59,10 +57,7 @@ scene = "scene.nff"
 
 std::map<std::string, std::string> folder_bytes(const std::string& dir) {
   std::map<std::string, std::string> files;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    std::ifstream in(e.path(), std::ios::binary);
-    files[e.path().filename().string()] = std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  for (const auto& e : fs::directory_iterator(dir)) files[e.path().filename().string()] = test::read_bytes(e.path().string());
   return files;
 }
 
@@ -91,10 +86,6 @@ pid_t spawn_cli(const std::vector<std::string>& args, const std::string& log) {
   return rc == 0 ? pid : -1;
 }
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 struct KillCase {
   int signal;
@@ -121,7 +112,7 @@ TEST_P(AnimateInterrupted, LeavesOnlyCompleteFramesAndResumesToTheSameFiles) {
     waitpid(pid, &st, 0);
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   };
-  ASSERT_EQ(run_to_end(with_output(dir.file("whole"))), 0) << read_all(dir.file("log_end.txt"));
+  ASSERT_EQ(run_to_end(with_output(dir.file("whole"))), 0) << test::read_bytes(dir.file("log_end.txt"));
   const auto whole = folder_bytes(dir.file("whole"));
   ASSERT_EQ(whole.size(), 60u);
 
@@ -139,9 +130,9 @@ TEST_P(AnimateInterrupted, LeavesOnlyCompleteFramesAndResumesToTheSameFiles) {
   if (kc.signal == SIGKILL) {
     EXPECT_TRUE(WIFSIGNALED(st));
   } else {
-    ASSERT_TRUE(WIFEXITED(st)) << read_all(dir.file("log_cut.txt"));
+    ASSERT_TRUE(WIFEXITED(st)) << test::read_bytes(dir.file("log_cut.txt"));
     EXPECT_EQ(WEXITSTATUS(st), 128 + kc.signal);
-    EXPECT_NE(read_all(dir.file("log_cut.txt")).find("rerun with --resume"), std::string::npos);
+    EXPECT_NE(test::read_bytes(dir.file("log_cut.txt")).find("rerun with --resume"), std::string::npos);
   }
   // Every frame there is complete: byte for byte the uninterrupted run's.
   for (const auto& [name, bytes] : folder_bytes(out)) {
@@ -150,7 +141,7 @@ TEST_P(AnimateInterrupted, LeavesOnlyCompleteFramesAndResumesToTheSameFiles) {
       EXPECT_EQ(bytes, whole.at(name)) << name << " is not complete";
     }
   }
-  ASSERT_EQ(run_to_end(with_output(out, {"--resume"})), 0) << read_all(dir.file("log_end.txt"));
+  ASSERT_EQ(run_to_end(with_output(out, {"--resume"})), 0) << test::read_bytes(dir.file("log_end.txt"));
   EXPECT_EQ(folder_bytes(out), whole) << "a resumed run must leave exactly the uninterrupted run's files";
 }
 
@@ -168,7 +159,7 @@ TEST(AnimateDeterminism, SameFramesForAnyThreadCount) {
   TempDir dir;
   write_shot(dir);
   // Fewer frames: the property does not need sixty.
-  std::string shot = read_all(dir.file("shot.toml"));
+  std::string shot = test::read_bytes(dir.file("shot.toml"));
   shot.replace(shot.find("frames = 60"), 11, "frames = 9");
   shot.replace(shot.find("frame = 59"), 10, "frame = 8");
   test::write_text(dir.file("shot.toml"), shot);

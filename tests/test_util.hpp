@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <tuple>
 
@@ -41,10 +43,11 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-/// Runs the holoray CLI with `args` (shell-quoted by the caller).
-inline CommandResult run_cli(const std::string& args) {
+/// Runs a /bin/sh command line, capturing stdout and stderr together.
+/// status is -1 when it did not exit normally (a crash).
+inline CommandResult run_shell(const std::string& command) {
   CommandResult r;
-  const std::string cmd = std::string(HOLORAY_CLI) + " " + args + " 2>&1";
+  const std::string cmd = command + " 2>&1";
   FILE* p = ::popen(cmd.c_str(), "r");
   if (!p) return r;
   char buf[4096];
@@ -53,6 +56,15 @@ inline CommandResult run_cli(const std::string& args) {
   const int st = ::pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
+}
+
+/// Runs the holoray CLI with `args` (shell-quoted by the caller).
+inline CommandResult run_cli(const std::string& args) { return run_shell(std::string(HOLORAY_CLI) + " " + args); }
+
+/// The file's bytes; empty when it cannot be read.
+inline std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 inline void write_text(const std::string& path, const std::string& text) {
