@@ -12,6 +12,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
@@ -120,6 +121,7 @@ int run_animate(const AnimateCommandOptions& o) {
     so.stop = [&] { return interrupt.requested(); };
 
     if (!o.quiet) {
+      for (const SceneDesc& desc : shot.scenes()) print_scene_warnings(desc);
       const LensArray& cam = first;
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
                  shot.shot().objects.size());

@@ -13,6 +13,7 @@
 #include "camera/placement.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
 #include "render/renderer.hpp"
 #include "scene/nff_reader.hpp"
@@ -96,11 +97,7 @@ int run_render(const RenderCommandOptions& o) {
     const auto t_parse = Clock::now();
     const SceneDesc desc = read_nff_file(o.scene);
     const double parse_s = seconds_since(t_parse);
-    if (!o.quiet) {
-      constexpr size_t kShown = 10;
-      for (size_t k = 0; k < std::min(kShown, desc.warnings.size()); ++k) fmt::print(stderr, "{}\n", desc.warnings[k]);
-      if (desc.warnings.size() > kShown) fmt::print(stderr, "{}: {} more warnings\n", o.scene, desc.warnings.size() - kShown);
-    }
+    if (!o.quiet) print_scene_warnings(desc);
 
     const LensArray camera(place_array(settings, desc.viewpoint));
     // Refuse before allocating: buffers plus the 8-bit or float copy made on output.

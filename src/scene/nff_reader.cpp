@@ -82,6 +82,8 @@ class NffParser {
     l.loc = kw.loc;
     l.position = vec3("a light position coordinate");
     if (tok_.next_is_number()) l.colour = colour("a light colour component");  // optional RGB (nff-notes §4)
+    if (static_cast<long>(scene_.lights.size()) >= limits_.max_lights)
+      tok_.fail(kw.loc, fmt::format("expected at most {} lights in one file, found more", limits_.max_lights));
     scene_.lights.push_back(l);
   }
 
@@ -105,6 +107,8 @@ class NffParser {
   }
 
   void add(const Token& kw, auto shape) {
+    if (static_cast<long>(scene_.objects.size()) >= limits_.max_objects)
+      tok_.fail(kw.loc, fmt::format("expected at most {} objects in one file, found more", limits_.max_objects));
     scene_.objects.push_back(ObjectDesc{std::move(shape), material_, kw.loc});
   }
 
@@ -152,6 +156,7 @@ class NffParser {
 
   // Accepted but probably not what the author meant; the caller shows them.
   void warn(SourceLoc loc, std::string_view message) {
+    if (static_cast<long>(scene_.warning_count++) >= limits_.max_warnings_kept) return;
     scene_.warnings.push_back(fmt::format("{}:{}:{}: warning: {}", tok_.source(), loc.line, loc.col, message));
   }
 

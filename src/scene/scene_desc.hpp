@@ -78,8 +78,11 @@ struct SceneDesc {
   std::vector<Material> materials;
   std::vector<ObjectDesc> objects;
   /// "file:line:col: warning: ..." for input that was accepted but is
-  /// suspect (a polygon with no area, a negative sphere radius), in file order.
+  /// suspect (a polygon with no area, a negative sphere radius), in file
+  /// order; only the first NffLimits::max_warnings_kept are kept as text.
   std::vector<std::string> warnings;
+  /// Every warning, kept or not.
+  size_t warning_count = 0;
 };
 
 }  // namespace holoray
