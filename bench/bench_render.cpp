@@ -1,11 +1,16 @@
-// Benchmarks for issue 2's table: on the SPD scenes at 128x128 lenses x 16 px
-// (2048x2048), primary-ray throughput of the integral camera against plain
-// Embree rtcIntersect1 on the very same rays (the yardstick), and full Whitted
-// shading time per frame. Both primary kernels use the same oneTBB schedule.
+// Kernel benchmarks (issues 2 and 4): on the SPD scenes at 128x128 lenses x
+// 16 px (2048x2048), primary-ray throughput of the integral camera in each
+// pixel-tracing style against plain Embree on the very same rays, in the same
+// packet order (rtcIntersect1 and rtcIntersect16: the yardsticks), full
+// Whitted shading per frame in each style, and the paper's Table 3: the time
+// to trace the first lens in each style. All use the same oneTBB schedule.
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <oneapi/tbb/parallel_for.h>
 
+#include <algorithm>
+#include <array>
+#include <atomic>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -13,6 +18,7 @@
 
 #include "camera/placement.hpp"
 #include "render/renderer.hpp"
+#include "render/tiles.hpp"
 #include "scene/nff_reader.hpp"
 
 using namespace holoray;
@@ -21,11 +27,47 @@ namespace {
 
 constexpr int kLenses = 128, kPixelsPerLens = 16;
 
+// Embree reads a packet's valid mask with aligned loads.
+struct alignas(64) ValidMask {
+  int lane[16];
+};
+
 struct Fixture {
   std::unique_ptr<RenderScene> scene;
   std::unique_ptr<LensArray> camera;
-  std::vector<RTCRayHit> rays;  // the camera's primary rays, for the yardstick
+  // The camera's primary rays, lens by lens in packet order (packet_order),
+  // for the yardsticks: one RTCRayHit per ray, and the same rays as packets
+  // of 16 with their valid masks (partial packets where a lens has fewer).
+  std::vector<RTCRayHit> rays;
+  std::vector<RTCRayHit16> packets;
+  std::vector<ValidMask> valid;
 };
+
+RTCRay to_rtc(const Ray& r) {
+  RTCRay o{};
+  o.org_x = static_cast<float>(r.org.x);
+  o.org_y = static_cast<float>(r.org.y);
+  o.org_z = static_cast<float>(r.org.z);
+  o.dir_x = static_cast<float>(r.dir.x);
+  o.dir_y = static_cast<float>(r.dir.y);
+  o.dir_z = static_cast<float>(r.dir.z);
+  o.tnear = static_cast<float>(r.tnear);
+  o.tfar = static_cast<float>(r.tfar);
+  o.mask = ~0u;
+  return o;
+}
+
+// Calls fn(block) for every lens block (P x P) of the EIA, lens rows in parallel.
+template <class Fn>
+void for_each_lens(const LensArray& cam, Fn&& fn) {
+  const int P = cam.desc().pixels_per_lens;
+  const int rows = (cam.height() + P - 1) / P, cols = (cam.width() + P - 1) / P;
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows, 1), [&](const tbb::blocked_range<int>& r) {
+    for (int ly = r.begin(); ly != r.end(); ++ly)
+      for (int lx = 0; lx < cols; ++lx)
+        fn(TileRect{lx * P, ly * P, std::min(cam.width(), lx * P + P), std::min(cam.height(), ly * P + P)});
+  });
+}
 
 Fixture& fixture(const std::string& name) {
   static std::map<std::string, Fixture> cache;
@@ -38,51 +80,112 @@ Fixture& fixture(const std::string& name) {
   s.lenses_x = s.lenses_y = kLenses;
   s.pixels_per_lens = kPixelsPerLens;
   f.camera = std::make_unique<LensArray>(place_array(s, desc.viewpoint));
-  for (int j = 0; j < f.camera->height(); ++j)
-    for (int i = 0; i < f.camera->width(); ++i) {
-      const auto pr = primary_ray(*f.camera, f.scene->bounds(), f.scene->epsilon(), i, j);
-      if (!pr) continue;
-      RTCRayHit rh{};
-      rh.ray.org_x = static_cast<float>(pr->ray.org.x);
-      rh.ray.org_y = static_cast<float>(pr->ray.org.y);
-      rh.ray.org_z = static_cast<float>(pr->ray.org.z);
-      rh.ray.dir_x = static_cast<float>(pr->ray.dir.x);
-      rh.ray.dir_y = static_cast<float>(pr->ray.dir.y);
-      rh.ray.dir_z = static_cast<float>(pr->ray.dir.z);
-      rh.ray.tnear = static_cast<float>(pr->ray.tnear);
-      rh.ray.tfar = static_cast<float>(pr->ray.tfar);
-      rh.ray.mask = ~0u;
-      f.rays.push_back(rh);
+  const LensArray& cam = *f.camera;
+  const int P = cam.desc().pixels_per_lens;
+  std::vector<int> px(2 * static_cast<size_t>(P) * P);
+  for (int by = 0; by < cam.height(); by += P)
+    for (int bx = 0; bx < cam.width(); bx += P) {
+      auto* lanes = reinterpret_cast<int(*)[2]>(px.data());
+      const int n = packet_order(TileRect{bx, by, std::min(cam.width(), bx + P), std::min(cam.height(), by + P)}, lanes);
+      for (int start = 0; start < n; start += 16) {
+        RTCRayHit16 packet{};
+        ValidMask valid{};
+        for (int l = 0; l < 16 && start + l < n; ++l) {
+          const auto pr = primary_ray(cam, f.scene->bounds(), f.scene->epsilon(), lanes[start + l][0], lanes[start + l][1]);
+          if (!pr) continue;
+          RTCRayHit rh{};
+          rh.ray = to_rtc(pr->ray);
+          f.rays.push_back(rh);
+          valid.lane[l] = -1;
+          packet.ray.org_x[l] = rh.ray.org_x;
+          packet.ray.org_y[l] = rh.ray.org_y;
+          packet.ray.org_z[l] = rh.ray.org_z;
+          packet.ray.dir_x[l] = rh.ray.dir_x;
+          packet.ray.dir_y[l] = rh.ray.dir_y;
+          packet.ray.dir_z[l] = rh.ray.dir_z;
+          packet.ray.tnear[l] = rh.ray.tnear;
+          packet.ray.tfar[l] = rh.ray.tfar;
+          packet.ray.mask[l] = ~0u;
+        }
+        f.packets.push_back(packet);
+        f.valid.push_back(valid);
+      }
     }
   return f;
 }
 
 bool have_scenes() { return std::filesystem::is_directory(std::string(HOLORAY_SHARED_DIR) + "/scenes/nff"); }
 
-// Integral camera: generate each pixel's line, clip it to the scene, trace, refine t.
-void BM_IntegralPrimary(benchmark::State& state, const std::string& name) {
+// Integral camera, primary visibility only: generate each pixel's line, clip
+// it to the scene, trace, refine the hit in double. Single rays lens by lens
+// (row by row inside each), or 16-ray packets per lens (TraceStyle::packet).
+void BM_IntegralPrimary(benchmark::State& state, const std::string& name, TraceStyle style) {
   if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
   Fixture& f = fixture(name);
   const LensArray& cam = *f.camera;
-  const int W = cam.width(), H = cam.height();
+  const RenderScene& scene = *f.scene;
   int64_t rays = 0;
   for (auto _ : state) {
     std::atomic<int64_t> count{0};
-    tbb::parallel_for(tbb::blocked_range<int>(0, H, kPixelsPerLens), [&](const tbb::blocked_range<int>& r) {
+    for_each_lens(cam, [&](const TileRect& b) {
       int64_t local = 0;
-      for (int j = r.begin(); j != r.end(); ++j)
-        for (int i = 0; i < W; ++i) {
-          const auto pr = primary_ray(cam, f.scene->bounds(), f.scene->epsilon(), i, j);
-          if (!pr) continue;
-          Hit hit;
-          benchmark::DoNotOptimize(f.scene->accel().intersect(pr->ray, hit, RayCoherence::coherent));
-          ++local;
+      if (style == TraceStyle::packet) {
+        int px[kPixelsPerLens * kPixelsPerLens][2];
+        const int n = packet_order(b, px);
+        for (int start = 0; start < n; start += kPacketSize) {
+          RayPacket packet;
+          for (int l = 0; l < kPacketSize && start + l < n; ++l) {
+            const auto pr = primary_ray(cam, scene.bounds(), scene.epsilon(), px[start + l][0], px[start + l][1]);
+            if (!pr) continue;
+            packet.rays[l] = pr->ray;
+            packet.active[l] = true;
+            ++local;
+          }
+          Hit hits[kPacketSize];
+          bool found[kPacketSize];
+          scene.accel().intersect(packet, hits, found, RayCoherence::coherent);
+          benchmark::DoNotOptimize(found);
         }
+      } else {
+        for (int j = b.y0; j < b.y1; ++j)
+          for (int i = b.x0; i < b.x1; ++i) {
+            const auto pr = primary_ray(cam, scene.bounds(), scene.epsilon(), i, j);
+            if (!pr) continue;
+            Hit hit;
+            benchmark::DoNotOptimize(scene.accel().intersect(pr->ray, hit, RayCoherence::coherent));
+            ++local;
+          }
+      }
       count += local;
     });
     rays += count;
   }
   state.counters["rays"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+}
+
+// Yardstick: plain rtcIntersect16 over the same rays in the same packets, no
+// ray generation, no refinement, no shading.
+void BM_EmbreePacket(benchmark::State& state, const std::string& name) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  Fixture& f = fixture(name);
+  auto* scene = static_cast<RTCScene>(f.scene->accel().rtc_scene());
+  std::vector<RTCRayHit16> work = f.packets;
+  const int64_t n = static_cast<int64_t>(work.size());
+  for (auto _ : state) {
+    state.PauseTiming();
+    work = f.packets;
+    for (auto& p : work)
+      for (auto& id : p.hit.geomID) id = RTC_INVALID_GEOMETRY_ID;
+    state.ResumeTiming();
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 256), [&](const tbb::blocked_range<int64_t>& r) {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (int64_t k = r.begin(); k != r.end(); ++k)
+        rtcIntersect16(f.valid[static_cast<size_t>(k)].lane, scene, &ctx, &work[static_cast<size_t>(k)]);
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(f.rays.size() * state.iterations()), benchmark::Counter::kIsRate);
 }
 
 // Yardstick: plain rtcIntersect1 over the same rays, precomputed, no shading.
@@ -107,27 +210,71 @@ void BM_EmbreeRaw(benchmark::State& state, const std::string& name) {
   state.counters["rays"] = benchmark::Counter(static_cast<double>(n * state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// Full Whitted shading: one whole EIA per iteration.
-void BM_FullShading(benchmark::State& state, const std::string& name) {
+// Full Whitted shading: one whole EIA per iteration, in one style.
+void BM_FullShading(benchmark::State& state, const std::string& name, TraceStyle style) {
   if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
   Fixture& f = fixture(name);
+  RenderOptions opt;
+  opt.style = style;
   uint64_t rays = 0;
   for (auto _ : state) {
     RenderStats stats;
-    benchmark::DoNotOptimize(render_frame(*f.scene, *f.camera, RenderOptions{}, stats));
+    benchmark::DoNotOptimize(render_frame(*f.scene, *f.camera, opt, stats));
     rays += stats.rays.total();
   }
   state.counters["rays"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
 }
 
+// The paper's Table 3: the time to render (trace and shade) the first lens,
+// one thread, in one style. The paper's lens is a cylindrical one; here the
+// top-left elemental image of the square array, 16 x 16 pixels.
+void BM_FirstLens(benchmark::State& state, const std::string& name, TraceStyle style) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  Fixture& f = fixture(name);
+  const LensArray& cam = *f.camera;
+  const TileRect b{0, 0, kPixelsPerLens, kPixelsPerLens};
+  for (auto _ : state) {
+    RayCounts counts;
+    Vec3 sum;
+    if (style == TraceStyle::packet) {
+      int px[kPixelsPerLens * kPixelsPerLens][2];
+      const int n = packet_order(b, px);
+      for (int start = 0; start < n; start += kPacketSize) {
+        Vec3 c[kPacketSize];
+        const int m = std::min(kPacketSize, n - start);
+        render_packet(*f.scene, cam, px + start, m, 1, counts, c);
+        for (int l = 0; l < m; ++l) sum += c[l];
+      }
+    } else if (style == TraceStyle::horizontal) {
+      for (int j = b.y0; j < b.y1; ++j)
+        for (int i = b.x0; i < b.x1; ++i) sum += render_pixel(*f.scene, cam, i, j, 1, counts);
+    } else {
+      for (int i = b.x0; i < b.x1; ++i)
+        for (int j = b.y0; j < b.y1; ++j) sum += render_pixel(*f.scene, cam, i, j, 1, counts);
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+
+const char* style_name(TraceStyle s) {
+  return s == TraceStyle::packet ? "packet" : s == TraceStyle::horizontal ? "horizontal" : "vertical";
+}
+
 const int registered = [] {
   for (const char* name : {"balls_s4", "gears_s4", "teapot_s6", "tree_s11"}) {
-    benchmark::RegisterBenchmark((std::string("IntegralPrimary/") + name).c_str(), BM_IntegralPrimary, name)
-        ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)->Repetitions(3);
-    benchmark::RegisterBenchmark((std::string("EmbreeRaw/") + name).c_str(), BM_EmbreeRaw, name)
-        ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)->Repetitions(3);
-    benchmark::RegisterBenchmark((std::string("FullShading/") + name).c_str(), BM_FullShading, name)
-        ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3);
+    const std::string scene = name;
+    auto reg = [&](const std::string& what, auto fn, auto... args) {
+      return benchmark::RegisterBenchmark((what + "/" + scene).c_str(), fn, scene, args...)
+          ->Unit(benchmark::kMillisecond)->UseRealTime();
+    };
+    for (const TraceStyle style : {TraceStyle::packet, TraceStyle::horizontal})
+      reg(std::string("IntegralPrimary_") + style_name(style), BM_IntegralPrimary, style)->Iterations(3)->Repetitions(3);
+    reg("EmbreeRaw", BM_EmbreeRaw)->Iterations(3)->Repetitions(3);
+    reg("EmbreePacket", BM_EmbreePacket)->Iterations(3)->Repetitions(3);
+    for (const TraceStyle style : {TraceStyle::packet, TraceStyle::horizontal, TraceStyle::vertical}) {
+      reg(std::string("FullShading_") + style_name(style), BM_FullShading, style)->Iterations(1)->Repetitions(3);
+      reg(std::string("FirstLens_") + style_name(style), BM_FirstLens, style)->Unit(benchmark::kMicrosecond)->Repetitions(5);
+    }
   }
   return 0;
 }();

@@ -357,6 +357,25 @@ bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_gues
   return true;
 }
 
+void AccelScene::resolve(const Ray& r, unsigned geom_id, unsigned inst_id, unsigned prim_id, const float ng[3],
+                         float u, float v, float t, Hit& hit) const {
+  if (inst_id != RTC_INVALID_GEOMETRY_ID) {
+    hit.group = inst_id / 3;
+    hit.kind = static_cast<PrimKind>(geom_id);
+  } else {
+    hit.group = geom_id / 3;
+    hit.kind = static_cast<PrimKind>(geom_id % 3);
+  }
+  hit.prim = prim_id;
+  const Group& g = groups_[hit.group];
+  // Embree's normal is in object space; used only if the double refinement fails.
+  const Vec3 ng_obj = normalize(Vec3{ng[0], ng[1], ng[2]});
+  hit.ng = g.identity ? ng_obj : g.to_world.normal(ng_obj);
+  hit.u = u;
+  hit.v = v;
+  refine(g, r, false, t, hit);
+}
+
 bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -367,23 +386,66 @@ bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence) const
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-
-  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    hit.group = rh.hit.instID[0] / 3;
-    hit.kind = static_cast<PrimKind>(rh.hit.geomID);
-  } else {
-    hit.group = rh.hit.geomID / 3;
-    hit.kind = static_cast<PrimKind>(rh.hit.geomID % 3);
-  }
-  hit.prim = rh.hit.primID;
-  const Group& g = groups_[hit.group];
-  // Embree's normal is in object space; used only if the double refinement fails.
-  const Vec3 ng_obj = normalize(Vec3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-  hit.ng = g.identity ? ng_obj : g.to_world.normal(ng_obj);
-  hit.u = rh.hit.u;
-  hit.v = rh.hit.v;
-  refine(g, r, false, rh.ray.tfar, hit);
+  const float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+  resolve(r, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, ng, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
   return true;
+}
+
+namespace {
+// The packet's lanes as Embree's SoA layout; inactive lanes are zeroed and
+// masked off. Same float conversion as to_rtc_ray.
+template <class RTCRayK>
+void to_rtc_packet(const RayPacket& p, RTCRayK& ray, int valid[kPacketSize]) {
+  for (int k = 0; k < kPacketSize; ++k) {
+    valid[k] = p.active[k] ? -1 : 0;
+    const RTCRay one = p.active[k] ? to_rtc_ray(p.rays[k]) : RTCRay{};
+    ray.org_x[k] = one.org_x;
+    ray.org_y[k] = one.org_y;
+    ray.org_z[k] = one.org_z;
+    ray.dir_x[k] = one.dir_x;
+    ray.dir_y[k] = one.dir_y;
+    ray.dir_z[k] = one.dir_z;
+    ray.tnear[k] = one.tnear;
+    ray.tfar[k] = one.tfar;
+    ray.time[k] = 0;
+    ray.mask[k] = one.mask;
+    ray.id[k] = static_cast<unsigned>(k);
+    ray.flags[k] = 0;
+  }
+}
+}  // namespace
+
+void AccelScene::intersect(const RayPacket& p, Hit hits[kPacketSize], bool found[kPacketSize],
+                           RayCoherence coherence) const {
+  static_assert(kPacketSize == 16, "the packet kernels below are Embree's 16-wide ones");
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherence == RayCoherence::coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) int valid[kPacketSize];
+  alignas(64) RTCRayHit16 rh;
+  to_rtc_packet(p, rh.ray, valid);
+  for (int k = 0; k < kPacketSize; ++k) {
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, impl_->scene, &ctx, &rh);
+  for (int k = 0; k < kPacketSize; ++k) {
+    found[k] = p.active[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    if (!found[k]) continue;
+    const float ng[3] = {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]};
+    resolve(p.rays[k], rh.hit.geomID[k], rh.hit.instID[0][k], rh.hit.primID[k], ng, rh.hit.u[k], rh.hit.v[k],
+            rh.ray.tfar[k], hits[k]);
+  }
+}
+
+void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize]) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(64) int valid[kPacketSize];
+  alignas(64) RTCRay16 ray;
+  to_rtc_packet(p, ray, valid);
+  rtcOccluded16(valid, impl_->scene, &ctx, &ray);
+  for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.active[k] && ray.tfar[k] == -INFINITY;
 }
 
 bool AccelScene::intersect_primitive(const Ray& r, uint32_t group, PrimKind kind, uint32_t prim, Hit& hit) const {

@@ -55,6 +55,18 @@ struct Hit {
 /// Hint for Embree's traversal: primary rays of one lens are coherent.
 enum class RayCoherence { coherent, incoherent };
 
+/// Width of the ray packets (Embree's rtcIntersect16 / rtcOccluded16; on
+/// AVX2 machines Embree runs them as two 8-wide halves).
+inline constexpr int kPacketSize = 16;
+
+/// Up to kPacketSize rays traced together; lanes with active[k] false are
+/// ignored. The rays of one lens all pass through its centre, which is what
+/// makes a packet pay (issue 4, paper §6).
+struct RayPacket {
+  Ray rays[kPacketSize];
+  bool active[kPacketSize] = {};
+};
+
 class AccelScene {
  public:
   /// Builds one BVH per movable group and the top level (Embree's build runs
@@ -80,6 +92,15 @@ class AccelScene {
   bool intersect(const Ray& ray, Hit& hit, RayCoherence coherence = RayCoherence::incoherent) const;
   /// Any hit in (tnear, tfar) (shadow rays).
   bool occluded(const Ray& ray) const;
+  /// intersect() for every active lane at once (rtcIntersect16); found[k] is
+  /// false for inactive lanes. Hits are refined exactly as intersect() refines
+  /// them, so a lane gives the same Hit as intersect() whenever Embree's packet
+  /// and single-ray kernels pick the same primitive (all but exact ties).
+  void intersect(const RayPacket& packet, Hit hits[kPacketSize], bool found[kPacketSize],
+                 RayCoherence coherence = RayCoherence::incoherent) const;
+  /// occluded() for every active lane at once (rtcOccluded16); false for
+  /// inactive lanes.
+  void occluded(const RayPacket& packet, bool blocked[kPacketSize]) const;
   /// The ray against one primitive only, exactly (no BVH; for checking a
   /// reprojected point, temporal/). Triangles count as hit when the
   /// barycentrics are inside to 1e-9. Same refinement as intersect(), so the
@@ -103,6 +124,10 @@ class AccelScene {
     bool identity = true;
   };
   bool refine(const Group& g, const Ray& ray, bool strict, double t_guess, Hit& hit) const;
+  /// Embree's hit record (ids, float normal and barycentrics, float t) into a
+  /// refined Hit; shared by the single-ray and the packet queries.
+  void resolve(const Ray& ray, unsigned geom_id, unsigned inst_id, unsigned prim_id, const float ng[3], float u,
+               float v, float t, Hit& hit) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

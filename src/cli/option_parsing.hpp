@@ -19,6 +19,8 @@ Vec3 parse_vec3(const std::string& option, const std::string& text);
 Grid parse_grid(const std::string& text);
 /// "linear" or "srgb" (--encoding).
 Encoding parse_encoding(const std::string& text);
+/// "packet", "horizontal" or "vertical" (--style).
+TraceStyle parse_style(const std::string& text);
 /// Comma-separated subset of albedo,depth,normal,id.
 AovSet parse_aovs(const std::string& text);
 

@@ -68,6 +68,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
@@ -88,6 +89,7 @@ int run_render(const RenderCommandOptions& o) {
     if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
+    const TraceStyle style = parse_style(o.style);
     const ArraySettings settings = resolve_settings(o);
 
     std::unique_ptr<tbb::global_control> thread_cap;
@@ -118,6 +120,7 @@ int run_render(const RenderCommandOptions& o) {
     ropt.spp = o.spp;
     ropt.threads = o.threads;
     ropt.aovs = aovs;
+    ropt.style = style;
     if (tty)
       ropt.progress = [&](double f) {
         std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -149,8 +152,8 @@ int run_render(const RenderCommandOptions& o) {
                  camera.lens_count_x(), camera.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
       fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, camera.lens_fov_deg());
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
-      fmt::print("trace      {:.3f} s, {} spp, {} threads\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency());
+      fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style\n", stats.trace_seconds, o.spp,
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), o.style);
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 
 namespace holoray {
 
@@ -67,7 +68,25 @@ struct Bounds3 {
 
 /// Parameter interval [t0, t1] where the line o + t*d crosses `b` (slab test);
 /// returns false when it misses. d need not be unit; components may be zero.
-bool intersect_line_box(const Vec3& o, const Vec3& d, const Bounds3& b, double& t0, double& t1);
+// Inline: every primary ray is clipped with it (issue 4).
+inline bool intersect_line_box(const Vec3& o, const Vec3& d, const Bounds3& b, double& t0, double& t1) {
+  t0 = -INFINITY;
+  t1 = INFINITY;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = b.lo[a], hi = b.hi[a], oa = o[a], da = d[a];
+    if (da == 0.0) {
+      if (oa < lo || oa > hi) return false;
+      continue;
+    }
+    double ta = (lo - oa) / da, tb = (hi - oa) / da;
+    if (ta > tb) std::swap(ta, tb);
+    // Not std::fmax / fmin: no NaN can occur here, and those are library calls.
+    t0 = ta > t0 ? ta : t0;
+    t1 = tb < t1 ? tb : t1;
+    if (t0 > t1) return false;
+  }
+  return true;
+}
 
 /// Right-handed orthonormal frame: `x` right, `y` up, `z` the normal
 /// (camera-model.md, "Frame"). Maps between world and frame-local coordinates.

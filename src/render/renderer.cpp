@@ -1,10 +1,13 @@
 #include "render/renderer.hpp"
 
 #include <fmt/format.h>
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "render/shading.hpp"
 #include "render/tiles.hpp"
@@ -33,6 +36,19 @@ void sample_offset(int i, int j, int k, double& u, double& v) {
   const double ru = (h & 0xffff) / 65536.0, rv = (h >> 16) / 65536.0;
   u = std::fmod(ru + k * 0.7548776662466927, 1.0);
   v = std::fmod(rv + k * 0.5698402909980532, 1.0);
+}
+
+PrimaryHit make_primary(const PrimaryRay& pr, const Hit& hit) {
+  PrimaryHit p;
+  p.p_object[0] = static_cast<float>(hit.p_object.x);
+  p.p_object[1] = static_cast<float>(hit.p_object.y);
+  p.p_object[2] = static_cast<float>(hit.p_object.z);
+  p.t = static_cast<float>(pr.t_offset + pr.t_sign * hit.t);
+  p.prim = hit.prim;
+  p.group = static_cast<uint16_t>(hit.group);
+  p.kind = static_cast<uint8_t>(hit.kind);
+  p.status = PrimaryHit::kHit;
+  return p;
 }
 
 }  // namespace
@@ -76,22 +92,49 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
         c = shade(scene, pr->ray, sp, 1, counts);
         if (k == 0) {
           if (surface) *surface = sp;
-          if (primary) {
-            primary->p_object[0] = static_cast<float>(hit.p_object.x);
-            primary->p_object[1] = static_cast<float>(hit.p_object.y);
-            primary->p_object[2] = static_cast<float>(hit.p_object.z);
-            primary->t = static_cast<float>(pr->t_offset + pr->t_sign * hit.t);
-            primary->prim = hit.prim;
-            primary->group = static_cast<uint16_t>(hit.group);
-            primary->kind = static_cast<uint8_t>(hit.kind);
-            primary->status = PrimaryHit::kHit;
-          }
+          if (primary) *primary = make_primary(*pr, hit);
         }
       }
     }
     sum += c;
   }
   return sum * (1.0 / spp);
+}
+
+void render_packet(const RenderScene& scene, const LensArray& camera, const int px[][2], int n, int spp,
+                   RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[]) {
+  Vec3 sum[kPacketSize];
+  for (int k = 0; k < spp; ++k) {
+    RayPacket packet;
+    PrimaryRay pr[kPacketSize];
+    for (int l = 0; l < n; ++l) {
+      double u, v;
+      sample_offset(px[l][0], px[l][1], k, u, v);
+      const auto r = primary_ray(camera, scene.bounds(), scene.epsilon(), px[l][0], px[l][1], u, v);
+      if (!r) continue;
+      packet.active[l] = true;
+      packet.rays[l] = r->ray;
+      pr[l] = *r;
+      ++counts.eye;
+    }
+    Hit hits[kPacketSize];
+    bool found[kPacketSize];
+    scene.accel().intersect(packet, hits, found, RayCoherence::coherent);
+    SurfacePoint sp[kPacketSize];
+    Vec3 c[kPacketSize];
+    for (int l = 0; l < n; ++l) {
+      c[l] = scene.background();
+      if (found[l]) sp[l] = scene.surface(packet.rays[l], hits[l]);
+    }
+    shade(scene, packet, found, sp, 1, counts, c);
+    for (int l = 0; l < n; ++l) {
+      sum[l] += c[l];
+      if (k != 0) continue;
+      if (primary) primary[l] = found[l] ? make_primary(pr[l], hits[l]) : PrimaryHit{};
+      if (surface && found[l]) surface[l] = sp[l];
+    }
+  }
+  for (int l = 0; l < n; ++l) colours[l] = sum[l] * (1.0 / spp);
 }
 
 FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, const RenderOptions& opt,
@@ -117,41 +160,74 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   const ElementalTiles tiles(camera, opt.tile_order);
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
+  const int P = camera.desc().pixels_per_lens;
   for_each_tile(tiles, opt.threads, [&](int tile) {
     RayCounts counts;
-    const TileRect r = tiles.rect(tile);
-    for (int j = r.y0; j < r.y1; ++j) {
-      for (int i = r.x0; i < r.x1; ++i) {
-        PrimaryHit ph;
-        SurfacePoint sp;
-        const Vec3 c = render_pixel(scene, camera, i, j, opt.spp, counts, &ph, want_surface ? &sp : nullptr);
-        float* o = fb.colour.at(i, j);
-        o[0] = static_cast<float>(c.x);
-        o[1] = static_cast<float>(c.y);
-        o[2] = static_cast<float>(c.z);
-        if (opt.primary_hits) fb.primary[static_cast<size_t>(j) * W + i] = ph;
-        if (ph.status != PrimaryHit::kHit || !want_surface) continue;
-        if (opt.aovs.albedo) {
-          float* a = fb.albedo.at(i, j);
-          a[0] = static_cast<float>(sp.material->colour.x);
-          a[1] = static_cast<float>(sp.material->colour.y);
-          a[2] = static_cast<float>(sp.material->colour.z);
-        }
-        if (opt.aovs.depth) *fb.depth.at(i, j) = ph.t;
-        if (opt.aovs.normal) {
-          // Facing the viewer: along +d orthoscopic (it looks back down the
-          // line), along -d pseudoscopic (it sits at the lens).
-          const Vec3 d = camera.line(i, j).dir;
-          const Vec3 toward = camera.desc().mode == RecordingMode::orthoscopic ? d : -d;
-          const Vec3 n = dot(sp.ns, toward) >= 0 ? sp.ns : -sp.ns;
-          float* no = fb.normal.at(i, j);
-          no[0] = static_cast<float>(n.x);
-          no[1] = static_cast<float>(n.y);
-          no[2] = static_cast<float>(n.z);
-        }
-        if (opt.aovs.id) *fb.id.at(i, j) = static_cast<float>(sp.object);
+    auto store = [&](int i, int j, const Vec3& c, const PrimaryHit& ph, const SurfacePoint& sp) {
+      float* o = fb.colour.at(i, j);
+      o[0] = static_cast<float>(c.x);
+      o[1] = static_cast<float>(c.y);
+      o[2] = static_cast<float>(c.z);
+      if (opt.primary_hits) fb.primary[static_cast<size_t>(j) * W + i] = ph;
+      if (ph.status != PrimaryHit::kHit || !want_surface) return;
+      if (opt.aovs.albedo) {
+        float* a = fb.albedo.at(i, j);
+        a[0] = static_cast<float>(sp.material->colour.x);
+        a[1] = static_cast<float>(sp.material->colour.y);
+        a[2] = static_cast<float>(sp.material->colour.z);
       }
-    }
+      if (opt.aovs.depth) *fb.depth.at(i, j) = ph.t;
+      if (opt.aovs.normal) {
+        // Facing the viewer: along +d orthoscopic (it looks back down the
+        // line), along -d pseudoscopic (it sits at the lens).
+        const Vec3 d = camera.line(i, j).dir;
+        const Vec3 toward = camera.desc().mode == RecordingMode::orthoscopic ? d : -d;
+        const Vec3 n = dot(sp.ns, toward) >= 0 ? sp.ns : -sp.ns;
+        float* no = fb.normal.at(i, j);
+        no[0] = static_cast<float>(n.x);
+        no[1] = static_cast<float>(n.y);
+        no[2] = static_cast<float>(n.z);
+      }
+      if (opt.aovs.id) *fb.id.at(i, j) = static_cast<float>(sp.object);
+    };
+    auto single = [&](int i, int j) {
+      PrimaryHit ph;
+      SurfacePoint sp;
+      const Vec3 c = render_pixel(scene, camera, i, j, opt.spp, counts, &ph, want_surface ? &sp : nullptr);
+      store(i, j, c, ph, sp);
+    };
+    const TileRect r = tiles.rect(tile);
+    // Tiles are P-aligned, so each P x P block is one elemental image
+    // (square grid), a piece of one lenticule's strip, or close to one hex lens.
+    for (int by = r.y0; by < r.y1; by += P)
+      for (int bx = r.x0; bx < r.x1; bx += P) {
+        const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
+        switch (opt.style) {
+          case TraceStyle::horizontal:
+            for (int j = b.y0; j < b.y1; ++j)
+              for (int i = b.x0; i < b.x1; ++i) single(i, j);
+            break;
+          case TraceStyle::vertical:
+            for (int i = b.x0; i < b.x1; ++i)
+              for (int j = b.y0; j < b.y1; ++j) single(i, j);
+            break;
+          case TraceStyle::packet: {
+            thread_local std::vector<std::array<int, 2>> px;
+            px.resize(static_cast<size_t>(P) * P);
+            const int n = packet_order(b, reinterpret_cast<int(*)[2]>(px.data()));
+            for (int start = 0; start < n; start += kPacketSize) {
+              const int m = std::min(kPacketSize, n - start);
+              Vec3 c[kPacketSize];
+              PrimaryHit ph[kPacketSize];
+              SurfacePoint sp[kPacketSize];
+              const auto* lane = reinterpret_cast<const int(*)[2]>(px.data() + start);
+              render_packet(scene, camera, lane, m, opt.spp, counts, c, ph, want_surface ? sp : nullptr);
+              for (int l = 0; l < m; ++l) store(lane[l][0], lane[l][1], c[l], ph[l], sp[l]);
+            }
+            break;
+          }
+        }
+      }
     tile_counts[static_cast<size_t>(tile)] = counts;
     const int done = ++tiles_done;
     if (opt.progress) opt.progress(static_cast<double>(done) / tiles.count());

@@ -23,12 +23,21 @@ struct AovSet {
   bool id = false;      ///< object index in file order; -1 for background (1)
 };
 
+/// How the pixels of one elemental image are traced (issue 4, paper §6).
+/// The image never depends on it (RenderStyles tests); only the speed does.
+enum class TraceStyle {
+  packet,      ///< 16-ray packets of 4x4 pixels of one lens (rtcIntersect16, coherent); shadow rays as packets
+  horizontal,  ///< single rays, row by row inside each elemental image (paper §6.1)
+  vertical,    ///< single rays, column by column inside each elemental image (paper §6.2)
+};
+
 struct RenderOptions {
   int spp = 1;      ///< samples per pixel; sample 0 is the pixel centre (the reference)
   int threads = 0;  ///< 0: all cores
   AovSet aovs;
   bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
   TileOrder tile_order = TileOrder::row_major;  ///< never changes the result (tests prove it)
+  TraceStyle style = TraceStyle::packet;        ///< the fastest measured (bench/results.md)
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
 };
@@ -64,6 +73,14 @@ struct RenderStats {
 /// and `bounds` as for primary_ray (the scene's epsilon and bounds).
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary = nullptr, SurfacePoint* surface = nullptr);
+
+/// render_pixel() for up to kPacketSize pixels px[k] = {i, j} (k < n) of
+/// one lens, traced as packets (TraceStyle::packet): colours[k], and
+/// primary[k] / surface[k] when given. Same result as render_pixel() per
+/// pixel whenever Embree's packet and single-ray kernels agree.
+void render_packet(const RenderScene& scene, const LensArray& camera, const int px[][2], int n, int spp,
+                   RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
+                   SurfacePoint surface[] = nullptr);
 
 /// Bytes the frame's buffers take (colour plus requested AOVs), computed
 /// without allocating; lets callers refuse absurd sizes up front.

@@ -14,62 +14,129 @@ Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& count
   return shade(scene, ray, scene.surface(ray, hit), depth, counts);
 }
 
-Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
-  const Material& m = *sp.material;
-  const Vec3 view = -ray.dir;
+namespace {
+
+// What every term of the shading formula needs about one hit.
+struct HitFrame {
+  const Material* m;
+  Vec3 view;   // toward the viewer
+  Vec3 ng;     // geometric normal turned to the viewer's side
+  Vec3 ns;     // shading normal turned likewise
+  Vec3 above;  // origin for rays leaving on the viewer's side
+  bool front;  // the ray met the outward (winding) side
+};
+
+HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
+  HitFrame f;
+  f.m = sp.material;
+  f.view = -ray.dir;
   // Both normals turned to the side the ray came from (two-sided surfaces, nff-notes §10.2).
-  const bool front = dot(sp.ng, view) >= 0;
-  const Vec3 ng = front ? sp.ng : -sp.ng;
-  const Vec3 ns = front ? sp.ns : -sp.ns;
+  f.front = dot(sp.ng, f.view) >= 0;
+  f.ng = f.front ? sp.ng : -sp.ng;
+  f.ns = f.front ? sp.ns : -sp.ns;
+  f.above = sp.position + f.ng * scene.epsilon();
+  return f;
+}
+
+// The shadow ray toward `light` and the light's contribution if it is not
+// blocked; false when no shadow ray is cast (light on the surface, or the
+// normal faces away from it: nff-notes §10.10).
+bool light_sample(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
+                  Ray& shadow, Vec3& contribution) {
   const double eps = scene.epsilon();
-  const Vec3 above = sp.position + ng * eps;  // origin for rays leaving on the viewer's side
-
-  Vec3 colour = mul(scene.ambient(), m.colour) * m.kd;
-  for (const PointLight& light : scene.lights()) {
-    Vec3 to_light = light.position - sp.position;
-    const double dist = length(to_light);
-    if (!(dist > eps)) continue;
-    to_light = to_light / dist;
-    const double n_dot_l = dot(ns, to_light);
-    if (n_dot_l <= 0) continue;  // faces away: no shadow ray (nff-notes §10.10)
-    ++counts.shadow;
-    if (scene.accel().occluded(Ray{above, to_light, 0, dist - eps})) continue;
-    Vec3 term = m.colour * (m.kd * n_dot_l);
-    if (m.ks > 0) {
-      const double r_dot_v = dot(reflect(-to_light, ns), view);
-      if (r_dot_v > 0) term += Vec3{1, 1, 1} * (m.ks * std::pow(r_dot_v, m.shine));
-    }
-    colour += mul(light.intensity, term);
+  Vec3 to_light = light.position - sp.position;
+  const double dist = length(to_light);
+  if (!(dist > eps)) return false;
+  to_light = to_light / dist;
+  const double n_dot_l = dot(f.ns, to_light);
+  if (n_dot_l <= 0) return false;
+  shadow = Ray{f.above, to_light, 0, dist - eps};
+  const Material& m = *f.m;
+  Vec3 term = m.colour * (m.kd * n_dot_l);
+  if (m.ks > 0) {
+    const double r_dot_v = dot(reflect(-to_light, f.ns), f.view);
+    if (r_dot_v > 0) term += Vec3{1, 1, 1} * (m.ks * std::pow(r_dot_v, m.shine));
   }
-  if (depth >= kMaxRayDepth) return colour;
+  contribution = mul(light.intensity, term);
+  return true;
+}
 
+// Adds mirror and transmitted light to `colour`, traced one ray at a time (incoherent).
+void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f, int depth,
+                   RayCounts& counts, Vec3& colour) {
+  if (depth >= kMaxRayDepth) return;
+  const Material& m = *f.m;
   auto mirror_dir = [&] {
-    Vec3 r = reflect(ray.dir, ns);
+    Vec3 r = reflect(ray.dir, f.ns);
     // An interpolated normal can send the mirror ray into the surface; fall back to the true one.
-    if (dot(r, ng) <= 0) r = reflect(ray.dir, ng);
+    if (dot(r, f.ng) <= 0) r = reflect(ray.dir, f.ng);
     return normalize(r);
   };
   if (m.ks > 0) {
     ++counts.reflected;
-    colour += trace(scene, Ray{above, mirror_dir(), 0, INFINITY}, depth + 1, counts) * m.ks;
+    colour += trace(scene, Ray{f.above, mirror_dir(), 0, INFINITY}, depth + 1, counts) * m.ks;
   }
   if (m.transmittance > 0) {
     // Entering when the ray meets the outward (winding) side.
-    const double eta = front ? 1.0 / m.ior : m.ior;
-    const double cos_i = dot(view, ns);
+    const double eta = f.front ? 1.0 / m.ior : m.ior;
+    const double cos_i = dot(f.view, f.ns);
     const double k = 1 - eta * eta * (1 - cos_i * cos_i);
     if (k < 0) {  // total internal reflection: the transmitted weight goes to a reflection ray
       ++counts.reflected;
-      colour += trace(scene, Ray{above, mirror_dir(), 0, INFINITY}, depth + 1, counts) * m.transmittance;
+      colour += trace(scene, Ray{f.above, mirror_dir(), 0, INFINITY}, depth + 1, counts) * m.transmittance;
     } else {
-      Vec3 dir = normalize(ray.dir * eta + ns * (eta * cos_i - std::sqrt(k)));
-      if (dot(dir, ng) >= 0) dir = ray.dir;  // shading normal bent it back out: go straight through
+      Vec3 dir = normalize(ray.dir * eta + f.ns * (eta * cos_i - std::sqrt(k)));
+      if (dot(dir, f.ng) >= 0) dir = ray.dir;  // shading normal bent it back out: go straight through
       ++counts.refracted;
-      const Vec3 below = sp.position - ng * eps;
+      const Vec3 below = sp.position - f.ng * scene.epsilon();
       colour += trace(scene, Ray{below, dir, 0, INFINITY}, depth + 1, counts) * m.transmittance;
     }
   }
+}
+
+}  // namespace
+
+Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+  const HitFrame f = frame_of(scene, ray, sp);
+  Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
+  for (const PointLight& light : scene.lights()) {
+    Ray shadow;
+    Vec3 contribution;
+    if (!light_sample(scene, f, sp, light, shadow, contribution)) continue;
+    ++counts.shadow;
+    if (!scene.accel().occluded(shadow)) colour += contribution;
+  }
+  add_secondary(scene, ray, sp, f, depth, counts, colour);
   return colour;
+}
+
+void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+           const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
+  HitFrame f[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k) {
+    if (!hit[k]) continue;
+    f[k] = frame_of(scene, rays.rays[k], sps[k]);
+    colours[k] = mul(scene.ambient(), f[k].m->colour) * f[k].m->kd;
+  }
+  // The shadow rays of one packet toward one light share their end point:
+  // traced together as a packet.
+  RayPacket shadows;
+  Vec3 contribution[kPacketSize];
+  bool blocked[kPacketSize];
+  for (const PointLight& light : scene.lights()) {
+    int cast = 0;
+    for (int k = 0; k < kPacketSize; ++k) {
+      shadows.active[k] = hit[k] && light_sample(scene, f[k], sps[k], light, shadows.rays[k], contribution[k]);
+      cast += shadows.active[k];
+    }
+    if (cast == 0) continue;
+    counts.shadow += static_cast<uint64_t>(cast);
+    scene.accel().occluded(shadows, blocked);
+    for (int k = 0; k < kPacketSize; ++k)
+      if (shadows.active[k] && !blocked[k]) colours[k] += contribution[k];
+  }
+  for (int k = 0; k < kPacketSize; ++k)
+    if (hit[k]) add_secondary(scene, rays.rays[k], sps[k], f[k], depth, counts, colours[k]);
 }
 
 }  // namespace holoray

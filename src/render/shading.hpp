@@ -24,4 +24,12 @@ Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& count
 /// toward the surface: the viewer is at -ray.dir).
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
 
+/// shade() for the lanes of a packet with hit[k] set, into colours[k] (other
+/// lanes untouched). The shadow rays toward each light go as one packet
+/// (rtcOccluded16); mirror and transmitted rays are traced one by one
+/// (incoherent). Each lane gives the same bits as shade() on its own, as long
+/// as the packet and single-ray kernels agree on every shadow ray.
+void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+           const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]);
+
 }  // namespace holoray

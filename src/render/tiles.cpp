@@ -38,6 +38,19 @@ TileRect ElementalTiles::rect(int k) const {
   return {x0, y0, std::min(width_, x0 + tile_w_), std::min(height_, y0 + tile_h_)};
 }
 
+int packet_order(const TileRect& b, int px[][2]) {
+  int n = 0;
+  for (int y4 = b.y0; y4 < b.y1; y4 += 4)
+    for (int x4 = b.x0; x4 < b.x1; x4 += 4)
+      for (int j = y4; j < std::min(y4 + 4, b.y1); ++j)
+        for (int i = x4; i < std::min(x4 + 4, b.x1); ++i) {
+          px[n][0] = i;
+          px[n][1] = j;
+          ++n;
+        }
+  return n;
+}
+
 #ifdef HOLORAY_STD_THREADS
 // The ThreadSanitizer build (scripts/sanitize.sh thread): oneTBB is not
 // instrumented, so TSan cannot see the hand-off of work to its workers and
