@@ -42,14 +42,13 @@ std::string parse_error_headline(const std::string& text, const NffLimits& limit
 // Eight nested glass spheres that both mirror and transmit, inside a closed
 // mirror box around the array, recorded pseudoscopic so that eye rays start
 // at the array, inside the box (orthoscopic ones would start outside it and
-// bounce off its outer faces): no ray ever escapes, so only the depth limit
+// bounce off its outer faces): no ray ever escapes, so only the depth limit D
 // ends the recursion. Every node of the ray tree has at most two children
-// (mirror + transmitted), so with depth <= kMaxRayDepth an eye ray spawns at
-// most 2 + 4 + 8 + 16 = 30 secondary rays and its tree has at most 31 nodes,
-// each casting at most one shadow ray per light. Every node has at least one
-// child below the limit, so the chain reaches the limit: >= 4 secondaries.
+// (mirror + transmitted), so an eye ray spawns at most 2 + 4 + ... + 2^(D-1)
+// = 2^D - 2 secondary rays, and its tree has at most 2^D - 1 nodes, each
+// casting at most one shadow ray per light. Every node below the limit has at
+// least one child, so the chain reaches the limit: >= D - 1 secondaries.
 TEST(PathologicalScenes, EndlessRefractionAndMirrorsStopAtTheDepthLimit) {
-  static_assert(kMaxRayDepth == 5, "the bounds below are written out for depth 5");
   SceneDesc s;
   Material glass;
   glass.kd = 0.1;
@@ -71,19 +70,26 @@ TEST(PathologicalScenes, EndlessRefractionAndMirrorsStopAtTheDepthLimit) {
   }
   s.lights = {Light{{3, 3, 0}, {1, 1, 1}, {}}, Light{{-3, 2, 8}, {1, 1, 1}, {}}};
 
-  const RenderScene scene(s);
+  RenderScene scene(s);
+  EXPECT_EQ(scene.max_depth(), kMaxRayDepth);
   LensArrayDesc inside = small_array();
   inside.mode = RecordingMode::pseudoscopic;
   const LensArray cam(inside);
-  RenderStats stats;
-  const FrameBuffers fb = render_frame(scene, cam, RenderOptions{}, stats);
-  const RayCounts& r = stats.rays;
-  ASSERT_EQ(r.eye, static_cast<uint64_t>(cam.pixel_count()));  // the box surrounds the array
-  const uint64_t secondary = r.reflected + r.refracted;
-  EXPECT_LE(secondary, 30 * r.eye);
-  EXPECT_GE(secondary, 4 * r.eye);
-  EXPECT_LE(r.shadow, 31 * s.lights.size() * r.eye);
-  for (float v : fb.colour.data) ASSERT_TRUE(std::isfinite(v));
+  for (const int depth : {1, 3, kMaxRayDepth, 8}) {
+    SCOPED_TRACE(depth);
+    scene.set_max_depth(depth);
+    RenderStats stats;
+    const FrameBuffers fb = render_frame(scene, cam, RenderOptions{}, stats);
+    const RayCounts& r = stats.rays;
+    ASSERT_EQ(r.eye, static_cast<uint64_t>(cam.pixel_count()));  // the box surrounds the array
+    const uint64_t secondary = r.reflected + r.refracted, nodes = (uint64_t{1} << depth) - 1;
+    EXPECT_LE(secondary, (nodes - 1) * r.eye);
+    EXPECT_GE(secondary, static_cast<uint64_t>(depth - 1) * r.eye);
+    EXPECT_LE(r.shadow, nodes * s.lights.size() * r.eye);
+    for (float v : fb.colour.data) ASSERT_TRUE(std::isfinite(v));
+  }
+  EXPECT_THROW(scene.set_max_depth(0), std::invalid_argument);
+  EXPECT_THROW(scene.set_max_depth(kDepthCap + 1), std::invalid_argument);
 }
 
 // A file with one object too many is refused at that object, before it is stored.

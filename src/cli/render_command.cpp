@@ -16,6 +16,7 @@
 #include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
 #include "render/renderer.hpp"
+#include "render/shading.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 
@@ -68,6 +69,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; 5 is the SPD's)")->capture_default_str();
   cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
@@ -90,6 +92,8 @@ int run_render(const RenderCommandOptions& o) {
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const TraceStyle style = parse_style(o.style);
+    if (o.max_depth < 1 || o.max_depth > kDepthCap)
+      throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
 
     std::unique_ptr<tbb::global_control> thread_cap;
@@ -110,7 +114,8 @@ int run_render(const RenderCommandOptions& o) {
                                           camera.width(), camera.height(), need / 1073741824.0, have / 1073741824.0));
 
     const auto t_build = Clock::now();
-    const RenderScene scene(desc);
+    RenderScene scene(desc);
+    scene.set_max_depth(o.max_depth);
     const double build_s = seconds_since(t_build);
 
     const bool tty = !o.quiet && ::isatty(STDERR_FILENO);

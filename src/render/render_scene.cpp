@@ -1,7 +1,11 @@
 #include "render/render_scene.hpp"
 
-#include <cmath>
+#include <fmt/format.h>
 
+#include <cmath>
+#include <stdexcept>
+
+#include "render/shading.hpp"
 #include "scene/tessellate.hpp"
 
 namespace holoray {
@@ -74,6 +78,12 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
 void RenderScene::set_transforms(const std::vector<Affine>& object_to_world) {
   accel_->set_transforms(object_to_world);
   update_epsilon();
+}
+
+void RenderScene::set_max_depth(int depth) {
+  if (depth < 1 || depth > kDepthCap)
+    throw std::invalid_argument(fmt::format("the ray depth must be from 1 to {}, got {}", kDepthCap, depth));
+  max_depth_ = depth;
 }
 
 void RenderScene::update_epsilon() {

@@ -50,6 +50,11 @@ class RenderScene {
   /// AccelScene::set_transforms does.
   void set_transforms(const std::vector<Affine>& object_to_world);
   void set_background(const Vec3& colour) { background_ = colour; }
+  /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's).
+  /// Throws std::invalid_argument outside 1..16 (kDepthCap): past that a
+  /// hall of mirrors costs 2^depth rays per pixel.
+  void set_max_depth(int depth);
+  int max_depth() const { return max_depth_; }
 
   const AccelScene& accel() const { return *accel_; }
   /// Resolves a hit of `ray` (world) into position, normals, object and material.
@@ -71,6 +76,7 @@ class RenderScene {
  private:
   void update_epsilon();
 
+  int max_depth_ = 5;  // kMaxRayDepth (render/shading.hpp)
   std::unique_ptr<AccelScene> accel_;
   std::vector<Material> materials_;        // [0] is the default for objects before any `f`
   std::vector<uint32_t> object_material_;  // per object

@@ -64,7 +64,7 @@ bool light_sample(const RenderScene& scene, const HitFrame& f, const SurfacePoin
 // Adds mirror and transmitted light to `colour`, traced one ray at a time (incoherent).
 void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f, int depth,
                    RayCounts& counts, Vec3& colour) {
-  if (depth >= kMaxRayDepth) return;
+  if (depth >= scene.max_depth()) return;
   const Material& m = *f.m;
   auto mirror_dir = [&] {
     Vec3 r = reflect(ray.dir, f.ns);

@@ -14,8 +14,10 @@
 
 namespace holoray {
 
-/// Ray-tree depth limit, counting the eye ray as depth 1 (nff-notes §10.7).
+/// Default ray-tree depth limit, counting the eye ray as depth 1 (nff-notes
+/// §10.7); RenderScene::set_max_depth changes it per scene (1 to kDepthCap).
 inline constexpr int kMaxRayDepth = 5;
+inline constexpr int kDepthCap = 16;
 
 /// Colour (linear RGB) seen along `ray` (world, unit dir) at ray-tree `depth`.
 Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts);
