@@ -86,6 +86,25 @@ for s in scenes:
     print(f"| {s} | {ours_r:.2f} | {tach_r:.2f} | {povr_r:.2f} | {tach_r / ours_r:.2f}x | {povr_r / ours_r:.2f}x | "
           f"{ours:.2f} | {tach:.2f} | {povr:.2f} | {ours1_r:.2f} | {ours1_r / ours_r:.2f}x |")
 
+print(f"\n### Spatial reuse at 1024x1024 (64x64 lenses x 16 px), {threads} threads (render s, median of {repeats})\n")
+print("`holoray render --spatial-reuse K`: trace every K-th lens across and down, reproject its points into the "
+      "lenses between (geometry reuse: each reused hit is shaded again), trace what is missed. PSNR against full "
+      "ray tracing of the same EIA (float EXR, all channels).\n")
+print("| scene | full | K = 2 | speed-up | PSNR (dB) | K = 3 | speed-up | PSNR (dB) |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|")
+for s in scenes:
+    nff = os.path.abspath(f"{shared}/scenes/nff/{s}.nff")
+    base = [os.path.abspath(holoray), "render", nff, "--lenses", "64x64", "--pixels-per-lens", "16", "--threads", str(threads)]
+    pat = r"^trace\s+([0-9.]+) s"
+    _, full = wall(base + ["-o", "full.exr"], pat)
+    cells = [f"{full:.3f}"]
+    for k in (2, 3):
+        _, t = wall(base + ["-o", f"k{k}.exr", "--spatial-reuse", str(k)], pat)
+        r = subprocess.run([os.path.abspath(holoray), "compare", "full.exr", f"k{k}.exr"], capture_output=True, text=True, cwd=work)
+        psnr = re.search(r"^all\s+\S+\s+\S+\s+(\S+)", r.stdout, re.M).group(1)
+        cells += [f"{t:.3f}", f"{full / t:.2f}x", psnr]
+    print(f"| {s} | " + " | ".join(cells) + " |")
+
 print(f"\n{threads} threads on {cpu} ({os.cpu_count()} cores); Google Benchmark medians of 3 repetitions; "
       f"{data['context'].get('date', '')}.")
 PY

@@ -38,6 +38,11 @@ struct RenderOptions {
   bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
   TileOrder tile_order = TileOrder::row_major;  ///< never changes the result (tests prove it)
   TraceStyle style = TraceStyle::packet;        ///< the fastest measured (bench/results.md)
+  /// Trace only every k-th lens across and down (k x k subsampling; the
+  /// lenticular sheet every k-th lenticule); the others keep the background
+  /// colour and a background PrimaryHit. 1: every lens. Used by spatial
+  /// reuse (temporal/spatial.hpp), which fills the rest from these.
+  int lens_stride = 1;
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
 };
