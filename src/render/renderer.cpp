@@ -118,15 +118,19 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const int 
       ++counts.eye;
     }
     Hit hits[kPacketSize];
-    bool found[kPacketSize];
-    scene.accel().intersect(packet, hits, found, RayCoherence::coherent);
+    bool found[kPacketSize] = {};
+    // Lenses that look past the scene leave whole packets empty: skip them.
+    const bool any_active = std::any_of(packet.active, packet.active + n, [](bool a) { return a; });
+    if (any_active) scene.accel().intersect(packet, hits, found, RayCoherence::coherent);
     SurfacePoint sp[kPacketSize];
     Vec3 c[kPacketSize];
+    bool any_hit = false;
     for (int l = 0; l < n; ++l) {
       c[l] = scene.background();
       if (found[l]) sp[l] = scene.surface(packet.rays[l], hits[l]);
+      any_hit |= found[l];
     }
-    shade(scene, packet, found, sp, 1, counts, c);
+    if (any_hit) shade(scene, packet, found, sp, 1, counts, c);
     for (int l = 0; l < n; ++l) {
       sum[l] += c[l];
       if (k != 0) continue;
