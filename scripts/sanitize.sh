@@ -12,7 +12,7 @@ kinds=("$@")
 jobs=$(nproc)
 # The tests that run work on several threads: rendering, reprojection, filling,
 # determinism over thread counts and tile orders, and the interrupted sequences.
-TSAN_TESTS="^(Render|PathologicalScenes|Reprojection|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
+TSAN_TESTS="^(Render|PathologicalScenes|GridsAndStrides/SpatialReuse|Reprojection|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
 for kind in "${kinds[@]}"; do
   case $kind in
     address)
