@@ -82,16 +82,16 @@ Fixture& fixture(const std::string& name) {
   f.camera = std::make_unique<LensArray>(place_array(s, desc.viewpoint));
   const LensArray& cam = *f.camera;
   const int P = cam.desc().pixels_per_lens;
-  std::vector<int> px(2 * static_cast<size_t>(P) * P);
+  std::vector<PixelXY> px(static_cast<size_t>(P) * P);
   for (int by = 0; by < cam.height(); by += P)
     for (int bx = 0; bx < cam.width(); bx += P) {
-      auto* lanes = reinterpret_cast<int(*)[2]>(px.data());
-      const int n = packet_order(TileRect{bx, by, std::min(cam.width(), bx + P), std::min(cam.height(), by + P)}, lanes);
+      const PixelXY* lanes = px.data();
+      const int n = packet_order(TileRect{bx, by, std::min(cam.width(), bx + P), std::min(cam.height(), by + P)}, px.data());
       for (int start = 0; start < n; start += 16) {
         RTCRayHit16 packet{};
         ValidMask valid{};
         for (int l = 0; l < 16 && start + l < n; ++l) {
-          const auto pr = primary_ray(cam, f.scene->bounds(), f.scene->epsilon(), lanes[start + l][0], lanes[start + l][1]);
+          const auto pr = primary_ray(cam, f.scene->bounds(), f.scene->epsilon(), lanes[start + l].i, lanes[start + l].j);
           if (!pr) continue;
           RTCRayHit rh{};
           rh.ray = to_rtc(pr->ray);
@@ -130,12 +130,12 @@ void BM_IntegralPrimary(benchmark::State& state, const std::string& name, TraceS
     for_each_lens(cam, [&](const TileRect& b) {
       int64_t local = 0;
       if (style == TraceStyle::packet) {
-        int px[kPixelsPerLens * kPixelsPerLens][2];
+        PixelXY px[kPixelsPerLens * kPixelsPerLens];
         const int n = packet_order(b, px);
         for (int start = 0; start < n; start += kPacketSize) {
           RayPacket packet;
           for (int l = 0; l < kPacketSize && start + l < n; ++l) {
-            const auto pr = primary_ray(cam, scene.bounds(), scene.epsilon(), px[start + l][0], px[start + l][1]);
+            const auto pr = primary_ray(cam, scene.bounds(), scene.epsilon(), px[start + l].i, px[start + l].j);
             if (!pr) continue;
             packet.rays[l] = pr->ray;
             packet.active[l] = true;
@@ -236,22 +236,8 @@ void BM_FirstLens(benchmark::State& state, const std::string& name, TraceStyle s
   for (auto _ : state) {
     RayCounts counts;
     Vec3 sum;
-    if (style == TraceStyle::packet) {
-      int px[kPixelsPerLens * kPixelsPerLens][2];
-      const int n = packet_order(b, px);
-      for (int start = 0; start < n; start += kPacketSize) {
-        Vec3 c[kPacketSize];
-        const int m = std::min(kPacketSize, n - start);
-        render_packet(*f.scene, cam, px + start, m, 1, counts, c);
-        for (int l = 0; l < m; ++l) sum += c[l];
-      }
-    } else if (style == TraceStyle::horizontal) {
-      for (int j = b.y0; j < b.y1; ++j)
-        for (int i = b.x0; i < b.x1; ++i) sum += render_pixel(*f.scene, cam, i, j, 1, counts);
-    } else {
-      for (int i = b.x0; i < b.x1; ++i)
-        for (int j = b.y0; j < b.y1; ++j) sum += render_pixel(*f.scene, cam, i, j, 1, counts);
-    }
+    render_block(*f.scene, cam, b, style, 1, false, counts,
+                 [&](int, int, const Vec3& c, const PrimaryHit&, const SurfacePoint&) { sum += c; });
     benchmark::DoNotOptimize(sum);
   }
 }

@@ -16,7 +16,6 @@
 #include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
 #include "render/renderer.hpp"
-#include "render/shading.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 #include "temporal/spatial.hpp"

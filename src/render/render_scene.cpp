@@ -5,7 +5,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "render/shading.hpp"
 #include "scene/tessellate.hpp"
 
 namespace holoray {

@@ -15,6 +15,11 @@
 
 namespace holoray {
 
+/// Default ray-tree depth limit, counting the eye ray as depth 1 (nff-notes
+/// §10.7), and the most RenderScene::set_max_depth accepts.
+inline constexpr int kMaxRayDepth = 5;
+inline constexpr int kDepthCap = 16;
+
 /// A light ready for shading: position (world) and RGB intensity.
 struct PointLight {
   Vec3 position;
@@ -51,7 +56,7 @@ class RenderScene {
   void set_transforms(const std::vector<Affine>& object_to_world);
   void set_background(const Vec3& colour) { background_ = colour; }
   /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's).
-  /// Throws std::invalid_argument outside 1..16 (kDepthCap): past that a
+  /// Throws std::invalid_argument outside 1..kDepthCap (16): past that a
   /// hall of mirrors costs 2^depth rays per pixel.
   void set_max_depth(int depth);
   int max_depth() const { return max_depth_; }
@@ -76,7 +81,7 @@ class RenderScene {
  private:
   void update_epsilon();
 
-  int max_depth_ = 5;  // kMaxRayDepth (render/shading.hpp)
+  int max_depth_ = kMaxRayDepth;
   std::unique_ptr<AccelScene> accel_;
   std::vector<Material> materials_;        // [0] is the default for objects before any `f`
   std::vector<uint32_t> object_material_;  // per object

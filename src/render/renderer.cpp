@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -101,7 +100,7 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
   return sum * (1.0 / spp);
 }
 
-void render_packet(const RenderScene& scene, const LensArray& camera, const int px[][2], int n, int spp,
+void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[]) {
   Vec3 sum[kPacketSize];
   for (int k = 0; k < spp; ++k) {
@@ -109,8 +108,8 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const int 
     PrimaryRay pr[kPacketSize];
     for (int l = 0; l < n; ++l) {
       double u, v;
-      sample_offset(px[l][0], px[l][1], k, u, v);
-      const auto r = primary_ray(camera, scene.bounds(), scene.epsilon(), px[l][0], px[l][1], u, v);
+      sample_offset(px[l].i, px[l].j, k, u, v);
+      const auto r = primary_ray(camera, scene.bounds(), scene.epsilon(), px[l].i, px[l].j, u, v);
       if (!r) continue;
       packet.active[l] = true;
       packet.rays[l] = r->ray;
@@ -203,46 +202,16 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
       }
       if (opt.aovs.id) *fb.id.at(i, j) = static_cast<float>(sp.object);
     };
-    auto single = [&](int i, int j) {
-      PrimaryHit ph;
-      SurfacePoint sp;
-      const Vec3 c = render_pixel(scene, camera, i, j, opt.spp, counts, &ph, want_surface ? &sp : nullptr);
-      store(i, j, c, ph, sp);
-    };
     const TileRect r = tiles.rect(tile);
     // Tiles are P-aligned, so each P x P block is one elemental image
     // (square grid), a piece of one lenticule's strip, or close to one hex lens.
     for (int by = r.y0; by < r.y1; by += P)
       for (int bx = r.x0; bx < r.x1; bx += P) {
-        const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
         if (opt.lens_stride > 1 && ((bx / P) % opt.lens_stride != 0 ||
                                     (camera.desc().grid != Grid::lenticular && (by / P) % opt.lens_stride != 0)))
           continue;
-        switch (opt.style) {
-          case TraceStyle::horizontal:
-            for (int j = b.y0; j < b.y1; ++j)
-              for (int i = b.x0; i < b.x1; ++i) single(i, j);
-            break;
-          case TraceStyle::vertical:
-            for (int i = b.x0; i < b.x1; ++i)
-              for (int j = b.y0; j < b.y1; ++j) single(i, j);
-            break;
-          case TraceStyle::packet: {
-            thread_local std::vector<std::array<int, 2>> px;
-            px.resize(static_cast<size_t>(P) * P);
-            const int n = packet_order(b, reinterpret_cast<int(*)[2]>(px.data()));
-            for (int start = 0; start < n; start += kPacketSize) {
-              const int m = std::min(kPacketSize, n - start);
-              Vec3 c[kPacketSize];
-              PrimaryHit ph[kPacketSize];
-              SurfacePoint sp[kPacketSize];
-              const auto* lane = reinterpret_cast<const int(*)[2]>(px.data() + start);
-              render_packet(scene, camera, lane, m, opt.spp, counts, c, ph, want_surface ? sp : nullptr);
-              for (int l = 0; l < m; ++l) store(lane[l][0], lane[l][1], c[l], ph[l], sp[l]);
-            }
-            break;
-          }
-        }
+        const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
+        render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);
       }
     tile_counts[static_cast<size_t>(tile)] = counts;
     const int done = ++tiles_done;

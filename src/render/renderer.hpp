@@ -3,9 +3,11 @@
 // is computed independently, so the output is identical for any thread count.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "camera/lens_array.hpp"
 #include "image/image.hpp"
@@ -79,13 +81,53 @@ struct RenderStats {
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary = nullptr, SurfacePoint* surface = nullptr);
 
-/// render_pixel() for up to kPacketSize pixels px[k] = {i, j} (k < n) of
-/// one lens, traced as packets (TraceStyle::packet): colours[k], and
-/// primary[k] / surface[k] when given. Same result as render_pixel() per
-/// pixel whenever Embree's packet and single-ray kernels agree.
-void render_packet(const RenderScene& scene, const LensArray& camera, const int px[][2], int n, int spp,
+/// render_pixel() for up to kPacketSize pixels px[k] (k < n) of one lens,
+/// traced as packets (TraceStyle::packet): colours[k], and primary[k] /
+/// surface[k] when given. Same result as render_pixel() per pixel whenever
+/// Embree's packet and single-ray kernels agree.
+void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
                    SurfacePoint surface[] = nullptr);
+
+/// Renders the pixels of `block` (at most P x P: one elemental image, or a
+/// P x P piece of a lenticule's strip or hex lens) in `style`, calling
+/// store(i, j, colour, primary, surface) once per pixel; `surface` is filled
+/// only when want_surface and primary.status is kHit. The one place where the
+/// styles differ (paper §6), shared by render_frame and the benchmarks.
+template <class Store>
+void render_block(const RenderScene& scene, const LensArray& camera, const TileRect& block, TraceStyle style,
+                  int spp, bool want_surface, RayCounts& counts, Store&& store) {
+  auto single = [&](int i, int j) {
+    PrimaryHit ph;
+    SurfacePoint sp;
+    const Vec3 c = render_pixel(scene, camera, i, j, spp, counts, &ph, want_surface ? &sp : nullptr);
+    store(i, j, c, ph, sp);
+  };
+  switch (style) {
+    case TraceStyle::horizontal:
+      for (int j = block.y0; j < block.y1; ++j)
+        for (int i = block.x0; i < block.x1; ++i) single(i, j);
+      return;
+    case TraceStyle::vertical:
+      for (int i = block.x0; i < block.x1; ++i)
+        for (int j = block.y0; j < block.y1; ++j) single(i, j);
+      return;
+    case TraceStyle::packet: {
+      thread_local std::vector<PixelXY> px;
+      px.resize(static_cast<size_t>(block.x1 - block.x0) * (block.y1 - block.y0));
+      const int n = packet_order(block, px.data());
+      for (int start = 0; start < n; start += kPacketSize) {
+        const int m = std::min(kPacketSize, n - start);
+        Vec3 c[kPacketSize];
+        PrimaryHit ph[kPacketSize];
+        SurfacePoint sp[kPacketSize];
+        render_packet(scene, camera, px.data() + start, m, spp, counts, c, ph, want_surface ? sp : nullptr);
+        for (int l = 0; l < m; ++l) store(px[start + l].i, px[start + l].j, c[l], ph[l], sp[l]);
+      }
+      return;
+    }
+  }
+}
 
 /// Bytes the frame's buffers take (colour plus requested AOVs), computed
 /// without allocating; lets callers refuse absurd sizes up front.

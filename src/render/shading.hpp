@@ -14,10 +14,8 @@
 
 namespace holoray {
 
-/// Default ray-tree depth limit, counting the eye ray as depth 1 (nff-notes
-/// §10.7); RenderScene::set_max_depth changes it per scene (1 to kDepthCap).
-inline constexpr int kMaxRayDepth = 5;
-inline constexpr int kDepthCap = 16;
+// The ray-tree depth limit (kMaxRayDepth, kDepthCap) lives with
+// RenderScene::set_max_depth in render_scene.hpp.
 
 /// Colour (linear RGB) seen along `ray` (world, unit dir) at ray-tree `depth`.
 Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts);

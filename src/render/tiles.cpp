@@ -38,16 +38,12 @@ TileRect ElementalTiles::rect(int k) const {
   return {x0, y0, std::min(width_, x0 + tile_w_), std::min(height_, y0 + tile_h_)};
 }
 
-int packet_order(const TileRect& b, int px[][2]) {
+int packet_order(const TileRect& b, PixelXY px[]) {
   int n = 0;
   for (int y4 = b.y0; y4 < b.y1; y4 += 4)
     for (int x4 = b.x0; x4 < b.x1; x4 += 4)
       for (int j = y4; j < std::min(y4 + 4, b.y1); ++j)
-        for (int i = x4; i < std::min(x4 + 4, b.x1); ++i) {
-          px[n][0] = i;
-          px[n][1] = j;
-          ++n;
-        }
+        for (int i = x4; i < std::min(x4 + 4, b.x1); ++i) px[n++] = {i, j};
   return n;
 }
 

@@ -38,11 +38,16 @@ class ElementalTiles {
   int stride_ = 1;  // coprime with count()
 };
 
+/// A pixel (i, j): column, row.
+struct PixelXY {
+  int i, j;
+};
+
 /// The pixels of `block` (at most P x P, within one elemental image) in 4x4
 /// micro-tiles, row-major inside each, so that each run of 16 is a compact
-/// patch whose rays are the most alike (TraceStyle::packet). Writes
-/// px[k] = {i, j} and returns the count.
-int packet_order(const TileRect& block, int px[][2]);
+/// patch whose rays are the most alike (TraceStyle::packet). Writes them to
+/// px (room for the block's area) and returns the count.
+int packet_order(const TileRect& block, PixelXY px[]);
 
 /// Runs fn(tile) for every tile on `threads` threads (0: all cores).
 void for_each_tile(const ElementalTiles& tiles, int threads, const std::function<void(int)>& fn);
