@@ -22,7 +22,6 @@ SpatialFrame render_spatial(const RenderScene& scene, const LensArray& camera, c
   FrameBuffers sparse = render_frame(scene, camera, ro, stats);
   out.sparse_rays = stats.rays;
   out.sparse_seconds = stats.trace_seconds;
-  for (const PrimaryHit& h : sparse.primary) out.sparse_pixels += h.status == PrimaryHit::kHit;
 
   // The frame is its own keyframe: same camera, same time, no motion.
   const PointImage key{0, camera, std::move(sparse.primary), std::move(sparse.colour)};

@@ -36,7 +36,6 @@ struct SpatialFrame {
   ReprojectedFrame frame;      ///< colour, status per pixel, rays spent reusing and filling
   RayCounts sparse_rays;       ///< rays of the traced lenses
   double sparse_seconds = 0;   ///< tracing the lens subset
-  size_t sparse_pixels = 0;    ///< pixels of the traced lenses
 };
 
 /// Renders `camera`'s EIA of `scene` by spatial reuse. Throws
