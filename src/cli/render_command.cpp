@@ -156,10 +156,12 @@ int run_render(const RenderCommandOptions& o) {
       const double n = static_cast<double>(camera.pixel_count());
       const auto& sec = sf.frame.seconds;
       spatial_line = fmt::format(
-          "spatial    every {} lens traced ({:.3f} s); {:.1f}% reused, {:.1f}% filled by tracing; "
+          "spatial    every {} lens traced: {:.1f}% of pixels ({:.3f} s); {:.1f}% reused, {:.1f}% filled by tracing; "
           "splat {:.3f} s, merge {:.3f} s, leaks {:.3f} s, check {:.3f} s, fill {:.3f} s\n",
-          o.spatial_reuse, sf.sparse_seconds, 100.0 * sf.frame.count(PixelStatus::reprojected) / n,
-          100.0 * sf.frame.count(PixelStatus::traced) / n, sec.splat, sec.merge, sec.leaks, sec.check, sec.fill);
+          o.spatial_reuse, 100.0 * static_cast<double>(sf.sparse_pixels) / n, sf.sparse_seconds,
+          100.0 * sf.frame.count(PixelStatus::reprojected) / n,
+          100.0 * static_cast<double>(sf.frame.count(PixelStatus::traced) - sf.sparse_pixels) / n, sec.splat, sec.merge,
+          sec.leaks, sec.check, sec.fill);
       fb.colour = std::move(sf.frame.colour);
     } else {
       fb = render_frame(scene, camera, ropt, stats);

@@ -207,9 +207,7 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
     // (square grid), a piece of one lenticule's strip, or close to one hex lens.
     for (int by = r.y0; by < r.y1; by += P)
       for (int bx = r.x0; bx < r.x1; bx += P) {
-        if (opt.lens_stride > 1 && ((bx / P) % opt.lens_stride != 0 ||
-                                    (camera.desc().grid != Grid::lenticular && (by / P) % opt.lens_stride != 0)))
-          continue;
+        if (!traced_at_stride(camera, opt.lens_stride, bx, by)) continue;
         const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
         render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);
       }

@@ -129,6 +129,15 @@ void render_block(const RenderScene& scene, const LensArray& camera, const TileR
   }
 }
 
+/// Whether RenderOptions::lens_stride = `stride` traces pixel (i, j): the
+/// P x P blocks whose block column (and, but for lenticular sheets, block
+/// row) is a multiple of the stride. Blocks are lenses on square and
+/// lenticular grids, close to them on hex grids.
+inline bool traced_at_stride(const LensArray& camera, int stride, int i, int j) {
+  const int P = camera.desc().pixels_per_lens;
+  return (i / P) % stride == 0 && (camera.desc().grid == Grid::lenticular || (j / P) % stride == 0);
+}
+
 /// Bytes the frame's buffers take (colour plus requested AOVs), computed
 /// without allocating; lets callers refuse absurd sizes up front.
 uint64_t frame_bytes(const LensArray& camera, const AovSet& aovs);

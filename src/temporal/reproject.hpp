@@ -51,7 +51,12 @@
 namespace holoray {
 
 enum class Reuse { color, geometry };
-enum class Reach { near, all };
+/// Which lenses a keyframe point is forward-projected into (step 1).
+enum class Reach {
+  near,    ///< the lens along the direction the keyframe pixel saw it (and its landing neighbour)
+  all,     ///< every lens that sees it (the paper)
+  lenses,  ///< the lenses within ReprojectOptions::lens_radius of the keyframe pixel's own lens (spatial reuse)
+};
 
 /// Per-pixel outcome of a reprojected frame.
 enum class PixelStatus : int8_t {
@@ -73,6 +78,13 @@ struct ReprojectOptions {
   /// each reprojected hit (see step 5).
   bool check_near_slab = true;
   int threads = 0;  ///< 0: all cores
+  /// Reach::lenses: lenses up to this many across and down from the
+  /// keyframe pixel's lens (same lens array as the frame's).
+  int lens_radius = 1;
+  /// W*H, optional: pixels the caller has already made (spatial reuse: the
+  /// traced lenses). Nothing lands on them and they stay `missed` here, for
+  /// the caller to set.
+  const std::vector<uint8_t>* given = nullptr;
 };
 
 /// A reprojected frame before or after filling.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -23,13 +24,33 @@ SpatialFrame render_spatial(const RenderScene& scene, const LensArray& camera, c
   out.sparse_rays = stats.rays;
   out.sparse_seconds = stats.trace_seconds;
 
-  // The frame is its own keyframe: same camera, same time, no motion.
+  // The frame is its own keyframe: same camera, same time, no motion. Its
+  // points go only to the lenses around their own, where the untraced
+  // lenses are; the traced pixels are final and receive nothing.
+  const int W = camera.width(), H = camera.height();
+  std::vector<uint8_t> traced(static_cast<size_t>(W) * H);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) traced[static_cast<size_t>(j) * W + i] = traced_at_stride(camera, options.stride, i, j);
   const PointImage key{0, camera, std::move(sparse.primary), std::move(sparse.colour)};
   ReprojectOptions rp;
   rp.reuse = options.reuse;
-  rp.reach = Reach::all;  // a point must reach the lenses between the traced ones
+  rp.reach = Reach::lenses;
+  // Every untraced lens has a traced one within stride - 1 lenses (hex
+  // blocks only approximate lenses: one more).
+  rp.lens_radius = options.stride - 1 + (camera.desc().grid == Grid::hex ? 1 : 0);
+  rp.given = &traced;
   rp.threads = options.threads;
   out.frame = reproject(scene, camera, 0, &key, nullptr, rp);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const size_t p = static_cast<size_t>(j) * W + i;
+      if (!traced[p]) continue;
+      ++out.sparse_pixels;
+      std::copy_n(key.colour.at(i, j), 3, out.frame.colour.at(i, j));
+      out.frame.status[p] = PixelStatus::traced;
+      const PrimaryHit& h = key.hits[p];
+      out.frame.object[p] = h.status == PrimaryHit::kHit ? scene.object_of(h.group, static_cast<PrimKind>(h.kind), h.prim) : -1;
+    }
   fill_missed(scene, camera, options.fill, options.threads, out.frame);
   return out;
 }

@@ -4,9 +4,12 @@
 //
 // 1. trace every k-th lens across and down (RenderOptions::lens_stride), with
 //    their primary hits: a sparse point image;
-// 2. forward-project its points into every lens that sees them
-//    (reproject(), Reach::all), with the same z-buffer, leak detection and
-//    exact local visibility check as temporal reprojection;
+// 2. forward-project its points into the lenses around their own, where the
+//    untraced lenses are (reproject(), Reach::lenses; Reach::all would
+//    project each into every lens that sees it, tens to hundreds, and cost
+//    more than tracing), with the same z-buffer, leak detection and exact
+//    local visibility check as temporal reprojection; the traced lenses keep
+//    their pixels;
 // 3. fill what no point reached, or what failed the checks (fill_missed).
 //
 // With Reuse::geometry each reused hit is shaded again through its own pixel,
@@ -30,10 +33,11 @@ struct SpatialOptions {
 };
 
 /// The frame with how each pixel was made (frame.status: reused pixels are
-/// `reprojected`, filled ones `traced` or `interpolated`; the traced lenses'
-/// own pixels are reprojected onto themselves), and the sparse trace's cost.
+/// `reprojected`; the traced lenses' pixels and the filled ones `traced`,
+/// or `interpolated` for Fill::interpolate), and the sparse trace's cost.
 struct SpatialFrame {
   ReprojectedFrame frame;      ///< colour, status per pixel, rays spent reusing and filling
+  size_t sparse_pixels = 0;    ///< pixels of the traced lenses (status `traced`, as are filled ones)
   RayCounts sparse_rays;       ///< rays of the traced lenses
   double sparse_seconds = 0;   ///< tracing the lens subset
 };
