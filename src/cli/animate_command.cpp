@@ -29,16 +29,6 @@ std::string frame_path(const std::string& dir, int frame, int frames, const std:
   return (std::filesystem::path(dir) / fmt::format("frame_{:0{}}.{}", frame, digits, ext)).string();
 }
 
-template <class T>
-T pick(const std::string& option, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
-  std::string names;
-  for (const auto& [name, v] : choices) {
-    if (value == name) return v;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
-  }
-  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
-}
-
 // A run killed outright (SIGKILL, power loss) can leave the temporary file of
 // the frame it was writing (image_io's ".<stem>.tmp<pid>.<ext>"); a resumed
 // run removes them so the folder ends as an uninterrupted run leaves it.

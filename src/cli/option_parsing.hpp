@@ -2,7 +2,12 @@
 // throws std::invalid_argument with a message naming the option and value.
 #pragma once
 
+#include <fmt/format.h>
+
+#include <initializer_list>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "camera/lens_array.hpp"
 #include "image/image_io.hpp"
@@ -23,5 +28,17 @@ Encoding parse_encoding(const std::string& text);
 TraceStyle parse_style(const std::string& text);
 /// Comma-separated subset of albedo,depth,normal,id.
 AovSet parse_aovs(const std::string& text);
+
+/// The value of `choices` named `value`; else std::invalid_argument
+/// "OPTION: expected one of A, B, got 'VALUE'".
+template <class T>
+T pick(const std::string& option, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
+  std::string names;
+  for (const auto& [name, v] : choices) {
+    if (value == name) return v;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
+  }
+  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
+}
 
 }  // namespace holoray::cli

@@ -71,6 +71,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; 5 is the SPD's)")->capture_default_str();
   cmd->add_option("--spatial-reuse", o.spatial_reuse, "Trace every K-th lens across and down and reproject into the rest (1: off)")->capture_default_str();
+  cmd->add_option("--reuse", o.reuse, "With --spatial-reuse: geometry (re-shade reused hits, exact) or color (keep the traced lens's colour)")->capture_default_str();
   cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
@@ -97,6 +98,7 @@ int run_render(const RenderCommandOptions& o) {
       throw std::invalid_argument(fmt::format("--spatial-reuse: must be 1 (off) or more, got {}", o.spatial_reuse));
     if (o.spatial_reuse > 1 && (o.spp > 1 || !o.aovs.empty()))
       throw std::invalid_argument("--spatial-reuse: works with 1 sample per pixel and no AOVs");
+    const Reuse reuse = pick<Reuse>("--reuse", o.reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
     if (o.max_depth < 1 || o.max_depth > kDepthCap)
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
@@ -147,6 +149,7 @@ int run_render(const RenderCommandOptions& o) {
       // Spatial reuse: trace every k-th lens and reproject into the rest (issue 4).
       SpatialOptions so;
       so.stride = o.spatial_reuse;
+      so.reuse = reuse;
       so.threads = o.threads;
       const auto t0 = Clock::now();
       SpatialFrame sf = render_spatial(scene, camera, so);
