@@ -26,6 +26,8 @@ using namespace holoray;
 namespace {
 
 constexpr int kLenses = 128, kPixelsPerLens = 16;
+// The ray-kind kernels keep every shadow ray of a frame in memory: 1024x1024.
+constexpr int kKindLenses = 64;
 
 // Embree reads a packet's valid mask with aligned loads.
 struct alignas(64) ValidMask {
@@ -41,6 +43,16 @@ struct Fixture {
   std::vector<RTCRayHit> rays;
   std::vector<RTCRayHit16> packets;
   std::vector<ValidMask> valid;
+};
+
+// The rays that follow the eye rays, built from the eye rays' hits as the
+// shading builds them (render/shading.cpp): for every packet of one lens and
+// every light, the shadow rays of its hits that face the light, as one packet;
+// for every hit on a mirror (ks > 0), its mirror ray.
+struct KindRays {
+  std::vector<RayPacket> shadow;
+  std::vector<Ray> mirror;
+  int64_t shadow_rays = 0;
 };
 
 RTCRay to_rtc(const Ray& r) {
@@ -69,15 +81,15 @@ void for_each_lens(const LensArray& cam, Fn&& fn) {
   });
 }
 
-Fixture& fixture(const std::string& name) {
-  static std::map<std::string, Fixture> cache;
-  auto it = cache.find(name);
+Fixture& fixture(const std::string& name, int lenses = kLenses) {
+  static std::map<std::pair<std::string, int>, Fixture> cache;
+  auto it = cache.find({name, lenses});
   if (it != cache.end()) return it->second;
-  Fixture& f = cache[name];
+  Fixture& f = cache[{name, lenses}];
   const SceneDesc desc = read_nff_file(std::string(HOLORAY_SHARED_DIR) + "/scenes/nff/" + name + ".nff");
   f.scene = std::make_unique<RenderScene>(desc);
   ArraySettings s;
-  s.lenses_x = s.lenses_y = kLenses;
+  s.lenses_x = s.lenses_y = lenses;
   s.pixels_per_lens = kPixelsPerLens;
   f.camera = std::make_unique<LensArray>(place_array(s, desc.viewpoint));
   const LensArray& cam = *f.camera;
@@ -114,14 +126,72 @@ Fixture& fixture(const std::string& name) {
   return f;
 }
 
+Vec3 mirror(const Vec3& d, const Vec3& n) { return d - n * (2 * dot(d, n)); }
+
+KindRays& kind_rays(const std::string& name) {
+  static std::map<std::string, KindRays> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  KindRays& k = cache[name];
+  const Fixture& f = fixture(name, kKindLenses);
+  const RenderScene& scene = *f.scene;
+  const double eps = scene.epsilon();
+  for (size_t pk = 0; pk < f.packets.size(); ++pk) {
+    // The eye rays again, in double, with their hits and surface points.
+    RayPacket eye;
+    const RTCRay16& r = f.packets[pk].ray;
+    for (int l = 0; l < kPacketSize; ++l) {
+      eye.active[l] = f.valid[pk].lane[l] != 0;
+      eye.rays[l] = Ray{Vec3{r.org_x[l], r.org_y[l], r.org_z[l]}, normalize(Vec3{r.dir_x[l], r.dir_y[l], r.dir_z[l]}),
+                        r.tnear[l], r.tfar[l]};
+    }
+    Hit hits[kPacketSize];
+    bool found[kPacketSize] = {};
+    scene.accel().intersect(eye, hits, found, RayCoherence::coherent);
+    SurfacePoint sp[kPacketSize];
+    Vec3 ng[kPacketSize], ns[kPacketSize];
+    for (int l = 0; l < kPacketSize; ++l) {
+      if (!found[l]) continue;
+      sp[l] = scene.surface(eye.rays[l], hits[l]);
+      const bool front = dot(sp[l].ng, -eye.rays[l].dir) >= 0;
+      ng[l] = front ? sp[l].ng : -sp[l].ng;
+      ns[l] = front ? sp[l].ns : -sp[l].ns;
+      if (sp[l].material->ks > 0) {
+        Vec3 m = mirror(eye.rays[l].dir, ns[l]);
+        if (dot(m, ng[l]) <= 0) m = mirror(eye.rays[l].dir, ng[l]);
+        k.mirror.push_back(Ray{sp[l].position + ng[l] * eps, normalize(m), 0, INFINITY});
+      }
+    }
+    for (const PointLight& light : scene.lights()) {
+      RayPacket shadow;
+      int cast = 0;
+      for (int l = 0; l < kPacketSize; ++l) {
+        if (!found[l]) continue;
+        Vec3 to = light.position - sp[l].position;
+        const double dist = length(to);
+        if (!(dist > eps)) continue;
+        to = to / dist;
+        if (dot(ns[l], to) <= 0) continue;
+        shadow.rays[l] = Ray{sp[l].position + ng[l] * eps, to, 0, dist - eps};
+        shadow.active[l] = true;
+        ++cast;
+      }
+      if (cast == 0) continue;
+      k.shadow.push_back(shadow);
+      k.shadow_rays += cast;
+    }
+  }
+  return k;
+}
+
 bool have_scenes() { return std::filesystem::is_directory(std::string(HOLORAY_SHARED_DIR) + "/scenes/nff"); }
 
 // Integral camera, primary visibility only: generate each pixel's line, clip
 // it to the scene, trace, refine the hit in double. Single rays lens by lens
 // (row by row inside each), or 16-ray packets per lens (TraceStyle::packet).
-void BM_IntegralPrimary(benchmark::State& state, const std::string& name, TraceStyle style) {
+void BM_IntegralPrimary(benchmark::State& state, const std::string& name, TraceStyle style, int lenses) {
   if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
-  Fixture& f = fixture(name);
+  Fixture& f = fixture(name, lenses);
   const LensArray& cam = *f.camera;
   const RenderScene& scene = *f.scene;
   int64_t rays = 0;
@@ -210,6 +280,43 @@ void BM_EmbreeRaw(benchmark::State& state, const std::string& name) {
   state.counters["rays"] = benchmark::Counter(static_cast<double>(n * state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// Shadow rays alone (1024x1024 EIA), as the renderer traces them: 16-ray
+// packets toward one light (AccelScene::occluded, rtcOccluded16).
+void BM_ShadowRays(benchmark::State& state, const std::string& name) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  const KindRays& k = kind_rays(name);
+  const AccelScene& accel = fixture(name, kKindLenses).scene->accel();
+  const int64_t n = static_cast<int64_t>(k.shadow.size());
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 256), [&](const tbb::blocked_range<int64_t>& r) {
+      bool blocked[kPacketSize];
+      for (int64_t p = r.begin(); p != r.end(); ++p) {
+        accel.occluded(k.shadow[static_cast<size_t>(p)], blocked);
+        benchmark::DoNotOptimize(blocked);
+      }
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(k.shadow_rays * state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// Mirror rays alone (1024x1024 EIA), as the renderer traces them: one by
+// one, incoherent, each hit refined in double (AccelScene::intersect).
+void BM_MirrorRays(benchmark::State& state, const std::string& name) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  const KindRays& k = kind_rays(name);
+  const AccelScene& accel = fixture(name, kKindLenses).scene->accel();
+  const int64_t n = static_cast<int64_t>(k.mirror.size());
+  if (n == 0) return state.SkipWithError("no mirror in this scene");
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 1024), [&](const tbb::blocked_range<int64_t>& r) {
+      Hit hit;
+      for (int64_t p = r.begin(); p != r.end(); ++p)
+        benchmark::DoNotOptimize(accel.intersect(k.mirror[static_cast<size_t>(p)], hit, RayCoherence::incoherent));
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(n * state.iterations()), benchmark::Counter::kIsRate);
+}
+
 // Full Whitted shading: one whole EIA per iteration, in one style.
 void BM_FullShading(benchmark::State& state, const std::string& name, TraceStyle style) {
   if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
@@ -254,7 +361,11 @@ const int registered = [] {
           ->Unit(benchmark::kMillisecond)->UseRealTime();
     };
     for (const TraceStyle style : {TraceStyle::packet, TraceStyle::horizontal})
-      reg(std::string("IntegralPrimary_") + style_name(style), BM_IntegralPrimary, style)->Iterations(3)->Repetitions(3);
+      reg(std::string("IntegralPrimary_") + style_name(style), BM_IntegralPrimary, style, kLenses)->Iterations(3)->Repetitions(3);
+    // Mrays/s by ray kind at 1024x1024: eye rays (packet style), shadow rays, mirror rays.
+    reg("Kind_eye", BM_IntegralPrimary, TraceStyle::packet, kKindLenses)->Iterations(5)->Repetitions(3);
+    reg("Kind_shadow", BM_ShadowRays)->Iterations(5)->Repetitions(3);
+    reg("Kind_mirror", BM_MirrorRays)->Iterations(5)->Repetitions(3);
     reg("EmbreeRaw", BM_EmbreeRaw)->Iterations(3)->Repetitions(3);
     reg("EmbreePacket", BM_EmbreePacket)->Iterations(3)->Repetitions(3);
     for (const TraceStyle style : {TraceStyle::packet, TraceStyle::horizontal, TraceStyle::vertical}) {

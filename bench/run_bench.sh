@@ -10,7 +10,12 @@
 #      2048x2048 image, same threads, ray depth 5, no anti-aliasing (POV-Ray
 #      reads a conversion, bench/nff_to_pov.py); the render time each reports,
 #      and the wall clock of the whole command;
-#   4. thread scaling of holoray's render, 1 thread against all.
+#   4. thread scaling of holoray's render, 1 thread against all;
+#   5. Mrays/s by ray kind (eye, shadow, mirror), kernels at 1024x1024;
+#   6. full tracing and spatial reuse (geometry and colour reuse) at
+#      512x512, 1024x1024 and 2048x2048, with PSNR against full tracing;
+#   7. temporal reuse over whole shots (bench/run_animation_bench.sh, also
+#      writing bench/animation_results.md; SKIP_TEMPORAL=1 leaves it out).
 # Usage: bash bench/run_bench.sh [build-dir]   (REPEATS=3, THREADS=nproc)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -86,27 +91,61 @@ for s in scenes:
     print(f"| {s} | {ours_r:.2f} | {tach_r:.2f} | {povr_r:.2f} | {tach_r / ours_r:.2f}x | {povr_r / ours_r:.2f}x | "
           f"{ours:.2f} | {tach:.2f} | {povr:.2f} | {ours1_r:.2f} | {ours1_r / ours_r:.2f}x |")
 
-print(f"\n### Spatial reuse at 1024x1024 (64x64 lenses x 16 px), {threads} threads (render s, median of {repeats})\n")
-print("`holoray render --spatial-reuse K`: trace every K-th lens across and down, reproject its points into the "
-      "lenses between (geometry reuse: each reused hit is shaded again), trace what is missed. PSNR against full "
-      "ray tracing of the same EIA (float EXR, all channels).\n")
-print("| scene | full | K = 2 | speed-up | PSNR (dB) | K = 3 | speed-up | PSNR (dB) |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|")
+print("\n### Mrays/s by ray kind, 1024x1024 EIA (64x64 lenses x 16 px), Google Benchmark medians\n")
+print("Each kind traced alone, as the renderer traces it: eye rays in the packet style (generation, clipping, "
+      "trace, refinement); the shadow rays of the eye rays' hits, 16-ray packets toward one light "
+      "(rtcOccluded16); the mirror rays of the hits on mirrors, one by one, incoherent, refined. The share of "
+      "each kind is that of a whole Whitted frame (`holoray render`, all depths).\n")
+print("| scene | eye | shadow | mirror | frame rays: eye | shadow | reflected + refracted |")
+print("|---|---:|---:|---:|---:|---:|---:|")
 for s in scenes:
     nff = os.path.abspath(f"{shared}/scenes/nff/{s}.nff")
-    base = [os.path.abspath(holoray), "render", nff, "--lenses", "64x64", "--pixels-per-lens", "16", "--threads", str(threads)]
-    pat = r"^trace\s+([0-9.]+) s"
-    _, full = wall(base + ["-o", "full.exr"], pat)
-    cells = [f"{full:.3f}"]
-    for k in (2, 3):
-        _, t = wall(base + ["-o", f"k{k}.exr", "--spatial-reuse", str(k)], pat)
-        r = subprocess.run([os.path.abspath(holoray), "compare", "full.exr", f"k{k}.exr"], capture_output=True, text=True, cwd=work)
-        psnr = re.search(r"^all\s+\S+\s+\S+\s+(\S+)", r.stdout, re.M).group(1)
-        cells += [f"{t:.3f}", f"{full / t:.2f}x", psnr]
-    print(f"| {s} | " + " | ".join(cells) + " |")
+    r = subprocess.run([os.path.abspath(holoray), "render", nff, "-o", "kinds.png", "--lenses", "64x64", "--pixels-per-lens", "16"],
+                       check=True, capture_output=True, text=True, cwd=work)
+    m = re.search(r"^rays\s+eye (\d+), shadow (\d+), reflected (\d+), refracted (\d+)", r.stdout, re.M)
+    eye, shadow, refl, refr = (int(x) for x in m.groups())
+    total = eye + shadow + refl + refr
+    mirror = f"{rate('Kind_mirror', s):.1f}" if ("Kind_mirror", s) in med else "(no mirrors)"
+    print(f"| {s} | {rate('Kind_eye', s):.1f} | {rate('Kind_shadow', s):.1f} | {mirror} | "
+          f"{100 * eye / total:.0f}% | {100 * shadow / total:.0f}% | {100 * (refl + refr) / total:.0f}% |")
+
+print(f"\n### Full tracing and spatial reuse by EIA size, 16 px per lens, {threads} threads (render s, median of {repeats})\n")
+print("`holoray render --spatial-reuse K`: trace every K-th lens across and down, forward-project their points into "
+      "the lenses around them (z-buffer, leak detection, exact local visibility), trace what is missed. geometry: "
+      "each reused hit is shaded again through its own pixel (exact wherever the right surface was reused); "
+      "color: the traced lens's colour is kept (the paper). PSNR against full ray tracing of the same EIA "
+      "(float EXR, all channels).\n")
+print("| scene | EIA | full | Mrays/s | K=2 geometry | speed-up | PSNR dB | K=3 geometry | speed-up | PSNR dB | K=2 color | speed-up | PSNR dB |")
+print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+for s in scenes:
+    nff = os.path.abspath(f"{shared}/scenes/nff/{s}.nff")
+    for lenses in (32, 64, 128):
+        base = [os.path.abspath(holoray), "render", nff, "--lenses", f"{lenses}x{lenses}", "--pixels-per-lens", "16",
+                "--threads", str(threads)]
+        pat = r"^trace\s+([0-9.]+) s"
+        _, full = wall(base + ["-o", "full.exr"], pat)
+        r = subprocess.run(base + ["-o", "full.exr"], check=True, capture_output=True, text=True, cwd=work)
+        mrays = re.search(r"([0-9.]+) Mrays/s", r.stdout).group(1)
+        cells = [f"{16 * lenses}x{16 * lenses}", f"{full:.3f}", mrays]
+        for k, reuse in ((2, "geometry"), (3, "geometry"), (2, "color")):
+            _, t = wall(base + ["-o", "k.exr", "--spatial-reuse", str(k), "--reuse", reuse], pat)
+            r = subprocess.run([os.path.abspath(holoray), "compare", "full.exr", "k.exr"], capture_output=True, text=True, cwd=work)
+            psnr = re.search(r"^all\s+\S+\s+\S+\s+(\S+)", r.stdout, re.M).group(1)
+            cells += [f"{t:.3f}", f"{full / t:.2f}x", psnr]
+        print(f"| {s} | " + " | ".join(cells) + " |")
 
 print(f"\n{threads} threads on {cpu} ({os.cpu_count()} cores); Google Benchmark medians of 3 repetitions; "
       f"{data['context'].get('date', '')}.")
 PY
+# Temporal reuse, in the same run: the animation benchmark (issue 3).
+if [[ ${SKIP_TEMPORAL:-0} != 1 ]]; then
+  bash bench/run_animation_bench.sh >/dev/null
+  {
+    echo
+    echo "### Temporal reuse: whole shots, reprojected between keyframes against full ray tracing (bench/run_animation_bench.sh)"
+    echo
+    sed -n '/^| shot/,$p' bench/animation_results.md
+  } >> "$work/results.md"
+fi
 mv "$work/results.md" bench/results.md
 cat bench/results.md
