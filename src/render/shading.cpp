@@ -1,5 +1,6 @@
 #include "render/shading.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace holoray {
@@ -110,6 +111,101 @@ Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int
   return colour;
 }
 
+namespace {
+
+// The colour seen along each active lane of `rays` at ray-tree `depth`:
+// traced as one packet (incoherent), the hits shaded as a packet.
+void trace_packet(const RenderScene& scene, const RayPacket& rays, int depth, RayCounts& counts,
+                  Vec3 colours[kPacketSize]) {
+  Hit hits[kPacketSize];
+  bool found[kPacketSize] = {};
+  scene.accel().intersect(rays, hits, found, RayCoherence::incoherent);
+  SurfacePoint sps[kPacketSize];
+  bool any = false;
+  for (int k = 0; k < kPacketSize; ++k) {
+    if (!rays.active[k]) continue;
+    colours[k] = scene.background();
+    if (found[k]) sps[k] = scene.surface(rays.rays[k], hits[k]);
+    any |= found[k];
+  }
+  if (any) shade(scene, rays, found, sps, depth, counts, colours);
+}
+
+// A packet of secondary rays is traced as a packet only when its rays are
+// nearly parallel (every one within ~25 degrees of their mean) and at least
+// this many: off a large smooth mirror (the teapot) that is 6 % faster per
+// frame; off small spheres (balls) the rays scatter, and packets of them, and
+// of their hits' shadow rays, were 27 % slower than single rays.
+constexpr double kMinCoherentCos = 0.9;
+constexpr int kMinCoherentLanes = 4;
+
+// add_secondary() for the lanes of a packet: the mirror rays of all lanes,
+// then the transmitted (or totally reflected) rays, each set traced a level
+// deeper as one packet when coherent, else one by one. Same rays, weights and
+// order of addition per lane as add_secondary().
+void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+                   const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize], int depth, RayCounts& counts,
+                   Vec3 colours[kPacketSize]) {
+  if (depth >= scene.max_depth()) return;
+  RayPacket next;
+  double weight[kPacketSize];
+  auto mirror_dir = [&](int k) {
+    Vec3 r = reflect(rays.rays[k].dir, f[k].ns);
+    if (dot(r, f[k].ng) <= 0) r = reflect(rays.rays[k].dir, f[k].ng);
+    return normalize(r);
+  };
+  auto flush = [&] {
+    Vec3 mean;
+    int n = 0;
+    for (int k = 0; k < kPacketSize; ++k)
+      if (next.active[k]) mean += next.rays[k].dir, ++n;
+    if (n == 0) return;
+    mean = normalize(mean);
+    double spread = 1;
+    for (int k = 0; k < kPacketSize; ++k)
+      if (next.active[k]) spread = std::fmin(spread, dot(next.rays[k].dir, mean));
+    if (n < kMinCoherentLanes || spread < kMinCoherentCos) {
+      for (int k = 0; k < kPacketSize; ++k)
+        if (next.active[k]) colours[k] += trace(scene, next.rays[k], depth + 1, counts) * weight[k];
+      return;
+    }
+    Vec3 seen[kPacketSize];
+    trace_packet(scene, next, depth + 1, counts, seen);
+    for (int k = 0; k < kPacketSize; ++k)
+      if (next.active[k]) colours[k] += seen[k] * weight[k];
+  };
+  for (int k = 0; k < kPacketSize; ++k) {
+    next.active[k] = hit[k] && f[k].m->ks > 0;
+    if (!next.active[k]) continue;
+    ++counts.reflected;
+    next.rays[k] = Ray{f[k].above, mirror_dir(k), 0, INFINITY};
+    weight[k] = f[k].m->ks;
+  }
+  flush();
+  for (int k = 0; k < kPacketSize; ++k) {
+    next.active[k] = hit[k] && f[k].m->transmittance > 0;
+    if (!next.active[k]) continue;
+    const Material& m = *f[k].m;
+    weight[k] = m.transmittance;
+    const Ray& ray = rays.rays[k];
+    const double eta = f[k].front ? 1.0 / m.ior : m.ior;
+    const double cos_i = dot(f[k].view, f[k].ns);
+    const double q = 1 - eta * eta * (1 - cos_i * cos_i);
+    if (q < 0) {  // total internal reflection
+      ++counts.reflected;
+      next.rays[k] = Ray{f[k].above, mirror_dir(k), 0, INFINITY};
+    } else {
+      Vec3 dir = normalize(ray.dir * eta + f[k].ns * (eta * cos_i - std::sqrt(q)));
+      if (dot(dir, f[k].ng) >= 0) dir = ray.dir;
+      ++counts.refracted;
+      next.rays[k] = Ray{sps[k].position - f[k].ng * scene.epsilon(), dir, 0, INFINITY};
+    }
+  }
+  flush();
+}
+
+}  // namespace
+
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
   HitFrame f[kPacketSize];
@@ -135,8 +231,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPack
     for (int k = 0; k < kPacketSize; ++k)
       if (shadows.active[k] && !blocked[k]) colours[k] += contribution[k];
   }
-  for (int k = 0; k < kPacketSize; ++k)
-    if (hit[k]) add_secondary(scene, rays.rays[k], sps[k], f[k], depth, counts, colours[k]);
+  add_secondary(scene, rays, hit, sps, f, depth, counts, colours);
 }
 
 }  // namespace holoray

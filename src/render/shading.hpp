@@ -26,9 +26,11 @@ Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int
 
 /// shade() for the lanes of a packet with hit[k] set, into colours[k] (other
 /// lanes untouched). The shadow rays toward each light go as one packet
-/// (rtcOccluded16); mirror and transmitted rays are traced one by one
-/// (incoherent). Each lane gives the same bits as shade() on its own, as long
-/// as the packet and single-ray kernels agree on every shadow ray.
+/// (rtcOccluded16). The mirror rays of the lanes, then their transmitted
+/// rays, go as one packet (rtcIntersect16, incoherent) when they are nearly
+/// parallel, and their hits are shaded as a packet one level deeper; else
+/// one by one. Each lane gives the same bits as shade() on its own, as long
+/// as the packet and single-ray kernels agree on every ray.
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]);
 
