@@ -152,6 +152,22 @@ scene = "{0}/scenes/nff/teapot_s1.nff"
   EXPECT_NEAR(dot(cam.frame.z, normalize(f.view)), -1, 1e-12);
 }
 
+// A scene file placed by several shot objects is read once per object, but
+// its warnings are the file's: printed once.
+TEST(AnimateCli, SceneWarningsArePrintedOncePerFile) {
+  TempDir dir;
+  write_text(dir.file("scene.nff"), "v\nfrom 0 -10 2\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"
+                                    "l 5 -6 10\nf 0.9 0.3 0.2 1 0 0 0 0\ns 0 0 0 1\np 3\n0 0 0\n1 1 1\n2 2 2\n");
+  write_text(dir.file("shot.toml"), "frames = 1\n[array]\nlenses = 8\npixels_per_lens = 4\n"
+                                    "[[object]]\nscene = \"scene.nff\"\n[[object]]\nscene = \"scene.nff\"\n");
+  const auto r = run_cli("animate " + dir.file("shot.toml") + " -o " + dir.file("out"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string warning = "warning: polygon with no area";
+  const size_t first = r.output.find(warning);
+  ASSERT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(warning, first + 1), std::string::npos) << r.output;
+}
+
 TEST(AnimateCli, ResumedRunEqualsUninterruptedRunAndCompareSeesNoDifference) {
   TempDir dir;
   write_text(dir.file("scene.nff"), "v\nfrom 0 -10 2\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"

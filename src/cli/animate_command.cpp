@@ -7,6 +7,8 @@
 #include <csignal>
 #include <filesystem>
 #include <memory>
+#include <set>
+#include <string>
 #include <thread>
 
 #include "cli/interrupt.hpp"
@@ -111,7 +113,10 @@ int run_animate(const AnimateCommandOptions& o) {
     so.stop = [&] { return interrupt.requested(); };
 
     if (!o.quiet) {
-      for (const SceneDesc& desc : shot.scenes()) print_scene_warnings(desc);
+      // Once per file: several shot objects may place the same scene file.
+      std::set<std::string> warned;
+      for (const SceneDesc& desc : shot.scenes())
+        if (warned.insert(desc.source).second) print_scene_warnings(desc);
       const LensArray& cam = first;
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
                  shot.shot().objects.size());

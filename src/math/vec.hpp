@@ -74,18 +74,20 @@ inline bool intersect_line_box(const Vec3& o, const Vec3& d, const Bounds3& b, d
   t1 = INFINITY;
   for (int a = 0; a < 3; ++a) {
     const double lo = b.lo[a], hi = b.hi[a], oa = o[a], da = d[a];
-    if (da == 0.0) {
+    if (da == 0.0) {  // rare (axis-aligned lines): keeps 0 * inf out
       if (oa < lo || oa > hi) return false;
       continue;
     }
-    double ta = (lo - oa) / da, tb = (hi - oa) / da;
-    if (ta > tb) std::swap(ta, tb);
-    // Not std::fmax / fmin: no NaN can occur here, and those are library calls.
-    t0 = ta > t0 ? ta : t0;
-    t1 = tb < t1 ? tb : t1;
-    if (t0 > t1) return false;
+    // One division per axis, and min / max instead of a swap: the branch on
+    // the sign of d mispredicts from pixel to pixel. Not std::fmin / fmax:
+    // no NaN can occur here, and those are library calls.
+    const double inv = 1.0 / da;
+    const double ta = (lo - oa) * inv, tb = (hi - oa) * inv;
+    const double near = ta < tb ? ta : tb, far = ta < tb ? tb : ta;
+    t0 = near > t0 ? near : t0;
+    t1 = far < t1 ? far : t1;
   }
-  return true;
+  return t0 <= t1;
 }
 
 /// Right-handed orthonormal frame: `x` right, `y` up, `z` the normal
