@@ -10,7 +10,10 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 shared=${HOLORAY_SHARED:-../shared}
 [[ -d $shared/scenes/nff ]] || { echo "run_cost_model.sh: needs $shared/scenes/nff" >&2; exit 1; }
-python3 - "$build/holoray" "$shared/scenes/nff" "${REPEATS:-3}" > bench/cost_model.md <<'PY'
+# Written to a temporary file first: a failed run leaves the last table as it was.
+tmp=$(mktemp)
+trap 'rm -f "$tmp"' EXIT
+python3 - "$build/holoray" "$shared/scenes/nff" "${REPEATS:-3}" > "$tmp" <<'PY'
 import os, re, statistics, subprocess, sys, tempfile
 holoray, nff, repeats = sys.argv[1], sys.argv[2], int(sys.argv[3])
 out = os.path.join(tempfile.mkdtemp(), "o.png")
@@ -51,4 +54,5 @@ cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.start
 print(f"`bash bench/run_cost_model.sh`: {os.cpu_count()} threads on {cpu}; median of {repeats} runs of the trace time "
       "`holoray render` prints (packet style, orthoscopic square array).")
 PY
+mv "$tmp" bench/cost_model.md
 cat bench/cost_model.md

@@ -27,6 +27,8 @@ int run_compare(const CompareCommandOptions& o) {
     for (int c = 0; c < 3; ++c)
       fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", kName[c], d.mse[static_cast<size_t>(c)], d.rmse(c), db(d.psnr(c)));
     fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", "all", d.mse_all, d.rmse_all(), db(d.psnr_all()));
+    if (d.nan_mismatches > 0)
+      fmt::print("NaN     {} samples have a value in one image and NaN in the other; left out above\n", d.nan_mismatches);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "holoray: error: {}\n", e.what());

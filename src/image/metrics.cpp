@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -22,18 +23,27 @@ ImageDifference compare_images(const ImageBuffer& a, const ImageBuffer& b) {
   d.pixels = static_cast<int64_t>(a.width) * a.height;
   auto channel = [](const float* p, int channels, int c) { return channels >= 3 ? p[c] : p[0]; };
   std::array<double, 3> sum{};
+  std::array<int64_t, 3> count{};
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
       const float* pa = a.at(x, y);
       const float* pb = b.at(x, y);
-      for (int c = 0; c < 3; ++c) {
-        const double e = 255.0 * (double(channel(pa, a.channels, c)) - double(channel(pb, b.channels, c)));
-        sum[static_cast<size_t>(c)] += e * e;
+      for (size_t c = 0; c < 3; ++c) {
+        const float va = channel(pa, a.channels, static_cast<int>(c)), vb = channel(pb, b.channels, static_cast<int>(c));
+        // NaN means "no value" (the depth AOV's background): equal when both
+        // have none; a value against none is counted apart, not averaged.
+        if (std::isnan(va) || std::isnan(vb)) {
+          if (std::isnan(va) && std::isnan(vb)) ++count[c];
+          else ++d.nan_mismatches;
+          continue;
+        }
+        const double e = 255.0 * (double(va) - double(vb));
+        sum[c] += e * e;
+        ++count[c];
       }
     }
-  const double n = static_cast<double>(std::max<int64_t>(1, d.pixels));
-  for (size_t c = 0; c < 3; ++c) d.mse[c] = sum[c] / n;
-  d.mse_all = (sum[0] + sum[1] + sum[2]) / (3 * n);
+  for (size_t c = 0; c < 3; ++c) d.mse[c] = sum[c] / static_cast<double>(std::max<int64_t>(1, count[c]));
+  d.mse_all = (sum[0] + sum[1] + sum[2]) / static_cast<double>(std::max<int64_t>(1, count[0] + count[1] + count[2]));
   return d;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 #include "image/image.hpp"
 #include "image/image_io.hpp"
@@ -14,6 +15,9 @@ struct ImageDifference {
   std::array<double, 3> mse{};  ///< per channel (R, G, B), on 0..255
   double mse_all = 0;           ///< over all three channels
   int64_t pixels = 0;
+  /// Channel samples that are NaN in one image only, left out of the MSE
+  /// (NaN against NaN counts as equal: the depth AOV's background).
+  int64_t nan_mismatches = 0;
 
   double rmse(int channel) const;
   double rmse_all() const;
@@ -25,8 +29,9 @@ struct ImageDifference {
 double psnr_from_mse(double mse);
 
 /// Compares two images of values in 0..1 nominal (scaled by 255; a grey
-/// image counts as R=G=B, an alpha channel is ignored). Throws
-/// std::invalid_argument when the sizes differ.
+/// image counts as R=G=B, an alpha channel is ignored). NaN samples: see
+/// ImageDifference::nan_mismatches. Throws std::invalid_argument when the
+/// sizes differ.
 ImageDifference compare_images(const ImageBuffer& a, const ImageBuffer& b);
 
 /// The values a PNG write would store, as k/255, so that in-memory

@@ -62,36 +62,58 @@ bool light_sample(const RenderScene& scene, const HitFrame& f, const SurfacePoin
   return true;
 }
 
-// Adds mirror and transmitted light to `colour`, traced one ray at a time (incoherent).
-void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f, int depth,
-                   RayCounts& counts, Vec3& colour) {
-  if (depth >= scene.max_depth()) return;
+// The secondary rays that leave a hit (nff-notes §10): the mirror ray when
+// Ks > 0, weighted Ks; the transmitted ray when T > 0, weighted T: refracted
+// by Snell's law, or on total internal reflection a second mirror ray.
+struct SecondaryRays {
+  bool mirror = false, transmit = false;
+  bool transmit_reflects = false;  // total internal reflection: counted as a reflected ray
+  Ray mirror_ray, transmit_ray;
+};
+
+SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
+  SecondaryRays s;
   const Material& m = *f.m;
-  auto mirror_dir = [&] {
+  auto mirror_ray = [&] {
     Vec3 r = reflect(ray.dir, f.ns);
     // An interpolated normal can send the mirror ray into the surface; fall back to the true one.
     if (dot(r, f.ng) <= 0) r = reflect(ray.dir, f.ng);
-    return normalize(r);
+    return Ray{f.above, normalize(r), 0, INFINITY};
   };
   if (m.ks > 0) {
-    ++counts.reflected;
-    colour += trace(scene, Ray{f.above, mirror_dir(), 0, INFINITY}, depth + 1, counts) * m.ks;
+    s.mirror = true;
+    s.mirror_ray = mirror_ray();
   }
   if (m.transmittance > 0) {
+    s.transmit = true;
     // Entering when the ray meets the outward (winding) side.
     const double eta = f.front ? 1.0 / m.ior : m.ior;
     const double cos_i = dot(f.view, f.ns);
     const double k = 1 - eta * eta * (1 - cos_i * cos_i);
-    if (k < 0) {  // total internal reflection: the transmitted weight goes to a reflection ray
-      ++counts.reflected;
-      colour += trace(scene, Ray{f.above, mirror_dir(), 0, INFINITY}, depth + 1, counts) * m.transmittance;
+    if (k < 0) {
+      s.transmit_reflects = true;
+      s.transmit_ray = mirror_ray();
     } else {
       Vec3 dir = normalize(ray.dir * eta + f.ns * (eta * cos_i - std::sqrt(k)));
       if (dot(dir, f.ng) >= 0) dir = ray.dir;  // shading normal bent it back out: go straight through
-      ++counts.refracted;
-      const Vec3 below = sp.position - f.ng * scene.epsilon();
-      colour += trace(scene, Ray{below, dir, 0, INFINITY}, depth + 1, counts) * m.transmittance;
+      s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), dir, 0, INFINITY};
     }
+  }
+  return s;
+}
+
+// Adds mirror and transmitted light to `colour`, traced one ray at a time (incoherent).
+void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f, int depth,
+                   RayCounts& counts, Vec3& colour) {
+  if (depth >= scene.max_depth()) return;
+  const SecondaryRays s = secondary_rays(scene, ray, sp, f);
+  if (s.mirror) {
+    ++counts.reflected;
+    colour += trace(scene, s.mirror_ray, depth + 1, counts) * f.m->ks;
+  }
+  if (s.transmit) {
+    ++(s.transmit_reflects ? counts.reflected : counts.refracted);
+    colour += trace(scene, s.transmit_ray, depth + 1, counts) * f.m->transmittance;
   }
 }
 
@@ -147,13 +169,11 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
                    const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize], int depth, RayCounts& counts,
                    Vec3 colours[kPacketSize]) {
   if (depth >= scene.max_depth()) return;
+  SecondaryRays s[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k)
+    if (hit[k]) s[k] = secondary_rays(scene, rays.rays[k], sps[k], f[k]);
   RayPacket next;
   double weight[kPacketSize];
-  auto mirror_dir = [&](int k) {
-    Vec3 r = reflect(rays.rays[k].dir, f[k].ns);
-    if (dot(r, f[k].ng) <= 0) r = reflect(rays.rays[k].dir, f[k].ng);
-    return normalize(r);
-  };
   auto flush = [&] {
     Vec3 mean;
     int n = 0;
@@ -175,31 +195,19 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
       if (next.active[k]) colours[k] += seen[k] * weight[k];
   };
   for (int k = 0; k < kPacketSize; ++k) {
-    next.active[k] = hit[k] && f[k].m->ks > 0;
+    next.active[k] = hit[k] && s[k].mirror;
     if (!next.active[k]) continue;
     ++counts.reflected;
-    next.rays[k] = Ray{f[k].above, mirror_dir(k), 0, INFINITY};
+    next.rays[k] = s[k].mirror_ray;
     weight[k] = f[k].m->ks;
   }
   flush();
   for (int k = 0; k < kPacketSize; ++k) {
-    next.active[k] = hit[k] && f[k].m->transmittance > 0;
+    next.active[k] = hit[k] && s[k].transmit;
     if (!next.active[k]) continue;
-    const Material& m = *f[k].m;
-    weight[k] = m.transmittance;
-    const Ray& ray = rays.rays[k];
-    const double eta = f[k].front ? 1.0 / m.ior : m.ior;
-    const double cos_i = dot(f[k].view, f[k].ns);
-    const double q = 1 - eta * eta * (1 - cos_i * cos_i);
-    if (q < 0) {  // total internal reflection
-      ++counts.reflected;
-      next.rays[k] = Ray{f[k].above, mirror_dir(k), 0, INFINITY};
-    } else {
-      Vec3 dir = normalize(ray.dir * eta + f[k].ns * (eta * cos_i - std::sqrt(q)));
-      if (dot(dir, f[k].ng) >= 0) dir = ray.dir;
-      ++counts.refracted;
-      next.rays[k] = Ray{sps[k].position - f[k].ng * scene.epsilon(), dir, 0, INFINITY};
-    }
+    ++(s[k].transmit_reflects ? counts.reflected : counts.refracted);
+    next.rays[k] = s[k].transmit_ray;
+    weight[k] = f[k].m->transmittance;
   }
   flush();
 }

@@ -10,6 +10,9 @@
 //    saw it, crosses the array (and the neighbour it lands in from there):
 //    an image warp per elemental image, about one projection per point
 //    instead of one per lens that sees it, which is what makes it pay.
+//    `Reach::lenses` projects into the lenses within a radius of the point's
+//    own lens: spatial reuse (spatial.hpp), where the frame is its own
+//    keyframe and the lenses to fill lie next to the traced ones.
 // 2. Z-buffer per keyframe: the point nearest the viewer wins (largest t
 //    orthoscopic, smallest t > 0 pseudoscopic), less a penalty of two pixel
 //    footprints per pixel of distance from the pixel centre, so that on one
