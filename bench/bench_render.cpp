@@ -204,10 +204,13 @@ void BM_IntegralPrimary(benchmark::State& state, const std::string& name, TraceS
         const int n = packet_order(b, px);
         for (int start = 0; start < n; start += kPacketSize) {
           RayPacket packet;
-          for (int l = 0; l < kPacketSize && start + l < n; ++l) {
-            const auto pr = primary_ray(cam, scene.bounds(), scene.epsilon(), px[start + l].i, px[start + l].j);
-            if (!pr) continue;
-            packet.rays[l] = pr->ray;
+          PrimaryRay pr[kPacketSize];
+          bool ok[kPacketSize];
+          const int m = std::min(kPacketSize, n - start);
+          primary_rays(cam, scene.bounds(), scene.epsilon(), px + start, m, 0, pr, ok);
+          for (int l = 0; l < m; ++l) {
+            if (!ok[l]) continue;
+            packet.rays[l] = pr[l].ray;
             packet.active[l] = true;
             ++local;
           }

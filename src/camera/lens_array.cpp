@@ -131,6 +131,25 @@ PixelLine LensArray::line(int i, int j, double u, double v) const {
   return {desc_.frame.to_world_point(l.origin), desc_.frame.to_world_dir(l.dir)};
 }
 
+void LensArray::lines(const int i[], const int j[], const double u[], const double v[], int n, PixelLine out[]) const {
+  if (desc_.grid == Grid::lenticular) {  // the origin moves with the pixel row
+    for (int k = 0; k < n; ++k) out[k] = line(i[k], j[k], u[k], v[k]);
+    return;
+  }
+  // The same operations as line_local() and line(), in the same order.
+  LensIndex lens{-1, -1};
+  Vec3 c, c_world;
+  for (int k = 0; k < n; ++k) {
+    const LensIndex l = lens_of_pixel(i[k], j[k]);
+    if (!(l == lens)) {
+      lens = l;
+      c = lens_centre_local(l);
+      c_world = desc_.frame.to_world_point(c);
+    }
+    out[k] = {c_world, desc_.frame.to_world_dir(normalize(c - panel_point_local(i[k], j[k], u[k], v[k])))};
+  }
+}
+
 void LensArray::project(const Vec3& p_world, std::vector<PanelHit>& out) const {
   out.clear();
   project_local(desc_.frame.to_local_point(p_world), out);

@@ -101,6 +101,11 @@ class LensArray {
   PixelLine line_local(int i, int j, double u = 0.5, double v = 0.5) const;
   /// The pixel's line in the world frame.
   PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
+  /// line() for n pixels (i[k], j[k]) at offsets (u[k], v[k]): out[k] equals
+  /// line(i[k], j[k], u[k], v[k]) bit for bit, but a lens's centre is
+  /// computed once for a run of pixels under the same lens (a packet of one
+  /// elemental image, issue 4), not once per pixel.
+  void lines(const int i[], const int j[], const double u[], const double v[], int n, PixelLine out[]) const;
 
   /// Forward projection (contract, property 2): every pixel whose line passes
   /// through the world point, one per lens whose elemental image contains it,

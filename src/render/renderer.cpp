@@ -57,21 +57,61 @@ uint64_t frame_bytes(const LensArray& camera, const AovSet& aovs) {
   return static_cast<uint64_t>(camera.pixel_count()) * channels * sizeof(float);
 }
 
-std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bounds, double margin, int i, int j,
-                                      double u, double v) {
-  if (bounds.empty()) return std::nullopt;
-  const PixelLine line = camera.line(i, j, u, v);
+namespace {
+
+// The primary ray along `line`, clipped to `box` (the scene bounds grown by
+// `margin`); false when the line cannot meet the scene.
+inline bool clip_primary(const PixelLine& line, const Bounds3& box, double margin, RecordingMode mode, PrimaryRay& out) {
+  double t0, t1;
+  if (!intersect_line_box(line.origin, line.dir, box, t0, t1)) return false;
+  if (mode == RecordingMode::orthoscopic) {
+    const double start = t1 + margin;
+    out = PrimaryRay{Ray{line.origin + line.dir * start, -line.dir, 0, start - t0 + margin}, start, -1};
+    return true;
+  }
+  if (t1 <= 0) return false;
+  out = PrimaryRay{Ray{line.origin, line.dir, std::fmax(0.0, t0 - margin), t1 + margin}, 0, 1};
+  return true;
+}
+
+Bounds3 grown(const Bounds3& bounds, double margin) {
   Bounds3 b = bounds;
   b.lo -= Vec3{margin, margin, margin};
   b.hi += Vec3{margin, margin, margin};
-  double t0, t1;
-  if (!intersect_line_box(line.origin, line.dir, b, t0, t1)) return std::nullopt;
-  if (camera.desc().mode == RecordingMode::orthoscopic) {
-    const double start = t1 + margin;
-    return PrimaryRay{Ray{line.origin + line.dir * start, -line.dir, 0, start - t0 + margin}, start, -1};
+  return b;
+}
+
+}  // namespace
+
+std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bounds, double margin, int i, int j,
+                                      double u, double v) {
+  if (bounds.empty()) return std::nullopt;
+  PrimaryRay pr;
+  if (!clip_primary(camera.line(i, j, u, v), grown(bounds, margin), margin, camera.desc().mode, pr)) return std::nullopt;
+  return pr;
+}
+
+void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin, const PixelXY px[], int n, int k,
+                  PrimaryRay out[], bool ok[]) {
+  if (bounds.empty()) {
+    std::fill(ok, ok + n, false);
+    return;
   }
-  if (t1 <= 0) return std::nullopt;
-  return PrimaryRay{Ray{line.origin, line.dir, std::fmax(0.0, t0 - margin), t1 + margin}, 0, 1};
+  int i[kPacketSize], j[kPacketSize];
+  double u[kPacketSize], v[kPacketSize];
+  PixelLine lines[kPacketSize];
+  const Bounds3 box = grown(bounds, margin);
+  const RecordingMode mode = camera.desc().mode;
+  for (int start = 0; start < n; start += kPacketSize) {
+    const int m = std::min(kPacketSize, n - start);
+    for (int l = 0; l < m; ++l) {
+      i[l] = px[start + l].i;
+      j[l] = px[start + l].j;
+      sample_offset(i[l], j[l], k, u[l], v[l]);
+    }
+    camera.lines(i, j, u, v, m, lines);
+    for (int l = 0; l < m; ++l) ok[start + l] = clip_primary(lines[l], box, margin, mode, out[start + l]);
+  }
 }
 
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
@@ -106,14 +146,12 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
   for (int k = 0; k < spp; ++k) {
     RayPacket packet;
     PrimaryRay pr[kPacketSize];
+    bool ok[kPacketSize];
+    primary_rays(camera, scene.bounds(), scene.epsilon(), px, n, k, pr, ok);
     for (int l = 0; l < n; ++l) {
-      double u, v;
-      sample_offset(px[l].i, px[l].j, k, u, v);
-      const auto r = primary_ray(camera, scene.bounds(), scene.epsilon(), px[l].i, px[l].j, u, v);
-      if (!r) continue;
+      if (!ok[l]) continue;
       packet.active[l] = true;
-      packet.rays[l] = r->ray;
-      pr[l] = *r;
+      packet.rays[l] = pr[l].ray;
       ++counts.eye;
     }
     Hit hits[kPacketSize];
