@@ -26,8 +26,6 @@ using namespace holoray;
 namespace {
 
 constexpr int kLenses = 128, kPixelsPerLens = 16;
-// The ray-kind kernels keep every shadow ray of a frame in memory: 1024x1024.
-constexpr int kKindLenses = 64;
 
 // Embree reads a packet's valid mask with aligned loads.
 struct alignas(64) ValidMask {
@@ -81,11 +79,29 @@ void for_each_lens(const LensArray& cam, Fn&& fn) {
   });
 }
 
+// Fixtures per (scene, lens count). The benchmarks run scene by scene, and
+// only the current scene's rays are kept: the shadow rays of tree_s11's
+// 2048x2048 EIA alone take about 2 GB.
+template <class T>
+using Cache = std::map<std::pair<std::string, int>, T>;
+Cache<Fixture>& fixtures() {
+  static Cache<Fixture> c;
+  return c;
+}
+Cache<KindRays>& kinds() {
+  static Cache<KindRays> c;
+  return c;
+}
+void keep_only(const std::string& name) {
+  std::erase_if(fixtures(), [&](const auto& e) { return e.first.first != name; });
+  std::erase_if(kinds(), [&](const auto& e) { return e.first.first != name; });
+}
+
 Fixture& fixture(const std::string& name, int lenses = kLenses) {
-  static std::map<std::pair<std::string, int>, Fixture> cache;
-  auto it = cache.find({name, lenses});
-  if (it != cache.end()) return it->second;
-  Fixture& f = cache[{name, lenses}];
+  keep_only(name);
+  auto it = fixtures().find({name, lenses});
+  if (it != fixtures().end()) return it->second;
+  Fixture& f = fixtures()[{name, lenses}];
   const SceneDesc desc = read_nff_file(std::string(HOLORAY_SHARED_DIR) + "/scenes/nff/" + name + ".nff");
   f.scene = std::make_unique<RenderScene>(desc);
   ArraySettings s;
@@ -128,12 +144,11 @@ Fixture& fixture(const std::string& name, int lenses = kLenses) {
 
 Vec3 mirror(const Vec3& d, const Vec3& n) { return d - n * (2 * dot(d, n)); }
 
-KindRays& kind_rays(const std::string& name) {
-  static std::map<std::string, KindRays> cache;
-  auto it = cache.find(name);
-  if (it != cache.end()) return it->second;
-  KindRays& k = cache[name];
-  const Fixture& f = fixture(name, kKindLenses);
+KindRays& kind_rays(const std::string& name, int lenses) {
+  const Fixture& f = fixture(name, lenses);
+  auto it = kinds().find({name, lenses});
+  if (it != kinds().end()) return it->second;
+  KindRays& k = kinds()[{name, lenses}];
   const RenderScene& scene = *f.scene;
   const double eps = scene.epsilon();
   for (size_t pk = 0; pk < f.packets.size(); ++pk) {
@@ -283,12 +298,12 @@ void BM_EmbreeRaw(benchmark::State& state, const std::string& name) {
   state.counters["rays"] = benchmark::Counter(static_cast<double>(n * state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// Shadow rays alone (1024x1024 EIA), as the renderer traces them: 16-ray
-// packets toward one light (AccelScene::occluded, rtcOccluded16).
-void BM_ShadowRays(benchmark::State& state, const std::string& name) {
+// Shadow rays alone, as the renderer traces them: 16-ray packets toward one
+// light (AccelScene::occluded, rtcOccluded16).
+void BM_ShadowRays(benchmark::State& state, const std::string& name, int lenses) {
   if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
-  const KindRays& k = kind_rays(name);
-  const AccelScene& accel = fixture(name, kKindLenses).scene->accel();
+  const KindRays& k = kind_rays(name, lenses);
+  const AccelScene& accel = fixture(name, lenses).scene->accel();
   const int64_t n = static_cast<int64_t>(k.shadow.size());
   for (auto _ : state) {
     tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 256), [&](const tbb::blocked_range<int64_t>& r) {
@@ -302,12 +317,12 @@ void BM_ShadowRays(benchmark::State& state, const std::string& name) {
   state.counters["rays"] = benchmark::Counter(static_cast<double>(k.shadow_rays * state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// Mirror rays alone (1024x1024 EIA), as the renderer traces them: one by
-// one, incoherent, each hit refined in double (AccelScene::intersect).
-void BM_MirrorRays(benchmark::State& state, const std::string& name) {
+// Mirror rays alone, as the renderer traces them: one by one, incoherent,
+// each hit refined in double (AccelScene::intersect).
+void BM_MirrorRays(benchmark::State& state, const std::string& name, int lenses) {
   if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
-  const KindRays& k = kind_rays(name);
-  const AccelScene& accel = fixture(name, kKindLenses).scene->accel();
+  const KindRays& k = kind_rays(name, lenses);
+  const AccelScene& accel = fixture(name, lenses).scene->accel();
   const int64_t n = static_cast<int64_t>(k.mirror.size());
   if (n == 0) return state.SkipWithError("no mirror in this scene");
   for (auto _ : state) {
@@ -365,10 +380,14 @@ const int registered = [] {
     };
     for (const TraceStyle style : {TraceStyle::packet, TraceStyle::horizontal})
       reg(std::string("IntegralPrimary_") + style_name(style), BM_IntegralPrimary, style, kLenses)->Iterations(3)->Repetitions(3);
-    // Mrays/s by ray kind at 1024x1024: eye rays (packet style), shadow rays, mirror rays.
-    reg("Kind_eye", BM_IntegralPrimary, TraceStyle::packet, kKindLenses)->Iterations(5)->Repetitions(3);
-    reg("Kind_shadow", BM_ShadowRays)->Iterations(5)->Repetitions(3);
-    reg("Kind_mirror", BM_MirrorRays)->Iterations(5)->Repetitions(3);
+    // Mrays/s by ray kind (eye rays in the packet style, shadow rays, mirror
+    // rays) at 512x512, 1024x1024 and 2048x2048: Kind<EIA width>_<kind>.
+    for (const int lenses : {32, 64, 128}) {
+      const std::string kind = "Kind" + std::to_string(lenses * kPixelsPerLens) + "_";
+      reg(kind + "eye", BM_IntegralPrimary, TraceStyle::packet, lenses)->Iterations(3)->Repetitions(3);
+      reg(kind + "shadow", BM_ShadowRays, lenses)->Iterations(3)->Repetitions(3);
+      reg(kind + "mirror", BM_MirrorRays, lenses)->Iterations(3)->Repetitions(3);
+    }
     reg("EmbreeRaw", BM_EmbreeRaw)->Iterations(3)->Repetitions(3);
     reg("EmbreePacket", BM_EmbreePacket)->Iterations(3)->Repetitions(3);
     for (const TraceStyle style : {TraceStyle::packet, TraceStyle::horizontal, TraceStyle::vertical}) {

@@ -11,7 +11,7 @@
 #      reads a conversion, bench/nff_to_pov.py); the render time each reports,
 #      and the wall clock of the whole command;
 #   4. thread scaling of holoray's render, 1 thread against all;
-#   5. Mrays/s by ray kind (eye, shadow, mirror), kernels at 1024x1024;
+#   5. Mrays/s by ray kind (eye, shadow, mirror) at three EIA sizes;
 #   6. full tracing and spatial reuse (geometry and colour reuse) at
 #      512x512, 1024x1024 and 2048x2048, with PSNR against full tracing;
 #   7. temporal reuse over whole shots (bench/run_animation_bench.sh, also
@@ -91,23 +91,25 @@ for s in scenes:
     print(f"| {s} | {ours_r:.2f} | {tach_r:.2f} | {povr_r:.2f} | {tach_r / ours_r:.2f}x | {povr_r / ours_r:.2f}x | "
           f"{ours:.2f} | {tach:.2f} | {povr:.2f} | {ours1_r:.2f} | {ours1_r / ours_r:.2f}x |")
 
-print("\n### Mrays/s by ray kind, 1024x1024 EIA (64x64 lenses x 16 px), Google Benchmark medians\n")
+print("\n### Mrays/s by ray kind and EIA size (16 px per lens), Google Benchmark medians\n")
 print("Each kind traced alone, as the renderer traces it: eye rays in the packet style (generation, clipping, "
       "trace, refinement); the shadow rays of the eye rays' hits, 16-ray packets toward one light "
       "(rtcOccluded16); the mirror rays of the hits on mirrors, one by one, incoherent, refined. The share of "
-      "each kind is that of a whole Whitted frame (`holoray render`, all depths).\n")
-print("| scene | eye | shadow | mirror | frame rays: eye | shadow | reflected + refracted |")
-print("|---|---:|---:|---:|---:|---:|---:|")
+      "each kind is that of a whole Whitted frame at that size (`holoray render`, all depths).\n")
+print("| scene | EIA | eye | shadow | mirror | frame rays: eye | shadow | reflected + refracted |")
+print("|---|---|---:|---:|---:|---:|---:|---:|")
 for s in scenes:
     nff = os.path.abspath(f"{shared}/scenes/nff/{s}.nff")
-    r = subprocess.run([os.path.abspath(holoray), "render", nff, "-o", "kinds.png", "--lenses", "64x64", "--pixels-per-lens", "16"],
-                       check=True, capture_output=True, text=True, cwd=work)
-    m = re.search(r"^rays\s+eye (\d+), shadow (\d+), reflected (\d+), refracted (\d+)", r.stdout, re.M)
-    eye, shadow, refl, refr = (int(x) for x in m.groups())
-    total = eye + shadow + refl + refr
-    mirror = f"{rate('Kind_mirror', s):.1f}" if ("Kind_mirror", s) in med else "(no mirrors)"
-    print(f"| {s} | {rate('Kind_eye', s):.1f} | {rate('Kind_shadow', s):.1f} | {mirror} | "
-          f"{100 * eye / total:.0f}% | {100 * shadow / total:.0f}% | {100 * (refl + refr) / total:.0f}% |")
+    for lenses in (32, 64, 128):
+        w = 16 * lenses
+        r = subprocess.run([os.path.abspath(holoray), "render", nff, "-o", "kinds.png", "--lenses", f"{lenses}x{lenses}",
+                            "--pixels-per-lens", "16"], check=True, capture_output=True, text=True, cwd=work)
+        m = re.search(r"^rays\s+eye (\d+), shadow (\d+), reflected (\d+), refracted (\d+)", r.stdout, re.M)
+        eye, shadow, refl, refr = (int(x) for x in m.groups())
+        total = eye + shadow + refl + refr
+        mirror = f"{rate(f'Kind{w}_mirror', s):.1f}" if (f"Kind{w}_mirror", s) in med else "(no mirrors)"
+        print(f"| {s} | {w}x{w} | {rate(f'Kind{w}_eye', s):.1f} | {rate(f'Kind{w}_shadow', s):.1f} | {mirror} | "
+              f"{100 * eye / total:.0f}% | {100 * shadow / total:.0f}% | {100 * (refl + refr) / total:.0f}% |")
 
 print(f"\n### Full tracing and spatial reuse by EIA size, 16 px per lens, {threads} threads (render s, median of {repeats})\n")
 print("`holoray render --spatial-reuse K`: trace every K-th lens across and down, forward-project their points into "
