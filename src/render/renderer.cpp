@@ -93,6 +93,7 @@ std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bo
 
 void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin, const PixelXY px[], int n, int k,
                   PrimaryRay out[], bool ok[]) {
+  if (n > kPacketSize) throw std::invalid_argument(fmt::format("at most {} rays at once, got {}", kPacketSize, n));
   if (bounds.empty()) {
     std::fill(ok, ok + n, false);
     return;
@@ -100,18 +101,14 @@ void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin,
   int i[kPacketSize], j[kPacketSize];
   double u[kPacketSize], v[kPacketSize];
   PixelLine lines[kPacketSize];
-  const Bounds3 box = grown(bounds, margin);
-  const RecordingMode mode = camera.desc().mode;
-  for (int start = 0; start < n; start += kPacketSize) {
-    const int m = std::min(kPacketSize, n - start);
-    for (int l = 0; l < m; ++l) {
-      i[l] = px[start + l].i;
-      j[l] = px[start + l].j;
-      sample_offset(i[l], j[l], k, u[l], v[l]);
-    }
-    camera.lines(i, j, u, v, m, lines);
-    for (int l = 0; l < m; ++l) ok[start + l] = clip_primary(lines[l], box, margin, mode, out[start + l]);
+  for (int l = 0; l < n; ++l) {
+    i[l] = px[l].i;
+    j[l] = px[l].j;
+    sample_offset(i[l], j[l], k, u[l], v[l]);
   }
+  camera.lines(i, j, u, v, n, lines);
+  const Bounds3 box = grown(bounds, margin);
+  for (int l = 0; l < n; ++l) ok[l] = clip_primary(lines[l], box, margin, camera.desc().mode, out[l]);
 }
 
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,

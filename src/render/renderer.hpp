@@ -160,9 +160,10 @@ struct PrimaryRay {
 /// nullopt when the pixel's line cannot meet the scene (records background).
 std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bounds, double margin, int i, int j,
                                       double u = 0.5, double v = 0.5);
-/// primary_ray() for pixels px[0..n) at sample k (sample_offset): ok[l]
-/// false where it would give nullopt, else out[l], bit for bit the same. The
-/// packet path: pixels of one lens share its centre (LensArray::lines).
+/// primary_ray() for pixels px[0..n), n <= kPacketSize, at sample k
+/// (sample_offset): ok[l] false where it would give nullopt, else out[l],
+/// bit for bit the same. The packet path: pixels of one lens share its
+/// centre (LensArray::lines). Throws std::invalid_argument for n > kPacketSize.
 void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin, const PixelXY px[], int n, int k,
                   PrimaryRay out[], bool ok[]);
 
