@@ -87,6 +87,8 @@ class AccelScene {
   const Affine& transform(uint32_t group) const { return groups_[group].to_world; }
   const Affine& inverse_transform(uint32_t group) const { return groups_[group].to_object; }
   size_t group_count() const { return groups_.size(); }
+  /// The geometry of one group, in its object space (as built).
+  const GeometryGroup& geometry(uint32_t group) const { return groups_[group].geo; }
 
   /// Nearest hit in (tnear, tfar); false when none.
   bool intersect(const Ray& ray, Hit& hit, RayCoherence coherence = RayCoherence::incoherent) const;

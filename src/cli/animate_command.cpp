@@ -59,6 +59,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder");
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
   return cmd;
@@ -81,6 +82,7 @@ int run_animate(const AnimateCommandOptions& o) {
     so.threads = o.threads;
     so.reproject.threads = o.threads;
     so.reference = !o.report.empty();
+    cache_enabled(o.cache);  // checked before the shot is read
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
@@ -88,6 +90,8 @@ int run_animate(const AnimateCommandOptions& o) {
     ShotFrames shot(read_shot_file(o.shot));
     const int frames = shot.frame_count();
     const LensArray first(shot.camera(0));  // sizes and the printed description
+    const std::unique_ptr<ShadowCache> cache = make_cache(shot.scene(), first.desc().pitch, o.cache);
+    so.cache = cache.get();
     {
       // Two point images, two z-buffers and the frame: refuse before the first trace.
       const uint64_t need = static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
@@ -166,7 +170,8 @@ int run_animate(const AnimateCommandOptions& o) {
                               : "");
     }
     if (!o.report.empty()) {
-      std::string cmdline = fmt::format("holoray animate {} -o {} --method {}", o.shot, o.output, o.method);
+      std::string cmdline =
+          fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, o.method, o.cache.cache);
       if (so.method == Method::reproject)
         cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --reach {}{}", o.keyframe_interval, o.reuse,
                                o.fill, o.reach, o.no_leak_check ? " --no-leak-check" : "");

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "cli/cache_options.hpp"
+
 namespace holoray::cli {
 
 struct AnimateCommandOptions {
@@ -12,6 +14,7 @@ struct AnimateCommandOptions {
   std::string format = "png", encoding = "linear", report;
   int keyframe_interval = 8, threads = 0;
   bool resume = false, no_leak_check = false, quiet = false, verbose = false;
+  CacheCommandOptions cache;
 };
 
 CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& opts);

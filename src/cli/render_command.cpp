@@ -75,6 +75,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
+  add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return cmd;
 }
@@ -102,6 +103,7 @@ int run_render(const RenderCommandOptions& o) {
     if (o.max_depth < 1 || o.max_depth > kDepthCap)
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
+    cache_enabled(o.cache);  // checked before the scene is read
 
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
@@ -123,6 +125,8 @@ int run_render(const RenderCommandOptions& o) {
     const auto t_build = Clock::now();
     RenderScene scene(desc);
     scene.set_max_depth(o.max_depth);
+    const std::unique_ptr<ShadowCache> cache = make_cache(scene, camera.desc().pitch, o.cache);
+    scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);
 
     const bool tty = !o.quiet && ::isatty(STDERR_FILENO);
@@ -195,6 +199,7 @@ int run_render(const RenderCommandOptions& o) {
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);
+      if (cache) fmt::print("{}", cache_summary(*cache, r, o.cache));
       fmt::print("wrote      {} ({:.3f} s)\n", o.output, write_s);
     }
     return 0;

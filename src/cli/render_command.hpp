@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "cli/cache_options.hpp"
+
 namespace holoray::cli {
 
 /// Options of `holoray render` as typed; resolved and validated in run_render.
@@ -14,6 +16,7 @@ struct RenderCommandOptions {
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 5, spatial_reuse = 1;
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
+  CacheCommandOptions cache;
   bool quiet = false;
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "reuse/shadow_cache.hpp"
 #include "scene/tessellate.hpp"
 
 namespace holoray {
@@ -77,6 +78,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
 void RenderScene::set_transforms(const std::vector<Affine>& object_to_world) {
   accel_->set_transforms(object_to_world);
   update_epsilon();
+  if (shadow_cache_) shadow_cache_->sync();
 }
 
 void RenderScene::set_max_depth(int depth) {
@@ -134,6 +136,12 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
     case PrimKind::sphere: obj = sphere_object_[base[1] + hit.prim]; break;
     case PrimKind::cone: obj = cone_object_[base[2] + hit.prim]; break;
   }
+  sp.group = hit.group;
+  sp.prim = hit.prim;
+  sp.kind = hit.kind;
+  sp.u = hit.u;
+  sp.v = hit.v;
+  sp.p_object = hit.p_object;
   sp.object = static_cast<int>(obj);
   sp.material = &materials_[object_material_[obj]];
   return sp;

@@ -33,7 +33,14 @@ struct SurfacePoint {
   Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
   int object = -1;  ///< object id: index in file order, files numbered one after another
   const Material* material = nullptr;
+  // The primitive hit and where on it (Hit's), for the surface cells of reuse/.
+  uint32_t group = 0, prim = 0;
+  PrimKind kind = PrimKind::triangle;
+  double u = 0, v = 0;  ///< triangle barycentrics
+  Vec3 p_object;        ///< hit point, the group's object space
 };
+
+class ShadowCache;
 
 /// One scene file of a shot: its description and whether it ever moves.
 struct ScenePart {
@@ -51,7 +58,8 @@ class RenderScene {
   explicit RenderScene(const std::vector<ScenePart>& parts);
 
   /// Object-to-world transform per part for the frames that follow (paper
-  /// §3). Not thread-safe against rendering. Throws std::invalid_argument as
+  /// §3); clears the shadow cache's cells when anything moved. Not
+  /// thread-safe against rendering. Throws std::invalid_argument as
   /// AccelScene::set_transforms does.
   void set_transforms(const std::vector<Affine>& object_to_world);
   void set_background(const Vec3& colour) { background_ = colour; }
@@ -60,6 +68,11 @@ class RenderScene {
   /// hall of mirrors costs 2^depth rays per pixel.
   void set_max_depth(int depth);
   int max_depth() const { return max_depth_; }
+  /// Shadow visibility reuse for the shading (reuse/shadow_cache.hpp), or
+  /// null to trace every shadow ray. Not owned; set_transforms keeps it valid
+  /// (ShadowCache::sync). The cache must have been built on this scene.
+  void set_shadow_cache(ShadowCache* cache) { shadow_cache_ = cache; }
+  const ShadowCache* shadow_cache() const { return shadow_cache_; }
 
   const AccelScene& accel() const { return *accel_; }
   /// Resolves a hit of `ray` (world) into position, normals, object and material.
@@ -82,6 +95,7 @@ class RenderScene {
   void update_epsilon();
 
   int max_depth_ = kMaxRayDepth;
+  ShadowCache* shadow_cache_ = nullptr;
   std::unique_ptr<AccelScene> accel_;
   std::vector<Material> materials_;        // [0] is the default for objects before any `f`
   std::vector<uint32_t> object_material_;  // per object

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "reuse/shadow_cache.hpp"
+
 namespace holoray {
 
 namespace {
@@ -60,6 +62,38 @@ bool light_sample(const RenderScene& scene, const HitFrame& f, const SurfacePoin
   }
   contribution = mul(light.intensity, term);
   return true;
+}
+
+// What the shadow cache says of `shadow` (light number `light`, cast from
+// `sp`): 1 the light is seen, 0 it is blocked, -1 unknown: trace the ray. The
+// cache is asked only where the ray leaves from the light's side of the
+// surface, the side its cells' samples leave from; in a partial cell the
+// occluder its samples met is tested first (one primitive, no BVH).
+int cached_visibility(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const CellRef& cell,
+                      int light, const Ray& shadow, RayCounts& counts) {
+  const ShadowCache* cache = scene.shadow_cache();
+  if (cache == nullptr || cell.slot == CellRef::kNone || dot(f.ng, shadow.dir) <= 0) return -1;
+  OccluderHint hint;
+  switch (cache->visibility(sp, cell, light, counts, hint)) {
+    case LightVisibility::lit: ++counts.shadow_cached; return 1;
+    case LightVisibility::shadowed: ++counts.shadow_cached; return 0;
+    case LightVisibility::partial:
+      if (hint.valid) {
+        Hit h;
+        if (scene.accel().intersect_primitive(shadow, hint.group, hint.kind, hint.prim, h)) {
+          ++counts.shadow_hinted;
+          return 0;
+        }
+      }
+      return -1;
+    case LightVisibility::unknown: return -1;
+  }
+  return -1;
+}
+
+CellRef cell_of(const RenderScene& scene, const SurfacePoint& sp) {
+  const ShadowCache* cache = scene.shadow_cache();
+  return cache ? cache->locate(sp) : CellRef{};
 }
 
 // The secondary rays that leave a hit (nff-notes §10): the mirror ray when
@@ -122,12 +156,18 @@ void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint&
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
-  for (const PointLight& light : scene.lights()) {
+  const CellRef cell = cell_of(scene, sp);
+  const auto& lights = scene.lights();
+  for (size_t l = 0; l < lights.size(); ++l) {
     Ray shadow;
     Vec3 contribution;
-    if (!light_sample(scene, f, sp, light, shadow, contribution)) continue;
-    ++counts.shadow;
-    if (!scene.accel().occluded(shadow)) colour += contribution;
+    if (!light_sample(scene, f, sp, lights[l], shadow, contribution)) continue;
+    int seen = cached_visibility(scene, f, sp, cell, static_cast<int>(l), shadow, counts);
+    if (seen < 0) {
+      ++counts.shadow;
+      seen = !scene.accel().occluded(shadow);
+    }
+    if (seen) colour += contribution;
   }
   add_secondary(scene, ray, sp, f, depth, counts, colour);
   return colour;
@@ -217,21 +257,31 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
   HitFrame f[kPacketSize];
+  CellRef cells[kPacketSize];
   for (int k = 0; k < kPacketSize; ++k) {
     if (!hit[k]) continue;
     f[k] = frame_of(scene, rays.rays[k], sps[k]);
     colours[k] = mul(scene.ambient(), f[k].m->colour) * f[k].m->kd;
+    cells[k] = cell_of(scene, sps[k]);
   }
   // The shadow rays of one packet toward one light share their end point:
   // traced together as a packet.
   RayPacket shadows;
   Vec3 contribution[kPacketSize];
   bool blocked[kPacketSize];
-  for (const PointLight& light : scene.lights()) {
+  const auto& lights = scene.lights();
+  for (size_t l = 0; l < lights.size(); ++l) {
     int cast = 0;
     for (int k = 0; k < kPacketSize; ++k) {
-      shadows.active[k] = hit[k] && light_sample(scene, f[k], sps[k], light, shadows.rays[k], contribution[k]);
-      cast += shadows.active[k];
+      shadows.active[k] = hit[k] && light_sample(scene, f[k], sps[k], lights[l], shadows.rays[k], contribution[k]);
+      if (!shadows.active[k]) continue;
+      const int seen = cached_visibility(scene, f[k], sps[k], cells[k], static_cast<int>(l), shadows.rays[k], counts);
+      if (seen >= 0) {
+        if (seen) colours[k] += contribution[k];
+        shadows.active[k] = false;
+        continue;
+      }
+      ++cast;
     }
     if (cast == 0) continue;
     counts.shadow += static_cast<uint64_t>(cast);

@@ -33,6 +33,8 @@ class ShotFrames {
   Viewpoint viewpoint(int frame) const;
   /// Moves the scene to `frame` (not thread-safe against rendering).
   void seek(int frame);
+  /// Shadow cache for the frames that follow, or null (RenderScene::set_shadow_cache).
+  void set_shadow_cache(ShadowCache* cache) { scene_->set_shadow_cache(cache); }
 
  private:
   Shot shot_;

@@ -46,6 +46,14 @@ std::vector<int> keyframes(int frames, int interval) {
 void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
                      const std::function<void(int, const ImageBuffer&, const FrameReport&)>& emit) {
   const int frames = shot.frame_count();
+  shot.set_shadow_cache(opt.cache);
+  // Full ray tracing of a frame for the report: the baseline, without the cache.
+  auto reference = [&](int f) {
+    shot.set_shadow_cache(nullptr);
+    const Traced ref = trace_frame(shot, f, false, opt.threads);
+    shot.set_shadow_cache(opt.cache);
+    return ref;
+  };
   auto done = [&](int f) { return opt.done && opt.done(f); };
   auto stop = [&] { return opt.stop && opt.stop(); };
   auto keyframe_report = [&](int f, const Traced& t) {
@@ -56,7 +64,16 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     r.pixels = static_cast<int64_t>(t.buffers.colour.width) * t.buffers.colour.height;
     r.traced = r.pixels;
     r.rays = t.stats.rays;
-    if (opt.reference) r.difference = ImageDifference{{0, 0, 0}, 0, r.pixels};
+    if (opt.reference) {
+      if (opt.cache) {
+        const Traced ref = reference(f);
+        r.reference_seconds = ref.seconds;
+        r.difference = compare_images(quantize_8bit(ref.buffers.colour, opt.encoding),
+                                      quantize_8bit(t.buffers.colour, opt.encoding));
+      } else {
+        r.difference = ImageDifference{{0, 0, 0}, 0, r.pixels};
+      }
+    }
     return r;
   };
 
@@ -132,7 +149,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       r.rays = rf.rays;
       r.stages = rf.seconds;
       if (opt.reference) {
-        const Traced ref = trace_frame(shot, f, false, opt.threads);
+        const Traced ref = reference(f);
         r.reference_seconds = ref.seconds;
         r.difference = compare_images(quantize_8bit(ref.buffers.colour, opt.encoding), quantize_8bit(rf.colour, opt.encoding));
       }

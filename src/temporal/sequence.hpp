@@ -28,6 +28,11 @@ struct SequenceOptions {
   /// (for the report): FrameReport::reference and ::difference.
   bool reference = false;
   Encoding encoding = Encoding::linear;  ///< the 8-bit quantisation compared against
+  /// Shadow cache (reuse/shadow_cache.hpp) for traced frames, filling and
+  /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
+  /// it lives across frames while nothing moves. The reference frames
+  /// (`reference`) are always traced without it.
+  ShadowCache* cache = nullptr;
   /// Frames already finished (resume): not emitted; a keyframe among them is
   /// still traced when a frame after it needs its point image.
   std::function<bool(int frame)> done;
