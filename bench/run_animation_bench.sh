@@ -10,25 +10,35 @@ bin=build/holoray
 out=bench/animation_reports
 mkdir -p "$out"
 K=${K:-8}
-methods=("color interpolate" "color trace" "geometry trace")
+# reuse, fill, cache; "full" traces every frame (with the shadow cache living
+# across the frames: the cache's own row against the same run's full trace).
+methods=("color interpolate off" "color trace off" "geometry trace off" "full - on")
 {
   echo "# Temporal reprojection: time saved and quality (\`bash bench/run_animation_bench.sh\`)"
   echo
   echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); keyframe interval $K; full-ray-tracing time measured in the same run (--report)."
   echo
-  echo "| shot | reuse | fill | frames | full s | accelerated s | saved % | mean PSNR dB | min PSNR dB | exact frames | reprojected % | traced % |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "Hold = the do-nothing baseline: each reprojected frame replaced by its nearest keyframe, scored against the same full trace. Rebuilt: frames whose holes exceeded --rebuild-above (5 %) and were traced, not interpolated."
+  echo
+  echo "| shot | reuse | fill | cache | frames | full s | accelerated s | saved % | mean PSNR dB | min PSNR dB | hold mean PSNR dB | hold min PSNR dB | frames below hold | rebuilt | reprojected % | traced % |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > bench/animation_results.md
-for shot in bench/shots/*.toml; do
-  name=$(basename "$shot" .toml)
+# SHOTS="teapot tree" runs only those (default: every shot in bench/shots).
+for name in ${SHOTS:-$(basename -s .toml bench/shots/*.toml)}; do
+  shot=bench/shots/$name.toml
   for m in "${methods[@]}"; do
-    read -r reuse fill <<<"$m"
-    report="$out/${name}_${reuse}_${fill}.md"
-    "$bin" animate "$shot" -o "/tmp/holoray_bench_$name" --keyframe-interval "$K" --reuse "$reuse" --fill "$fill" \
-      --report "$report" -q
+    read -r reuse fill cache <<<"$m"
+    if [ "$reuse" = full ]; then
+      report="$out/${name}_full_cache.md"
+      args=(--method full --cache "$cache")
+    else
+      report="$out/${name}_${reuse}_${fill}.md"
+      args=(--keyframe-interval "$K" --reuse "$reuse" --fill "$fill" --cache "$cache")
+    fi
+    "$bin" animate "$shot" -o "/tmp/holoray_bench_$name" "${args[@]}" --report "$report" -q
     row=$(sed -n '/^| frames/{n;n;p;q}' "$report")
-    IFS='|' read -r _ frames keys full acc saved_s saved mean minp exact rep traced interp _ <<<"$row"
-    echo "| $name | $reuse | $fill |$frames|$full|$acc|$saved|$mean|$minp|$exact|$rep|$traced|" >> bench/animation_results.md
-    echo "$name $reuse $fill:$saved% saved, mean PSNR$mean dB"
+    IFS='|' read -r _ frames keys full acc saved_s saved mean minp hmean hmin below rebuilt exact rep traced interp _ <<<"$row"
+    echo "| $name | $reuse | $fill | $cache |$frames|$full|$acc|$saved|$mean|$minp|$hmean|$hmin|$below|$rebuilt|$rep|$traced|" >> bench/animation_results.md
+    echo "$name $reuse $fill cache $cache:$saved% saved, mean PSNR$mean dB (hold$hmean dB)"
   done
 done

@@ -297,3 +297,58 @@ p 4
 
 }  // namespace
 }  // namespace holoray
+
+namespace holoray {
+namespace {
+
+// Issue 12: colour reuse with interpolation painted the floor over pixels
+// that are background in the true frame. A frame whose every pixel is a hole
+// (nothing reprojected) except a few seeds on each object shows what the
+// fill does with no help from reprojection.
+TEST(FillInterpolate, BackgroundPixelsAreNeverInterpolated) {
+  const SceneDesc desc = parse_nff("b 0.1 0.2 0.3\nl 0 -10 10\nf 0.9 0.3 0.2 1 0 0 0 0\ns -0.6 0 0 0.5\n"
+                                   "f 0.2 0.7 0.3 1 0 0 0 0\ns 0.6 0 0 0.5\n",
+                                   "two_balls.nff");
+  const RenderScene scene(desc);
+  ArraySettings s;
+  s.lenses_x = s.lenses_y = 24;
+  const LensArrayDesc cam = place_array(s, Viewpoint{{0, -6, 0}, {0, 0, 0}, {0, 0, 1}, 40});
+  const FrameBuffers full = trace_full(scene, cam);
+  const LensArray array(cam);
+  const size_t n = static_cast<size_t>(array.pixel_count());
+  ReprojectedFrame rf;
+  rf.colour = full.colour;
+  rf.status.assign(n, PixelStatus::missed);
+  rf.object.assign(n, -1);
+  // Keep every 3rd pixel of each row of hits as if reprojected exactly.
+  size_t seeds = 0;
+  for (size_t p = 0; p < n; p += 3) {
+    if (full.id.data[p] < 0) continue;
+    rf.status[p] = PixelStatus::reprojected;
+    rf.object[p] = static_cast<int32_t>(full.id.data[p]);
+    ++seeds;
+  }
+  ASSERT_GT(seeds, 100u);
+  fill_missed(scene, array, Fill::interpolate, 0, rf);
+  size_t background = 0, interpolated = 0, wrong_surface = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const int i = static_cast<int>(p % array.width()), j = static_cast<int>(p / array.width());
+    if (!primary_ray(array, scene.bounds(), scene.epsilon(), i, j)) {
+      ++background;
+      EXPECT_NE(rf.status[p], PixelStatus::interpolated) << "pixel " << i << "," << j;
+      EXPECT_EQ(rf.colour.at(i, j)[2], 0.3f);
+    }
+    if (rf.status[p] != PixelStatus::interpolated) continue;
+    ++interpolated;
+    // Only from neighbours on one surface: never a blend of the two balls.
+    const float* c = rf.colour.at(i, j);
+    const bool red = c[0] > c[1], green = c[1] > c[0];
+    wrong_surface += !(red && rf.object[p] == 0) && !(green && rf.object[p] == 1);
+  }
+  EXPECT_GT(background, n / 4);
+  EXPECT_GT(interpolated, 100u);
+  EXPECT_EQ(wrong_surface, 0u);
+}
+
+}  // namespace
+}  // namespace holoray

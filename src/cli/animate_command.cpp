@@ -52,6 +52,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--keyframe-interval", o.keyframe_interval, "K: trace every K-th frame and the last")->capture_default_str();
   cmd->add_option("--reuse", o.reuse, "geometry (re-shade reused hits) or color (keep keyframe colours)")->capture_default_str();
   cmd->add_option("--fill", o.fill, "Missed pixels: trace or interpolate")->capture_default_str();
+  cmd->add_option("--rebuild-above", o.rebuild_above, "With --fill interpolate: trace the holes of a frame with more than this percent of them (wider holes interpolate worse than holding a keyframe)")->capture_default_str();
   cmd->add_option("--reach", o.reach, "near (one lens per point) or all (every lens that sees it)")->capture_default_str();
   cmd->add_flag("--no-leak-check", o.no_leak_check, "Keep points seen through gaps of nearer surfaces");
   cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
@@ -78,6 +79,9 @@ int run_animate(const AnimateCommandOptions& o) {
     if (o.keyframe_interval < 1)
       throw std::invalid_argument(fmt::format("--keyframe-interval: must be at least 1, got {}", o.keyframe_interval));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
+    if (!(o.rebuild_above >= 0 && o.rebuild_above <= 100))
+      throw std::invalid_argument(fmt::format("--rebuild-above: must be a percentage from 0 to 100, got {}", o.rebuild_above));
+    so.max_interpolated_share = o.rebuild_above / 100;
     so.keyframe_interval = o.keyframe_interval;
     so.threads = o.threads;
     so.reproject.threads = o.threads;
@@ -173,8 +177,9 @@ int run_animate(const AnimateCommandOptions& o) {
       std::string cmdline =
           fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, o.method, o.cache.cache);
       if (so.method == Method::reproject)
-        cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --reach {}{}", o.keyframe_interval, o.reuse,
-                               o.fill, o.reach, o.no_leak_check ? " --no-leak-check" : "");
+        cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}",
+                               o.keyframe_interval, o.reuse, o.fill, o.rebuild_above, o.reach,
+                               o.no_leak_check ? " --no-leak-check" : "");
       const LensArray& cam = first;
       write_text_file(o.report,
                       markdown_report(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),

@@ -13,6 +13,7 @@ struct AnimateCommandOptions {
   std::string shot, output, method = "reproject", fill = "trace", reuse = "geometry", reach = "near";
   std::string format = "png", encoding = "linear", report;
   int keyframe_interval = 8, threads = 0;
+  double rebuild_above = 5;  // percent of holes
   bool resume = false, no_leak_check = false, quiet = false, verbose = false;
   CacheCommandOptions cache;
 };

@@ -37,11 +37,31 @@ void trace_holes(const RenderScene& scene, const LensArray& camera, int threads,
   for (const RayCounts& c : tile_rays) frame.rays += c;
 }
 
+// A hole whose line cannot meet the scene's bounds shows the background:
+// set exactly, at the cost of a box test and no ray (the same test the
+// tracer makes first), so interpolation never paints a surface over it.
+void settle_background(const RenderScene& scene, const LensArray& camera, ReprojectedFrame& frame) {
+  const int W = camera.width();
+  const Vec3 bg = scene.background();
+  for (size_t p = 0; p < frame.status.size(); ++p) {
+    if (!is_hole(frame.status[p])) continue;
+    const int i = static_cast<int>(p % W), j = static_cast<int>(p / W);
+    if (primary_ray(camera, scene.bounds(), scene.epsilon(), i, j)) continue;
+    float* o = frame.colour.at(i, j);
+    o[0] = static_cast<float>(bg.x), o[1] = static_cast<float>(bg.y), o[2] = static_cast<float>(bg.z);
+    frame.status[p] = PixelStatus::traced;
+    frame.object[p] = -1;
+  }
+}
+
 // Interpolation from valid neighbours in the same elemental image, one ring
-// of growth at a time: every hole with a valid 8-neighbour takes their mean.
-// A ring reads the state before it only (its results are applied after), so
-// the result does not depend on the order or the thread count. Only the
-// holes are visited, so a ring costs what it fills, not the frame.
+// of growth at a time: every hole with a valid 8-neighbour on a surface takes
+// the mean of the neighbours on the surface most of them show (the object id),
+// so a surface's colour never bleeds onto another or onto the background;
+// holes next to background only are traced. A ring reads the state before
+// it only (its results are applied after), so the result does not depend on
+// the order or the thread count. Only the holes are visited, so a ring costs
+// what it fills, not the frame.
 void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& frame) {
   const int W = camera.width(), H = camera.height();
   std::vector<size_t> holes;
@@ -49,6 +69,7 @@ void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& f
     if (is_hole(frame.status[p])) holes.push_back(p);
   struct Filled {
     bool ok = false;
+    int32_t object = -1;
     float c[3] = {0, 0, 0};
   };
   std::vector<Filled> result;
@@ -61,20 +82,34 @@ void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& f
       for (size_t h = chunk * kChunk; h < end; ++h) {
         const int i = static_cast<int>(holes[h] % W), j = static_cast<int>(holes[h] / W);
         const LensIndex lens = camera.lens_of_pixel(i, j);
-        float sum[3] = {0, 0, 0};
-        int n = 0;
+        size_t near[8];
+        int count = 0;
         for (int dj = -1; dj <= 1; ++dj)
           for (int di = -1; di <= 1; ++di) {
             const int ni = i + di, nj = j + dj;
             if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H) continue;
-            if (is_hole(frame.status[static_cast<size_t>(nj) * W + ni]) || !(camera.lens_of_pixel(ni, nj) == lens)) continue;
-            const float* c = frame.colour.at(ni, nj);
-            sum[0] += c[0], sum[1] += c[1], sum[2] += c[2];
-            ++n;
+            const size_t q = static_cast<size_t>(nj) * W + ni;
+            if (is_hole(frame.status[q]) || frame.object[q] < 0 || !(camera.lens_of_pixel(ni, nj) == lens)) continue;
+            near[count++] = q;
           }
-        if (n == 0) continue;
+        // The object most neighbours show (ties: the smallest id, for determinism).
+        int32_t object = -1;
+        int best = 0;
+        for (int a = 0; a < count; ++a) {
+          int votes = 0;
+          for (int b = 0; b < count; ++b) votes += frame.object[near[b]] == frame.object[near[a]];
+          if (votes > best || (votes == best && frame.object[near[a]] < object)) best = votes, object = frame.object[near[a]];
+        }
+        if (best == 0) continue;
+        float sum[3] = {0, 0, 0};
+        for (int a = 0; a < count; ++a) {
+          if (frame.object[near[a]] != object) continue;
+          const float* c = frame.colour.data.data() + 3 * near[a];
+          sum[0] += c[0], sum[1] += c[1], sum[2] += c[2];
+        }
         result[h].ok = true;
-        for (int k = 0; k < 3; ++k) result[h].c[k] = sum[k] / static_cast<float>(n);
+        result[h].object = object;
+        for (int k = 0; k < 3; ++k) result[h].c[k] = sum[k] / static_cast<float>(best);
       }
     });
     size_t kept = 0;
@@ -87,7 +122,7 @@ void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& f
       float* o = frame.colour.at(static_cast<int>(p % W), static_cast<int>(p / W));
       o[0] = result[h].c[0], o[1] = result[h].c[1], o[2] = result[h].c[2];
       frame.status[p] = PixelStatus::interpolated;
-      frame.object[p] = -1;
+      frame.object[p] = result[h].object;
     }
     if (kept == holes.size()) break;
     holes.resize(kept);
@@ -98,7 +133,10 @@ void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& f
 
 void fill_missed(const RenderScene& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame) {
   const auto start = std::chrono::steady_clock::now();
-  if (fill == Fill::interpolate) interpolate_holes(camera, threads, frame);
+  if (fill == Fill::interpolate) {
+    settle_background(scene, camera, frame);
+    interpolate_holes(camera, threads, frame);
+  }
   trace_holes(scene, camera, threads, frame);
   frame.seconds.fill = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

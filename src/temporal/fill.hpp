@@ -11,7 +11,9 @@ namespace holoray {
 enum class Fill {
   trace,       ///< ray trace exactly those pixels (one sample at the centre)
   interpolate  ///< the paper: mean of the valid 8-neighbours in the same elemental
-               ///< image, grown ring by ring; pixels with none are traced
+               ///< image on the surface most of them show, grown ring by ring;
+               ///< holes whose line misses the scene's bounds are background
+               ///< (exact, no ray); pixels with no neighbour on a surface are traced
 };
 
 /// Fills `frame` in place; the scene must be at the frame's time.

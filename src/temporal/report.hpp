@@ -17,10 +17,14 @@ struct RunSummary {
   double accelerated_seconds = 0;  ///< sum of seconds
   double saved_seconds() const { return full_seconds - accelerated_seconds; }
   double saved_percent() const { return full_seconds > 0 ? 100 * saved_seconds() / full_seconds : 0; }
-  double mean_psnr = 0;  ///< over reprojected frames with a finite PSNR
-  double min_psnr = 0;   ///< over reprojected frames (inf when all are exact)
+  double mean_psnr = 0;  ///< over reprojected frames (and keyframes traced with the cache) with a finite PSNR
+  double min_psnr = 0;   ///< over the same frames (inf when all are exact)
   int exact_frames = 0;  ///< reprojected frames identical to the reference
   double reprojected_percent = 0, traced_percent = 0, interpolated_percent = 0;  ///< of the reprojected frames' pixels
+  /// Holding the nearest keyframe (the do-nothing baseline), over the same frames.
+  double mean_hold_psnr = 0, min_hold_psnr = 0;
+  int below_hold_frames = 0;  ///< reprojected frames that scored below holding
+  int rebuilt_frames = 0;     ///< frames whose holes were traced, not interpolated
 };
 
 RunSummary summarise(const std::vector<FrameReport>& frames);

@@ -142,7 +142,13 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       r.leaks = static_cast<int64_t>(rf.count(PixelStatus::leak));
       r.rejected = static_cast<int64_t>(rf.count(PixelStatus::rejected));
       r.reprojected = static_cast<int64_t>(rf.count(PixelStatus::reprojected));
-      fill_missed(shot.scene(), camera, opt.fill, opt.threads, rf);
+      Fill fill = opt.fill;
+      const int64_t holes = r.missed + r.leaks + r.rejected;
+      if (fill == Fill::interpolate && static_cast<double>(holes) > opt.max_interpolated_share * r.pixels) {
+        fill = Fill::trace;
+        r.rebuilt = true;
+      }
+      fill_missed(shot.scene(), camera, fill, opt.threads, rf);
       r.seconds = seconds_since(start);
       r.traced = static_cast<int64_t>(rf.count(PixelStatus::traced));
       r.interpolated = static_cast<int64_t>(rf.count(PixelStatus::interpolated));
@@ -151,7 +157,10 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       if (opt.reference) {
         const Traced ref = reference(f);
         r.reference_seconds = ref.seconds;
-        r.difference = compare_images(quantize_8bit(ref.buffers.colour, opt.encoding), quantize_8bit(rf.colour, opt.encoding));
+        const ImageBuffer truth = quantize_8bit(ref.buffers.colour, opt.encoding);
+        r.difference = compare_images(truth, quantize_8bit(rf.colour, opt.encoding));
+        const PointImage& nearest = f - f0 <= f1 - f ? *prev : *next;
+        r.hold = compare_images(truth, quantize_8bit(nearest.colour, opt.encoding));
       }
       emit(f, rf.colour, r);
     }
