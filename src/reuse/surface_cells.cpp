@@ -22,8 +22,8 @@ int cells_for(double length, double cell_size) {
   return static_cast<int>(std::min<double>(n, SurfaceCells::kMaxCellsPerSide));
 }
 
-int cell_index(double s, int n) {  // s in [0, 1]
-  const int i = static_cast<int>(s * n);
+int cell_index(double s, int n) {  // s in [0, 1]; fmin/fmax also map NaN into range (no UB in the cast)
+  const int i = static_cast<int>(std::fmax(0.0, std::fmin(s, 1.0)) * n);
   return std::clamp(i, 0, n - 1);
 }
 
@@ -129,7 +129,7 @@ CellRef SurfaceCells::locate(uint32_t group, PrimKind kind, uint32_t prim, doubl
   switch (kind) {
     case PrimKind::triangle: {
       const int n = pc.n;
-      const double a = std::clamp(u, 0.0, 1.0) * n, b = std::clamp(v, 0.0, 1.0) * n;
+      const double a = std::fmax(0.0, std::fmin(u, 1.0)) * n, b = std::fmax(0.0, std::fmin(v, 1.0)) * n;
       const int i = std::clamp(static_cast<int>(a), 0, n - 1);
       const int j = std::clamp(static_cast<int>(b), 0, n - 1 - i);
       const bool upper = (a - i) + (b - j) > 1 && i + j < n - 1;
@@ -159,7 +159,7 @@ CellRef SurfaceCells::locate(uint32_t group, PrimKind kind, uint32_t prim, doubl
       int face;
       double s;
       square_map(dot(r, e1), dot(r, e2), face, s);
-      const int hi = cell_index(std::clamp(h, 0.0, 1.0), pc.n), i = cell_index((s + 1) * 0.5, pc.m);
+      const int hi = cell_index(h, pc.n), i = cell_index((s + 1) * 0.5, pc.m);
       ref.local = static_cast<uint32_t>((hi * 4 + face) * pc.m + i);
       break;
     }
