@@ -17,10 +17,13 @@ constexpr double kGrazingCos = 1e-6;
 // The cell table's own size per primitive (SurfaceCells::PrimCells), for the bound.
 constexpr uint64_t kTableBytesPerPrim = 16;
 
+uint64_t table_bytes(const AccelScene& accel) {
+  return (accel.triangle_count() + accel.sphere_count() + accel.cone_count()) * kTableBytesPerPrim;
+}
+
 uint64_t slots_for(const AccelScene& accel, size_t lights, uint64_t limit) {
   if (lights == 0) return 0;
-  const uint64_t prims = accel.triangle_count() + accel.sphere_count() + accel.cone_count();
-  const uint64_t table = prims * kTableBytesPerPrim;
+  const uint64_t table = table_bytes(accel);
   return limit > table ? (limit - table) / (4 * lights) : 0;
 }
 
@@ -67,11 +70,7 @@ ShadowCache::ShadowCache(const RenderScene& scene, const ShadowCacheOptions& opt
   snapshot_ = transform_bits(accel);
 }
 
-uint64_t ShadowCache::bytes() const {
-  const AccelScene& accel = scene_.accel();
-  const uint64_t prims = accel.triangle_count() + accel.sphere_count() + accel.cone_count();
-  return cells_.slot_count() * lights_ * 4 + prims * kTableBytesPerPrim;
-}
+uint64_t ShadowCache::bytes() const { return cells_.slot_count() * lights_ * 4 + table_bytes(scene_.accel()); }
 
 bool ShadowCache::sync() {
   std::vector<uint64_t> now = transform_bits(scene_.accel());
@@ -160,7 +159,6 @@ LightVisibility ShadowCache::visibility(const SurfacePoint& sp, const CellRef& c
   if (v == 0) {
     v = classify(sp, cell, light, counts);
     word.store(v, std::memory_order_relaxed);
-    classified_.fetch_add(1, std::memory_order_relaxed);
   }
   const auto state = static_cast<LightVisibility>(v >> kStateShift);
   if (state == LightVisibility::partial) hint = decode(v & kIdMask);

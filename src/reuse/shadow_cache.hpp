@@ -93,8 +93,6 @@ class ShadowCache {
   /// Bytes held (cells x lights x 4 + the cell table).
   uint64_t bytes() const;
   const SurfaceCells& cells() const { return cells_; }
-  /// Cells classified since construction (all lights counted once per cell and light).
-  uint64_t classified() const { return classified_.load(std::memory_order_relaxed); }
   /// Times sync() cleared the cells.
   uint64_t clears() const { return clears_; }
 
@@ -109,7 +107,6 @@ class ShadowCache {
   std::unique_ptr<std::atomic<uint32_t>[]> words_;  // [slot * lights + light]: state << 30 | occluder id + 1
   std::vector<std::array<uint32_t, 3>> prim_base_;   // per group: first global id of each kind
   std::vector<uint64_t> snapshot_;                    // transforms the cells hold, as bits
-  mutable std::atomic<uint64_t> classified_{0};
   uint64_t clears_ = 0;
 };
 

@@ -66,6 +66,19 @@ Vec3 square_unmap(int face, double s, const Vec3& e1, const Vec3& e2) {
   }
 }
 
+// A square patch's samples in the layout samples() documents: its corners
+// (i, j), (i+1, j), (i, j+1), (i+1, j+1), then its centre; at(a, b) maps
+// patch coordinates to a sample.
+template <class At>
+int patch_samples(int i, int j, At&& at, CellSample out[SurfaceCells::kMaxSamples]) {
+  out[0] = at(i, j);
+  out[1] = at(i + 1, j);
+  out[2] = at(i, j + 1);
+  out[3] = at(i + 1, j + 1);
+  out[4] = at(i + 0.5, j + 0.5);
+  return 5;
+}
+
 }  // namespace
 
 SurfaceCells::SurfaceCells(const AccelScene& accel, double cell_size, uint64_t max_slots) : accel_(accel) {
@@ -202,12 +215,7 @@ int SurfaceCells::samples(uint32_t group, PrimKind kind, uint32_t prim, uint32_t
         const Vec3 d = normalize(axis_vec(axis, sign) + axis_vec(a, sa) + axis_vec(b, sb));
         return CellSample{s.centre + d * std::fabs(s.radius), d};
       };
-      out[0] = at(i, j);
-      out[1] = at(i + 1, j);
-      out[2] = at(i, j + 1);
-      out[3] = at(i + 1, j + 1);
-      out[4] = at(i + 0.5, j + 0.5);
-      return 5;
+      return patch_samples(i, j, at, out);
     }
     case PrimKind::cone: {
       const Cone& cone = geo.cones[prim];
@@ -228,12 +236,7 @@ int SurfaceCells::samples(uint32_t group, PrimKind kind, uint32_t prim, uint32_t
         const Vec3 n = normalize(radial * len - ax * (ra - rb));
         return CellSample{cone.base + ax * (h * len) + radial * r, n};
       };
-      out[0] = at(hi, i);
-      out[1] = at(hi + 1, i);
-      out[2] = at(hi, i + 1);
-      out[3] = at(hi + 1, i + 1);
-      out[4] = at(hi + 0.5, i + 0.5);
-      return 5;
+      return patch_samples(hi, i, at, out);
     }
   }
   return 0;
