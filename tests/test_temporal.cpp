@@ -11,6 +11,7 @@
 #include "render/renderer.hpp"
 #include "scene/nff_reader.hpp"
 #include "temporal/fill.hpp"
+#include "temporal/report.hpp"
 #include "temporal/reproject.hpp"
 #include "test_util.hpp"
 
@@ -348,6 +349,38 @@ TEST(FillInterpolate, BackgroundPixelsAreNeverInterpolated) {
   EXPECT_GT(background, n / 4);
   EXPECT_GT(interpolated, 100u);
   EXPECT_EQ(wrong_surface, 0u);
+}
+
+}  // namespace
+}  // namespace holoray
+
+namespace holoray {
+namespace {
+
+ImageDifference at_psnr(double db) {
+  const double mse = 255.0 * 255.0 / std::pow(10.0, db / 10);
+  return ImageDifference{{mse, mse, mse}, mse, 100};
+}
+
+TEST(RunSummary, HoldIsTheBaselineOfReprojectedFramesOnly) {
+  FrameReport key;
+  key.keyframe = true;
+  key.difference = ImageDifference{{0, 0, 0}, 0, 100};
+  FrameReport better, worse;
+  better.difference = at_psnr(40);
+  better.hold = at_psnr(30);
+  worse.difference = at_psnr(25);
+  worse.hold = at_psnr(34);
+  worse.rebuilt = true;
+  const RunSummary s = summarise({key, better, worse, key});
+  EXPECT_NEAR(s.mean_hold_psnr, 32, 1e-9);
+  EXPECT_NEAR(s.min_hold_psnr, 30, 1e-9);
+  EXPECT_EQ(s.below_hold_frames, 1);
+  EXPECT_EQ(s.rebuilt_frames, 1);
+  // A run with no reprojected frame held nothing: no baseline, not "inf".
+  const RunSummary full = summarise({key, key});
+  EXPECT_TRUE(std::isnan(full.mean_hold_psnr));
+  EXPECT_NE(markdown_report("t", {}, {key, key}).find("| - | - |"), std::string::npos);
 }
 
 }  // namespace

@@ -8,7 +8,7 @@
 namespace holoray {
 
 namespace {
-std::string db(double v) { return std::isinf(v) ? "inf" : fmt::format("{:.2f}", v); }
+std::string db(double v) { return std::isnan(v) ? "-" : std::isinf(v) ? "inf" : fmt::format("{:.2f}", v); }
 double pct(int64_t part, int64_t whole) { return whole > 0 ? 100.0 * part / whole : 0; }
 }  // namespace
 
@@ -18,7 +18,7 @@ RunSummary summarise(const std::vector<FrameReport>& frames) {
   int psnr_n = 0;
   s.min_psnr = s.min_hold_psnr = INFINITY;
   double hold_sum = 0;
-  int hold_n = 0;
+  int hold_n = 0, held = 0;
   int64_t px = 0, reprojected = 0, traced = 0, interpolated = 0;
   for (const FrameReport& f : frames) {
     ++s.frames;
@@ -41,6 +41,7 @@ RunSummary summarise(const std::vector<FrameReport>& frames) {
     interpolated += f.interpolated;
     s.rebuilt_frames += f.rebuilt;
     if (f.hold) {
+      ++held;
       const double h = f.hold->psnr_all();
       s.min_hold_psnr = std::min(s.min_hold_psnr, h);
       if (!std::isinf(h)) hold_sum += h, ++hold_n;
@@ -58,6 +59,7 @@ RunSummary summarise(const std::vector<FrameReport>& frames) {
   }
   s.mean_psnr = psnr_n ? psnr_sum / psnr_n : INFINITY;
   s.mean_hold_psnr = hold_n ? hold_sum / hold_n : INFINITY;
+  if (held == 0) s.mean_hold_psnr = s.min_hold_psnr = NAN;  // no reprojected frame: nothing was held
   s.reprojected_percent = pct(reprojected, px);
   s.traced_percent = pct(traced, px);
   s.interpolated_percent = pct(interpolated, px);

@@ -21,7 +21,8 @@ struct RunSummary {
   double min_psnr = 0;   ///< over the same frames (inf when all are exact)
   int exact_frames = 0;  ///< reprojected frames identical to the reference
   double reprojected_percent = 0, traced_percent = 0, interpolated_percent = 0;  ///< of the reprojected frames' pixels
-  /// Holding the nearest keyframe (the do-nothing baseline), over the same frames.
+  /// Holding the nearest keyframe (the do-nothing baseline), over the same
+  /// frames; NaN (printed "-") when no frame was reprojected.
   double mean_hold_psnr = 0, min_hold_psnr = 0;
   int below_hold_frames = 0;  ///< reprojected frames that scored below holding
   int rebuilt_frames = 0;     ///< frames whose holes were traced, not interpolated
