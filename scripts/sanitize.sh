@@ -11,8 +11,9 @@ kinds=("$@")
 ((${#kinds[@]})) || kinds=(address thread)
 jobs=$(nproc)
 # The tests that run work on several threads: rendering, reprojection, filling,
-# determinism over thread counts and tile orders, and the interrupted sequences.
-TSAN_TESTS="^(Render|PathologicalScenes|GridsAndStrides/SpatialReuse|Reprojection|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
+# determinism over thread counts and tile orders (the shadow cache's too), and the
+# interrupted sequences.
+TSAN_TESTS="^(Render|ShadowCache|PathologicalScenes|GridsAndStrides/SpatialReuse|Reprojection|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
 for kind in "${kinds[@]}"; do
   case $kind in
     address)
