@@ -139,9 +139,8 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   sp.group = hit.group;
   sp.prim = hit.prim;
   sp.kind = hit.kind;
-  sp.u = hit.u;
-  sp.v = hit.v;
-  sp.p_object = hit.p_object;
+  sp.u = static_cast<float>(hit.u);
+  sp.v = static_cast<float>(hit.v);
   sp.object = static_cast<int>(obj);
   sp.material = &materials_[object_material_[obj]];
   return sp;

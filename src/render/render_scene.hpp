@@ -33,11 +33,11 @@ struct SurfacePoint {
   Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
   int object = -1;  ///< object id: index in file order, files numbered one after another
   const Material* material = nullptr;
-  // The primitive hit and where on it (Hit's), for the surface cells of reuse/.
+  // The primitive hit and its barycentrics (Hit's), for the surface cells of
+  // reuse/. Kept small: every hit carries them, cache or not.
   uint32_t group = 0, prim = 0;
   PrimKind kind = PrimKind::triangle;
-  double u = 0, v = 0;  ///< triangle barycentrics
-  Vec3 p_object;        ///< hit point, the group's object space
+  float u = 0, v = 0;  ///< triangle barycentrics (a cell index needs no more)
 };
 
 class ShadowCache;

@@ -93,7 +93,7 @@ int cached_visibility(const RenderScene& scene, const HitFrame& f, const Surface
 
 CellRef cell_of(const RenderScene& scene, const SurfacePoint& sp) {
   const ShadowCache* cache = scene.shadow_cache();
-  return cache ? cache->locate(sp) : CellRef{};
+  return cache ? cache->locate(sp) : CellRef::none();
 }
 
 // The secondary rays that leave a hit (nff-notes §10): the mirror ray when
@@ -156,13 +156,14 @@ void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint&
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
-  const CellRef cell = cell_of(scene, sp);
+  const bool cached = scene.shadow_cache() != nullptr;
+  const CellRef cell = cached ? cell_of(scene, sp) : CellRef::none();
   const auto& lights = scene.lights();
   for (size_t l = 0; l < lights.size(); ++l) {
     Ray shadow;
     Vec3 contribution;
     if (!light_sample(scene, f, sp, lights[l], shadow, contribution)) continue;
-    int seen = cached_visibility(scene, f, sp, cell, static_cast<int>(l), shadow, counts);
+    int seen = cached ? cached_visibility(scene, f, sp, cell, static_cast<int>(l), shadow, counts) : -1;
     if (seen < 0) {
       ++counts.shadow;
       seen = !scene.accel().occluded(shadow);
@@ -257,12 +258,13 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
   HitFrame f[kPacketSize];
-  CellRef cells[kPacketSize];
+  CellRef cells[kPacketSize];  // set and read only when there is a cache
+  const bool cached = scene.shadow_cache() != nullptr;
   for (int k = 0; k < kPacketSize; ++k) {
     if (!hit[k]) continue;
     f[k] = frame_of(scene, rays.rays[k], sps[k]);
     colours[k] = mul(scene.ambient(), f[k].m->colour) * f[k].m->kd;
-    cells[k] = cell_of(scene, sps[k]);
+    if (cached) cells[k] = cell_of(scene, sps[k]);
   }
   // The shadow rays of one packet toward one light share their end point:
   // traced together as a packet.
@@ -275,6 +277,10 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPack
     for (int k = 0; k < kPacketSize; ++k) {
       shadows.active[k] = hit[k] && light_sample(scene, f[k], sps[k], lights[l], shadows.rays[k], contribution[k]);
       if (!shadows.active[k]) continue;
+      if (!cached) {
+        ++cast;
+        continue;
+      }
       const int seen = cached_visibility(scene, f[k], sps[k], cells[k], static_cast<int>(l), shadows.rays[k], counts);
       if (seen >= 0) {
         if (seen) colours[k] += contribution[k];

@@ -83,8 +83,12 @@ bool ShadowCache::sync() {
 }
 
 CellRef ShadowCache::locate(const SurfacePoint& sp) const {
-  if (lights_ == 0) return {};
-  return cells_.locate(sp.group, sp.kind, sp.prim, sp.u, sp.v, sp.p_object);
+  if (lights_ == 0) return CellRef::none();
+  // Spheres and cones locate by the object-space point: only they pay for the transform.
+  Vec3 p_object = sp.position;
+  if (sp.kind != PrimKind::triangle && !scene_.accel().transform(sp.group).is_identity())
+    p_object = scene_.accel().inverse_transform(sp.group).point(sp.position);
+  return cells_.locate(sp.group, sp.kind, sp.prim, sp.u, sp.v, p_object);
 }
 
 uint32_t ShadowCache::encode(uint32_t group, PrimKind kind, uint32_t prim) const {

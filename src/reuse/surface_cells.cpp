@@ -136,7 +136,7 @@ uint64_t SurfaceCells::build(double c, uint64_t max_slots) {
 CellRef SurfaceCells::locate(uint32_t group, PrimKind kind, uint32_t prim, double u, double v,
                              const Vec3& p_object) const {
   const PrimCells& pc = prims_[static_cast<int>(kind)][group][prim];
-  CellRef ref;
+  CellRef ref = CellRef::none();
   if (pc.first == CellRef::kNone) return ref;
   const GeometryGroup& geo = accel_.geometry(group);
   switch (kind) {

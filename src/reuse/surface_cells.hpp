@@ -28,10 +28,13 @@ namespace holoray {
 
 /// Where a hit falls: the cell's slot (index into per-cell storage, dense
 /// over the whole scene) and its index within its primitive.
+/// Trivial (no member initialisers) so that per-lane arrays of them cost
+/// nothing on the shading path when no cache is in use; none() is "no cell".
 struct CellRef {
   static constexpr uint64_t kNone = ~uint64_t{0};
-  uint64_t slot = kNone;  ///< kNone: the primitive has no cells (over the memory bound)
-  uint32_t local = 0;
+  uint64_t slot;  ///< kNone: the primitive has no cells (over the memory bound)
+  uint32_t local;
+  static constexpr CellRef none() { return {kNone, 0}; }
 };
 
 /// One fixed sample point of a cell (object space of its group).
