@@ -10,9 +10,16 @@ bin=build/holoray
 out=bench/animation_reports
 mkdir -p "$out"
 K=${K:-8}
-# reuse, fill, cache; "full" traces every frame (with the shadow cache living
-# across the frames: the cache's own row against the same run's full trace).
-methods=("color interpolate off" "color trace off" "geometry trace off" "full - on")
+# method, reuse, fill, cache. reproject: the paper's forward splat; reverse:
+# eye rays traced, shading reused (no fill); full: every frame traced, with
+# the shadow cache living across the frames (the cache's own row against the
+# same run's full trace). METHODS="..." (one entry per line) runs only those.
+default_methods="reverse color - off
+reverse visibility - off
+reproject color interpolate off
+reproject geometry trace off
+full - - on"
+mapfile -t methods <<<"${METHODS:-$default_methods}"
 {
   echo "# Temporal reprojection: time saved and quality (\`bash bench/run_animation_bench.sh\`)"
   echo
@@ -20,25 +27,30 @@ methods=("color interpolate off" "color trace off" "geometry trace off" "full - 
   echo
   echo "Hold = the do-nothing baseline: each reprojected frame replaced by its nearest keyframe, scored against the same full trace. Rebuilt: frames whose holes exceeded --rebuild-above (5 %) and were traced, not interpolated."
   echo
-  echo "| shot | reuse | fill | cache | frames | full s | accelerated s | saved % | mean PSNR dB | min PSNR dB | hold mean PSNR dB | hold min PSNR dB | frames below hold | rebuilt | reprojected % | traced % |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "Reverse: every eye ray traced (so nothing is missed), a hit's shading reused from the keyframe pixel that saw it (color: its colour; visibility: its light visibility and mirror/refraction light, ambient, diffuse and highlights computed exactly, edges traced). Reprojected % = pixels reused; traced % = pixels shaded or background."
+  echo
+  echo "| shot | method | reuse | fill | cache | frames | full s | accelerated s | saved % | mean PSNR dB | min PSNR dB | hold mean PSNR dB | hold min PSNR dB | frames below hold | rebuilt | reprojected % | traced % |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > bench/animation_results.md
 # SHOTS="teapot tree" runs only those (default: every shot in bench/shots).
 for name in ${SHOTS:-$(basename -s .toml bench/shots/*.toml)}; do
   shot=bench/shots/$name.toml
   for m in "${methods[@]}"; do
-    read -r reuse fill cache <<<"$m"
-    if [ "$reuse" = full ]; then
+    read -r method reuse fill cache <<<"$m"
+    if [ "$method" = full ]; then
       report="$out/${name}_full_cache.md"
       args=(--method full --cache "$cache")
+    elif [ "$method" = reverse ]; then
+      report="$out/${name}_reverse_${reuse}.md"
+      args=(--method reverse --keyframe-interval "$K" --reuse "$reuse" --cache "$cache")
     else
       report="$out/${name}_${reuse}_${fill}.md"
-      args=(--keyframe-interval "$K" --reuse "$reuse" --fill "$fill" --cache "$cache")
+      args=(--method reproject --keyframe-interval "$K" --reuse "$reuse" --fill "$fill" --cache "$cache")
     fi
     "$bin" animate "$shot" -o "/tmp/holoray_bench_$name" "${args[@]}" --report "$report" -q
     row=$(sed -n '/^| frames/{n;n;p;q}' "$report")
     IFS='|' read -r _ frames keys full acc saved_s saved mean minp hmean hmin below rebuilt exact rep traced interp _ <<<"$row"
-    echo "| $name | $reuse | $fill | $cache |$frames|$full|$acc|$saved|$mean|$minp|$hmean|$hmin|$below|$rebuilt|$rep|$traced|" >> bench/animation_results.md
-    echo "$name $reuse $fill cache $cache:$saved% saved, mean PSNR$mean dB (hold$hmean dB)"
+    echo "| $name | $method | $reuse | $fill | $cache |$frames|$full|$acc|$saved|$mean|$minp|$hmean|$hmin|$below|$rebuilt|$rep|$traced|" >> bench/animation_results.md
+    echo "$name $method $reuse $fill cache $cache:$saved% saved, mean PSNR$mean dB (hold$hmean dB)"
   done
 done

@@ -48,9 +48,12 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("animate", "Render an animated shot (TOML) as numbered EIA frames");
   cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required();
   cmd->add_option("-o,--output", o.output, "Output folder (created if missing)")->required();
-  cmd->add_option("--method", o.method, "full (trace every frame) or reproject (keyframes + reprojection)")->capture_default_str();
+  cmd->add_option("--method", o.method, "full (trace every frame), reproject (keyframes + the paper's forward reprojection) or reverse (keyframes + eye rays traced, shading reused)")->capture_default_str();
   cmd->add_option("--keyframe-interval", o.keyframe_interval, "K: trace every K-th frame and the last")->capture_default_str();
-  cmd->add_option("--reuse", o.reuse, "geometry (re-shade reused hits) or color (keep keyframe colours)")->capture_default_str();
+  cmd->add_option("--reuse", o.reuse,
+                  "What a reprojected pixel reuses. --method reproject: geometry (default; re-shade the reused hit) or "
+                  "color (the keyframe colour); --method reverse: color (default; the keyframe colour) or visibility "
+                  "(light visibility and reflected light reused, local shading exact)");
   cmd->add_option("--fill", o.fill, "Missed pixels: trace or interpolate")->capture_default_str();
   cmd->add_option("--rebuild-above", o.rebuild_above, "With --fill interpolate: trace the holes of a frame with more than this percent of them (wider holes interpolate worse than holding a keyframe)")->capture_default_str();
   cmd->add_option("--reach", o.reach, "near (one lens per point) or all (every lens that sees it)")->capture_default_str();
@@ -69,8 +72,13 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
 int run_animate(const AnimateCommandOptions& o) {
   try {
     SequenceOptions so;
-    so.method = pick<Method>("--method", o.method, {{"full", Method::full}, {"reproject", Method::reproject}});
-    so.reproject.reuse = pick<Reuse>("--reuse", o.reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
+    so.method = pick<Method>("--method", o.method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
+    const std::string reuse = !o.reuse.empty() ? o.reuse : so.method == Method::reverse ? "color" : "geometry";
+    if (so.method == Method::reverse)
+      so.reverse.reuse =
+          pick<ReverseReuse>("--reuse", reuse, {{"visibility", ReverseReuse::visibility}, {"color", ReverseReuse::color}});
+    else
+      so.reproject.reuse = pick<Reuse>("--reuse", reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
     so.reproject.reach = pick<Reach>("--reach", o.reach, {{"near", Reach::near}, {"all", Reach::all}});
     so.fill = pick<Fill>("--fill", o.fill, {{"trace", Fill::trace}, {"interpolate", Fill::interpolate}});
     so.reproject.detect_leaks = !o.no_leak_check;
@@ -133,7 +141,9 @@ int run_animate(const AnimateCommandOptions& o) {
                  to_string(cam.desc().mode));
       if (so.method == Method::reproject)
         fmt::print("method     reproject: keyframe every {}, reuse {}, fill {}, reach {}{}\n", o.keyframe_interval,
-                   o.reuse, o.fill, o.reach, o.no_leak_check ? ", no leak check" : "");
+                   reuse, o.fill, o.reach, o.no_leak_check ? ", no leak check" : "");
+      else if (so.method == Method::reverse)
+        fmt::print("method     reverse: keyframe every {}, eye rays traced, reuse {}\n", o.keyframe_interval, reuse);
       else
         fmt::print("method     full ray tracing\n");
     }
@@ -178,8 +188,10 @@ int run_animate(const AnimateCommandOptions& o) {
           fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, o.method, o.cache.cache);
       if (so.method == Method::reproject)
         cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}",
-                               o.keyframe_interval, o.reuse, o.fill, o.rebuild_above, o.reach,
+                               o.keyframe_interval, reuse, o.fill, o.rebuild_above, o.reach,
                                o.no_leak_check ? " --no-leak-check" : "");
+      else if (so.method == Method::reverse)
+        cmdline += fmt::format(" --keyframe-interval {} --reuse {}", o.keyframe_interval, reuse);
       const LensArray& cam = first;
       write_text_file(o.report,
                       markdown_report(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),

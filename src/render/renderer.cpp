@@ -138,7 +138,11 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
 }
 
 void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
-                   RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[]) {
+                   RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[],
+                   const ColourLookup* lookup, bool reused[], ShadeParts parts[]) {
+  if ((lookup || parts) && spp != 1) throw std::invalid_argument(fmt::format("shading reuse needs spp = 1, got {}", spp));
+  if (parts) std::fill(parts, parts + n, ShadeParts{});
+  if (reused) std::fill(reused, reused + n, false);
   Vec3 sum[kPacketSize];
   for (int k = 0; k < spp; ++k) {
     RayPacket packet;
@@ -164,7 +168,24 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
       if (found[l]) sp[l] = scene.surface(packet.rays[l], hits[l]);
       any_hit |= found[l];
     }
-    if (any_hit) shade(scene, packet, found, sp, 1, counts, c);
+    bool to_shade[kPacketSize];
+    std::copy(found, found + kPacketSize, to_shade);
+    if (lookup && any_hit) {
+      any_hit = false;
+      for (int l = 0; l < n; ++l) {
+        if (!found[l]) continue;
+        if (lookup->find(packet.rays[l], packet.rays[l].dir * pr[l].t_sign, hits[l], sp[l], counts, c[l])) {
+          to_shade[l] = false;
+          if (reused) reused[l] = true;
+        }
+        any_hit |= to_shade[l];
+      }
+    }
+    ShadeParts lane_parts[kPacketSize];
+    if (any_hit) shade(scene, packet, to_shade, sp, 1, counts, c, parts ? lane_parts : nullptr);
+    if (parts)
+      for (int l = 0; l < n; ++l)
+        if (to_shade[l]) parts[l] = lane_parts[l];
     for (int l = 0; l < n; ++l) {
       sum[l] += c[l];
       if (k != 0) continue;

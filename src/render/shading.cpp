@@ -255,8 +255,40 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
 
 }  // namespace
 
+Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
+                 RayCounts& counts) {
+  const HitFrame f = frame_of(scene, ray, sp);
+  Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
+  const auto& lights = scene.lights();
+  for (size_t l = 0; l < lights.size() && l < kMaxPartLights; ++l) {
+    const bool traced = trace >> l & 1u;
+    if (!traced && !(lit >> l & 1u)) continue;
+    Ray shadow;
+    Vec3 contribution;
+    if (!light_sample(scene, f, sp, lights[l], shadow, contribution)) continue;
+    if (traced) {
+      ++counts.shadow;
+      if (scene.accel().occluded(shadow)) continue;
+    }
+    colour += contribution;
+  }
+  return colour;
+}
+
+Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+  Vec3 colour;
+  add_secondary(scene, ray, sp, frame_of(scene, ray, sp), depth, counts, colour);
+  return colour;
+}
+
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
-           const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
+           const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
+           ShadeParts parts[kPacketSize]) {
+  if (parts)
+    for (int k = 0; k < kPacketSize; ++k) parts[k] = ShadeParts{};
+  auto mark_lit = [&](int k, size_t l) {
+    if (parts && l < kMaxPartLights) parts[k].lit |= 1u << l;
+  };
   HitFrame f[kPacketSize];
   CellRef cells[kPacketSize];  // set and read only when there is a cache
   const bool cached = scene.shadow_cache() != nullptr;
@@ -283,7 +315,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPack
       }
       const int seen = cached_visibility(scene, f[k], sps[k], cells[k], static_cast<int>(l), shadows.rays[k], counts);
       if (seen >= 0) {
-        if (seen) colours[k] += contribution[k];
+        if (seen) colours[k] += contribution[k], mark_lit(k, l);
         shadows.active[k] = false;
         continue;
       }
@@ -293,9 +325,23 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPack
     counts.shadow += static_cast<uint64_t>(cast);
     scene.accel().occluded(shadows, blocked);
     for (int k = 0; k < kPacketSize; ++k)
-      if (shadows.active[k] && !blocked[k]) colours[k] += contribution[k];
+      if (shadows.active[k] && !blocked[k]) colours[k] += contribution[k], mark_lit(k, l);
   }
+  if (!parts) {
+    add_secondary(scene, rays, hit, sps, f, depth, counts, colours);
+    return;
+  }
+  // The secondary light as the difference, so that the colour is added up
+  // in the same order as without parts (bit for bit the same image).
+  Vec3 local[kPacketSize];
+  std::copy(colours, colours + kPacketSize, local);
   add_secondary(scene, rays, hit, sps, f, depth, counts, colours);
+  for (int k = 0; k < kPacketSize; ++k) {
+    if (!hit[k]) continue;
+    const Vec3 s = colours[k] - local[k];
+    parts[k].secondary[0] = static_cast<float>(s.x), parts[k].secondary[1] = static_cast<float>(s.y),
+    parts[k].secondary[2] = static_cast<float>(s.z);
+  }
 }
 
 }  // namespace holoray

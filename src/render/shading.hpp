@@ -24,6 +24,27 @@ Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& count
 /// toward the surface: the viewer is at -ray.dir).
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
 
+/// What reverse reprojection (temporal/reverse.hpp) keeps of a shaded eye
+/// hit: the part of the shading that rays computed. 16 bytes.
+struct ShadeParts {
+  uint32_t lit = 0;  ///< bit l: light l was seen (lights 0..31; more: see kMaxPartLights)
+  float secondary[3] = {0, 0, 0};  ///< Ks*I_reflected + T*I_transmitted, linear RGB
+};
+/// Lights a ShadeParts::lit mask can hold; scenes with more are not reused.
+inline constexpr int kMaxPartLights = 32;
+
+/// The terms of shade() that need no mirror or refraction ray: Ia*Kd*C plus,
+/// for each light seen, its diffuse and highlight terms at `sp` seen along
+/// `ray` (zero where the normal faces away from the light), in shade()'s
+/// order. A light is seen when its bit is set in `lit`, except for the bits
+/// set in `trace`: those lights get their shadow ray (counted in `counts`).
+Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
+                 RayCounts& counts);
+
+/// The terms of shade() that the mirror and refraction rays bring at `sp`
+/// hit by `ray` at ray-tree `depth` (Ks*I_reflected + T*I_transmitted).
+Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
+
 /// shade() for the lanes of a packet with hit[k] set, into colours[k] (other
 /// lanes untouched). The shadow rays toward each light go as one packet
 /// (rtcOccluded16). The mirror rays of the lanes, then their transmitted
@@ -31,7 +52,9 @@ Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int
 /// parallel, and their hits are shaded as a packet one level deeper; else
 /// one by one. Each lane gives the same bits as shade() on its own, as long
 /// as the packet and single-ray kernels agree on every ray.
+/// With `parts`, parts[k] also gets what lane k's rays found (ShadeParts).
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
-           const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]);
+           const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
+           ShadeParts parts[kPacketSize] = nullptr);
 
 }  // namespace holoray

@@ -11,7 +11,9 @@
 
 #include "camera/lens_array.hpp"
 #include "image/image.hpp"
+#include "math/transform.hpp"
 #include "render/renderer.hpp"
+#include "render/shading.hpp"
 
 namespace holoray {
 
@@ -20,6 +22,12 @@ struct PointImage {
   LensArray camera;               ///< the keyframe's integral camera
   std::vector<PrimaryHit> hits;   ///< W*H, row-major
   ImageBuffer colour;             ///< W x H x 3, linear RGB
+  /// Object-to-world transform per scene group at the keyframe's time
+  /// (AccelScene::transform); reverse reprojection moves hits back with it.
+  std::vector<Affine> to_world;
+  /// W*H, what each pixel's shading rays found (reverse reprojection with
+  /// ReverseReuse::visibility); empty otherwise.
+  std::vector<ShadeParts> parts;
 
   static constexpr size_t kBytesPerPixel = sizeof(PrimaryHit) + 3 * sizeof(float);
 };

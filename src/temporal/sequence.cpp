@@ -14,7 +14,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Traced {
-  LensArray camera;
+  LensArray camera{LensArrayDesc{}};
   FrameBuffers buffers;
   RenderStats stats;
   double seconds = 0;
@@ -97,8 +97,27 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   // Point images of the segment's two keyframes; the later one is reused as
   // the earlier one of the next segment.
   std::unique_ptr<PointImage> prev;
-  auto make_point_image = [](int f, Traced& t) {
-    return std::make_unique<PointImage>(PointImage{f, t.camera, std::move(t.buffers.primary), t.buffers.colour});
+  // A keyframe traced, with its point image (transforms at its time) and its report.
+  auto trace_key = [&](int f) {
+    std::unique_ptr<PointImage> image;
+    Traced t;
+    if (opt.method == Method::reverse) {
+      shot.seek(f);
+      const LensArray camera(shot.camera(f));
+      const auto start = Clock::now();
+      image = std::make_unique<PointImage>(
+          trace_point_image(shot.scene(), camera, f, opt.reverse.reuse, opt.threads, t.stats));
+      t.seconds = seconds_since(start);
+      t.camera = camera;
+      t.buffers.colour = image->colour;
+    } else {
+      t = trace_frame(shot, f, true, opt.threads);
+      image = std::make_unique<PointImage>(PointImage{f, t.camera, std::move(t.buffers.primary), t.buffers.colour, {}, {}});
+      const AccelScene& accel = shot.scene().accel();
+      for (size_t g = 0; g < accel.group_count(); ++g) image->to_world.push_back(accel.transform(static_cast<uint32_t>(g)));
+    }
+    FrameReport report = keyframe_report(f, t);
+    return std::pair{std::move(image), std::move(report)};
   };
   auto segment_done = [&](size_t k) {
     for (int f = keys[k] + 1; f < (k + 1 < keys.size() ? keys[k + 1] : frames); ++f)
@@ -116,17 +135,14 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         continue;
       }
       if (stop()) return;
-      Traced t = trace_frame(shot, f0, true, opt.threads);
-      if (!done(f0)) emit(f0, t.buffers.colour, keyframe_report(f0, t));
-      prev = make_point_image(f0, t);
+      auto [image, report] = trace_key(f0);
+      if (!done(f0)) emit(f0, image->colour, report);
+      prev = std::move(image);
     }
     if (!need_points) continue;
     const int f1 = keys[k + 1];
     if (stop()) return;
-    Traced t1 = trace_frame(shot, f1, true, opt.threads);
-    const FrameReport key1_report = keyframe_report(f1, t1);
-    const ImageBuffer key1_colour = t1.buffers.colour;
-    auto next = make_point_image(f1, t1);
+    auto [next, key1_report] = trace_key(f1);
 
     for (int f = f0 + 1; f < f1; ++f) {
       if (done(f)) continue;
@@ -134,7 +150,9 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       shot.seek(f);
       const LensArray camera(shot.camera(f));
       const auto start = Clock::now();
-      ReprojectedFrame rf = reproject(shot.scene(), camera, f, prev.get(), next.get(), opt.reproject);
+      ReprojectedFrame rf = opt.method == Method::reverse
+                                ? reverse_reproject(shot.scene(), camera, f, prev.get(), next.get(), opt.reverse)
+                                : reproject(shot.scene(), camera, f, prev.get(), next.get(), opt.reproject);
       FrameReport r;
       r.frame = f;
       r.pixels = camera.pixel_count();
@@ -148,7 +166,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         fill = Fill::trace;
         r.rebuilt = true;
       }
-      fill_missed(shot.scene(), camera, fill, opt.threads, rf);
+      if (opt.method == Method::reproject) fill_missed(shot.scene(), camera, fill, opt.threads, rf);
       r.seconds = seconds_since(start);
       r.traced = static_cast<int64_t>(rf.count(PixelStatus::traced));
       r.interpolated = static_cast<int64_t>(rf.count(PixelStatus::interpolated));
@@ -164,7 +182,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       }
       emit(f, rf.colour, r);
     }
-    if (!done(f1)) emit(f1, key1_colour, key1_report);
+    if (!done(f1)) emit(f1, next->colour, key1_report);
     prev = std::move(next);
   }
 }

@@ -1,7 +1,9 @@
 // holoray/temporal: the tracing schedule of an animated shot (paper §4, §7).
-// `full` ray traces every frame. `reproject` ray traces every K-th frame and
-// the last (the keyframes), keeps their point images, and builds each frame
-// between two keyframes by reprojection (reproject.hpp) and filling (fill.hpp).
+// `full` ray traces every frame. `reproject` and `reverse` ray trace every
+// K-th frame and the last (the keyframes), keep their point images, and build
+// each frame between two keyframes from them: `reproject` by the paper's
+// forward splat (reproject.hpp) and filling (fill.hpp), `reverse` by tracing
+// its eye rays and reusing the keyframes' shading (reverse.hpp).
 #pragma once
 
 #include <functional>
@@ -13,15 +15,21 @@
 #include "shot/shot_frames.hpp"
 #include "temporal/fill.hpp"
 #include "temporal/reproject.hpp"
+#include "temporal/reverse.hpp"
 
 namespace holoray {
 
-enum class Method { full, reproject };
+enum class Method {
+  full,       ///< trace every frame
+  reproject,  ///< keyframes + forward reprojection of their point images (paper §4-5, reproject.hpp)
+  reverse,    ///< keyframes + reverse reprojection: eye rays traced, shading reused (reverse.hpp)
+};
 
 struct SequenceOptions {
   Method method = Method::full;
   int keyframe_interval = 8;  ///< K >= 1
-  ReprojectOptions reproject;
+  ReprojectOptions reproject;  ///< Method::reproject
+  ReverseOptions reverse;      ///< Method::reverse
   Fill fill = Fill::trace;
   /// Fill::interpolate only: a frame whose holes (missed, leaks, rejected)
   /// exceed this share of its pixels is rebuilt by tracing them instead

@@ -31,7 +31,7 @@ SpatialFrame render_spatial(const RenderScene& scene, const LensArray& camera, c
   std::vector<uint8_t> traced(static_cast<size_t>(W) * H);
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < W; ++i) traced[static_cast<size_t>(j) * W + i] = traced_at_stride(camera, options.stride, i, j);
-  const PointImage key{0, camera, std::move(sparse.primary), std::move(sparse.colour)};
+  const PointImage key{0, camera, std::move(sparse.primary), std::move(sparse.colour), {}, {}};
   ReprojectOptions rp;
   rp.reuse = options.reuse;
   rp.reach = Reach::lenses;

@@ -1,0 +1,251 @@
+#include "temporal/reverse.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "render/renderer.hpp"
+#include "render/shading.hpp"
+#include "render/tiles.hpp"
+
+namespace holoray {
+
+namespace {
+
+// One keyframe, ready for lookups: its camera, its records, and per scene
+// group the map from the frame's world to the keyframe's world.
+struct Key {
+  const PointImage* image = nullptr;
+  std::vector<Affine> now_to_key;  // per group: key to_world * current to_object
+  std::vector<uint8_t> moved;      // per group: now_to_key is not the identity
+  bool anything_moved = false;
+  double footprint = 0;  // s / g of the keyframe camera
+};
+
+class PointImageLookup final : public ColourLookup {
+ public:
+  PointImageLookup(const RenderScene& scene, const PointImage* prev, const PointImage* next, double w_next,
+                   const ReverseOptions& opt)
+      : scene_(scene), reuse_(opt.reuse), same_surface_(opt.same_surface),
+        tiny_(1e-7 * std::fmax(1.0, length(scene.bounds().diagonal()))) {
+    // The keyframe nearer in time first.
+    const PointImage* images[2] = {prev, next};
+    if (w_next > 0.5) std::swap(images[0], images[1]);
+    const size_t groups = scene.accel().group_count();
+    for (int k = 0; k < 2; ++k) {
+      if (!images[k]) continue;
+      Key& key = keys_[k];
+      key.image = images[k];
+      key.footprint = images[k]->camera.pixel_pitch() / images[k]->camera.desc().gap;
+      key.now_to_key.resize(groups);
+      key.moved.resize(groups);
+      for (size_t g = 0; g < groups; ++g) {
+        key.now_to_key[g] = images[k]->to_world[g] * scene.accel().inverse_transform(static_cast<uint32_t>(g));
+        key.moved[g] = !key.now_to_key[g].is_identity();
+        key.anything_moved |= key.moved[g] != 0;
+      }
+    }
+  }
+
+  bool find(const Ray& ray, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, RayCounts& counts,
+            Vec3& colour) const override {
+    for (const Key& key : keys_) {
+      if (!key.image) continue;
+      if (reuse_ == ReverseReuse::visibility && key.anything_moved) continue;
+      const size_t idx = locate(key, line_dir, hit, sp);
+      if (idx == kNone) continue;
+      if (reuse_ == ReverseReuse::color) {
+        const float* c = key.image->colour.data.data() + 3 * idx;
+        colour = {c[0], c[1], c[2]};
+      } else {
+        const ShadeParts& parts = key.image->parts[idx];
+        uint32_t shadow_edges = 0;
+        bool secondary_detail = false;
+        edges(key, idx, shadow_edges, secondary_detail);
+        colour = shade_local(scene_, ray, sp, parts.lit, shadow_edges, counts);
+        colour += secondary_detail ? shade_secondary(scene_, ray, sp, 1, counts)
+                                   : Vec3{parts.secondary[0], parts.secondary[1], parts.secondary[2]};
+      }
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr size_t kNone = ~size_t{0};
+
+  // The keyframe pixel that saw this hit, or kNone.
+  size_t locate(const Key& key, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp) const {
+    const LensArray& kc = key.image->camera;
+    const Frame& kf = kc.desc().frame;
+    Vec3 p = sp.position, d = line_dir;
+    if (key.moved[hit.group]) {
+      const Affine& m = key.now_to_key[hit.group];
+      p = m.point(p);
+      d = m.dir(d);
+    }
+    const Vec3 x = kf.to_local_point(p);
+    const Vec3 dl = kf.to_local_dir(d);
+    if (!(dl.z > 0)) return kNone;
+    // The keyframe lens that looks at x along d: where that line crosses the array.
+    const LensIndex lens = kc.lens_near(x - dl * (x.z / dl.z));
+    PanelHit ph;
+    LensIndex landed{-1, -1};
+    if (!kc.project_through(x, lens, ph, &landed) &&
+        (landed.x < 0 || landed == lens || !kc.project_through(x, landed, ph)))
+      return kNone;
+    const size_t idx = static_cast<size_t>(ph.j) * kc.width() + ph.i;
+    const PrimaryHit& rec = key.image->hits[idx];
+    if (rec.status != PrimaryHit::kHit ||
+        scene_.object_of(rec.group, static_cast<PrimKind>(rec.kind), rec.prim) != sp.object ||
+        std::fabs(rec.t - ph.t) > same_surface_ * key.footprint * std::fabs(ph.t) + tiny_)
+      return kNone;
+    return idx;
+  }
+
+  // Where keyframe pixel idx and its 8 neighbours in the same elemental
+  // image on the same primitive disagree, an edge may cross the pixel's own
+  // point: `shadow` gets the lights whose visibility changes (their shadow
+  // rays are traced), `secondary` whether the light of the mirror and
+  // refraction rays changes by more than kSecondaryStep (they are traced).
+  static constexpr float kSecondaryStep = 1.0f / 255;
+  void edges(const Key& key, size_t idx, uint32_t& shadow, bool& secondary) const {
+    const LensArray& kc = key.image->camera;
+    const int W = kc.width(), H = kc.height();
+    const int i = static_cast<int>(idx % W), j = static_cast<int>(idx / W);
+    const LensIndex lens = kc.lens_of_pixel(i, j);
+    const ShadeParts& own_parts = key.image->parts[idx];
+    const PrimaryHit& own = key.image->hits[idx];
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int ni = i + di, nj = j + dj;
+        if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H || !(kc.lens_of_pixel(ni, nj) == lens))
+          continue;
+        const size_t q = static_cast<size_t>(nj) * W + ni;
+        const PrimaryHit& h = key.image->hits[q];
+        if (h.status != PrimaryHit::kHit || h.prim != own.prim || h.group != own.group || h.kind != own.kind) continue;
+        const ShadeParts& p = key.image->parts[q];
+        shadow |= p.lit ^ own_parts.lit;
+        for (int c = 0; c < 3; ++c) secondary |= std::fabs(p.secondary[c] - own_parts.secondary[c]) > kSecondaryStep;
+      }
+  }
+
+  const RenderScene& scene_;
+  ReverseReuse reuse_;
+  Key keys_[2];
+  double same_surface_, tiny_;
+};
+
+void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse) {
+  if (!k) return;
+  const auto pixels = static_cast<size_t>(k->camera.pixel_count());
+  if (k->hits.size() != pixels)
+    throw std::invalid_argument(
+        fmt::format("the point image of frame {} has {} records for {} pixels", k->frame, k->hits.size(), pixels));
+  if (k->to_world.size() != scene.accel().group_count())
+    throw std::invalid_argument(fmt::format("the point image of frame {} has {} transforms for {} scene groups",
+                                            k->frame, k->to_world.size(), scene.accel().group_count()));
+  if (reuse == ReverseReuse::visibility && k->parts.size() != pixels)
+    throw std::invalid_argument(fmt::format(
+        "the point image of frame {} has {} shading records for {} pixels: trace it for visibility reuse", k->frame,
+        k->parts.size(), pixels));
+}
+
+// The packet loop of full tracing (render_frame), per P x P block of each
+// tile: every pixel's eye ray is traced; `lookup` (optional) answers hits
+// before they are shaded; `parts` (optional, W*H) gets the shading records.
+ReprojectedFrame trace_packets(const RenderScene& scene, const LensArray& camera, const ColourLookup* lookup,
+                               std::vector<PrimaryHit>* hits, std::vector<ShadeParts>* parts, int threads) {
+  const int W = camera.width(), H = camera.height(), P = camera.desc().pixels_per_lens;
+  const size_t n = static_cast<size_t>(W) * H;
+  ReprojectedFrame out;
+  out.colour = ImageBuffer(W, H, 3);
+  out.status.assign(n, PixelStatus::traced);
+  out.received.assign(n, 0);
+  out.object.assign(n, -1);
+  if (hits) hits->assign(n, PrimaryHit{});
+  if (parts) parts->assign(n, ShadeParts{});
+  const ElementalTiles tiles(camera);
+  std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
+  for_each_tile(tiles, threads, [&](int tile) {
+    const TileRect r = tiles.rect(tile);
+    RayCounts counts;
+    std::vector<PixelXY> px(static_cast<size_t>(P) * P);
+    for (int by = r.y0; by < r.y1; by += P)
+      for (int bx = r.x0; bx < r.x1; bx += P) {
+        const TileRect block{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
+        const int m = packet_order(block, px.data());
+        for (int start = 0; start < m;) {
+          // render_packet takes the pixels of one lens (hex blocks straddle lenses).
+          const LensIndex lens = camera.lens_of_pixel(px[start].i, px[start].j);
+          int end = start + 1;
+          while (end < m && end - start < kPacketSize && camera.lens_of_pixel(px[end].i, px[end].j) == lens) ++end;
+          const int k = end - start;
+          Vec3 c[kPacketSize];
+          PrimaryHit ph[kPacketSize];
+          SurfacePoint sp[kPacketSize];
+          bool reused[kPacketSize];
+          ShadeParts sh[kPacketSize];
+          render_packet(scene, camera, px.data() + start, k, 1, counts, c, ph, sp, lookup, reused,
+                        parts ? sh : nullptr);
+          for (int l = 0; l < k; ++l) {
+            const PixelXY q = px[start + l];
+            const size_t p = static_cast<size_t>(q.j) * W + q.i;
+            float* o = out.colour.at(q.i, q.j);
+            o[0] = static_cast<float>(c[l].x), o[1] = static_cast<float>(c[l].y), o[2] = static_cast<float>(c[l].z);
+            if (ph[l].status == PrimaryHit::kHit) out.object[p] = sp[l].object;
+            if (hits) (*hits)[p] = ph[l];
+            if (parts) (*parts)[p] = sh[l];
+            if (reused[l]) {
+              out.status[p] = PixelStatus::reprojected;
+              out.received[p] = 1;
+            }
+          }
+          start = end;
+        }
+      }
+    tile_rays[static_cast<size_t>(tile)] = counts;
+  });
+  for (const RayCounts& c : tile_rays) out.rays += c;
+  return out;
+}
+
+}  // namespace
+
+PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
+                             int threads, RenderStats& stats) {
+  const auto start = std::chrono::steady_clock::now();
+  PointImage key{frame, camera, {}, {}, {}, {}};
+  const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights;
+  ReprojectedFrame traced = trace_packets(scene, camera, nullptr, &key.hits, want_parts ? &key.parts : nullptr, threads);
+  key.colour = std::move(traced.colour);
+  for (size_t g = 0; g < scene.accel().group_count(); ++g)
+    key.to_world.push_back(scene.accel().transform(static_cast<uint32_t>(g)));
+  stats.rays = traced.rays;
+  stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return key;
+}
+
+ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& camera, int frame,
+                                   const PointImage* prev, const PointImage* next, const ReverseOptions& opt) {
+  if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
+  // More lights than a mask holds: keyframes carry no parts, every hit is shaded.
+  const bool reusable = opt.reuse == ReverseReuse::color || scene.lights().size() <= kMaxPartLights;
+  if (reusable) {
+    check_key(scene, prev, opt.reuse);
+    check_key(scene, next, opt.reuse);
+  }
+  double w_next = prev ? 0.0 : 1.0;
+  if (prev && next && next->frame != prev->frame) w_next = double(frame - prev->frame) / double(next->frame - prev->frame);
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<PointImageLookup> lookup;
+  if (reusable) lookup.emplace(scene, prev, next, w_next, opt);
+  ReprojectedFrame out = trace_packets(scene, camera, lookup ? &*lookup : nullptr, nullptr, nullptr, opt.threads);
+  out.seconds.check = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace holoray

@@ -1,0 +1,177 @@
+// Reverse reprojection (temporal/reverse.hpp, issue 12): exact visibility,
+// the mapping of a hit back into a keyframe (camera and object motion), what
+// is reused, and what is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "camera/placement.hpp"
+#include "image/metrics.hpp"
+#include "render/renderer.hpp"
+#include "scene/nff_reader.hpp"
+#include "temporal/reverse.hpp"
+#include "test_util.hpp"
+
+namespace holoray {
+namespace {
+using test::source_dir;
+
+LensArrayDesc camera_at(const SceneDesc& desc, const Vec3& shift, int lenses = 32, int ppl = 8) {
+  ArraySettings s;
+  s.lenses_x = s.lenses_y = lenses;
+  s.pixels_per_lens = ppl;
+  Viewpoint vp = *desc.viewpoint;
+  vp.from += shift;
+  vp.at += shift;
+  return place_array(s, vp);
+}
+
+FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& desc) {
+  RenderOptions ro;
+  ro.aovs.id = true;
+  RenderStats stats;
+  return render_frame(scene, LensArray(desc), ro, stats);
+}
+
+size_t hits_of(const PointImage& key) {
+  size_t n = 0;
+  for (const PrimaryHit& h : key.hits) n += h.status == PrimaryHit::kHit;
+  return n;
+}
+
+float max_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  float d = 0;
+  for (size_t k = 0; k < a.size(); ++k) d = std::fmax(d, std::fabs(a[k] - b[k]));
+  return d;
+}
+
+double psnr(const ImageBuffer& truth, const ImageBuffer& test) {
+  return compare_images(quantize_8bit(truth, Encoding::linear), quantize_8bit(test, Encoding::linear)).psnr_all();
+}
+
+// primitives.nff: mirrors, highlights, a transmitter and two lights.
+TEST(ReverseReprojection, KeyframeTracingEqualsFullRayTracing) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  const LensArrayDesc cam = camera_at(desc, {});
+  RenderStats stats;
+  const PointImage key = trace_point_image(scene, LensArray(cam), 0, ReverseReuse::visibility, 0, stats);
+  EXPECT_EQ(key.colour.data, trace_full(scene, cam).colour.data);
+  EXPECT_EQ(key.parts.size(), key.hits.size());
+  EXPECT_EQ(key.to_world.size(), scene.accel().group_count());
+}
+
+// At the keyframe's own camera every hit projects back onto its own pixel:
+// colour reuse returns the keyframe exactly; visibility reuse recomputes the
+// local terms and adds the recorded secondary light, the same sum to float
+// rounding.
+TEST(ReverseReprojection, AtTheKeyframesCameraEveryHitFindsItsOwnPixel) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  const LensArrayDesc cam = camera_at(desc, {});
+  for (ReverseReuse reuse : {ReverseReuse::color, ReverseReuse::visibility}) {
+    RenderStats stats;
+    const PointImage key = trace_point_image(scene, LensArray(cam), 0, reuse, 0, stats);
+    ReverseOptions opt;
+    opt.reuse = reuse;
+    const ReprojectedFrame rf = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, opt);
+    EXPECT_GT(rf.count(PixelStatus::reprojected), hits_of(key) * 95 / 100);
+    if (reuse == ReverseReuse::color) EXPECT_EQ(rf.colour.data, key.colour.data);
+    else EXPECT_LT(max_difference(rf.colour.data, key.colour.data), 1e-5f);
+  }
+}
+
+// Eye rays are traced: which surface each pixel shows is exactly full
+// tracing's, background included, and shaded pixels are full tracing's.
+TEST(ReverseReprojection, VisibilityAndShadedPixelsAreFullRayTracings) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  RenderStats stats;
+  const PointImage key = trace_point_image(scene, LensArray(camera_at(desc, {})), 0, ReverseReuse::color, 0, stats);
+  const LensArrayDesc moved = camera_at(desc, {0.4, 0, 0.2});
+  const FrameBuffers full = trace_full(scene, moved);
+  const ReprojectedFrame rf = reverse_reproject(scene, LensArray(moved), 1, &key, nullptr, ReverseOptions{ReverseReuse::color});
+  size_t wrong_object = 0, wrong_shaded = 0, shaded = 0;
+  for (size_t p = 0; p < rf.object.size(); ++p) {
+    wrong_object += rf.object[p] != static_cast<int>(full.id.data[p]);
+    if (rf.status[p] != PixelStatus::traced) continue;
+    ++shaded;
+    for (int c = 0; c < 3; ++c) wrong_shaded += std::fabs(rf.colour.data[3 * p + c] - full.colour.data[3 * p + c]) > 1e-6f;
+  }
+  EXPECT_EQ(wrong_object, 0u);
+  EXPECT_EQ(wrong_shaded, 0u);
+  EXPECT_GT(shaded, 0u);
+  EXPECT_GT(rf.count(PixelStatus::reprojected), rf.object.size() / 4);
+  EXPECT_EQ(rf.count(PixelStatus::missed), 0u);
+}
+
+// Under camera motion, visibility reuse (local shading exact, shadow and
+// mirror edges traced) is near exact and better than colour reuse.
+TEST(ReverseReprojection, CameraMotionVisibilityReuseReaches40dB) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  const LensArrayDesc moved = camera_at(desc, {0.5, 0, 0.25});
+  const FrameBuffers full = trace_full(scene, moved);
+  double quality[2];
+  for (ReverseReuse reuse : {ReverseReuse::color, ReverseReuse::visibility}) {
+    RenderStats stats;
+    const PointImage key = trace_point_image(scene, LensArray(camera_at(desc, {})), 0, reuse, 0, stats);
+    const ReprojectedFrame rf = reverse_reproject(scene, LensArray(moved), 1, &key, nullptr, ReverseOptions{reuse});
+    EXPECT_GT(rf.count(PixelStatus::reprojected), rf.object.size() / 4);
+    quality[static_cast<int>(reuse)] = psnr(full.colour, rf.colour);
+  }
+  EXPECT_GE(quality[1], 40.0);
+  EXPECT_GT(quality[1], quality[0]);
+}
+
+// An object and the camera translated together see the object as the
+// keyframe did: colour reuse maps every hit back through the object's
+// transforms onto its own keyframe pixel. Visibility reuse refuses (a moved
+// object may have moved a shadow) and shades every hit.
+TEST(ReverseReprojection, HitsFollowTheirObjectsMotion) {
+  const SceneDesc ball = parse_nff("l 0 -3 8\nf 0.9 0.2 0.2 1 0 0 0 1\ns 0 0 1 1\n", "ball.nff");
+  RenderScene scene({{&ball, true}});
+  ArraySettings s;
+  s.lenses_x = s.lenses_y = 24;
+  s.pixels_per_lens = 8;
+  auto camera = [&](double x) {
+    Viewpoint vp;
+    vp.from = {x, -6, 3};
+    vp.at = {x, 0, 1};
+    vp.up = {0, 0, 1};
+    vp.angle_deg = 40;
+    return LensArray(place_array(s, vp));
+  };
+  for (ReverseReuse reuse : {ReverseReuse::color, ReverseReuse::visibility}) {
+    scene.set_transforms({Affine{}});
+    RenderStats stats;
+    const PointImage key = trace_point_image(scene, camera(0), 0, reuse, 0, stats);
+    scene.set_transforms({Affine::translate({1.5, 0, 0})});
+    const ReprojectedFrame rf = reverse_reproject(scene, camera(1.5), 1, &key, nullptr, ReverseOptions{reuse});
+    if (reuse == ReverseReuse::color) {
+      EXPECT_GT(rf.count(PixelStatus::reprojected), hits_of(key) * 95 / 100);
+      EXPECT_LT(max_difference(rf.colour.data, key.colour.data), 1e-6f);
+    } else {
+      EXPECT_EQ(rf.count(PixelStatus::reprojected), 0u);
+    }
+  }
+}
+
+TEST(ReverseReprojection, RefusesKeyframesItCannotUse) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  const LensArray cam(camera_at(desc, {}, 8, 4));
+  RenderStats stats;
+  const PointImage key = trace_point_image(scene, cam, 3, ReverseReuse::color, 0, stats);
+  try {
+    reverse_reproject(scene, cam, 4, &key, nullptr, ReverseOptions{ReverseReuse::visibility});
+    FAIL() << "a keyframe without shading records was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "the point image of frame 3 has 0 shading records for 1024 pixels: trace it for visibility reuse");
+  }
+  EXPECT_THROW(reverse_reproject(scene, cam, 4, nullptr, nullptr, ReverseOptions{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace holoray
