@@ -14,17 +14,8 @@
 
 namespace holoray {
 namespace {
+using test::camera_at;
 using test::source_dir;
-
-LensArrayDesc camera_at(const SceneDesc& desc, const Vec3& shift, int lenses = 32, int ppl = 8) {
-  ArraySettings s;
-  s.lenses_x = s.lenses_y = lenses;
-  s.pixels_per_lens = ppl;
-  Viewpoint vp = *desc.viewpoint;
-  vp.from += shift;
-  vp.at += shift;
-  return place_array(s, vp);
-}
 
 FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& desc) {
   RenderOptions ro;

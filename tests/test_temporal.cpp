@@ -17,6 +17,7 @@
 
 namespace holoray {
 namespace {
+using test::camera_at;
 using test::source_dir;
 
 // Diffuse only (Ks = 0): colours do not depend on the viewpoint.
@@ -63,16 +64,6 @@ FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& desc) {
   ro.aovs.id = true;
   RenderStats stats;
   return render_frame(scene, LensArray(desc), ro, stats);
-}
-
-LensArrayDesc camera_at(const SceneDesc& desc, const Vec3& shift, int lenses = 32, int ppl = 8) {
-  ArraySettings s;
-  s.lenses_x = s.lenses_y = lenses;
-  s.pixels_per_lens = ppl;
-  Viewpoint vp = *desc.viewpoint;
-  vp.from += shift;
-  vp.at += shift;
-  return place_array(s, vp);
 }
 
 size_t hit_pixels(const FrameBuffers& fb) {

@@ -14,12 +14,26 @@
 #include <gtest/gtest.h>
 
 #include "camera/lens_array.hpp"
+#include "camera/placement.hpp"
+#include "scene/scene_desc.hpp"
 
 namespace holoray::test {
 
 inline std::string shared_dir() { return HOLORAY_SHARED_DIR; }
 inline std::string source_dir() { return HOLORAY_SOURCE_DIR; }
 inline bool have_shared_scenes() { return std::filesystem::is_directory(shared_dir() + "/scenes/nff"); }
+
+/// The array a scene's NFF viewpoint places (lenses x lenses, ppl pixels
+/// per lens), with the viewpoint and its look-at point moved by `shift` (world).
+inline LensArrayDesc camera_at(const SceneDesc& desc, const Vec3& shift, int lenses = 32, int ppl = 8) {
+  ArraySettings s;
+  s.lenses_x = s.lenses_y = lenses;
+  s.pixels_per_lens = ppl;
+  Viewpoint vp = *desc.viewpoint;
+  vp.from += shift;
+  vp.at += shift;
+  return place_array(s, vp);
+}
 
 /// A fresh empty folder under the system temp dir, removed by the destructor.
 struct TempDir {

@@ -178,12 +178,10 @@ ReprojectedFrame trace_packets(const RenderScene& scene, const LensArray& camera
       for (int bx = r.x0; bx < r.x1; bx += P) {
         const TileRect block{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
         const int m = packet_order(block, px.data());
-        for (int start = 0; start < m;) {
-          // render_packet takes the pixels of one lens (hex blocks straddle lenses).
-          const LensIndex lens = camera.lens_of_pixel(px[start].i, px[start].j);
-          int end = start + 1;
-          while (end < m && end - start < kPacketSize && camera.lens_of_pixel(px[end].i, px[end].j) == lens) ++end;
-          const int k = end - start;
+        // The packets of render_block (TraceStyle::packet), so that traced
+        // pixels equal full tracing's.
+        for (int start = 0; start < m; start += kPacketSize) {
+          const int k = std::min(kPacketSize, m - start);
           Vec3 c[kPacketSize];
           PrimaryHit ph[kPacketSize];
           SurfacePoint sp[kPacketSize];
@@ -204,7 +202,6 @@ ReprojectedFrame trace_packets(const RenderScene& scene, const LensArray& camera
               out.received[p] = 1;
             }
           }
-          start = end;
         }
       }
     tile_rays[static_cast<size_t>(tile)] = counts;

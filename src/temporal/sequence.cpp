@@ -14,7 +14,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Traced {
-  LensArray camera{LensArrayDesc{}};
+  LensArray camera;
   FrameBuffers buffers;
   RenderStats stats;
   double seconds = 0;
@@ -56,20 +56,20 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   };
   auto done = [&](int f) { return opt.done && opt.done(f); };
   auto stop = [&] { return opt.stop && opt.stop(); };
-  auto keyframe_report = [&](int f, const Traced& t) {
+  auto keyframe_report = [&](int f, const ImageBuffer& colour, const RenderStats& stats, double seconds) {
     FrameReport r;
     r.frame = f;
     r.keyframe = true;
-    r.seconds = r.reference_seconds = t.seconds;
-    r.pixels = static_cast<int64_t>(t.buffers.colour.width) * t.buffers.colour.height;
+    r.seconds = r.reference_seconds = seconds;
+    r.pixels = static_cast<int64_t>(colour.width) * colour.height;
     r.traced = r.pixels;
-    r.rays = t.stats.rays;
+    r.rays = stats.rays;
     if (opt.reference) {
       if (opt.cache) {
         const Traced ref = reference(f);
         r.reference_seconds = ref.seconds;
         r.difference = compare_images(quantize_8bit(ref.buffers.colour, opt.encoding),
-                                      quantize_8bit(t.buffers.colour, opt.encoding));
+                                      quantize_8bit(colour, opt.encoding));
       } else {
         r.difference = ImageDifference{{0, 0, 0}, 0, r.pixels};
       }
@@ -82,7 +82,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       if (done(f)) continue;
       if (stop()) return;
       const Traced t = trace_frame(shot, f, false, opt.threads);
-      emit(f, t.buffers.colour, keyframe_report(f, t));
+      emit(f, t.buffers.colour, keyframe_report(f, t.buffers.colour, t.stats, t.seconds));
     }
     return;
   }
@@ -99,24 +99,22 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   std::unique_ptr<PointImage> prev;
   // A keyframe traced, with its point image (transforms at its time) and its report.
   auto trace_key = [&](int f) {
-    std::unique_ptr<PointImage> image;
-    Traced t;
     if (opt.method == Method::reverse) {
       shot.seek(f);
-      const LensArray camera(shot.camera(f));
+      RenderStats stats;
       const auto start = Clock::now();
-      image = std::make_unique<PointImage>(
-          trace_point_image(shot.scene(), camera, f, opt.reverse.reuse, opt.threads, t.stats));
-      t.seconds = seconds_since(start);
-      t.camera = camera;
-      t.buffers.colour = image->colour;
-    } else {
-      t = trace_frame(shot, f, true, opt.threads);
-      image = std::make_unique<PointImage>(PointImage{f, t.camera, std::move(t.buffers.primary), t.buffers.colour, {}, {}});
-      const AccelScene& accel = shot.scene().accel();
-      for (size_t g = 0; g < accel.group_count(); ++g) image->to_world.push_back(accel.transform(static_cast<uint32_t>(g)));
+      auto image = std::make_unique<PointImage>(
+          trace_point_image(shot.scene(), LensArray(shot.camera(f)), f, opt.reverse.reuse, opt.threads, stats));
+      const double seconds = seconds_since(start);
+      FrameReport report = keyframe_report(f, image->colour, stats, seconds);
+      return std::pair{std::move(image), std::move(report)};
     }
-    FrameReport report = keyframe_report(f, t);
+    Traced t = trace_frame(shot, f, true, opt.threads);
+    FrameReport report = keyframe_report(f, t.buffers.colour, t.stats, t.seconds);
+    auto image = std::make_unique<PointImage>(
+        PointImage{f, t.camera, std::move(t.buffers.primary), std::move(t.buffers.colour), {}, {}});
+    const AccelScene& accel = shot.scene().accel();
+    for (size_t g = 0; g < accel.group_count(); ++g) image->to_world.push_back(accel.transform(static_cast<uint32_t>(g)));
     return std::pair{std::move(image), std::move(report)};
   };
   auto segment_done = [&](size_t k) {
