@@ -10,10 +10,11 @@ cd "$(dirname "$0")/.."
 kinds=("$@")
 ((${#kinds[@]})) || kinds=(address thread)
 jobs=$(nproc)
-# The tests that run work on several threads: rendering, reprojection, filling,
+# The tests that run work on several threads: rendering, reprojection (forward
+# and reverse), filling,
 # determinism over thread counts and tile orders (the shadow cache's too), and the
 # interrupted sequences.
-TSAN_TESTS="^(Render|ShadowCache|PathologicalScenes|GridsAndStrides/SpatialReuse|Reprojection|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
+TSAN_TESTS="^(Render|ShadowCache|PathologicalScenes|GridsAndStrides/SpatialReuse|Reprojection|ReverseReprojection|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
 for kind in "${kinds[@]}"; do
   case $kind in
     address)

@@ -13,6 +13,7 @@
 #include <map>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -147,7 +148,7 @@ TEST_P(AnimateInterrupted, LeavesOnlyCompleteFramesAndResumesToTheSameFiles) {
 
 INSTANTIATE_TEST_SUITE_P(Signals, AnimateInterrupted,
                          ::testing::Values(KillCase{SIGINT, "reproject"}, KillCase{SIGTERM, "full"},
-                                           KillCase{SIGKILL, "reproject"}),
+                                           KillCase{SIGKILL, "reverse"}),
                          [](const auto& info) {
                            const char* sig = info.param.signal == SIGINT    ? "sigint"
                                              : info.param.signal == SIGTERM ? "sigterm"
@@ -163,13 +164,15 @@ TEST(AnimateDeterminism, SameFramesForAnyThreadCount) {
   shot.replace(shot.find("frames = 60"), 11, "frames = 9");
   shot.replace(shot.find("frame = 59"), 10, "frame = 8");
   test::write_text(dir.file("shot.toml"), shot);
-  for (const char* reuse : {"color", "geometry"}) {
-    SCOPED_TRACE(reuse);
+  const std::pair<const char*, const char*> methods[] = {
+      {"reproject", "color"}, {"reproject", "geometry"}, {"reverse", "color"}, {"reverse", "visibility"}};
+  for (const auto& [method, reuse] : methods) {
+    SCOPED_TRACE(std::string(method) + " " + reuse);
     std::map<std::string, std::string> first;
     for (const int threads : {1, 2, 5}) {
-      const std::string out = dir.file(std::string(reuse) + std::to_string(threads));
-      const auto r = test::run_cli("animate " + dir.file("shot.toml") + " -o " + out + " --keyframe-interval 4 --reuse " +
-                                   reuse + " --threads " + std::to_string(threads) + " -q");
+      const std::string out = dir.file(std::string(method) + reuse + std::to_string(threads));
+      const auto r = test::run_cli("animate " + dir.file("shot.toml") + " -o " + out + " --keyframe-interval 4 --method " +
+                                   method + " --reuse " + reuse + " --threads " + std::to_string(threads) + " -q");
       ASSERT_EQ(r.status, 0) << r.output;
       const auto files = folder_bytes(out);
       ASSERT_EQ(files.size(), 9u);

@@ -213,8 +213,15 @@ bool LensArray::project_through(const Vec3& x, LensIndex lens, PanelHit& out, Le
   const LensIndex owner = lens_of_pixel(i, j);
   if (landing_lens) *landing_lens = owner;
   if (!(owner == lens)) return false;
-  const PixelLine l = line_local(i, j, fi - i, fj - j);
-  const double t = dot(x - l.origin, l.dir);
+  double t;
+  if (desc_.grid == Grid::lenticular) {
+    const PixelLine l = line_local(i, j, fi - i, fj - j);
+    t = dot(x - l.origin, l.dir);
+  } else {
+    // x lies on the line from the lens centre along its unit direction
+    // toward +z, so t is the signed distance from the centre.
+    t = std::copysign(length(x - c), x.z);
+  }
   if (desc_.mode == RecordingMode::pseudoscopic && !(t > 0)) return false;
   out = {i, j, fi - i, fj - j, t};
   return true;

@@ -48,7 +48,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("animate", "Render an animated shot (TOML) as numbered EIA frames");
   cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required();
   cmd->add_option("-o,--output", o.output, "Output folder (created if missing)")->required();
-  cmd->add_option("--method", o.method, "full (trace every frame), reproject (keyframes + the paper's forward reprojection) or reverse (keyframes + eye rays traced, shading reused)")->capture_default_str();
+  cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot), reproject (keyframes + the paper's forward reprojection) or full (trace every frame)")->capture_default_str();
   cmd->add_option("--keyframe-interval", o.keyframe_interval, "K: trace every K-th frame and the last")->capture_default_str();
   cmd->add_option("--reuse", o.reuse,
                   "What a reprojected pixel reuses. --method reproject: geometry (default; re-shade the reused hit) or "

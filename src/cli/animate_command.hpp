@@ -10,7 +10,7 @@
 namespace holoray::cli {
 
 struct AnimateCommandOptions {
-  std::string shot, output, method = "reproject", fill = "trace", reuse, reach = "near";
+  std::string shot, output, method = "reverse", fill = "trace", reuse, reach = "near";
   std::string format = "png", encoding = "linear", report;
   int keyframe_interval = 8, threads = 0;
   double rebuild_above = 5;  // percent of holes

@@ -137,6 +137,25 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
   return sum * (1.0 / spp);
 }
 
+void trace_eye_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int k,
+                      RayCounts& counts, EyePacket& out) {
+  bool ok[kPacketSize];
+  primary_rays(camera, scene.bounds(), scene.epsilon(), px, n, k, out.primary, ok);
+  out.rays = RayPacket{};
+  std::fill(out.found, out.found + kPacketSize, false);
+  for (int l = 0; l < n; ++l) {
+    if (!ok[l]) continue;
+    out.rays.active[l] = true;
+    out.rays.rays[l] = out.primary[l].ray;
+    ++counts.eye;
+  }
+  // Lenses that look past the scene leave whole packets empty: skip them.
+  if (std::none_of(out.rays.active, out.rays.active + n, [](bool a) { return a; })) return;
+  scene.accel().intersect(out.rays, out.hits, out.found, RayCoherence::coherent);
+  for (int l = 0; l < n; ++l)
+    if (out.found[l]) out.surface[l] = scene.surface(out.rays.rays[l], out.hits[l]);
+}
+
 void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[],
                    const ColourLookup* lookup, bool reused[], ShadeParts parts[]) {
@@ -144,53 +163,33 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
   if (parts) std::fill(parts, parts + n, ShadeParts{});
   if (reused) std::fill(reused, reused + n, false);
   Vec3 sum[kPacketSize];
+  EyePacket eye;
   for (int k = 0; k < spp; ++k) {
-    RayPacket packet;
-    PrimaryRay pr[kPacketSize];
-    bool ok[kPacketSize];
-    primary_rays(camera, scene.bounds(), scene.epsilon(), px, n, k, pr, ok);
-    for (int l = 0; l < n; ++l) {
-      if (!ok[l]) continue;
-      packet.active[l] = true;
-      packet.rays[l] = pr[l].ray;
-      ++counts.eye;
-    }
-    Hit hits[kPacketSize];
-    bool found[kPacketSize] = {};
-    // Lenses that look past the scene leave whole packets empty: skip them.
-    const bool any_active = std::any_of(packet.active, packet.active + n, [](bool a) { return a; });
-    if (any_active) scene.accel().intersect(packet, hits, found, RayCoherence::coherent);
-    SurfacePoint sp[kPacketSize];
+    trace_eye_packet(scene, camera, px, n, k, counts, eye);
     Vec3 c[kPacketSize];
-    bool any_hit = false;
-    for (int l = 0; l < n; ++l) {
-      c[l] = scene.background();
-      if (found[l]) sp[l] = scene.surface(packet.rays[l], hits[l]);
-      any_hit |= found[l];
-    }
     bool to_shade[kPacketSize];
-    std::copy(found, found + kPacketSize, to_shade);
-    if (lookup && any_hit) {
-      any_hit = false;
-      for (int l = 0; l < n; ++l) {
-        if (!found[l]) continue;
-        if (lookup->find(packet.rays[l], packet.rays[l].dir * pr[l].t_sign, hits[l], sp[l], counts, c[l])) {
-          to_shade[l] = false;
-          if (reused) reused[l] = true;
-        }
-        any_hit |= to_shade[l];
+    bool any_hit = false;
+    for (int l = 0; l < kPacketSize; ++l) {
+      c[l] = scene.background();
+      to_shade[l] = l < n && eye.found[l];
+      if (to_shade[l] && lookup &&
+          lookup->find(eye.rays.rays[l], eye.rays.rays[l].dir * eye.primary[l].t_sign, eye.hits[l], eye.surface[l],
+                       counts, c[l])) {
+        to_shade[l] = false;
+        if (reused) reused[l] = true;
       }
+      any_hit |= to_shade[l];
     }
     ShadeParts lane_parts[kPacketSize];
-    if (any_hit) shade(scene, packet, to_shade, sp, 1, counts, c, parts ? lane_parts : nullptr);
+    if (any_hit) shade(scene, eye.rays, to_shade, eye.surface, 1, counts, c, parts ? lane_parts : nullptr);
     if (parts)
       for (int l = 0; l < n; ++l)
         if (to_shade[l]) parts[l] = lane_parts[l];
     for (int l = 0; l < n; ++l) {
       sum[l] += c[l];
       if (k != 0) continue;
-      if (primary) primary[l] = found[l] ? make_primary(pr[l], hits[l]) : PrimaryHit{};
-      if (surface && found[l]) surface[l] = sp[l];
+      if (primary) primary[l] = eye.found[l] ? make_primary(eye.primary[l], eye.hits[l]) : PrimaryHit{};
+      if (surface && eye.found[l]) surface[l] = eye.surface[l];
     }
   }
   for (int l = 0; l < n; ++l) colours[l] = sum[l] * (1.0 / spp);

@@ -185,4 +185,19 @@ std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bo
 void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin, const PixelXY px[], int n, int k,
                   PrimaryRay out[], bool ok[]);
 
+/// The eye rays of up to kPacketSize pixels px[l] (l < n) of one lens at
+/// sample k, traced as one packet: the first half of render_packet, for
+/// callers that schedule the shading themselves (reverse reprojection
+/// gathers the lanes left to shade from several packets into full ones,
+/// because a packet's shadow rays cost about as much with 3 lanes as with 16).
+struct EyePacket {
+  RayPacket rays;                       ///< world; active where the line meets the scene box
+  PrimaryRay primary[kPacketSize];      ///< valid where rays.active
+  Hit hits[kPacketSize];                ///< valid where found
+  SurfacePoint surface[kPacketSize];    ///< valid where found
+  bool found[kPacketSize] = {};
+};
+void trace_eye_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int k,
+                      RayCounts& counts, EyePacket& out);
+
 }  // namespace holoray
