@@ -3,7 +3,8 @@
 # per method, each with --report (which also ray traces every frame in full,
 # so the full and accelerated times come from the same run). Writes
 # bench/animation_results.md (the Table 2 comparison) and the per-run reports
-# in bench/animation_reports/. Needs ../shared beside the checkout.
+# in bench/animation_reports/, and plots them (bench/plot_animation.py).
+# Needs ../shared beside the checkout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=build/holoray
@@ -54,3 +55,5 @@ for name in ${SHOTS:-$(basename -s .toml bench/shots/*.toml)}; do
     echo "$name $method $reuse $fill cache $cache:$saved% saved, mean PSNR$mean dB (hold$hmean dB)"
   done
 done
+# Per-shot plots of PSNR and seconds per frame (bench/plots/*.svg).
+if command -v python3 >/dev/null; then python3 bench/plot_animation.py; fi
