@@ -193,6 +193,11 @@ void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse
         k->parts.size(), pixels));
 }
 
+void store(ImageBuffer& image, size_t p, const Vec3& c) {
+  float* o = image.data.data() + 3 * p;
+  o[0] = static_cast<float>(c.x), o[1] = static_cast<float>(c.y), o[2] = static_cast<float>(c.z);
+}
+
 // The hits that no keyframe answered, gathered from successive packets of
 // a tile and shaded 16 at a time: shading (shadow, mirror and refraction
 // rays) runs as packets whose cost hardly depends on how many lanes are
@@ -214,10 +219,7 @@ class ShadeQueue {
     std::fill(hit, hit + n_, true);
     Vec3 c[kPacketSize];
     shade(scene, rays_, hit, sp_, 1, counts, c);
-    for (int l = 0; l < n_; ++l) {
-      float* o = colour.data.data() + 3 * pixel_[l];
-      o[0] = static_cast<float>(c[l].x), o[1] = static_cast<float>(c[l].y), o[2] = static_cast<float>(c[l].z);
-    }
+    for (int l = 0; l < n_; ++l) store(colour, pixel_[l], c[l]);
     rays_ = RayPacket{};
     n_ = 0;
   }
@@ -228,11 +230,6 @@ class ShadeQueue {
   size_t pixel_[kPacketSize] = {};
   int n_ = 0;
 };
-
-void store(ImageBuffer& image, size_t p, const Vec3& c) {
-  float* o = image.data.data() + 3 * p;
-  o[0] = static_cast<float>(c.x), o[1] = static_cast<float>(c.y), o[2] = static_cast<float>(c.z);
-}
 
 // Frame setup shared by keyframes and reprojected frames.
 ReprojectedFrame blank_frame(const LensArray& camera) {

@@ -16,12 +16,16 @@
 // 3. That keyframe pixel is used when it saw the same object at the same
 //    depth along its line (within ReverseOptions::same_surface pixel
 //    footprints); else the other keyframe is tried; else the hit is shaded
-//    exactly, as full tracing would.
+//    exactly, as full tracing would. Those hits are gathered from successive
+//    packets and shaded 16 at a time: a packet's shadow and mirror rays cost
+//    about as much with a few lanes active as with all 16.
 //
 // What is reused (ReverseReuse):
-// - `color`: the keyframe pixel's colour (the paper's colour reuse). Shading
-//   is as seen from the keyframe's lens at its sample point: an EIA pixel
-//   covers s*|t|/g of the scene, so on detailed surfaces this is the error.
+// - `color`: the keyframe's colour (the paper's colour reuse), filtered
+//   bilinearly over the 2 x 2 keyframe pixels around the landing point that
+//   saw the same surface. Shading is as seen from the keyframe's lens at its
+//   sample points: an EIA pixel covers s*|t|/g of the scene, so on detailed
+//   surfaces this is the error.
 // - `visibility`: only what the keyframe's rays found: which lights its point
 //   saw, and the light its mirror and refraction rays brought. Ambient,
 //   diffuse and highlight terms are computed at the pixel's own hit
