@@ -12,8 +12,7 @@
 #      and the wall clock of the whole command;
 #   4. thread scaling of holoray's render, 1 thread against all;
 #   5. Mrays/s by ray kind (eye, shadow, mirror) at three EIA sizes;
-#   6. full tracing and spatial reuse (geometry and colour reuse) at
-#      512x512, 1024x1024 and 2048x2048, with PSNR against full tracing;
+#   6. full tracing at 512x512, 1024x1024 and 2048x2048;
 #   7. temporal reuse over whole shots (bench/run_animation_bench.sh, also
 #      writing bench/animation_results.md; SKIP_TEMPORAL=1 leaves it out).
 # Usage: bash bench/run_bench.sh [build-dir]   (REPEATS=3, THREADS=nproc)
@@ -111,14 +110,9 @@ for s in scenes:
         print(f"| {s} | {w}x{w} | {rate(f'Kind{w}_eye', s):.1f} | {rate(f'Kind{w}_shadow', s):.1f} | {mirror} | "
               f"{100 * eye / total:.0f}% | {100 * shadow / total:.0f}% | {100 * (refl + refr) / total:.0f}% |")
 
-print(f"\n### Full tracing and spatial reuse by EIA size, 16 px per lens, {threads} threads (render s, median of {repeats})\n")
-print("`holoray render --spatial-reuse K`: trace every K-th lens across and down, forward-project their points into "
-      "the lenses around them (z-buffer, leak detection, exact local visibility), trace what is missed. geometry: "
-      "each reused hit is shaded again through its own pixel (exact wherever the right surface was reused); "
-      "color: the traced lens's colour is kept (the paper). PSNR against full ray tracing of the same EIA "
-      "(float EXR, all channels).\n")
-print("| scene | EIA | full | Mrays/s | K=2 geometry | speed-up | PSNR dB | K=3 geometry | speed-up | PSNR dB | K=2 color | speed-up | PSNR dB |")
-print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+print(f"\n### Full tracing by EIA size, 16 px per lens, {threads} threads (render s, median of {repeats})\n")
+print("| scene | EIA | full | Mrays/s |")
+print("|---|---|---:|---:|")
 for s in scenes:
     nff = os.path.abspath(f"{shared}/scenes/nff/{s}.nff")
     for lenses in (32, 64, 128):
@@ -129,11 +123,6 @@ for s in scenes:
         r = subprocess.run(base + ["-o", "full.exr"], check=True, capture_output=True, text=True, cwd=work)
         mrays = re.search(r"([0-9.]+) Mrays/s", r.stdout).group(1)
         cells = [f"{16 * lenses}x{16 * lenses}", f"{full:.3f}", mrays]
-        for k, reuse in ((2, "geometry"), (3, "geometry"), (2, "color")):
-            _, t = wall(base + ["-o", "k.exr", "--spatial-reuse", str(k), "--reuse", reuse], pat)
-            r = subprocess.run([os.path.abspath(holoray), "compare", "full.exr", "k.exr"], capture_output=True, text=True, cwd=work)
-            psnr = re.search(r"^all\s+\S+\s+\S+\s+(\S+)", r.stdout, re.M).group(1)
-            cells += [f"{t:.3f}", f"{full / t:.2f}x", psnr]
         print(f"| {s} | " + " | ".join(cells) + " |")
 
 print(f"\n{threads} threads on {cpu} ({os.cpu_count()} cores); Google Benchmark medians of 3 repetitions; "

@@ -89,52 +89,6 @@ TEST(Reprojection, StaticShotWithGeometryReuseEqualsFullRayTracing) {
   EXPECT_EQ(differing, 0u);
 }
 
-// Reach::lenses (spatial reuse): with radius 0 a point of the frame's own
-// keyframe lands only in its own lens, so every hit pixel gets its own point
-// back; pixels marked given receive nothing and are left to the caller; a
-// mask of the wrong size or a negative radius is refused.
-TEST(Reprojection, LensReachAndGivenPixels) {
-  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
-  const RenderScene scene(desc);
-  const LensArrayDesc cam = camera_at(desc, {});
-  const LensArray camera(cam);
-  const Keyframe key = trace_key(scene, cam, 0);
-  const int W = camera.width(), H = camera.height();
-  std::vector<uint8_t> given(static_cast<size_t>(W) * H, 0);
-  for (int j = 0; j < H; ++j)
-    for (int i = 0; i < W / 2; ++i) given[static_cast<size_t>(j) * W + i] = 1;
-  ReprojectOptions opt;
-  opt.reuse = Reuse::geometry;
-  opt.reach = Reach::lenses;
-  opt.lens_radius = 0;
-  opt.given = &given;
-  const ReprojectedFrame rf = reproject(scene, camera, 0, &key.points, nullptr, opt);
-  size_t right_hits = 0, right_reused = 0;
-  for (int j = 0; j < H; ++j)
-    for (int i = 0; i < W; ++i) {
-      const size_t p = static_cast<size_t>(j) * W + i;
-      if (given[p]) {
-        EXPECT_EQ(rf.received[p], 0) << i << "," << j;
-        EXPECT_EQ(rf.status[p], PixelStatus::missed) << i << "," << j;
-        continue;
-      }
-      const bool hit = *key.full.id.at(i, j) >= 0;
-      right_hits += hit;
-      if (rf.status[p] != PixelStatus::reprojected) continue;
-      ++right_reused;
-      EXPECT_EQ(rf.object[p], static_cast<int>(*key.full.id.at(i, j))) << i << "," << j;
-      for (int c = 0; c < 3; ++c) EXPECT_EQ(rf.colour.at(i, j)[c], key.full.colour.at(i, j)[c]) << i << "," << j;
-    }
-  EXPECT_GT(right_reused, right_hits * 9 / 10);
-
-  std::vector<uint8_t> short_mask(given.size() - 1, 0);
-  opt.given = &short_mask;
-  EXPECT_THROW(reproject(scene, camera, 0, &key.points, nullptr, opt), std::invalid_argument);
-  opt.given = nullptr;
-  opt.lens_radius = -1;
-  EXPECT_THROW(reproject(scene, camera, 0, &key.points, nullptr, opt), std::invalid_argument);
-}
-
 // Geometry reuse re-shades the exact hit: >= 50 dB. Colour reuse (the
 // paper) carries colours from points up to half a pixel off centre, which
 // shifts hard shadow edges: >= 45 dB.

@@ -18,7 +18,6 @@
 #include "render/renderer.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
-#include "temporal/spatial.hpp"
 
 namespace holoray::cli {
 
@@ -70,8 +69,6 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; 5 is the SPD's)")->capture_default_str();
-  cmd->add_option("--spatial-reuse", o.spatial_reuse, "Trace every K-th lens across and down and reproject into the rest (1: off)")->capture_default_str();
-  cmd->add_option("--reuse", o.reuse, "With --spatial-reuse: geometry (re-shade reused hits, exact) or color (keep the traced lens's colour)")->capture_default_str();
   cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
@@ -95,11 +92,6 @@ int run_render(const RenderCommandOptions& o) {
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const TraceStyle style = parse_style(o.style);
-    if (o.spatial_reuse < 1)
-      throw std::invalid_argument(fmt::format("--spatial-reuse: must be 1 (off) or more, got {}", o.spatial_reuse));
-    if (o.spatial_reuse > 1 && (o.spp > 1 || !o.aovs.empty()))
-      throw std::invalid_argument("--spatial-reuse: works with 1 sample per pixel and no AOVs");
-    const Reuse reuse = pick<Reuse>("--reuse", o.reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
     if (o.max_depth < 1 || o.max_depth > kDepthCap)
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
@@ -148,31 +140,7 @@ int run_render(const RenderCommandOptions& o) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    std::string spatial_line;
-    if (o.spatial_reuse > 1) {
-      // Spatial reuse: trace every k-th lens and reproject into the rest (issue 4).
-      SpatialOptions so;
-      so.stride = o.spatial_reuse;
-      so.reuse = reuse;
-      so.threads = o.threads;
-      const auto t0 = Clock::now();
-      SpatialFrame sf = render_spatial(scene, camera, so);
-      stats.trace_seconds = seconds_since(t0);
-      stats.rays = sf.sparse_rays;
-      stats.rays += sf.frame.rays;
-      const double n = static_cast<double>(camera.pixel_count());
-      const auto& sec = sf.frame.seconds;
-      spatial_line = fmt::format(
-          "spatial    every {} lens traced: {:.1f}% of pixels ({:.3f} s); {:.1f}% reused, {:.1f}% filled by tracing; "
-          "splat {:.3f} s, merge {:.3f} s, leaks {:.3f} s, check {:.3f} s, fill {:.3f} s\n",
-          o.spatial_reuse, 100.0 * static_cast<double>(sf.sparse_pixels) / n, sf.sparse_seconds,
-          100.0 * sf.frame.count(PixelStatus::reprojected) / n,
-          100.0 * static_cast<double>(sf.frame.count(PixelStatus::traced) - sf.sparse_pixels) / n, sec.splat, sec.merge,
-          sec.leaks, sec.check, sec.fill);
-      fb.colour = std::move(sf.frame.colour);
-    } else {
-      fb = render_frame(scene, camera, ropt, stats);
-    }
+    fb = render_frame(scene, camera, ropt, stats);
     if (tty) std::fprintf(stderr, "\r             \r");
 
     const auto t_write = Clock::now();
@@ -195,7 +163,6 @@ int run_render(const RenderCommandOptions& o) {
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
       fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style\n", stats.trace_seconds, o.spp,
                  o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), o.style);
-      fmt::print("{}", spatial_line);
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);

@@ -12,8 +12,8 @@ namespace holoray::cli {
 /// Options of `holoray render` as typed; resolved and validated in run_render.
 struct RenderCommandOptions {
   std::string scene, output;
-  std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "linear", style = "packet", reuse = "geometry";
-  int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 5, spatial_reuse = 1;
+  std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "linear", style = "packet";
+  int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 5;
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
   CacheCommandOptions cache;

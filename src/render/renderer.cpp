@@ -199,7 +199,6 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
                           RenderStats& stats, uint64_t memory_limit_bytes) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));
-  if (opt.lens_stride < 1) throw std::invalid_argument(fmt::format("the lens stride must be at least 1, got {}", opt.lens_stride));
   const uint64_t need = frame_bytes(camera, opt.aovs) + (opt.primary_hits ? camera.pixel_count() * sizeof(PrimaryHit) : 0);
   if (memory_limit_bytes && need > memory_limit_bytes)
     throw std::length_error(fmt::format("a {}x{} image needs {:.1f} MiB of buffers, over the limit of {:.1f} MiB",
@@ -212,14 +211,6 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   if (opt.aovs.depth) fb.depth = ImageBuffer(W, H, 1, NAN);
   if (opt.aovs.normal) fb.normal = ImageBuffer(W, H, 3);
   if (opt.aovs.id) fb.id = ImageBuffer(W, H, 1, -1.0f);
-  if (opt.lens_stride > 1) {  // lenses left out show the background
-    const Vec3 bg = scene.background();
-    for (size_t k = 0; k < fb.colour.data.size(); k += 3) {
-      fb.colour.data[k] = static_cast<float>(bg.x);
-      fb.colour.data[k + 1] = static_cast<float>(bg.y);
-      fb.colour.data[k + 2] = static_cast<float>(bg.z);
-    }
-  }
   if (opt.primary_hits) fb.primary.resize(static_cast<size_t>(camera.pixel_count()));
   const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
@@ -262,7 +253,6 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
     // (square grid), a piece of one lenticule's strip, or close to one hex lens.
     for (int by = r.y0; by < r.y1; by += P)
       for (int bx = r.x0; bx < r.x1; bx += P) {
-        if (!traced_at_stride(camera, opt.lens_stride, bx, by)) continue;
         const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
         render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);
       }

@@ -41,11 +41,6 @@ struct RenderOptions {
   bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
   TileOrder tile_order = TileOrder::row_major;  ///< never changes the result (tests prove it)
   TraceStyle style = TraceStyle::packet;        ///< the fastest measured (bench/results.md)
-  /// Trace only every k-th lens across and down (k x k subsampling; the
-  /// lenticular sheet every k-th lenticule); the others keep the background
-  /// colour and a background PrimaryHit. 1: every lens. Used by spatial
-  /// reuse (temporal/spatial.hpp), which fills the rest from these.
-  int lens_stride = 1;
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
 };
@@ -145,15 +140,6 @@ void render_block(const RenderScene& scene, const LensArray& camera, const TileR
       return;
     }
   }
-}
-
-/// Whether RenderOptions::lens_stride = `stride` traces pixel (i, j): the
-/// P x P blocks whose block column (and, but for lenticular sheets, block
-/// row) is a multiple of the stride. Blocks are lenses on square and
-/// lenticular grids, close to them on hex grids.
-inline bool traced_at_stride(const LensArray& camera, int stride, int i, int j) {
-  const int P = camera.desc().pixels_per_lens;
-  return (i / P) % stride == 0 && (camera.desc().grid == Grid::lenticular || (j / P) % stride == 0);
 }
 
 /// Bytes the frame's buffers take (colour plus requested AOVs), computed

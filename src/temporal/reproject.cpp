@@ -54,7 +54,7 @@ Candidate decode(uint64_t key) {
 class Splatter {
  public:
   Splatter(const RenderScene& scene, const LensArray& camera, const PointImage& key, const ReprojectOptions& opt)
-      : scene_(scene), cam_(camera), key_(key), reach_(opt.reach), radius_(opt.lens_radius), given_(opt.given),
+      : scene_(scene), cam_(camera), key_(key), reach_(opt.reach),
         ortho_(camera.desc().mode == RecordingMode::orthoscopic),
         footprint_(camera.pixel_pitch() / camera.desc().gap) {
     // Keyframe array frame -> this frame's array frame, for directions: one
@@ -91,14 +91,6 @@ class Splatter {
     landings.clear();
     if (reach_ == Reach::all) {
       cam_.project(p_world, landings);
-    } else if (reach_ == Reach::lenses) {
-      const Vec3 x = cam_.desc().frame.to_local_point(p_world);
-      const LensIndex own = kc.lens_of_pixel(i, j);
-      const int ny = cam_.lens_count_y(), nx = cam_.lens_count_x();
-      PanelHit ph;
-      for (int ly = std::max(0, own.y - radius_); ly <= std::min(ny - 1, own.y + radius_); ++ly)
-        for (int lx = std::max(0, own.x - radius_); lx <= std::min(nx - 1, own.x + radius_); ++lx)
-          if (cam_.project_through(x, LensIndex{lx, ly}, ph)) landings.push_back(ph);
     } else {
       // The lens that sees the moved point along the direction the keyframe
       // pixel saw it: there it lands at the same place in the elemental
@@ -117,7 +109,6 @@ class Splatter {
     }
     const int W = cam_.width();
     for (const PanelHit& l : landings) {
-      if (given_ && (*given_)[static_cast<size_t>(l.j) * W + l.i]) continue;
       const double d = ortho_ ? l.t : -l.t;
       const double r = std::sqrt((l.u - 0.5) * (l.u - 0.5) + (l.v - 0.5) * (l.v - 0.5));
       const auto score = static_cast<float>(d - kCentrePenalty * r * footprint(l.t));
@@ -130,8 +121,6 @@ class Splatter {
   const LensArray& cam_;
   const PointImage& key_;
   Reach reach_;
-  int radius_;
-  const std::vector<uint8_t>* given_;
   bool ortho_;
   double footprint_;
   double key_to_local_[3][3];
@@ -162,10 +151,6 @@ ReprojectedFrame reproject(const RenderScene& scene, const LensArray& camera, in
   check_key(next);
   const int W = camera.width(), H = camera.height();
   const size_t n = static_cast<size_t>(W) * H;
-  if (opt.given && opt.given->size() != n)
-    throw std::invalid_argument(fmt::format("the mask of given pixels has {} entries for {} pixels", opt.given->size(), n));
-  if (opt.reach == Reach::lenses && opt.lens_radius < 0)
-    throw std::invalid_argument(fmt::format("the lens radius must be 0 or more, got {}", opt.lens_radius));
   const PointImage* keys[2] = {prev, next};
   double w_next = 0;
   if (prev && next && next->frame != prev->frame) w_next = double(frame - prev->frame) / double(next->frame - prev->frame);

@@ -10,9 +10,6 @@
 //    saw it, crosses the array (and the neighbour it lands in from there):
 //    an image warp per elemental image, about one projection per point
 //    instead of one per lens that sees it, which is what makes it pay.
-//    `Reach::lenses` projects into the lenses within a radius of the point's
-//    own lens: spatial reuse (spatial.hpp), where the frame is its own
-//    keyframe and the lenses to fill lie next to the traced ones.
 // 2. Z-buffer per keyframe: the point nearest the viewer wins (largest t
 //    orthoscopic, smallest t > 0 pseudoscopic), less a penalty of two pixel
 //    footprints per pixel of distance from the pixel centre, so that on one
@@ -58,7 +55,6 @@ enum class Reuse { color, geometry };
 enum class Reach {
   near,    ///< the lens along the direction the keyframe pixel saw it (and its landing neighbour)
   all,     ///< every lens that sees it (the paper)
-  lenses,  ///< the lenses within ReprojectOptions::lens_radius of the keyframe pixel's own lens (spatial reuse)
 };
 
 /// Per-pixel outcome of a reprojected frame.
@@ -81,13 +77,6 @@ struct ReprojectOptions {
   /// each reprojected hit (see step 5).
   bool check_near_slab = true;
   int threads = 0;  ///< 0: all cores
-  /// Reach::lenses: lenses up to this many across and down from the
-  /// keyframe pixel's lens (same lens array as the frame's).
-  int lens_radius = 1;
-  /// W*H, optional: pixels the caller has already made (spatial reuse: the
-  /// traced lenses). Nothing lands on them and they stay `missed` here, for
-  /// the caller to set.
-  const std::vector<uint8_t>* given = nullptr;
 };
 
 /// A reprojected frame before or after filling.
