@@ -210,9 +210,11 @@ bool LensArray::project_through(const Vec3& x, LensIndex lens, PanelHit& out, Le
     return false;
   }
   const int i = static_cast<int>(fi), j = static_cast<int>(fj);
-  const LensIndex owner = lens_of_pixel(i, j);
-  if (landing_lens) *landing_lens = owner;
-  if (!(owner == lens)) return false;
+  if (!pixel_in_lens(i, j, lens)) {
+    if (landing_lens) *landing_lens = lens_of_pixel(i, j);
+    return false;
+  }
+  if (landing_lens) *landing_lens = lens;
   double t;
   if (desc_.grid == Grid::lenticular) {
     const PixelLine l = line_local(i, j, fi - i, fj - j);

@@ -91,6 +91,16 @@ class LensArray {
     if (desc_.grid == Grid::lenticular) return {i / P, 0};
     return hex_lens_of_pixel(i, j);
   }
+  /// lens_of_pixel(i, j) == lens, without its divisions on square and
+  /// lenticular grids (the reverse reprojection asks for every reused hit).
+  bool pixel_in_lens(int i, int j, LensIndex lens) const {
+    const int P = desc_.pixels_per_lens;
+    if (desc_.grid == Grid::square)
+      return static_cast<unsigned>(i - lens.x * P) < static_cast<unsigned>(P) &&
+             static_cast<unsigned>(j - lens.y * P) < static_cast<unsigned>(P);
+    if (desc_.grid == Grid::lenticular) return static_cast<unsigned>(i - lens.x * P) < static_cast<unsigned>(P);
+    return hex_lens_of_pixel(i, j) == lens;
+  }
   /// Lens centre c in the array frame (z = 0). Lenticular: (c_x, 0, 0).
   Vec3 lens_centre_local(LensIndex l) const;
   /// Panel point p of pixel (i, j) at offset (u, v) in the pixel, array frame (z = -gap).

@@ -73,8 +73,9 @@ class PointImageLookup final : public ColourLookup {
   static constexpr size_t kNone = ~size_t{0};
 
   // The keyframe pixel that saw this hit, or kNone; `ph` gets where the
-  // hit lands on the keyframe's panel.
-  size_t locate(const Key& key, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, PanelHit& ph) const {
+  // hit lands on the keyframe's panel, `landing` (optional) its lens.
+  size_t locate(const Key& key, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, PanelHit& ph,
+                LensIndex* landing = nullptr) const {
     const LensArray& kc = key.image->camera;
     const Frame& kf = kc.desc().frame;
     Vec3 p = sp.position, d = line_dir;
@@ -92,6 +93,7 @@ class PointImageLookup final : public ColourLookup {
     if (!kc.project_through(x, lens, ph, &landed) &&
         (landed.x < 0 || landed == lens || !kc.project_through(x, landed, ph)))
       return kNone;
+    if (landing) *landing = landed;  // project_through sets it to the lens it succeeded through
     const size_t idx = static_cast<size_t>(ph.j) * kc.width() + ph.i;
     return same_surface(key, idx, sp.object, ph.t) ? idx : kNone;
   }
@@ -118,10 +120,10 @@ class PointImageLookup final : public ColourLookup {
     for (const Key& key : keys_) {
       if (!key.image) continue;
       PanelHit ph;
-      const size_t idx = locate(key, line_dir, hit, sp, ph);
+      LensIndex lens;
+      const size_t idx = locate(key, line_dir, hit, sp, ph, &lens);
       if (idx == kNone) continue;
       const LensArray& kc = key.image->camera;
-      const LensIndex lens = kc.lens_of_pixel(ph.i, ph.j);
       const double fx = ph.u - 0.5, fy = ph.v - 0.5;
       const int i0 = ph.i + (fx < 0 ? -1 : 0), j0 = ph.j + (fy < 0 ? -1 : 0);
       const double wx = fx < 0 ? fx + 1 : fx, wy = fy < 0 ? fy + 1 : fy;
@@ -131,7 +133,7 @@ class PointImageLookup final : public ColourLookup {
         for (int a = 0; a < 2; ++a) {
           const int i = i0 + a, j = j0 + b;
           const double wa = (a ? wx : 1 - wx) * (b ? wy : 1 - wy);
-          if (wa <= 0 || i < 0 || j < 0 || i >= kc.width() || j >= kc.height() || !(kc.lens_of_pixel(i, j) == lens))
+          if (wa <= 0 || i < 0 || j < 0 || i >= kc.width() || j >= kc.height() || !kc.pixel_in_lens(i, j, lens))
             continue;
           const size_t q = static_cast<size_t>(j) * kc.width() + i;
           if (q != idx && !same_surface(key, q, sp.object, ph.t)) continue;
@@ -161,7 +163,7 @@ class PointImageLookup final : public ColourLookup {
     for (int dj = -1; dj <= 1; ++dj)
       for (int di = -1; di <= 1; ++di) {
         const int ni = i + di, nj = j + dj;
-        if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H || !(kc.lens_of_pixel(ni, nj) == lens))
+        if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H || !kc.pixel_in_lens(ni, nj, lens))
           continue;
         const size_t q = static_cast<size_t>(nj) * W + ni;
         const PrimaryHit& h = key.image->hits[q];
