@@ -9,7 +9,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
-  tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4
+  tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray also the pinhole test's reference
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -25,6 +25,15 @@ void parse_lens_count(const std::string& text, int& nx, int& ny) {
   if (nx < 1 || ny < 1) throw std::invalid_argument(fmt::format("--lenses: lens counts must be at least 1, got '{}'", text));
 }
 
+void parse_resolution(const std::string& text, int& width, int& height) {
+  const auto x = text.find_first_of("xX");
+  if (x == std::string::npos || !to_int(std::string_view(text).substr(0, x), width) ||
+      !to_int(std::string_view(text).substr(x + 1), height))
+    throw std::invalid_argument(fmt::format("--resolution: expected WxH (e.g. 512x512), got '{}'", text));
+  if (width < 1 || height < 1 || width > 65536 || height > 65536)
+    throw std::invalid_argument(fmt::format("--resolution: width and height must be from 1 to 65536, got '{}'", text));
+}
+
 Vec3 parse_vec3(const std::string& option, const std::string& text) {
   double v[3];
   std::string_view rest(text);

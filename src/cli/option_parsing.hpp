@@ -18,6 +18,8 @@ namespace holoray::cli {
 
 /// "NXxNY" (e.g. "64x64") or a single "N" meaning NxN.
 void parse_lens_count(const std::string& text, int& nx, int& ny);
+/// "WxH" (e.g. 512x512) for --resolution; sizes from 1 to 65536 each.
+void parse_resolution(const std::string& text, int& width, int& height);
 /// "X,Y,Z" with finite numbers.
 Vec3 parse_vec3(const std::string& option, const std::string& text);
 /// "square", "hex" or "lenticular" (--grid).

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 
 #include "camera/placement.hpp"
 #include "cli/machine.hpp"
@@ -16,6 +17,7 @@
 #include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
 #include "render/renderer.hpp"
+#include "render/view_renderer.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 
@@ -51,9 +53,11 @@ ArraySettings resolve_settings(const RenderCommandOptions& o) {
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
-  CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA) from an NFF scene");
+  CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA), or the scene's own pinhole view, from an NFF scene");
   cmd->add_option("scene", o.scene, "Scene file (NFF)")->required();
   cmd->add_option("-o,--output", o.output, "Output image: .png (8-bit) or .exr (float)")->required();
+  cmd->add_option("--camera", o.camera, "integral (the EIA) or pinhole (the scene's own view, NFF v: previews and comparisons with other ray tracers)")->capture_default_str();
+  cmd->add_option("--resolution", o.resolution, "With --camera pinhole: image size WxH (default: the scene's resolution, else 512x512)");
   cmd->add_option("--grid", o.grid, "Lens grid: square, hex or lenticular")->capture_default_str();
   cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")->capture_default_str();
   cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();
@@ -95,7 +99,14 @@ int run_render(const RenderCommandOptions& o) {
     if (o.max_depth < 1 || o.max_depth > kDepthCap)
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
-    cache_enabled(o.cache);  // checked before the scene is read
+    const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
+    int res_w = 0, res_h = 0;
+    if (!o.resolution.empty()) {
+      if (!pinhole) throw std::invalid_argument("--resolution: goes with --camera pinhole (an EIA's size is --lenses x --pixels-per-lens)");
+      parse_resolution(o.resolution, res_w, res_h);
+    }
+    if (cache_enabled(o.cache) && pinhole)  // checked before the scene is read
+      throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
 
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
@@ -106,18 +117,33 @@ int run_render(const RenderCommandOptions& o) {
     const double parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(desc);
 
-    const LensArray camera(place_array(settings, desc.viewpoint));
+    std::optional<LensArray> array;
+    std::optional<PinholeCamera> view;
+    if (pinhole) {
+      if (!desc.viewpoint)
+        throw std::invalid_argument(fmt::format("--camera pinhole: '{}' has no viewpoint (NFF 'v')", o.scene));
+      const Viewpoint& vp = *desc.viewpoint;
+      if (res_w == 0) {
+        res_w = vp.xres > 0 ? vp.xres : 512;
+        res_h = vp.yres > 0 ? vp.yres : 512;
+      }
+      view.emplace(PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, res_w, res_h});
+    } else {
+      array.emplace(place_array(settings, desc.viewpoint));
+    }
+    const int width = pinhole ? view->width() : array->width(), height = pinhole ? view->height() : array->height();
+    const int64_t pixels = static_cast<int64_t>(width) * height;
     // Refuse before allocating: buffers plus the 8-bit or float copy made on output.
-    const uint64_t need = frame_bytes(camera, aovs) + static_cast<uint64_t>(camera.pixel_count()) * 12;
+    const uint64_t need = frame_bytes(pixels, aovs) + static_cast<uint64_t>(pixels) * 12;
     const uint64_t have = physical_memory_bytes();
     if (have && need > have / 10 * 8)
       throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers, more than 80% of this machine's {:.2f} GiB",
-                                          camera.width(), camera.height(), need / 1073741824.0, have / 1073741824.0));
+                                          width, height, need / 1073741824.0, have / 1073741824.0));
 
     const auto t_build = Clock::now();
     RenderScene scene(desc);
     scene.set_max_depth(o.max_depth);
-    const std::unique_ptr<ShadowCache> cache = make_cache(scene, camera.desc().pitch, o.cache);
+    const std::unique_ptr<ShadowCache> cache = pinhole ? nullptr : make_cache(scene, array->desc().pitch, o.cache);
     scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);
 
@@ -140,7 +166,7 @@ int run_render(const RenderCommandOptions& o) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    fb = render_frame(scene, camera, ropt, stats);
+    fb = pinhole ? render_view(scene, *view, ropt, stats) : render_frame(scene, *array, ropt, stats);
     if (tty) std::fprintf(stderr, "\r             \r");
 
     const auto t_write = Clock::now();
@@ -153,16 +179,21 @@ int run_render(const RenderCommandOptions& o) {
     const double write_s = seconds_since(t_write);
 
     if (!o.quiet) {
-      const LensArrayDesc& d = camera.desc();
       const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
       fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
                  scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
-      fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", camera.width(), camera.height(), to_string(d.grid),
-                 camera.lens_count_x(), camera.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
-      fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, camera.lens_fov_deg());
+      if (pinhole) {
+        fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
+                   view->desc().fov_deg);
+      } else {
+        const LensArrayDesc& d = array->desc();
+        fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid),
+                   array->lens_count_x(), array->lens_count_y(), d.pixels_per_lens, to_string(d.mode));
+        fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, array->lens_fov_deg());
+      }
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
       fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), o.style);
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), pinhole ? "packet" : o.style);
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);

@@ -16,6 +16,7 @@ struct RenderCommandOptions {
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 5;
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
+  std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole)
   CacheCommandOptions cache;
   bool quiet = false;
 };

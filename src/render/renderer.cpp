@@ -26,6 +26,8 @@ uint32_t hash32(uint32_t x) {
   return x;
 }
 
+}  // namespace
+
 void sample_offset(int i, int j, int k, double& u, double& v) {
   if (k == 0) {
     u = v = 0.5;
@@ -36,6 +38,8 @@ void sample_offset(int i, int j, int k, double& u, double& v) {
   u = std::fmod(ru + k * 0.7548776662466927, 1.0);
   v = std::fmod(rv + k * 0.5698402909980532, 1.0);
 }
+
+namespace {
 
 PrimaryHit make_primary(const PrimaryRay& pr, const Hit& hit) {
   PrimaryHit p;
@@ -52,9 +56,32 @@ PrimaryHit make_primary(const PrimaryRay& pr, const Hit& hit) {
 
 }  // namespace
 
-uint64_t frame_bytes(const LensArray& camera, const AovSet& aovs) {
+uint64_t frame_bytes(int64_t pixels, const AovSet& aovs) {
   const uint64_t channels = 3 + (aovs.albedo ? 3 : 0) + (aovs.depth ? 1 : 0) + (aovs.normal ? 3 : 0) + (aovs.id ? 1 : 0);
-  return static_cast<uint64_t>(camera.pixel_count()) * channels * sizeof(float);
+  return static_cast<uint64_t>(pixels) * channels * sizeof(float);
+}
+
+FrameBuffers allocate_frame(int width, int height, const AovSet& aovs) {
+  FrameBuffers fb;
+  fb.colour = ImageBuffer(width, height, 3);
+  if (aovs.albedo) fb.albedo = ImageBuffer(width, height, 3);
+  if (aovs.depth) fb.depth = ImageBuffer(width, height, 1, NAN);
+  if (aovs.normal) fb.normal = ImageBuffer(width, height, 3);
+  if (aovs.id) fb.id = ImageBuffer(width, height, 1, -1.0f);
+  return fb;
+}
+
+void store_pixel(FrameBuffers& fb, const AovSet& aovs, int i, int j, const Vec3& c, const SurfacePoint* sp, double t,
+                 const Vec3& toward_viewer) {
+  auto put = [](float* o, const Vec3& v) {
+    o[0] = static_cast<float>(v.x), o[1] = static_cast<float>(v.y), o[2] = static_cast<float>(v.z);
+  };
+  put(fb.colour.at(i, j), c);
+  if (!sp) return;
+  if (aovs.albedo) put(fb.albedo.at(i, j), sp->material->colour);
+  if (aovs.depth) *fb.depth.at(i, j) = static_cast<float>(t);
+  if (aovs.normal) put(fb.normal.at(i, j), dot(sp->ns, toward_viewer) >= 0 ? sp->ns : -sp->ns);
+  if (aovs.id) *fb.id.at(i, j) = static_cast<float>(sp->object);
 }
 
 namespace {
@@ -141,6 +168,10 @@ void trace_eye_packet(const RenderScene& scene, const LensArray& camera, const P
                       RayCounts& counts, EyePacket& out) {
   bool ok[kPacketSize];
   primary_rays(camera, scene.bounds(), scene.epsilon(), px, n, k, out.primary, ok);
+  intersect_eye_packet(scene, ok, n, counts, out);
+}
+
+void intersect_eye_packet(const RenderScene& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out) {
   out.rays = RayPacket{};
   std::fill(out.found, out.found + kPacketSize, false);
   for (int l = 0; l < n; ++l) {
@@ -199,18 +230,13 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
                           RenderStats& stats, uint64_t memory_limit_bytes) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));
-  const uint64_t need = frame_bytes(camera, opt.aovs) + (opt.primary_hits ? camera.pixel_count() * sizeof(PrimaryHit) : 0);
+  const uint64_t need = frame_bytes(camera.pixel_count(), opt.aovs) + (opt.primary_hits ? camera.pixel_count() * sizeof(PrimaryHit) : 0);
   if (memory_limit_bytes && need > memory_limit_bytes)
     throw std::length_error(fmt::format("a {}x{} image needs {:.1f} MiB of buffers, over the limit of {:.1f} MiB",
                                         camera.width(), camera.height(), need / 1048576.0, memory_limit_bytes / 1048576.0));
 
   const int W = camera.width(), H = camera.height();
-  FrameBuffers fb;
-  fb.colour = ImageBuffer(W, H, 3);
-  if (opt.aovs.albedo) fb.albedo = ImageBuffer(W, H, 3);
-  if (opt.aovs.depth) fb.depth = ImageBuffer(W, H, 1, NAN);
-  if (opt.aovs.normal) fb.normal = ImageBuffer(W, H, 3);
-  if (opt.aovs.id) fb.id = ImageBuffer(W, H, 1, -1.0f);
+  FrameBuffers fb = allocate_frame(W, H, opt.aovs);
   if (opt.primary_hits) fb.primary.resize(static_cast<size_t>(camera.pixel_count()));
   const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
@@ -222,31 +248,15 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   for_each_tile(tiles, opt.threads, [&](int tile) {
     RayCounts counts;
     auto store = [&](int i, int j, const Vec3& c, const PrimaryHit& ph, const SurfacePoint& sp) {
-      float* o = fb.colour.at(i, j);
-      o[0] = static_cast<float>(c.x);
-      o[1] = static_cast<float>(c.y);
-      o[2] = static_cast<float>(c.z);
       if (opt.primary_hits) fb.primary[static_cast<size_t>(j) * W + i] = ph;
-      if (ph.status != PrimaryHit::kHit || !want_surface) return;
-      if (opt.aovs.albedo) {
-        float* a = fb.albedo.at(i, j);
-        a[0] = static_cast<float>(sp.material->colour.x);
-        a[1] = static_cast<float>(sp.material->colour.y);
-        a[2] = static_cast<float>(sp.material->colour.z);
-      }
-      if (opt.aovs.depth) *fb.depth.at(i, j) = ph.t;
-      if (opt.aovs.normal) {
-        // Facing the viewer: along +d orthoscopic (it looks back down the
-        // line), along -d pseudoscopic (it sits at the lens).
+      // Normals face the viewer: along +d orthoscopic (it looks back down
+      // the line), along -d pseudoscopic (it sits at the lens).
+      Vec3 toward;
+      if (opt.aovs.normal && ph.status == PrimaryHit::kHit) {
         const Vec3 d = camera.line(i, j).dir;
-        const Vec3 toward = camera.desc().mode == RecordingMode::orthoscopic ? d : -d;
-        const Vec3 n = dot(sp.ns, toward) >= 0 ? sp.ns : -sp.ns;
-        float* no = fb.normal.at(i, j);
-        no[0] = static_cast<float>(n.x);
-        no[1] = static_cast<float>(n.y);
-        no[2] = static_cast<float>(n.z);
+        toward = camera.desc().mode == RecordingMode::orthoscopic ? d : -d;
       }
-      if (opt.aovs.id) *fb.id.at(i, j) = static_cast<float>(sp.object);
+      store_pixel(fb, opt.aovs, i, j, c, ph.status == PrimaryHit::kHit ? &sp : nullptr, ph.t, toward);
     };
     const TileRect r = tiles.rect(tile);
     // Tiles are P-aligned, so each P x P block is one elemental image

@@ -142,9 +142,22 @@ void render_block(const RenderScene& scene, const LensArray& camera, const TileR
   }
 }
 
-/// Bytes the frame's buffers take (colour plus requested AOVs), computed
-/// without allocating; lets callers refuse absurd sizes up front.
-uint64_t frame_bytes(const LensArray& camera, const AovSet& aovs);
+/// Bytes the buffers of a frame of `pixels` take (colour plus requested
+/// AOVs), computed without allocating; lets callers refuse absurd sizes up front.
+uint64_t frame_bytes(int64_t pixels, const AovSet& aovs);
+/// The colour buffer and the requested AOVs of a width x height frame, at
+/// their background values (black, depth NaN, normal 0, id -1).
+FrameBuffers allocate_frame(int width, int height, const AovSet& aovs);
+/// Writes one pixel's colour and, where `surface` is given (the pixel's
+/// first sample hit it), its AOVs: albedo, depth `t` (the camera's line
+/// parameter), the shading normal turned toward `toward_viewer` (world
+/// frame; needed only for the normal AOV) and the object id. Shared by every
+/// camera's renderer so the AOVs mean the same for all.
+void store_pixel(FrameBuffers& fb, const AovSet& aovs, int i, int j, const Vec3& colour, const SurfacePoint* surface,
+                 double t, const Vec3& toward_viewer);
+/// Pixel offset (u, v) of sample k: 0.5 (the centre) for k = 0, else a
+/// per-pixel hashed rotation of a 2D Kronecker sequence (deterministic).
+void sample_offset(int i, int j, int k, double& u, double& v);
 
 /// Renders the EIA. Throws std::invalid_argument when spp < 1 or threads < 0,
 /// std::length_error when the buffers would exceed `memory_limit_bytes`
@@ -185,5 +198,8 @@ struct EyePacket {
 };
 void trace_eye_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int k,
                       RayCounts& counts, EyePacket& out);
+/// The same for rays the caller made: out.primary[l] for the lanes l < n
+/// with ok[l] (any camera); the others stay inactive.
+void intersect_eye_packet(const RenderScene& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out);
 
 }  // namespace holoray

@@ -1,0 +1,51 @@
+#include "camera/pinhole.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace holoray {
+
+PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
+  if (!is_finite(desc.from) || !is_finite(desc.at) || !is_finite(desc.up))
+    throw std::invalid_argument("the pinhole camera's from, at and up must be finite");
+  if (length(desc.at - desc.from) == 0)
+    throw std::invalid_argument(fmt::format("the pinhole camera looks nowhere: from and at are the same point ({}, {}, {})",
+                                            desc.from.x, desc.from.y, desc.from.z));
+  if (!(desc.fov_deg > 0 && desc.fov_deg < 180))
+    throw std::invalid_argument(fmt::format("the field of view must be between 0 and 180 degrees, got {}", desc.fov_deg));
+  if (desc.width < 1 || desc.height < 1 || static_cast<int64_t>(desc.width) * desc.height > (int64_t{1} << 30))
+    throw std::invalid_argument(
+        fmt::format("the image must be 1x1 to 2^30 pixels, got {}x{}", desc.width, desc.height));
+  // z = -d: x = normalize(up x z) = normalize(d x up) = r, y = z x x = r x d = u.
+  try {
+    frame_ = Frame::from_normal_up(desc.from, desc.from - desc.at, desc.up);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument(fmt::format("the up direction ({}, {}, {}) is parallel to the view direction",
+                                            desc.up.x, desc.up.y, desc.up.z));
+  }
+  half_h_ = std::tan(desc.fov_deg * std::numbers::pi / 360);
+  pixel_ = 2 * half_h_ / desc.height;
+}
+
+PixelLine PinholeCamera::line(int i, int j, double u, double v) const {
+  // The image plane at distance 1 in front of the eye, centred on d.
+  const double x = (i + u - 0.5 * desc_.width) * pixel_;
+  const double y = (0.5 * desc_.height - (j + v)) * pixel_;
+  return {desc_.from, normalize(frame_.to_world_dir({x, y, -1}))};
+}
+
+bool PinholeCamera::project(const Vec3& p_world, PanelHit& out) const {
+  const Vec3 q = frame_.to_local_point(p_world);
+  if (!(q.z < 0)) return false;  // behind or beside the eye
+  const double fi = q.x / -q.z / pixel_ + 0.5 * desc_.width;
+  const double fj = 0.5 * desc_.height - q.y / -q.z / pixel_;
+  if (!(fi >= 0 && fi < desc_.width && fj >= 0 && fj < desc_.height)) return false;
+  const int i = static_cast<int>(fi), j = static_cast<int>(fj);
+  out = {i, j, fi - i, fj - j, length(q)};
+  return true;
+}
+
+}  // namespace holoray

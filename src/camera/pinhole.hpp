@@ -1,0 +1,56 @@
+// holoray/camera: an ordinary pinhole camera, the scene's own view (NFF `v`,
+// nff-notes §2), for previews and for checking holoray pixel for pixel
+// against other ray tracers (issue 13). It shares the integral camera's
+// vocabulary: line() gives a pixel's ray, project() the inverse, with the
+// same PanelHit.
+//
+// Conventions (nff-notes §2): d = normalize(at - from) looks at the image
+// centre; image right r = normalize(d x up), image up u = r x d (right-handed,
+// `up` need not be perpendicular to d). `fov_deg` is the full vertical field
+// of view, top edge to bottom edge of the image (the "full-image" reading of
+// NFF's angle); pixels are square, so the horizontal extent follows the
+// aspect ratio. Pixel (i, j): column i from the left, row j from the top;
+// offset (u, v) inside it in [0, 1), 0.5 = centre.
+#pragma once
+
+#include "camera/lens_array.hpp"
+#include "math/vec.hpp"
+
+namespace holoray {
+
+/// Everything that fixes a pinhole view. World frame, scene units.
+struct PinholeDesc {
+  Vec3 from, at, up{0, 1, 0};
+  double fov_deg = 45;  ///< full vertical field of view, degrees, in (0, 180)
+  int width = 512, height = 512;
+};
+
+/// A pinhole camera. Immutable after construction; safe to share between threads.
+class PinholeCamera {
+ public:
+  /// Validates and precomputes. Throws std::invalid_argument naming the bad
+  /// value: `from` equal to `at`, `up` parallel to the view direction, a
+  /// field of view outside (0, 180) degrees, sizes below 1 or over 2^30 pixels.
+  explicit PinholeCamera(const PinholeDesc& desc);
+
+  const PinholeDesc& desc() const { return desc_; }
+  int width() const { return desc_.width; }
+  int height() const { return desc_.height; }
+  int64_t pixel_count() const { return static_cast<int64_t>(desc_.width) * desc_.height; }
+
+  /// The ray of pixel (i, j) at offset (u, v): origin `from`, unit direction
+  /// (world frame). The line parameter t is the distance from the eye.
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
+  /// Where a world point appears: true and `out` (pixel, offset, t = its
+  /// distance along the pixel's ray) when it lies in front of the eye and
+  /// inside the image. The exact inverse of line().
+  bool project(const Vec3& p_world, PanelHit& out) const;
+
+ private:
+  PinholeDesc desc_;
+  Frame frame_;            // x = image right, y = image up, z = -d (toward the eye)
+  double half_h_ = 0;      // tan(fov / 2): half the image height at distance 1
+  double pixel_ = 0;       // one pixel's size at distance 1
+};
+
+}  // namespace holoray
