@@ -8,6 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libassimp-dev             # meshes: OBJ, PLY, STL, glTF, 3DS, COLLADA, AC3D
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
   tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray also the pinhole test's reference
 )

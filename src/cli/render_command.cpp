@@ -18,6 +18,7 @@
 #include "image/image_io.hpp"
 #include "render/renderer.hpp"
 #include "render/view_renderer.hpp"
+#include "scene/mesh_reader.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 
@@ -54,7 +55,7 @@ ArraySettings resolve_settings(const RenderCommandOptions& o) {
 
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA), or the scene's own pinhole view, from an NFF scene");
-  cmd->add_option("scene", o.scene, "Scene file (NFF)")->required();
+  cmd->add_option("scene", o.scene, "Scene file: NFF (.nff), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")->required();
   cmd->add_option("-o,--output", o.output, "Output image: .png (8-bit) or .exr (float)")->required();
   cmd->add_option("--camera", o.camera, "integral (the EIA) or pinhole (the scene's own view, NFF v: previews and comparisons with other ray tracers)")->capture_default_str();
   cmd->add_option("--resolution", o.resolution, "With --camera pinhole: image size WxH (default: the scene's resolution, else 512x512)");
@@ -113,7 +114,7 @@ int run_render(const RenderCommandOptions& o) {
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
     const auto t_parse = Clock::now();
-    const SceneDesc desc = read_nff_file(o.scene);
+    const SceneDesc desc = read_scene_file(o.scene);
     const double parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(desc);
 

@@ -6,13 +6,13 @@
 #include <stdexcept>
 
 #include "camera/placement.hpp"
-#include "scene/nff_reader.hpp"
+#include "scene/mesh_reader.hpp"
 
 namespace holoray {
 
 ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
   descs_.reserve(shot_.objects.size());
-  for (const ShotObject& o : shot_.objects) descs_.push_back(read_nff_file(o.scene));
+  for (const ShotObject& o : shot_.objects) descs_.push_back(read_scene_file(o.scene));
   std::vector<ScenePart> parts;
   for (size_t k = 0; k < descs_.size(); ++k) parts.push_back({&descs_[k], !shot_.objects[k].motion.is_static()});
   scene_ = std::make_unique<RenderScene>(parts);

@@ -1,0 +1,264 @@
+#include "scene/mesh_reader.hpp"
+
+#include <assimp/Importer.hpp>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <numbers>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+
+#include "scene/nff_reader.hpp"
+
+namespace holoray {
+
+namespace {
+
+Vec3 to_vec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+Vec3 to_vec(const aiColor3D& c) { return {c.r, c.g, c.b}; }
+
+// A node's transform to the world, applied to points, directions and normals.
+struct Xform {
+  aiMatrix4x4 m;
+  aiMatrix3x3 normal;  // inverse transpose of the linear part
+  Vec3 point(const aiVector3D& p) const { return to_vec(m * p); }
+  Vec3 dir(const aiVector3D& d) const { return to_vec(aiMatrix3x3(m) * d); }
+  Vec3 norm(const aiVector3D& n) const { return normalize(to_vec(normal * n)); }
+};
+
+class MeshReader {
+ public:
+  MeshReader(const aiScene& s, std::string source, bool gltf, const MeshLimits& limits)
+      : s_(s), limits_(limits), gltf_(gltf) {
+    out_.source = std::move(source);
+  }
+
+  SceneDesc read() {
+    read_materials();
+    long triangles = 0;
+    count(s_.mRootNode, triangles);
+    if (triangles == 0) throw std::runtime_error(fmt::format("cannot read '{}': it holds no triangles", out_.source));
+    if (triangles > limits_.max_triangles)
+      throw std::runtime_error(fmt::format("cannot read '{}': {} triangles, over the limit of {}", out_.source, triangles,
+                                           limits_.max_triangles));
+    out_.objects.reserve(static_cast<size_t>(triangles));
+    walk(s_.mRootNode, aiMatrix4x4());
+    read_lights();
+    read_camera();
+    return std::move(out_);
+  }
+
+ private:
+  void warn(const std::string& message) {
+    if (static_cast<long>(out_.warning_count++) >= limits_.max_warnings_kept) return;
+    out_.warnings.push_back(fmt::format("{}: warning: {}", out_.source, message));
+  }
+
+  void read_materials() {
+    for (unsigned k = 0; k < s_.mNumMaterials; ++k) {
+      const aiMaterial& m = *s_.mMaterials[k];
+      Material mat;
+      // The importer's stand-in for "no material" (OBJ without MTL, PLY,
+      // STL: each with its own grey): holoray's default, as NFF's, so the
+      // same mesh looks the same from every format.
+      const std::string_view name = m.GetName().C_Str();
+      if (name.empty() || name == AI_DEFAULT_MATERIAL_NAME) {
+        out_.materials.push_back(mat);
+        continue;
+      }
+      aiColor3D diffuse(0.8f, 0.8f, 0.8f);
+      m.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
+      mat.colour = to_vec(diffuse);
+      mat.kd = 1;
+      float reflectivity = 0, shininess = 0, opacity = 1, ior = 1, metallic = -1, roughness = 1;
+      m.Get(AI_MATKEY_REFLECTIVITY, reflectivity);
+      m.Get(AI_MATKEY_SHININESS, shininess);
+      m.Get(AI_MATKEY_OPACITY, opacity);
+      m.Get(AI_MATKEY_REFRACTI, ior);
+      if (m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS && metallic >= 0) {
+        // glTF metallic-roughness, approximated: a smooth metal mirrors.
+        m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
+        reflectivity = std::fmax(reflectivity, metallic * (1 - roughness));
+        shininess = std::fmax(shininess, 2 / std::fmax(roughness * roughness, 1e-3f));
+      }
+      mat.ks = std::clamp(static_cast<double>(reflectivity), 0.0, 1.0);
+      mat.shine = std::fmax(0.0, shininess);
+      mat.transmittance = std::clamp(1.0 - opacity, 0.0, 1.0);
+      mat.ior = ior > 0 ? ior : 1;
+      for (const aiTextureType t : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR})
+        if (m.GetTextureCount(t) > 0) {
+          aiString path;
+          m.GetTexture(t, 0, &path);
+          warn(fmt::format("material '{}': texture '{}' not applied yet (its flat diffuse colour is used)",
+                           m.GetName().C_Str(), path.C_Str()));
+          break;
+        }
+      out_.materials.push_back(mat);
+    }
+  }
+
+  void count(const aiNode* node, long& triangles) const {
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const aiMesh& mesh = *s_.mMeshes[node->mMeshes[k]];
+      if (mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) triangles += mesh.mNumFaces;
+    }
+    for (unsigned k = 0; k < node->mNumChildren; ++k) count(node->mChildren[k], triangles);
+  }
+
+  void walk(const aiNode* node, const aiMatrix4x4& parent) {
+    const aiMatrix4x4 world = parent * node->mTransformation;
+    global_[node->mName.C_Str()] = world;
+    Xform xf{world, aiMatrix3x3(world)};
+    xf.normal.Inverse().Transpose();
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) add_mesh(*s_.mMeshes[node->mMeshes[k]], xf);
+    for (unsigned k = 0; k < node->mNumChildren; ++k) walk(node->mChildren[k], world);
+  }
+
+  void add_mesh(const aiMesh& mesh, const Xform& xf) {
+    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) {
+      warn(fmt::format("mesh '{}': points and lines are not rendered", mesh.mName.C_Str()));
+      return;
+    }
+    const bool smooth = mesh.HasNormals();
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines SortByPType left in a mixed mesh
+      PolygonDesc poly;
+      for (unsigned c = 0; c < 3; ++c) {
+        const unsigned v = face.mIndices[c];
+        const Vec3 p = xf.point(mesh.mVertices[v]);
+        if (!is_finite(p))
+          throw std::runtime_error(
+              fmt::format("cannot read '{}': mesh '{}' has a vertex that is not finite", out_.source, mesh.mName.C_Str()));
+        bounds_.extend(p);
+        poly.vertices.push_back(p);
+        if (smooth) poly.normals.push_back(xf.norm(mesh.mNormals[v]));
+      }
+      if (smooth && !(is_finite(poly.normals[0]) && is_finite(poly.normals[1]) && is_finite(poly.normals[2])))
+        poly.normals.clear();  // a zero normal in the file: shade this triangle flat
+      ObjectDesc obj;
+      obj.shape = std::move(poly);
+      obj.material = mesh.mMaterialIndex < out_.materials.size() ? static_cast<int>(mesh.mMaterialIndex) : -1;
+      out_.objects.push_back(std::move(obj));
+    }
+  }
+
+  aiMatrix4x4 global(const aiString& name) const {
+    const auto it = global_.find(name.C_Str());
+    return it == global_.end() ? aiMatrix4x4() : it->second;
+  }
+
+  void read_lights() {
+    for (unsigned k = 0; k < s_.mNumLights; ++k) {
+      const aiLight& l = *s_.mLights[k];
+      if (l.mType != aiLightSource_POINT) {
+        warn(fmt::format("light '{}': only point lights are rendered yet", l.mName.C_Str()));
+        continue;
+      }
+      out_.lights.push_back(Light{to_vec(global(l.mName) * l.mPosition), to_vec(l.mColorDiffuse), {}});
+    }
+  }
+
+  void read_camera() {
+    Viewpoint vp;
+    if (s_.mNumCameras > 0) {
+      const aiCamera& c = *s_.mCameras[0];
+      const aiMatrix4x4 m = global(c.mName);
+      // assimp 5.2's glTF importer departs from aiCamera's documentation:
+      // it copies the node's translation into mPosition (which the node
+      // transform already holds) and stores yfov * aspect, the full angle,
+      // as mHorizontalFOV (documented as half the horizontal angle).
+      // MeshImport.GltfCameraAndPointLightPlaceTheViewAndLight checks both.
+      vp.from = to_vec(m * (gltf_ ? aiVector3D(0, 0, 0) : c.mPosition));
+      vp.at = vp.from + to_vec(aiMatrix3x3(m) * c.mLookAt);
+      vp.up = to_vec(aiMatrix3x3(m) * c.mUp);
+      // NFF's angle is the full vertical one (the pinhole camera's height).
+      const double aspect = c.mAspect > 0 ? c.mAspect : 1.0;
+      const double vertical = gltf_ ? c.mHorizontalFOV / aspect : 2 * std::atan(std::tan(c.mHorizontalFOV) / aspect);
+      vp.angle_deg = vertical * 180 / std::numbers::pi;
+    } else {
+      // A three-quarter view from +z (raised toward +y, moved toward +x),
+      // framing the bounding sphere: radius r at distance r / sin(angle / 2),
+      // widened so it fills 90 % of the view.
+      const Vec3 centre = bounds_.centre();
+      const double r = std::fmax(0.5 * length(bounds_.diagonal()), 1e-6);
+      vp.angle_deg = 40;
+      const double distance = r / std::sin(vp.angle_deg / 2 * std::numbers::pi / 180) / 0.9;
+      vp.from = centre + normalize(Vec3{0.5, 0.5, 1}) * distance;
+      vp.at = centre;
+      vp.up = {0, 1, 0};
+    }
+    out_.viewpoint = vp;
+    if (out_.lights.empty()) out_.lights.push_back(Light{vp.from, {1, 1, 1}, {}});
+  }
+
+  const aiScene& s_;
+  MeshLimits limits_;
+  bool gltf_;  // the file went through assimp's glTF 2 importer (read_camera)
+  SceneDesc out_;
+  Bounds3 bounds_;
+  std::unordered_map<std::string, aiMatrix4x4> global_;
+};
+
+// A PLY header declares its element counts and assimp's reader trusts them:
+// one declaring 10^12 vertices keeps it busy for hours. Every element takes
+// at least one byte (ASCII: a digit and a separator; binary: a property), so
+// counts beyond the file's size are refused before assimp sees the file.
+void check_ply_header(const std::string& path, uintmax_t size) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || (line.rfind("ply", 0) != 0 && line.rfind("PLY", 0) != 0)) return;  // assimp reports it
+  uintmax_t declared = 0;
+  for (int lines = 0; lines < 10000 && std::getline(in, line); ++lines) {
+    if (line.rfind("end_header", 0) == 0) break;
+    std::istringstream words(line);
+    std::string keyword, name, count;
+    if (!(words >> keyword >> name >> count) || keyword != "element") continue;
+    uintmax_t n = 0;
+    const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
+    if (ec != std::errc() || end != count.data() + count.size() || n > size || declared + n > size)
+      throw std::runtime_error(fmt::format("cannot read '{}': its header declares {} {} elements, more than a file of {} bytes holds",
+                                           path, count, name, size));
+    declared += n;
+  }
+}
+
+}  // namespace
+
+SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(fmt::format("cannot read '{}': it is a folder", path));
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw std::runtime_error(fmt::format("cannot read '{}': {}", path,
+                                         std::filesystem::exists(path, ec) ? "not a regular file" : "No such file or directory"));
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".ply") check_ply_header(path, std::filesystem::file_size(path, ec));
+  Assimp::Importer importer;
+  // Points and lines are dropped by SortByPType; triangulated polygons keep
+  // their file order. Node transforms are applied by the reader itself, so
+  // that cameras and lights move with their nodes.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
+  if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
+    throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
+  return MeshReader(*scene, path, ext == ".gltf" || ext == ".glb", limits).read();
+}
+
+SceneDesc read_scene_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".nff" ? read_nff_file(path) : read_mesh_file(path);
+}
+
+}  // namespace holoray
