@@ -71,8 +71,8 @@ class MeshReader {
       // The importer's stand-in for "no material" (OBJ without MTL, PLY,
       // STL: each with its own grey): holoray's default, as NFF's, so the
       // same mesh looks the same from every format.
-      const std::string_view name = m.GetName().C_Str();
-      if (name.empty() || name == AI_DEFAULT_MATERIAL_NAME) {
+      const aiString name = m.GetName();  // by value: keep it while comparing
+      if (name.length == 0 || std::string_view(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) {
         out_.materials.push_back(mat);
         continue;
       }
