@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "camera/camera.hpp"
 #include "math/vec.hpp"
 
 namespace holoray {
@@ -47,25 +48,9 @@ struct LensIndex {
   friend bool operator==(const LensIndex&, const LensIndex&) = default;
 };
 
-/// The line a pixel records along: L(t) = origin + t*dir (world frame; dir
-/// unit, toward +z of the array). origin is the lens centre c (square, hex) or
-/// the crossing point q on the lens plane (lenticular).
-struct PixelLine {
-  Vec3 origin;
-  Vec3 dir;
-};
-
-/// Where a scene point lands on the panel through one lens: pixel (i, j), the
-/// position inside it (u, v in [0,1), 0.5 = centre; same meaning as the jitter
-/// of LensArray::line) and the signed line parameter t of the point.
-struct PanelHit {
-  int i = 0, j = 0;
-  double u = 0.5, v = 0.5;
-  double t = 0;
-};
 
 /// An integral camera. Immutable after construction; safe to share between threads.
-class LensArray {
+class LensArray final : public Camera {
  public:
   /// Validates and precomputes. Throws std::invalid_argument naming the bad
   /// value: pitch or gap <= 0 or not finite, zero or negative lens or pixel
@@ -73,8 +58,8 @@ class LensArray {
   explicit LensArray(const LensArrayDesc& desc);
 
   const LensArrayDesc& desc() const { return desc_; }
-  int width() const { return width_; }    ///< W, pixels
-  int height() const { return height_; }  ///< H, pixels
+  int width() const override { return width_; }    ///< W, pixels
+  int height() const override { return height_; }  ///< H, pixels
   int64_t pixel_count() const { return static_cast<int64_t>(width_) * height_; }
   double pixel_pitch() const { return s_; }  ///< s = pitch / P (scene units)
   /// Full field of view of one lens, 2*atan(pitch / (2g)), in degrees.
@@ -110,7 +95,7 @@ class LensArray {
   /// (contract: "Sampling") and keeps the lens centre fixed.
   PixelLine line_local(int i, int j, double u = 0.5, double v = 0.5) const;
   /// The pixel's line in the world frame.
-  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const override;
   /// line() for n pixels (i[k], j[k]) at offsets (u[k], v[k]): out[k] equals
   /// line(i[k], j[k], u[k], v[k]) bit for bit, but a lens's centre is
   /// computed once for a run of pixels under the same lens (a packet of one
@@ -122,7 +107,7 @@ class LensArray {
   /// appended to `out` (cleared first). Pseudoscopic keeps only t > 0. The
   /// exact inverse of line(): line(h.i, h.j, h.u, h.v) passes through the
   /// point at parameter h.t. Points on the lens plane (z = 0) project nowhere.
-  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
 
   /// Forward projection through one lens (array-frame point): true and `out`
   /// when the point's line through that lens centre lands in the lens's own

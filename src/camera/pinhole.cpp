@@ -48,4 +48,10 @@ bool PinholeCamera::project(const Vec3& p_world, PanelHit& out) const {
   return true;
 }
 
+void PinholeCamera::project(const Vec3& p_world, std::vector<PanelHit>& out) const {
+  out.clear();
+  PanelHit h;
+  if (project(p_world, h)) out.push_back(h);
+}
+
 }  // namespace holoray

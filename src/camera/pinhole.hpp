@@ -2,7 +2,7 @@
 // nff-notes §2), for previews and for checking holoray pixel for pixel
 // against other ray tracers (issue 13). It shares the integral camera's
 // vocabulary: line() gives a pixel's ray, project() the inverse, with the
-// same PanelHit.
+// same PanelHit, through the Camera interface (camera.hpp).
 //
 // Conventions (nff-notes §2): d = normalize(at - from) looks at the image
 // centre; image right r = normalize(d x up), image up u = r x d (right-handed,
@@ -13,7 +13,7 @@
 // offset (u, v) inside it in [0, 1), 0.5 = centre.
 #pragma once
 
-#include "camera/lens_array.hpp"
+#include "camera/camera.hpp"
 #include "math/vec.hpp"
 
 namespace holoray {
@@ -26,7 +26,7 @@ struct PinholeDesc {
 };
 
 /// A pinhole camera. Immutable after construction; safe to share between threads.
-class PinholeCamera {
+class PinholeCamera final : public Camera {
  public:
   /// Validates and precomputes. Throws std::invalid_argument naming the bad
   /// value: `from` equal to `at`, `up` parallel to the view direction, a
@@ -34,17 +34,19 @@ class PinholeCamera {
   explicit PinholeCamera(const PinholeDesc& desc);
 
   const PinholeDesc& desc() const { return desc_; }
-  int width() const { return desc_.width; }
-  int height() const { return desc_.height; }
+  int width() const override { return desc_.width; }
+  int height() const override { return desc_.height; }
   int64_t pixel_count() const { return static_cast<int64_t>(desc_.width) * desc_.height; }
 
   /// The ray of pixel (i, j) at offset (u, v): origin `from`, unit direction
   /// (world frame). The line parameter t is the distance from the eye.
-  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const override;
   /// Where a world point appears: true and `out` (pixel, offset, t = its
   /// distance along the pixel's ray) when it lies in front of the eye and
   /// inside the image. The exact inverse of line().
   bool project(const Vec3& p_world, PanelHit& out) const;
+  /// Camera::project: the one pixel of project(p, PanelHit&), if any.
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
 
  private:
   PinholeDesc desc_;
