@@ -16,13 +16,7 @@ namespace holoray {
 namespace {
 using test::camera_at;
 using test::source_dir;
-
-FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& desc) {
-  RenderOptions ro;
-  ro.aovs.id = true;
-  RenderStats stats;
-  return render_frame(scene, LensArray(desc), ro, stats);
-}
+using test::trace_full;
 
 size_t hits_of(const PointImage& key) {
   size_t n = 0;

@@ -19,6 +19,7 @@ namespace holoray {
 namespace {
 using test::camera_at;
 using test::source_dir;
+using test::trace_full;
 
 // Diffuse only (Ks = 0): colours do not depend on the viewpoint.
 constexpr const char* kDiffuseScene = R"(
@@ -57,13 +58,6 @@ Keyframe trace_key(const RenderScene& scene, const LensArrayDesc& desc, int fram
   FrameBuffers fb = render_frame(scene, LensArray(desc), ro, stats);
   PointImage pi{frame, LensArray(desc), fb.primary, fb.colour};
   return {std::move(pi), std::move(fb)};
-}
-
-FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& desc) {
-  RenderOptions ro;
-  ro.aovs.id = true;
-  RenderStats stats;
-  return render_frame(scene, LensArray(desc), ro, stats);
 }
 
 size_t hit_pixels(const FrameBuffers& fb) {

@@ -15,6 +15,7 @@
 
 #include "camera/lens_array.hpp"
 #include "camera/placement.hpp"
+#include "render/renderer.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace holoray::test {
@@ -33,6 +34,14 @@ inline LensArrayDesc camera_at(const SceneDesc& desc, const Vec3& shift, int len
   vp.from += shift;
   vp.at += shift;
   return place_array(s, vp);
+}
+
+/// Full ray tracing of the EIA `desc` sees, with the object-id AOV.
+inline FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& desc) {
+  RenderOptions ro;
+  ro.aovs.id = true;
+  RenderStats stats;
+  return render_frame(scene, LensArray(desc), ro, stats);
 }
 
 /// A fresh empty folder under the system temp dir, removed by the destructor.

@@ -26,8 +26,7 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
     throw std::invalid_argument(fmt::format("the up direction ({}, {}, {}) is parallel to the view direction",
                                             desc.up.x, desc.up.y, desc.up.z));
   }
-  half_h_ = std::tan(desc.fov_deg * std::numbers::pi / 360);
-  pixel_ = 2 * half_h_ / desc.height;
+  pixel_ = 2 * std::tan(desc.fov_deg * std::numbers::pi / 360) / desc.height;
 }
 
 PixelLine PinholeCamera::line(int i, int j, double u, double v) const {

@@ -51,8 +51,7 @@ class PinholeCamera final : public Camera {
  private:
   PinholeDesc desc_;
   Frame frame_;            // x = image right, y = image up, z = -d (toward the eye)
-  double half_h_ = 0;      // tan(fov / 2): half the image height at distance 1
-  double pixel_ = 0;       // one pixel's size at distance 1
+  double pixel_ = 0;       // one pixel's size on the image plane at distance 1
 };
 
 }  // namespace holoray

@@ -189,33 +189,21 @@ void intersect_eye_packet(const RenderScene& scene, const bool ok[], int n, RayC
 
 void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[],
-                   const ColourLookup* lookup, bool reused[], ShadeParts parts[]) {
-  if ((lookup || parts) && spp != 1) throw std::invalid_argument(fmt::format("shading reuse needs spp = 1, got {}", spp));
+                   ShadeParts parts[]) {
+  if (parts && spp != 1) throw std::invalid_argument(fmt::format("shading records need spp = 1, got {}", spp));
   if (parts) std::fill(parts, parts + n, ShadeParts{});
-  if (reused) std::fill(reused, reused + n, false);
   Vec3 sum[kPacketSize];
   EyePacket eye;
   for (int k = 0; k < spp; ++k) {
     trace_eye_packet(scene, camera, px, n, k, counts, eye);
     Vec3 c[kPacketSize];
-    bool to_shade[kPacketSize];
-    bool any_hit = false;
-    for (int l = 0; l < kPacketSize; ++l) {
-      c[l] = scene.background();
-      to_shade[l] = l < n && eye.found[l];
-      if (to_shade[l] && lookup &&
-          lookup->find(eye.rays.rays[l], eye.rays.rays[l].dir * eye.primary[l].t_sign, eye.hits[l], eye.surface[l],
-                       counts, c[l])) {
-        to_shade[l] = false;
-        if (reused) reused[l] = true;
-      }
-      any_hit |= to_shade[l];
-    }
+    for (int l = 0; l < kPacketSize; ++l) c[l] = scene.background();
     ShadeParts lane_parts[kPacketSize];
-    if (any_hit) shade(scene, eye.rays, to_shade, eye.surface, 1, counts, c, parts ? lane_parts : nullptr);
+    if (std::any_of(eye.found, eye.found + n, [](bool f) { return f; }))
+      shade(scene, eye.rays, eye.found, eye.surface, 1, counts, c, parts ? lane_parts : nullptr);
     if (parts)
       for (int l = 0; l < n; ++l)
-        if (to_shade[l]) parts[l] = lane_parts[l];
+        if (eye.found[l]) parts[l] = lane_parts[l];
     for (int l = 0; l < n; ++l) {
       sum[l] += c[l];
       if (k != 0) continue;

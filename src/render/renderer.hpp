@@ -77,30 +77,15 @@ struct RenderStats {
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary = nullptr, SurfacePoint* surface = nullptr);
 
-/// Shading reuse for render_packet (temporal/reverse.hpp): asked for every
-/// eye-ray hit of sample 0 before it is shaded: `ray` the eye ray (world),
-/// `line_dir` the pixel's line direction (world, unit, toward the viewer's
-/// side of the array, contract); rays it traces go to `counts`. Returns true with `colour` set
-/// when the hit takes a known colour instead of being shaded. Called from
-/// worker threads: must be thread-safe.
-class ColourLookup {
- public:
-  virtual ~ColourLookup() = default;
-  virtual bool find(const Ray& ray, const Vec3& line_dir, const Hit& hit, const SurfacePoint& surface,
-                    RayCounts& counts, Vec3& colour) const = 0;
-};
-
 /// render_pixel() for up to kPacketSize pixels px[k] (k < n) of one lens,
 /// traced as packets (TraceStyle::packet): colours[k], and primary[k] /
 /// surface[k] when given. Same result as render_pixel() per pixel whenever
-/// Embree's packet and single-ray kernels agree. With `lookup` (spp must be
-/// 1), hits it answers are not shaded and reused[k] (when given) is set.
-/// With `parts` (spp must be 1), parts[k] gets what the rays of lane k's
-/// shading found (ShadeParts; zero for background and reused lanes).
+/// Embree's packet and single-ray kernels agree. With `parts` (spp must be
+/// 1), parts[k] gets what the rays of lane k's shading found (ShadeParts;
+/// zero for background lanes): the keyframes of reverse reprojection.
 void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
-                   SurfacePoint surface[] = nullptr, const ColourLookup* lookup = nullptr, bool reused[] = nullptr,
-                   ShadeParts parts[] = nullptr);
+                   SurfacePoint surface[] = nullptr, ShadeParts parts[] = nullptr);
 
 /// Renders the pixels of `block` (at most P x P: one elemental image, or a
 /// P x P piece of a lenticule's strip or hex lens) in `style`, calling

@@ -45,6 +45,7 @@ FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, 
         bool first_hit[kPacketSize] = {};
         SurfacePoint first_surface[kPacketSize];
         double first_t[kPacketSize] = {};
+        Vec3 toward[kPacketSize];  // sample 0's ray reversed: normals face the eye
         for (int k = 0; k < opt.spp; ++k) {
           bool ok[kPacketSize];
           for (int l = 0; l < n; ++l) {
@@ -65,13 +66,12 @@ FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, 
             first_hit[l] = true;
             first_surface[l] = eye.surface[l];
             first_t[l] = eye.hits[l].t;
+            toward[l] = -eye.rays.rays[l].dir;
           }
         }
-        for (int l = 0; l < n; ++l) {
-          const Vec3 toward = opt.aovs.normal ? -camera.line(pi[l], pj[l]).dir : Vec3{};
+        for (int l = 0; l < n; ++l)
           store_pixel(fb, opt.aovs, pi[l], pj[l], sum[l] * (1.0 / opt.spp), first_hit[l] ? &first_surface[l] : nullptr,
-                      first_t[l], toward);
-        }
+                      first_t[l], toward[l]);
       }
     tile_counts[static_cast<size_t>(tile)] = counts;
     const int done = ++tiles_done;

@@ -13,11 +13,16 @@
 
 namespace holoray {
 
-std::string read_text_file(const std::string& path) {
+std::ifstream open_for_reading(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(fmt::format("cannot read '{}': it is a folder", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
+  return in;
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in = open_for_reading(path);
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw std::runtime_error(fmt::format("cannot read '{}': read error", path));

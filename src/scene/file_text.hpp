@@ -2,9 +2,15 @@
 // set of error messages for every format, and writing reports atomically.
 #pragma once
 
+#include <fstream>
 #include <string>
 
 namespace holoray {
+
+/// The file opened for reading (binary). Throws std::runtime_error "cannot
+/// read '<path>': <reason>" (missing, unreadable, a folder): the messages of
+/// every reader, also those whose parser opens the file itself (meshes).
+std::ifstream open_for_reading(const std::string& path);
 
 /// The file's bytes. Throws std::runtime_error "cannot read '<path>': <reason>"
 /// (missing, unreadable, a folder, a read error).

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "scene/file_text.hpp"
 #include "scene/nff_reader.hpp"
 
 namespace holoray {
@@ -210,12 +211,17 @@ class MeshReader {
   std::unordered_map<std::string, aiMatrix4x4> global_;
 };
 
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 // A PLY header declares its element counts and assimp's reader trusts them:
 // one declaring 10^12 vertices keeps it busy for hours. Every element takes
 // at least one byte (ASCII: a digit and a separator; binary: a property), so
 // counts beyond the file's size are refused before assimp sees the file.
-void check_ply_header(const std::string& path, uintmax_t size) {
-  std::ifstream in(path, std::ios::binary);
+void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size) {
   std::string line;
   if (!std::getline(in, line) || (line.rfind("ply", 0) != 0 && line.rfind("PLY", 0) != 0)) return;  // assimp reports it
   uintmax_t declared = 0;
@@ -236,14 +242,10 @@ void check_ply_header(const std::string& path, uintmax_t size) {
 }  // namespace
 
 SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits) {
+  std::ifstream in = open_for_reading(path);
+  const std::string ext = lower_extension(path);
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(fmt::format("cannot read '{}': it is a folder", path));
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw std::runtime_error(fmt::format("cannot read '{}': {}", path,
-                                         std::filesystem::exists(path, ec) ? "not a regular file" : "No such file or directory"));
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".ply") check_ply_header(path, std::filesystem::file_size(path, ec));
+  if (ext == ".ply") check_ply_header(in, path, std::filesystem::file_size(path, ec));
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; triangulated polygons keep
   // their file order. Node transforms are applied by the reader itself, so
@@ -256,9 +258,7 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits) {
 }
 
 SceneDesc read_scene_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".nff" ? read_nff_file(path) : read_mesh_file(path);
+  return lower_extension(path) == ".nff" ? read_nff_file(path) : read_mesh_file(path);
 }
 
 }  // namespace holoray

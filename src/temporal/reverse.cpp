@@ -25,7 +25,9 @@ struct Key {
   double footprint = 0;  // s / g of the keyframe camera
 };
 
-class PointImageLookup final : public ColourLookup {
+// Answers the hits of a reprojected frame from its keyframes. Called from
+// worker threads: const and thread-safe.
+class PointImageLookup {
  public:
   PointImageLookup(const RenderScene& scene, const PointImage* prev, const PointImage* next, double w_next,
                    const ReverseOptions& opt)
@@ -50,8 +52,11 @@ class PointImageLookup final : public ColourLookup {
     }
   }
 
+  // The colour of an eye-ray hit from the keyframes, true when they have it:
+  // `ray` the eye ray, `line_dir` the pixel's line direction (world, unit,
+  // toward the viewer's side of the array); rays traced go to `counts`.
   bool find(const Ray& ray, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, RayCounts& counts,
-            Vec3& colour) const override {
+            Vec3& colour) const {
     if (reuse_ == ReverseReuse::color) return filtered_colour(line_dir, hit, sp, colour);
     for (const Key& key : keys_) {
       if (!key.image || key.anything_moved) continue;
@@ -244,93 +249,94 @@ ReprojectedFrame blank_frame(const LensArray& camera) {
   return out;
 }
 
-// A keyframe: the packet loop of full tracing (render_block's packets, so
-// its colour equals render_frame's bit for bit), keeping every pixel's hit
-// and, when `parts` is given, its shading records.
+// The packets of full tracing (render_block's, TraceStyle::packet), tile
+// by tile on `threads` workers: per tile, `tile(counts, each_packet)` where
+// each_packet(fn) calls fn(px, n) for the tile's packets in order. Returns
+// the rays of all tiles.
+template <class Tile>
+RayCounts for_each_packet(const LensArray& camera, int threads, Tile&& tile) {
+  const int P = camera.desc().pixels_per_lens;
+  const ElementalTiles tiles(camera);
+  std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
+  for_each_tile(tiles, threads, [&](int t) {
+    const TileRect r = tiles.rect(t);
+    std::vector<PixelXY> px(static_cast<size_t>(P) * P);
+    auto each_packet = [&](auto&& fn) {
+      for (int by = r.y0; by < r.y1; by += P)
+        for (int bx = r.x0; bx < r.x1; bx += P) {
+          const int m = packet_order({bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)}, px.data());
+          for (int start = 0; start < m; start += kPacketSize) fn(px.data() + start, std::min(kPacketSize, m - start));
+        }
+    };
+    tile(tile_rays[static_cast<size_t>(t)], each_packet);
+  });
+  RayCounts total;
+  for (const RayCounts& c : tile_rays) total += c;
+  return total;
+}
+
+// A keyframe: the packets of full tracing, so its colour equals
+// render_frame's bit for bit, keeping every pixel's hit and, when `parts`
+// is given, its shading records.
 ReprojectedFrame trace_keyframe(const RenderScene& scene, const LensArray& camera, std::vector<PrimaryHit>& hits,
                                 std::vector<ShadeParts>* parts, int threads) {
-  const int W = camera.width(), P = camera.desc().pixels_per_lens;
+  const int W = camera.width();
   ReprojectedFrame out = blank_frame(camera);
   hits.assign(out.status.size(), PrimaryHit{});
   if (parts) parts->assign(out.status.size(), ShadeParts{});
-  const ElementalTiles tiles(camera);
-  std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
-  for_each_tile(tiles, threads, [&](int tile) {
-    const TileRect r = tiles.rect(tile);
-    RayCounts counts;
-    std::vector<PixelXY> px(static_cast<size_t>(P) * P);
-    for (int by = r.y0; by < r.y1; by += P)
-      for (int bx = r.x0; bx < r.x1; bx += P) {
-        const int m = packet_order({bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)}, px.data());
-        for (int start = 0; start < m; start += kPacketSize) {
-          const int k = std::min(kPacketSize, m - start);
-          Vec3 c[kPacketSize];
-          PrimaryHit ph[kPacketSize];
-          SurfacePoint sp[kPacketSize];
-          ShadeParts sh[kPacketSize];
-          render_packet(scene, camera, px.data() + start, k, 1, counts, c, ph, sp, nullptr, nullptr,
-                        parts ? sh : nullptr);
-          for (int l = 0; l < k; ++l) {
-            const size_t p = static_cast<size_t>(px[start + l].j) * W + px[start + l].i;
-            store(out.colour, p, c[l]);
-            if (ph[l].status == PrimaryHit::kHit) out.object[p] = sp[l].object;
-            hits[p] = ph[l];
-            if (parts) (*parts)[p] = sh[l];
-          }
-        }
+  out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
+    each_packet([&](const PixelXY* px, int k) {
+      Vec3 c[kPacketSize];
+      PrimaryHit ph[kPacketSize];
+      SurfacePoint sp[kPacketSize];
+      ShadeParts sh[kPacketSize];
+      render_packet(scene, camera, px, k, 1, counts, c, ph, sp, parts ? sh : nullptr);
+      for (int l = 0; l < k; ++l) {
+        const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
+        store(out.colour, p, c[l]);
+        if (ph[l].status == PrimaryHit::kHit) out.object[p] = sp[l].object;
+        hits[p] = ph[l];
+        if (parts) (*parts)[p] = sh[l];
       }
-    tile_rays[static_cast<size_t>(tile)] = counts;
+    });
   });
-  for (const RayCounts& c : tile_rays) out.rays += c;
   return out;
 }
 
 // A reprojected frame: every eye ray traced in the packets of full tracing;
 // `lookup` answers the hits it can, the others are queued and shaded in
 // full packets.
-ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera, const ColourLookup& lookup,
+ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera, const PointImageLookup& lookup,
                                int threads) {
-  const int W = camera.width(), P = camera.desc().pixels_per_lens;
+  const int W = camera.width();
   ReprojectedFrame out = blank_frame(camera);
-  const ElementalTiles tiles(camera);
-  std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
   const Vec3 background = scene.background();
-  for_each_tile(tiles, threads, [&](int tile) {
-    const TileRect r = tiles.rect(tile);
-    RayCounts counts;
-    std::vector<PixelXY> px(static_cast<size_t>(P) * P);
+  out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
     EyePacket eye;
     ShadeQueue queue;
-    for (int by = r.y0; by < r.y1; by += P)
-      for (int bx = r.x0; bx < r.x1; bx += P) {
-        const int m = packet_order({bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)}, px.data());
-        for (int start = 0; start < m; start += kPacketSize) {
-          const int k = std::min(kPacketSize, m - start);
-          trace_eye_packet(scene, camera, px.data() + start, k, 0, counts, eye);
-          for (int l = 0; l < k; ++l) {
-            const size_t p = static_cast<size_t>(px[start + l].j) * W + px[start + l].i;
-            if (!eye.found[l]) {
-              store(out.colour, p, background);
-              continue;
-            }
-            out.object[p] = eye.surface[l].object;
-            const Ray& ray = eye.rays.rays[l];
-            Vec3 c;
-            if (lookup.find(ray, ray.dir * eye.primary[l].t_sign, eye.hits[l], eye.surface[l], counts, c)) {
-              store(out.colour, p, c);
-              out.status[p] = PixelStatus::reprojected;
-              out.received[p] = 1;
-              continue;
-            }
-            queue.push(ray, eye.surface[l], p);
-            if (queue.full()) queue.flush(scene, counts, out.colour);
-          }
+    each_packet([&](const PixelXY* px, int k) {
+      trace_eye_packet(scene, camera, px, k, 0, counts, eye);
+      for (int l = 0; l < k; ++l) {
+        const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
+        if (!eye.found[l]) {
+          store(out.colour, p, background);
+          continue;
         }
+        out.object[p] = eye.surface[l].object;
+        const Ray& ray = eye.rays.rays[l];
+        Vec3 c;
+        if (lookup.find(ray, ray.dir * eye.primary[l].t_sign, eye.hits[l], eye.surface[l], counts, c)) {
+          store(out.colour, p, c);
+          out.status[p] = PixelStatus::reprojected;
+          out.received[p] = 1;
+          continue;
+        }
+        queue.push(ray, eye.surface[l], p);
+        if (queue.full()) queue.flush(scene, counts, out.colour);
       }
+    });
     queue.flush(scene, counts, out.colour);
-    tile_rays[static_cast<size_t>(tile)] = counts;
   });
-  for (const RayCounts& c : tile_rays) out.rays += c;
   return out;
 }
 
