@@ -26,21 +26,22 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
     throw std::invalid_argument(fmt::format("the up direction ({}, {}, {}) is parallel to the view direction",
                                             desc.up.x, desc.up.y, desc.up.z));
   }
+  if (desc.mirrored) frame_.x = -frame_.x;
   pixel_ = 2 * std::tan(desc.fov_deg * std::numbers::pi / 360) / desc.height;
 }
 
 PixelLine PinholeCamera::line(int i, int j, double u, double v) const {
   // The image plane at distance 1 in front of the eye, centred on d.
-  const double x = (i + u - 0.5 * desc_.width) * pixel_;
-  const double y = (0.5 * desc_.height - (j + v)) * pixel_;
+  const double x = (i + u + (desc_.sample_u - 0.5) - 0.5 * desc_.width) * pixel_;
+  const double y = (0.5 * desc_.height - (j + v + (desc_.sample_v - 0.5))) * pixel_;
   return {desc_.from, normalize(frame_.to_world_dir({x, y, -1}))};
 }
 
 bool PinholeCamera::project(const Vec3& p_world, PanelHit& out) const {
   const Vec3 q = frame_.to_local_point(p_world);
   if (!(q.z < 0)) return false;  // behind or beside the eye
-  const double fi = q.x / -q.z / pixel_ + 0.5 * desc_.width;
-  const double fj = 0.5 * desc_.height - q.y / -q.z / pixel_;
+  const double fi = q.x / -q.z / pixel_ + 0.5 * desc_.width - (desc_.sample_u - 0.5);
+  const double fj = 0.5 * desc_.height - q.y / -q.z / pixel_ - (desc_.sample_v - 0.5);
   if (!(fi >= 0 && fi < desc_.width && fj >= 0 && fj < desc_.height)) return false;
   const int i = static_cast<int>(fi), j = static_cast<int>(fj);
   out = {i, j, fi - i, fj - j, length(q)};

@@ -23,6 +23,15 @@ struct PinholeDesc {
   Vec3 from, at, up{0, 1, 0};
   double fov_deg = 45;  ///< full vertical field of view, degrees, in (0, 180)
   int width = 512, height = 512;
+  /// Tachyon's left-handed screen: image right = up x d instead of d x up
+  /// (Viewpoint::mirrored, tachyon-notes §2).
+  bool mirrored = false;
+  /// Where in its pixel a sample asked for at offset (0.5, 0.5) goes: the
+  /// centre by default; (1, 0), the upper-right corner, is where Tachyon
+  /// samples (its renderer numbers pixels from 1 and casts pixel (x, y)
+  /// through image-plane point (x, y) from the corner at pixel 0), for
+  /// comparing with it pixel for pixel (tachyon-notes §2).
+  double sample_u = 0.5, sample_v = 0.5;
 };
 
 /// A pinhole camera. Immutable after construction; safe to share between threads.

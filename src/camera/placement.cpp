@@ -34,6 +34,9 @@ LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>
       d.frame = Frame::from_normal_up(vp->at, -view, vp->up);
     else
       d.frame = Frame::from_normal_up(vp->from, view, vp->up);
+    // Tachyon's screen is left-handed: so is the array it places (its
+    // sub-aperture views then show what Tachyon's camera shows).
+    if (vp->mirrored) d.frame.x = -d.frame.x;
     const double width = 2 * length(view) * std::tan(vp->angle_deg * 3.14159265358979323846 / 360);
     d.pitch = s.pitch ? *s.pitch : width / s.lenses_x;
   }

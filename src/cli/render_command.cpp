@@ -54,11 +54,12 @@ ArraySettings resolve_settings(const RenderCommandOptions& o) {
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
-  CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA), or the scene's own pinhole view, from an NFF scene");
-  cmd->add_option("scene", o.scene, "Scene file: NFF (.nff), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")->required();
+  CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA), or the scene's own pinhole view, from an NFF, Tachyon or mesh scene");
+  cmd->add_option("scene", o.scene, "Scene file: NFF (.nff), Tachyon (.dat), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")->required();
   cmd->add_option("-o,--output", o.output, "Output image: .png (8-bit) or .exr (float)")->required();
   cmd->add_option("--camera", o.camera, "integral (the EIA) or pinhole (the scene's own view, NFF v: previews and comparisons with other ray tracers)")->capture_default_str();
   cmd->add_option("--resolution", o.resolution, "With --camera pinhole: image size WxH (default: the scene's resolution, else 512x512)");
+  cmd->add_option("--sample-at", o.sample_at, "With --camera pinhole: where in each pixel its single sample lies: centre, or tachyon (the upper-right corner, where Tachyon samples; for pixel-for-pixel comparisons)")->capture_default_str();
   cmd->add_option("--grid", o.grid, "Lens grid: square, hex or lenticular")->capture_default_str();
   cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")->capture_default_str();
   cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();
@@ -73,7 +74,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
-  cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; 5 is the SPD's)")->capture_default_str();
+  cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; default: the scene's Tachyon raydepth, else 5, the SPD's)");
   cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
@@ -97,7 +98,7 @@ int run_render(const RenderCommandOptions& o) {
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const TraceStyle style = parse_style(o.style);
-    if (o.max_depth < 1 || o.max_depth > kDepthCap)
+    if (o.max_depth != 0 && (o.max_depth < 1 || o.max_depth > kDepthCap))
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
     const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
@@ -106,6 +107,9 @@ int run_render(const RenderCommandOptions& o) {
       if (!pinhole) throw std::invalid_argument("--resolution: goes with --camera pinhole (an EIA's size is --lenses x --pixels-per-lens)");
       parse_resolution(o.resolution, res_w, res_h);
     }
+    const bool tachyon_samples = pick<bool>("--sample-at", o.sample_at, {{"centre", false}, {"tachyon", true}});
+    if (tachyon_samples && (!pinhole || o.spp != 1))
+      throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
     if (cache_enabled(o.cache) && pinhole)  // checked before the scene is read
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
 
@@ -128,7 +132,9 @@ int run_render(const RenderCommandOptions& o) {
         res_w = vp.xres > 0 ? vp.xres : 512;
         res_h = vp.yres > 0 ? vp.yres : 512;
       }
-      view.emplace(PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, res_w, res_h});
+      PinholeDesc pd{vp.from, vp.at, vp.up, vp.angle_deg, res_w, res_h, vp.mirrored};
+      if (tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
+      view.emplace(pd);
     } else {
       array.emplace(place_array(settings, desc.viewpoint));
     }
@@ -143,7 +149,7 @@ int run_render(const RenderCommandOptions& o) {
 
     const auto t_build = Clock::now();
     RenderScene scene(desc);
-    scene.set_max_depth(o.max_depth);
+    if (o.max_depth != 0) scene.set_max_depth(o.max_depth);
     const std::unique_ptr<ShadowCache> cache = pinhole ? nullptr : make_cache(scene, array->desc().pitch, o.cache);
     scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);

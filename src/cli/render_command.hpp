@@ -13,10 +13,10 @@ namespace holoray::cli {
 struct RenderCommandOptions {
   std::string scene, output;
   std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "linear", style = "packet";
-  int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 5;
+  int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
-  std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole)
+  std::string camera = "integral", resolution, sample_at = "centre";  ///< --camera, --resolution, --sample-at (pinhole)
   CacheCommandOptions cache;
   bool quiet = false;
 };

@@ -12,20 +12,98 @@ namespace holoray {
 
 RenderScene::RenderScene(const SceneDesc& desc) : RenderScene(std::vector<ScenePart>{{&desc, false}}) {}
 
+namespace {
+
+// Bounds of everything but planes, and the first viewpoint's eye: what a
+// plane's square must reach beyond.
+Bounds3 finite_bounds(const std::vector<ScenePart>& parts) {
+  Bounds3 b;
+  for (const ScenePart& part : parts) {
+    for (const ObjectDesc& obj : part.desc->objects) {
+      if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
+        const double r = std::fabs(s->radius);
+        b.extend(s->centre - Vec3{r, r, r});
+        b.extend(s->centre + Vec3{r, r, r});
+      } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
+        const double r = std::fmax(std::fabs(c->base_radius), std::fabs(c->apex_radius));
+        for (const Vec3& e : {c->base, c->apex}) b.extend(e - Vec3{r, r, r}), b.extend(e + Vec3{r, r, r});
+      } else if (const auto* p = std::get_if<PolygonDesc>(&obj.shape)) {
+        for (const Vec3& v : p->vertices) b.extend(v);
+      } else if (const auto* m = std::get_if<TriangleMeshDesc>(&obj.shape)) {
+        for (const Vec3& v : m->vertices) b.extend(v);
+      }
+    }
+  }
+  if (!parts.empty() && parts.front().desc->viewpoint) b.extend(parts.front().desc->viewpoint->from);
+  return b;
+}
+
+double coordinate_scale(const Bounds3& b) {
+  double scale = 1;
+  if (!b.empty()) {
+    for (int a = 0; a < 3; ++a) scale = std::fmax(scale, std::fmax(std::fabs(b.lo[a]), std::fabs(b.hi[a])));
+    scale = std::fmax(scale, length(b.diagonal()));
+  }
+  return scale;
+}
+
+// A plane as a square of two triangles centred on the point of the plane
+// nearest the finite bounds' centre, `half` wide each way. An axis-aligned
+// plane's corners keep its coordinate exactly in float.
+TriangleMeshDesc plane_square(const PlaneDesc& p, const Bounds3& finite, double half) {
+  const Vec3 n = normalize(p.normal);
+  const Vec3 c0 = finite.empty() ? p.point : finite.centre();
+  const Vec3 c = c0 - n * dot(c0 - p.point, n);
+  const Frame f = Frame::from_normal_up(c, n, std::fabs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+  TriangleMeshDesc m;
+  for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    Vec3 v = c + f.x * (a * half) + f.y * (b * half);
+    // Keep the plane's own coordinate on the axes it is normal to.
+    if (std::fabs(n.x) == 1) v.x = p.point.x;
+    if (std::fabs(n.y) == 1) v.y = p.point.y;
+    if (std::fabs(n.z) == 1) v.z = p.point.z;
+    m.vertices.push_back(v);
+  }
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+}  // namespace
+
 RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   materials_.push_back(Material{});  // grey diffuse for objects before the first `f` (nff-notes §1)
   std::vector<GeometryGroup> groups;
+  // NFF's ambient and per-light intensity come from the count of NFF lights
+  // (nff-notes §4); Tachyon lights shine with their colour as written.
   size_t light_count = 0;
-  for (const ScenePart& part : parts) light_count += part.desc->lights.size();
+  for (const ScenePart& part : parts)
+    if (part.desc->shading == ShadingModel::nff) light_count += part.desc->lights.size();
   const double level = 1.0 / (2.0 * std::sqrt(static_cast<double>(std::max<size_t>(1, light_count))));
   ambient_ = Vec3{level, level, level};
   if (!parts.empty()) background_ = parts.front().desc->background;
+  if (!parts.empty() && parts.front().desc->max_depth) max_depth_ = *parts.front().desc->max_depth;
+  const Bounds3 finite = finite_bounds(parts);
+  const double plane_half = 1000 * coordinate_scale(finite);
 
   for (const ScenePart& part : parts) {
     const SceneDesc& desc = *part.desc;
     const auto material_base = static_cast<uint32_t>(materials_.size());
-    materials_.insert(materials_.end(), desc.materials.begin(), desc.materials.end());
-    for (const Light& l : desc.lights) lights_.push_back({l.position, l.colour * level});
+    const auto texture_base = static_cast<int>(textures_.size());
+    const auto image_base = static_cast<int>(mips_.size());
+    for (Material m : desc.materials) {
+      if (m.texture >= 0) m.texture += texture_base;
+      has_tachyon_ |= m.model == ShadingModel::tachyon;
+      materials_.push_back(m);
+    }
+    for (TextureDesc t : desc.textures) {
+      if (t.image >= 0) t.image += image_base;
+      textures_.push_back(t);
+    }
+    for (const ImageMap& img : desc.images) mips_.emplace_back(img);
+    const double intensity = desc.shading == ShadingModel::nff ? level : 1.0;
+    for (const Light& l : desc.lights)
+      lights_.push_back({l.position, l.colour * intensity, l.kind, l.direction, l.kc, l.kl, l.kq, l.fall_start,
+                         l.fall_end});
     group_base_.push_back({static_cast<uint32_t>(tri_object_.size()), static_cast<uint32_t>(sphere_object_.size()),
                            static_cast<uint32_t>(cone_object_.size())});
     GeometryGroup& geo = groups.emplace_back();
@@ -42,6 +120,12 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
         geo.cones.push_back({c->base, c->apex, c->base_radius, c->apex_radius});
         cone_object_.push_back(id);
+      } else if (std::holds_alternative<TriangleMeshDesc>(obj.shape) || std::holds_alternative<PlaneDesc>(obj.shape)) {
+        if (std::holds_alternative<PlaneDesc>(obj.shape)) finite_scale_ = coordinate_scale(finite);
+        const TriangleMeshDesc& mesh = std::holds_alternative<PlaneDesc>(obj.shape)
+                                           ? plane_square(std::get<PlaneDesc>(obj.shape), finite, plane_half)
+                                           : std::get<TriangleMeshDesc>(obj.shape);
+        add_mesh(mesh, id, tris);
       } else {
         const auto& poly = std::get<PolygonDesc>(obj.shape);
         const Tessellation tess = tessellate_polygon(poly.vertices);
@@ -87,13 +171,37 @@ void RenderScene::set_max_depth(int depth) {
   max_depth_ = depth;
 }
 
-void RenderScene::update_epsilon() {
-  const Bounds3& b = accel_->bounds();
-  double scale = 1;
-  if (!b.empty()) {
-    for (int a = 0; a < 3; ++a) scale = std::fmax(scale, std::fmax(std::fabs(b.lo[a]), std::fabs(b.hi[a])));
-    scale = std::fmax(scale, length(b.diagonal()));
+void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, TriangleData& tris) {
+  const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
+  for (const Vec3& v : mesh.vertices) {
+    tris.positions.push_back(static_cast<float>(v.x));
+    tris.positions.push_back(static_cast<float>(v.y));
+    tris.positions.push_back(static_cast<float>(v.z));
   }
+  for (const auto& t : mesh.triangles) {
+    const Vec3 n = cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    if (!(length(n) > 0)) {
+      ++skipped_polygons_;
+      continue;
+    }
+    for (uint32_t k : t) tris.indices.push_back(base + k);
+    tri_object_.push_back(id);
+    tri_normal_.push_back(normalize(n));
+    if (mesh.normals.empty()) {
+      tri_patch_.push_back(-1);
+    } else {
+      tri_patch_.push_back(static_cast<int32_t>(patch_normals_.size()));
+      patch_normals_.push_back({shading_normal_in_hemisphere(mesh.normals[t[0]], normalize(n)),
+                                shading_normal_in_hemisphere(mesh.normals[t[1]], normalize(n)),
+                                shading_normal_in_hemisphere(mesh.normals[t[2]], normalize(n))});
+    }
+  }
+}
+
+void RenderScene::update_epsilon() {
+  // A plane's square is a thousand times the scene: its size says nothing of
+  // the precision the rest of the scene needs.
+  const double scale = finite_scale_ > 0 ? finite_scale_ : coordinate_scale(accel_->bounds());
   // Float geometry is exact to ~6e-8 of its coordinates; stay well clear of that.
   epsilon_ = 1e-5 * scale;
 }

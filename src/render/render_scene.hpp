@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "accel/accel_scene.hpp"
+#include "render/textures.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace holoray {
@@ -20,10 +21,16 @@ namespace holoray {
 inline constexpr int kMaxRayDepth = 5;
 inline constexpr int kDepthCap = 16;
 
-/// A light ready for shading: position (world) and RGB intensity.
+/// A light ready for shading: position (world) and RGB intensity; the kind,
+/// attenuation and spot cone of Tachyon lights (scene_desc.hpp, Light), which
+/// only the Tachyon shading reads (NFF lights are points without falloff).
 struct PointLight {
   Vec3 position;
   Vec3 intensity;
+  LightKind kind = LightKind::point;
+  Vec3 direction{0, 0, -1};
+  double kc = 1, kl = 0, kq = 0;
+  double fall_start = 0, fall_end = 0;
 };
 
 /// Where a ray met a surface, resolved for shading.
@@ -63,7 +70,8 @@ class RenderScene {
   /// AccelScene::set_transforms does.
   void set_transforms(const std::vector<Affine>& object_to_world);
   void set_background(const Vec3& colour) { background_ = colour; }
-  /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's).
+  /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's,
+  /// or the first scene file's own, Tachyon's `raydepth`).
   /// Throws std::invalid_argument outside 1..kDepthCap (16): past that a
   /// hall of mirrors costs 2^depth rays per pixel.
   void set_max_depth(int depth);
@@ -79,6 +87,17 @@ class RenderScene {
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;
 
   const std::vector<PointLight>& lights() const { return lights_; }
+  /// A material's colour at a hit: its texture's (Tachyon texfunc,
+  /// render/textures.hpp) seen at `optic_dist` from the eye, else its colour.
+  Vec3 surface_colour(const Material& m, const Vec3& p_world, double optic_dist) const {
+    if (m.texture < 0) return m.colour;
+    const TextureDesc& t = textures_[static_cast<size_t>(m.texture)];
+    return texture_colour(t, t.image >= 0 ? &mips_[static_cast<size_t>(t.image)] : nullptr, m.colour, p_world,
+                          optic_dist);
+  }
+  /// Whether any material follows Tachyon's shading (visibility reuse, which
+  /// splits NFF's formula, then does not apply).
+  bool has_tachyon_materials() const { return has_tachyon_; }
   const Vec3& ambient() const { return ambient_; }      ///< Ia (nff-notes §4: 1/(2 sqrt(n)))
   const Vec3& background() const { return background_; }
   /// Geometry bounds (world); empty for a scene with no geometry.
@@ -93,6 +112,8 @@ class RenderScene {
 
  private:
   void update_epsilon();
+  /// Appends a triangle mesh (one object, id `id`) to a group's triangles.
+  void add_mesh(const TriangleMeshDesc& mesh, uint32_t id, TriangleData& tris);
 
   int max_depth_ = kMaxRayDepth;
   ShadowCache* shadow_cache_ = nullptr;
@@ -105,6 +126,10 @@ class RenderScene {
   std::vector<int32_t> tri_patch_;               // index into patch_normals_, -1 for flat `p`
   std::vector<std::array<Vec3, 3>> patch_normals_;
   std::vector<PointLight> lights_;
+  std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
+  std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased
+  bool has_tachyon_ = false;
+  double finite_scale_ = 0;  // epsilon's scale without the planes' squares (0: no planes)
   Vec3 ambient_, background_;
   double epsilon_ = 1e-6;
   size_t skipped_polygons_ = 0;

@@ -153,7 +153,88 @@ void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint&
 
 }  // namespace
 
+namespace {
+
+// Tachyon ignores a term below half an 8-bit step (MINCONTRIB).
+constexpr double kMinContrib = 0.5 / 255;
+
+// Tachyon's light toward a hit (light.c): the unit direction to the light,
+// the distance to it and N.L times attenuation and spot falloff.
+struct LightRay {
+  Vec3 to_light;
+  double distance = INFINITY;
+  double intensity = 0;
+};
+
+LightRay tachyon_light(const PointLight& light, const Vec3& p, const Vec3& n) {
+  LightRay r;
+  if (light.kind == LightKind::directional) {
+    r.to_light = -light.direction;
+    r.intensity = dot(n, r.to_light);
+    return r;
+  }
+  const Vec3 d = light.position - p;
+  r.distance = length(d);
+  if (!(r.distance > 0)) return r;
+  r.to_light = d / r.distance;
+  r.intensity = dot(n, r.to_light) / (light.kc + (light.kl + light.kq * r.distance) * r.distance);
+  if (light.kind == LightKind::spot) {
+    const double angle = std::acos(std::clamp(-dot(light.direction, r.to_light), -1.0, 1.0));
+    if (angle > light.fall_end) r.intensity = 0;
+    else if (angle > light.fall_start) r.intensity *= 1 - (angle - light.fall_start) / (light.fall_end - light.fall_start);
+  }
+  return r;
+}
+
+// Tachyon 0.99's full_shader (shade.c; docs/tachyon-notes.md §3):
+//   C = T * (ambient + diffuse * sum_lights Il N.L) + sum_lights phong * Il' (N.H)^e
+//       + specular * I_reflected + (1 - opacity) * I_straight_through
+// with T the texture colour, H Blinn's half vector (Tachyon's default
+// highlight), Il' the light colour (plastic) or T (metal), both normals
+// turned to the viewer; past the depth limit a secondary ray sees the background.
+Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+  const HitFrame f = frame_of(scene, ray, sp);
+  const Material& m = *f.m;
+  const Vec3 dir = normalize(ray.dir);
+  const Vec3 texel = scene.surface_colour(m, sp.position, length(sp.position - ray.org));
+  Vec3 diffuse, highlight;
+  if (m.kd > kMinContrib || m.phong > kMinContrib) {
+    for (const PointLight& light : scene.lights()) {
+      const LightRay l = tachyon_light(light, sp.position, f.ns);
+      if (!(l.intensity > kMinContrib)) continue;
+      ++counts.shadow;
+      if (scene.accel().occluded(Ray{f.above, l.to_light, 0, l.distance - scene.epsilon()})) continue;
+      diffuse += light.intensity * l.intensity;
+      if (m.phong > kMinContrib) {
+        const Vec3 h = l.to_light - dir;
+        double spec = dot(f.ns, h);
+        if (spec > kMinContrib) {
+          spec = std::pow(spec / length(h), m.shine) * m.phong;
+          highlight += (m.phong_metal ? texel : light.intensity) * spec;
+        }
+      }
+    }
+  }
+  Vec3 colour = mul(texel, diffuse * m.kd + Vec3{m.ambient, m.ambient, m.ambient}) + highlight;
+  auto secondary = [&](const Ray& r, double weight) {
+    if (depth >= scene.max_depth()) return scene.background() * weight;
+    return trace(scene, r, depth + 1, counts) * weight;
+  };
+  if (m.ks > kMinContrib) {
+    ++counts.reflected;
+    colour += secondary(Ray{f.above, normalize(reflect(dir, f.ns)), 0, INFINITY}, m.ks);
+  }
+  if (m.transmittance > kMinContrib) {
+    ++counts.refracted;
+    colour += secondary(Ray{sp.position - f.ng * scene.epsilon(), dir, 0, INFINITY}, m.transmittance);
+  }
+  return colour;
+}
+
+}  // namespace
+
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+  if (sp.material->model == ShadingModel::tachyon) return shade_tachyon(scene, ray, sp, depth, counts);
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
   const bool cached = scene.shadow_cache() != nullptr;
@@ -281,9 +362,19 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
   return colour;
 }
 
-void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
            ShadeParts parts[kPacketSize]) {
+  // Tachyon materials are shaded one lane at a time (their shadow rays are
+  // not yet gathered into packets); the NFF lanes go on as a packet.
+  bool hit[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k) {
+    hit[k] = hit_in[k];
+    if (hit[k] && sps[k].material->model == ShadingModel::tachyon) {
+      colours[k] = shade_tachyon(scene, rays.rays[k], sps[k], depth, counts);
+      hit[k] = false;
+    }
+  }
   if (parts)
     for (int k = 0; k < kPacketSize; ++k) parts[k] = ShadeParts{};
   auto mark_lit = [&](int k, size_t l) {

@@ -19,6 +19,7 @@
 #include <unordered_map>
 
 #include "scene/file_text.hpp"
+#include "scene/tachyon_reader.hpp"
 #include "scene/nff_reader.hpp"
 
 namespace holoray {
@@ -166,7 +167,10 @@ class MeshReader {
         warn(fmt::format("light '{}': only point lights are rendered yet", l.mName.C_Str()));
         continue;
       }
-      out_.lights.push_back(Light{to_vec(global(l.mName) * l.mPosition), to_vec(l.mColorDiffuse), {}});
+      Light light;
+      light.position = to_vec(global(l.mName) * l.mPosition);
+      light.colour = to_vec(l.mColorDiffuse);
+      out_.lights.push_back(light);
     }
   }
 
@@ -200,7 +204,11 @@ class MeshReader {
       vp.up = {0, 1, 0};
     }
     out_.viewpoint = vp;
-    if (out_.lights.empty()) out_.lights.push_back(Light{vp.from, {1, 1, 1}, {}});
+    if (out_.lights.empty()) {
+      Light headlight;
+      headlight.position = vp.from;
+      out_.lights.push_back(headlight);
+    }
   }
 
   const aiScene& s_;
@@ -258,7 +266,10 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits) {
 }
 
 SceneDesc read_scene_file(const std::string& path) {
-  return lower_extension(path) == ".nff" ? read_nff_file(path) : read_mesh_file(path);
+  const std::string ext = lower_extension(path);
+  if (ext == ".nff") return read_nff_file(path);
+  if (ext == ".dat") return read_tachyon_file(path);
+  return read_mesh_file(path);
 }
 
 }  // namespace holoray

@@ -37,8 +37,8 @@ struct MeshLimits {
 /// triangles or more than limits.max_triangles.
 SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits = {});
 
-/// The scene file's reader by its extension: `.nff` (read_nff_file), else
-/// read_mesh_file. Throws as they do.
+/// The scene file's reader by its extension: `.nff` (read_nff_file), `.dat`
+/// (read_tachyon_file), else read_mesh_file. Throws as they do.
 SceneDesc read_scene_file(const std::string& path);
 
 }  // namespace holoray

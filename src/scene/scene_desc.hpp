@@ -3,6 +3,8 @@
 // builds render objects"). Every item keeps the source location it came from.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
@@ -18,27 +20,71 @@ struct SourceLoc {
   int col = 0;
 };
 
-/// NFF `v` (nff-notes §2). World units; `up` as written (not orthogonalised).
+/// NFF `v` (nff-notes §2), or a Tachyon camera turned into one
+/// (docs/tachyon-notes.md §2). World units; `up` as written (not orthogonalised).
 struct Viewpoint {
   Vec3 from, at, up;
-  double angle_deg = 45;   // full-image field of view (nff-notes §2)
+  double angle_deg = 45;   // full-image (vertical) field of view (nff-notes §2)
   double hither = 0;       // read and kept; the integral camera ignores it (see README)
   int xres = 0, yres = 0;  // 0 when the file gives no `resolution`
+  /// Tachyon's screen: right = up x view (NFF's is view x up), so an image of
+  /// the same world comes out mirrored left to right (tachyon-notes §2).
+  bool mirrored = false;
   SourceLoc loc;
 };
 
+/// How a light falls off; NFF lights are all `point` with no attenuation.
+enum class LightKind { point, directional, spot };
+
 /// NFF `l`: point light, no falloff, never visible to eye rays (nff-notes §4).
+/// Tachyon `light`, `directional_light`, `spotlight` (tachyon-notes §4) also
+/// set the other fields; their colour is the intensity as written.
 struct Light {
   Vec3 position;
   Vec3 colour{1, 1, 1};  // optional RGB, multiplies the per-light intensity
+  LightKind kind = LightKind::point;
+  Vec3 direction{0, 0, -1};           ///< directional: where the light travels; spot: the cone's axis (unit)
+  double kc = 1, kl = 0, kq = 0;      ///< intensity / (kc + kl d + kq d^2), d in world units
+  double fall_start = 0, fall_end = 0;  ///< spot: full intensity to fall_start, none past fall_end (radians off axis)
   SourceLoc loc;
 };
 
+/// Which shading formula a material follows: NFF's Whitted model
+/// (render/shading.hpp) or Tachyon's (tachyon-notes §3). A Tachyon scene's
+/// materials are all `tachyon`; the NFF and mesh readers make `nff` ones.
+enum class ShadingModel { nff, tachyon };
+
 /// NFF `f` (nff-notes §5): colour, Kd, Ks (mirror weight and highlight weight),
 /// Phong exponent, transmittance T (weight of the refracted ray) and ior.
+/// A Tachyon texture (tachyon-notes §3) fills the same fields with its own
+/// meaning: kd = `diffuse`, ks = `specular` (mirror weight only), shine =
+/// `phong_size`, transmittance = 1 - `opacity` (no refraction, ior 1), plus
+/// the fields below.
 struct Material {
   Vec3 colour{0.8, 0.8, 0.8};
   double kd = 1, ks = 0, shine = 0, transmittance = 0, ior = 1;
+  ShadingModel model = ShadingModel::nff;
+  double ambient = 0;        ///< tachyon: `ambient`, times the texture colour
+  double phong = 0;          ///< tachyon: highlight weight (`phong plastic|metal W`)
+  bool phong_metal = false;  ///< tachyon: the highlight takes the surface colour, not the light's
+  int texture = -1;          ///< tachyon: index into SceneDesc::textures; -1: constant `colour`
+  SourceLoc loc;
+};
+
+/// An RGB image in 8 bits, rows in the order the file stores them (Tachyon's image maps).
+struct ImageMap {
+  std::string path;  ///< as resolved, for messages
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;  ///< width*height*3
+};
+
+/// Tachyon `texfunc` (tachyon-notes §3): a colour that varies over the
+/// surface, evaluated at the world-space hit point.
+struct TextureDesc {
+  enum class Kind { checker3d = 1, wood = 4, planar_image = 9 };
+  Kind kind = Kind::checker3d;
+  Vec3 centre, rotate, scale{1, 1, 1}, uaxis{1, 0, 0}, vaxis{0, 1, 0};
+  int image = -1;  ///< index into SceneDesc::images (image maps)
   SourceLoc loc;
 };
 
@@ -62,9 +108,24 @@ struct PolygonDesc {
   std::vector<Vec3> normals;
 };
 
+/// Triangles sharing one object id and material (a Tachyon box or ring),
+/// flat-shaded unless `normals` gives one per vertex.
+struct TriangleMeshDesc {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> normals;
+  std::vector<std::array<uint32_t, 3>> triangles;  ///< counter-clockwise seen from the front
+};
+
+/// Tachyon `plane`: infinite. Built as a square centred on `point`, a
+/// thousand times wider than the rest of the scene (RenderScene), where its
+/// edge lies below a pixel of any view that sees the rest.
+struct PlaneDesc {
+  Vec3 point, normal;
+};
+
 /// One primitive of the file; its index in SceneDesc::objects is its object id.
 struct ObjectDesc {
-  std::variant<SphereDesc, ConeDesc, PolygonDesc> shape;
+  std::variant<SphereDesc, ConeDesc, PolygonDesc, TriangleMeshDesc, PlaneDesc> shape;
   int material = -1;  // index into SceneDesc::materials; -1: before any `f` (default grey)
   SourceLoc loc;
 };
@@ -77,6 +138,13 @@ struct SceneDesc {
   std::vector<Light> lights;
   std::vector<Material> materials;
   std::vector<ObjectDesc> objects;
+  std::vector<TextureDesc> textures;  ///< Tachyon texfuncs, by Material::texture
+  std::vector<ImageMap> images;       ///< image maps, by TextureDesc::image
+  /// Whose conventions the lights follow: NFF's (intensity from the light
+  /// count, nff-notes §4) or Tachyon's (the colour as written).
+  ShadingModel shading = ShadingModel::nff;
+  /// Ray-tree depth the file asks for (Tachyon `raydepth`), eye ray = 1.
+  std::optional<int> max_depth;
   /// "file:line:col: warning: ..." for input that was accepted but is
   /// suspect (a polygon with no area, a negative sphere radius), in file
   /// order; only the first NffLimits::max_warnings_kept are kept as text.

@@ -346,7 +346,8 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
                              int threads, RenderStats& stats) {
   const auto start = std::chrono::steady_clock::now();
   PointImage key{frame, camera, {}, {}, {}, {}};
-  const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights;
+  const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights &&
+                          !scene.has_tachyon_materials();
   ReprojectedFrame traced = trace_keyframe(scene, camera, key.hits, want_parts ? &key.parts : nullptr, threads);
   key.colour = std::move(traced.colour);
   for (size_t g = 0; g < scene.accel().group_count(); ++g)
@@ -359,8 +360,10 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
 ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& camera, int frame,
                                    const PointImage* prev, const PointImage* next, const ReverseOptions& opt) {
   if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
-  // More lights than a mask holds: keyframes carry no parts, every hit is shaded.
-  const bool reusable = opt.reuse == ReverseReuse::color || scene.lights().size() <= kMaxPartLights;
+  // More lights than a mask holds, or Tachyon's shading (which ShadeParts do
+  // not split): keyframes carry no parts, every hit is shaded.
+  const bool reusable = opt.reuse == ReverseReuse::color ||
+                        (scene.lights().size() <= kMaxPartLights && !scene.has_tachyon_materials());
   if (reusable) {
     check_key(scene, prev, opt.reuse);
     check_key(scene, next, opt.reuse);

@@ -1,0 +1,109 @@
+#include "render/textures.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace holoray {
+
+namespace {
+int bit_count(int n) {
+  int b = 0;
+  for (; n; n >>= 1) ++b;
+  return b;
+}
+
+// u - trunc(u), wrapped into [0, 1): Tachyon's repeat.
+double wrap(double u) {
+  u -= static_cast<double>(static_cast<long>(u));
+  return u < 0 ? u + 1 : u;
+}
+}  // namespace
+
+MipMap::MipMap(const ImageMap& image) {
+  levels_.push_back({image.width, image.height, image.rgb});
+  const int count = std::max(bit_count(image.width), bit_count(image.height));
+  while (static_cast<int>(levels_.size()) < count) {
+    const Level& a = levels_.back();
+    Level b{std::max(1, a.width >> 1), std::max(1, a.height >> 1), {}};
+    b.rgb.resize(size_t(b.width) * b.height * 3);
+    // Tachyon's DecimateImage: the mean of 2x2 texels, truncated to 8 bits
+    // (a 1-texel-wide image averages pairs along its length).
+    for (int y = 0; y < b.height; ++y)
+      for (int x = 0; x < b.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          auto at = [&](int xx, int yy) {
+            return int{a.rgb[(size_t(std::min(yy, a.height - 1)) * a.width + std::min(xx, a.width - 1)) * 3 + c]};
+          };
+          int v;
+          if (a.width > 1 && a.height > 1)
+            v = (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1)) >> 2;
+          else if (a.width == 1)
+            v = (at(0, 2 * y) + at(0, 2 * y + 1)) >> 1;
+          else
+            v = (at(2 * x, 0) + at(2 * x + 1, 0)) >> 1;
+          b.rgb[(size_t(y) * b.width + x) * 3 + c] = static_cast<unsigned char>(v);
+        }
+    levels_.push_back(std::move(b));
+  }
+}
+
+Vec3 MipMap::bilinear(const Level& l, double u, double v) {
+  const double x = (l.width - 1.0) * u, y = (l.height - 1.0) * v;
+  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
+  const double px = x - ix, py = y - iy;
+  // Tachyon reads one texel past the edge at u or v = 1 exactly; clamp instead.
+  const int ix1 = std::min(ix + 1, l.width - 1), iy1 = std::min(iy + 1, l.height - 1);
+  auto texel = [&](int xx, int yy, int c) { return double(l.rgb[(size_t(yy) * l.width + xx) * 3 + c]); };
+  double out[3];
+  for (int c = 0; c < 3; ++c) {
+    const double lo = texel(ix, iy, c) + px * (texel(ix1, iy, c) - texel(ix, iy, c));
+    const double hi = texel(ix, iy1, c) + px * (texel(ix1, iy1, c) - texel(ix, iy1, c));
+    out[c] = (lo + py * (hi - lo)) / 255.0;
+  }
+  return {out[0], out[1], out[2]};
+}
+
+Vec3 MipMap::sample(double u, double v, double d) const {
+  if (!(u >= 0 && u <= 1 && v >= 0 && v <= 1)) return {};
+  d = std::clamp(d, 0.0, 1.0);
+  const int n = levels();
+  const double level = d * (n - 0.9999);
+  const int i = static_cast<int>(level);
+  const double frac = level - i;
+  // Past the second-coarsest level Tachyon takes the coarsest, unblended.
+  if (i < n - 2) {
+    const Vec3 a = bilinear(levels_[size_t(i)], u, v), b = bilinear(levels_[size_t(i) + 1], u, v);
+    return a + (b - a) * frac;
+  }
+  return bilinear(levels_.back(), u, v);
+}
+
+Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base, const Vec3& p, double optic_dist) {
+  const Vec3 q = p - tex.centre;
+  switch (tex.kind) {
+    case TextureDesc::Kind::checker3d: {
+      // Cells a third of a unit wide, mirrored about the centre (|x|).
+      const long x = static_cast<long>(std::fabs(q.x) * 3 + 0.5) % 2, y = static_cast<long>(std::fabs(q.y) * 3 + 0.5) % 2,
+                 z = static_cast<long>(std::fabs(q.z) * 3 + 0.5) % 2;
+      return (x + y + z) % 2 == 1 ? Vec3{1, 0.2, 0} : Vec3{0, 0.2, 1};
+    }
+    case TextureDesc::Kind::wood: {
+      const double x = q.x / tex.scale.x, y = q.y / tex.scale.y, z = q.z / tex.scale.z;
+      double radius = std::sqrt(x * x + z * z);
+      const double angle = z == 0 ? 3.1415926 / 2 : std::atan(x / z);
+      radius += 3.0 * std::sin(20 * angle + y / 150.0);
+      const int grain = static_cast<int>(radius + 0.5) % 60;
+      return grain < 40 ? Vec3{0.8, 1.0, 0.2} : Vec3{0, 0, 0};
+    }
+    case TextureDesc::Kind::planar_image: {
+      if (mip == nullptr) return base;
+      const double u = wrap(dot(tex.uaxis, q) * tex.scale.x + tex.rotate.x);
+      const double v = wrap(dot(tex.vaxis, q) * tex.scale.y + tex.rotate.y);
+      const double max_scale = std::fabs(tex.scale.x) > std::fabs(tex.scale.y) ? tex.scale.x : tex.scale.y;
+      return mip->sample(u, v, 0.05 * optic_dist * std::fabs(max_scale));
+    }
+  }
+  return base;
+}
+
+}  // namespace holoray

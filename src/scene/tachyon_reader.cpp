@@ -1,0 +1,614 @@
+#include "scene/tachyon_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cctype>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "scene/file_text.hpp"
+#include "scene/tokenizer.hpp"
+
+namespace holoray {
+namespace {
+
+std::string upper(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return u;
+}
+
+// Constructs of Tachyon's language that holoray does not read yet, with what
+// to say about them (tachyon-notes §6).
+const std::map<std::string, std::string_view>& unsupported_objects() {
+  static const std::map<std::string, std::string_view> m{
+      {"VCSTRI", "vertex-coloured triangles (vcstri)"},
+      {"VERTEXARRAY", "vertex arrays"},
+      {"SPHEREARRAY", "sphere arrays"},
+      {"SCALARVOL", "scalar volumes"},
+      {"IMAGEDEF", "inline image definitions (imagedef)"},
+      {"SKY_LIGHT", "sky lights (ambient occlusion)"},
+      {"SCAPE", "landscapes (scape)"},
+      {"SHADER_MODE", "shader modes"},
+      {"TPOLYFILE", "polygon files (tpolyfile)"},
+      {"MGFFILE", "MGF files"},
+      {"FOG", "fog"},
+      {"BACKGROUND_GRADIENT", "gradient backgrounds"},
+      {"START_CLIPGROUP", "clip groups"},
+      {"END_CLIPGROUP", "clip groups"},
+      {"CYLINDER", "infinite cylinders (use fcylinder)"},
+  };
+  return m;
+}
+
+class TachyonParser {
+ public:
+  TachyonParser(std::string_view text, const std::string& source, const TachyonLimits& limits) : limits_(limits) {
+    scene_.source = source;
+    scene_.shading = ShadingModel::tachyon;
+    push_file(text, source);
+  }
+
+  SceneDesc run() {
+    // Tachyon skips `#` comments before BEGIN_SCENE; the tokenizer already does.
+    expect_kw("BEGIN_SCENE");
+    expect_kw("RESOLUTION");
+    xres_ = resolution("the x resolution");
+    yres_ = resolution("the y resolution");
+    while (object()) {
+    }
+    if (!scene_.viewpoint) {
+      // Tachyon's default camera (rt_newscene): at the origin looking down +z, zoom 1.
+      Viewpoint v;
+      v.from = {0, 0, 0};
+      v.at = {0, 0, 1};
+      v.up = {0, 1, 0};
+      v.angle_deg = zoom_to_angle(1);
+      v.xres = xres_, v.yres = yres_;
+      v.mirrored = true;
+      scene_.viewpoint = v;
+    }
+    return std::move(scene_);
+  }
+
+ private:
+  struct File {
+    std::string text;
+    std::string source;
+    std::unique_ptr<Tokenizer> tok;
+  };
+
+  Tokenizer& tok() { return *files_.back().tok; }
+
+  void push_file(std::string_view text, const std::string& source) {
+    File& f = files_.emplace_back();
+    f.text = std::string(text);
+    f.source = source;
+    f.tok = std::make_unique<Tokenizer>(f.text, source);
+  }
+
+  // Full field of view of Tachyon's perspective camera: an image plane 1/zoom
+  // tall at distance 1 from the eye (camera.c, camera_init).
+  static double zoom_to_angle(double zoom) { return 2 * std::atan(0.5 / zoom) * 180 / std::numbers::pi; }
+
+  int resolution(std::string_view what) {
+    const Token t = tok().peek();
+    const long v = tok().integer(what);
+    if (v < 1 || v > (1L << 20)) tok().fail(t.loc, fmt::format("expected {} from 1 to 1048576, found {}", what, t.text));
+    return static_cast<int>(v);
+  }
+
+  bool is_kw(const Token& t, std::string_view kw) const { return upper(t.text) == kw; }
+
+  Token expect_kw(std::string_view kw) {
+    const Token t = tok().next();
+    if (!is_kw(t, kw)) tok().fail_expected(t, fmt::format("'{}'", kw));
+    return t;
+  }
+
+  Vec3 vec3(std::string_view what) {
+    Vec3 v;
+    v.x = tok().number(what);
+    v.y = tok().number(what);
+    v.z = tok().number(what);
+    return v;
+  }
+
+  Vec3 unit(std::string_view what) {
+    const Token t = tok().peek();
+    const Vec3 v = vec3(what);
+    if (!(length(v) > 0)) tok().fail(t.loc, fmt::format("expected a non-zero {}, found (0, 0, 0)", what));
+    return normalize(v);
+  }
+
+  double positive(std::string_view what) {
+    const Token t = tok().peek();
+    const double v = tok().number(what);
+    if (!(v > 0)) tok().fail(t.loc, fmt::format("expected a positive {}, found {}", what, t.text));
+    return v;
+  }
+
+  // One top-level item; false at END_SCENE or the end of the file.
+  bool object() {
+    const Token kw = tok().next();
+    if (kw.text.empty()) {
+      if (files_.size() > 1) {
+        files_.pop_back();
+        return true;
+      }
+      return false;
+    }
+    const std::string k = upper(kw.text);
+    if (k == "END_SCENE") {
+      if (files_.size() > 1) tok().fail(kw.loc, "expected the end of the included file, found 'END_SCENE'");
+      return false;
+    }
+    if (k == "CAMERA") camera(kw);
+    else if (k == "BACKGROUND") scene_.background = vec3("a background colour component");
+    else if (k == "TEXDEF") texdef();
+    else if (k == "TEXALIAS") texalias();
+    else if (k == "LIGHT") light(kw, LightKind::point);
+    else if (k == "SPOTLIGHT") light(kw, LightKind::spot);
+    else if (k == "DIRECTIONAL_LIGHT") directional_light(kw);
+    else if (k == "SPHERE") sphere(kw);
+    else if (k == "FCYLINDER") fcylinder(kw);
+    else if (k == "POLYCYLINDER") polycylinder(kw);
+    else if (k == "RING") ring(kw);
+    else if (k == "PLANE") plane(kw);
+    else if (k == "BOX") box(kw);
+    else if (k == "TRI") triangle(kw, false);
+    else if (k == "STRI") triangle(kw, true);
+    else if (k == "INCLUDE") include(kw);
+    else if (auto it = unsupported_objects().find(k); it != unsupported_objects().end())
+      tok().fail(kw.loc, fmt::format("{} are not supported yet ('{}'; docs/tachyon-notes.md §6)", it->second, kw.text));
+    else
+      tok().fail_expected(kw, "a Tachyon object or declaration (camera, light, texdef, sphere, tri, plane, ...)");
+    return true;
+  }
+
+  void camera(const Token& kw) {
+    if (scene_.viewpoint) tok().fail(kw.loc, "expected one camera, found a second 'camera'");
+    Token t = tok().next();
+    if (is_kw(t, "PROJECTION")) {
+      const Token p = tok().next();
+      if (!is_kw(p, "PERSPECTIVE"))
+        tok().fail(p.loc, fmt::format("the {} projection is not supported yet (perspective only)", describe_token(p)));
+      t = tok().next();
+    }
+    if (!is_kw(t, "ZOOM")) tok().fail_expected(t, "'ZOOM' (or 'PROJECTION')");
+    const double zoom = positive("the camera zoom");
+    expect_kw("ASPECTRATIO");
+    const Token a = tok().peek();
+    const double aspect = tok().number("the aspect ratio");
+    if (aspect != 1)
+      tok().fail(a.loc, fmt::format("an aspect ratio other than 1 is not supported yet (square pixels), found {}", a.text));
+    expect_kw("ANTIALIASING");
+    tok().integer("the antialiasing sample count");  // holoray's --spp decides
+    expect_kw("RAYDEPTH");
+    const Token d = tok().peek();
+    const long depth = tok().integer("the ray depth");
+    if (depth < 1 || depth > 16) tok().fail(d.loc, fmt::format("expected a ray depth from 1 to 16, found {}", d.text));
+    Viewpoint v;
+    v.loc = kw.loc;
+    expect_kw("CENTER");
+    v.from = vec3("a camera centre coordinate");
+    expect_kw("VIEWDIR");
+    const Vec3 view = unit("view direction");
+    const Token up_tok = expect_kw("UPDIR");
+    v.up = vec3("an up direction component");
+    if (!(length(cross(v.up, view)) > 1e-12 * length(v.up)))
+      tok().fail(up_tok.loc, "expected an up direction not parallel to the view direction, found a parallel or zero one");
+    const Token end = tok().next();
+    if (is_kw(end, "FRUSTUM")) tok().fail(end.loc, "camera frustums are not supported yet");
+    if (!is_kw(end, "END_CAMERA")) tok().fail_expected(end, "'END_CAMERA'");
+    v.at = v.from + view;
+    v.angle_deg = zoom_to_angle(zoom);
+    v.xres = xres_, v.yres = yres_;
+    v.mirrored = true;
+    scene_.viewpoint = v;
+    scene_.max_depth = static_cast<int>(depth);
+  }
+
+  // The texture after an object: `texture <body>` inline, or a name.
+  int texture_ref() {
+    const Token t = tok().next();
+    if (t.text.empty()) tok().fail_expected(t, "a texture name or 'TEXTURE'");
+    if (is_kw(t, "TEXTURE")) return texture_body(t);
+    const auto it = textures_.find(std::string(t.text));
+    if (it != textures_.end()) return it->second;
+    // Tachyon prints "Undefined texture" and uses its default; so do we, loudly.
+    warn(t.loc, fmt::format("undefined texture '{}': Tachyon's default (white, ambient 0.1, diffuse 0.9) used",
+                            t.text));
+    return default_material();
+  }
+
+  int default_material() {
+    if (default_material_ < 0) {
+      Material m;
+      m.model = ShadingModel::tachyon;
+      m.colour = {1, 1, 1};
+      m.ambient = 0.1, m.kd = 0.9, m.ks = 0;
+      scene_.materials.push_back(m);
+      default_material_ = static_cast<int>(scene_.materials.size()) - 1;
+    }
+    return default_material_;
+  }
+
+  void texdef() {
+    const Token name = tok().next();
+    if (name.text.empty()) tok().fail_expected(name, "a texture name");
+    textures_[std::string(name.text)] = texture_body(name);
+  }
+
+  void texalias() {
+    const Token name = tok().next();
+    if (name.text.empty()) tok().fail_expected(name, "a texture name");
+    const Token old = tok().next();
+    const auto it = textures_.find(std::string(old.text));
+    if (it == textures_.end()) tok().fail(old.loc, fmt::format("expected a defined texture name, found {}", describe_token(old)));
+    textures_[std::string(name.text)] = it->second;
+  }
+
+  // AMBIENT a DIFFUSE d SPECULAR s OPACITY o [PHONG PLASTIC|METAL p PHONG_SIZE e]
+  // COLOR r g b TEXFUNC n [its parameters] (parse.c, GetTexBody).
+  int texture_body(const Token& at) {
+    Material m;
+    m.model = ShadingModel::tachyon;
+    m.loc = at.loc;
+    expect_kw("AMBIENT");
+    m.ambient = tok().number("the ambient coefficient");
+    expect_kw("DIFFUSE");
+    m.kd = tok().number("the diffuse coefficient");
+    expect_kw("SPECULAR");
+    m.ks = tok().number("the specular (mirror) coefficient");
+    expect_kw("OPACITY");
+    const Token o = tok().peek();
+    const double opacity = tok().number("the opacity");
+    if (opacity < 0 || opacity > 1) tok().fail(o.loc, fmt::format("expected an opacity from 0 to 1, found {}", o.text));
+    m.transmittance = 1 - opacity;
+    m.ior = 1;
+    Token t = tok().next();
+    if (is_kw(t, "TRANSMODE")) tok().fail(t.loc, "Raster3D transparency modes (transmode) are not supported yet");
+    if (is_kw(t, "OUTLINE")) tok().fail(t.loc, "outlines are not supported yet");
+    m.shine = 100;  // Tachyon's phong_size when no PHONG is given (its weight is then 0)
+    if (is_kw(t, "PHONG")) {
+      const Token kind = tok().next();
+      m.phong_metal = is_kw(kind, "METAL");
+      if (!m.phong_metal && !is_kw(kind, "PLASTIC")) tok().fail_expected(kind, "'PLASTIC' or 'METAL'");
+      m.phong = tok().number("the phong highlight weight");
+      expect_kw("PHONG_SIZE");
+      m.shine = tok().number("the phong exponent");
+      t = tok().next();
+    }
+    if (!is_kw(t, "COLOR")) tok().fail_expected(t, "'COLOR'");
+    m.colour = vec3("a texture colour component");
+    expect_kw("TEXFUNC");
+    const Token f = tok().peek();
+    const long func = tok().integer("a texture function number (0 to 10)");
+    switch (func) {
+      case 0: break;
+      case 1: case 4: m.texture = procedural(f, func); break;
+      case 9: m.texture = planar_image(f); break;
+      default: {
+        static constexpr std::string_view names[] = {"constant", "3D checker", "grit", "marble", "wood", "gradient",
+                                                     "cylindrical checker", "cylindrical image", "spherical image",
+                                                     "planar image", "volume image"};
+        if (func > 10) tok().fail(f.loc, fmt::format("expected a texture function from 0 to 10, found {}", f.text));
+        tok().fail(f.loc, fmt::format("texfunc {} ({}) is not supported yet (0, 1, 4 and 9 are)", func,
+                                      names[func]));
+      }
+    }
+    scene_.materials.push_back(m);
+    return static_cast<int>(scene_.materials.size()) - 1;
+  }
+
+  void placement(TextureDesc& t) {
+    expect_kw("CENTER");
+    t.centre = vec3("a texture centre coordinate");
+    expect_kw("ROTATE");
+    t.rotate = vec3("a texture rotation component");
+    expect_kw("SCALE");
+    t.scale = vec3("a texture scale component");
+  }
+
+  int procedural(const Token& at, long func) {
+    TextureDesc t;
+    t.loc = at.loc;
+    t.kind = static_cast<TextureDesc::Kind>(func);
+    placement(t);
+    if (t.kind == TextureDesc::Kind::wood && (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0))
+      tok().fail(at.loc, "expected a non-zero scale for the wood texture, found a zero component");
+    scene_.textures.push_back(t);
+    return static_cast<int>(scene_.textures.size()) - 1;
+  }
+
+  int planar_image(const Token& at) {
+    TextureDesc t;
+    t.loc = at.loc;
+    t.kind = TextureDesc::Kind::planar_image;
+    const Token file = tok().next();
+    if (file.text.empty()) tok().fail_expected(file, "an image file name");
+    placement(t);
+    expect_kw("UAXIS");
+    t.uaxis = vec3("a u axis component");
+    expect_kw("VAXIS");
+    t.vaxis = vec3("a v axis component");
+    t.image = image(file);
+    scene_.textures.push_back(t);
+    return static_cast<int>(scene_.textures.size()) - 1;
+  }
+
+  // Where a file named in the scene is: beside the naming file, else (as
+  // Tachyon, which opens it as written) relative to the working folder.
+  std::string locate(std::string_view name) const {
+    namespace fs = std::filesystem;
+    const fs::path p(name);
+    if (p.is_absolute()) return p.string();
+    const fs::path beside = fs::path(files_.back().source).parent_path() / p;
+    std::error_code ec;
+    if (fs::exists(beside, ec)) return beside.string();
+    return p.string();
+  }
+
+  int image(const Token& file) {
+    const std::string path = locate(file.text);
+    if (auto it = images_.find(path); it != images_.end()) return it->second;
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, OIIO::geterror()));
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width < 1 || spec.height < 1 || int64_t{spec.width} * spec.height > limits_.max_image_pixels)
+      tok().fail(file.loc, fmt::format("expected an image map of at most {} pixels, found {}x{} in '{}'",
+                                       limits_.max_image_pixels, spec.width, spec.height, path));
+    ImageMap img;
+    img.path = path;
+    img.width = spec.width, img.height = spec.height;
+    // Channels past the third (alpha) are dropped; a grey image fills all three.
+    const int nch = spec.nchannels;
+    std::vector<unsigned char> raw(size_t(spec.width) * spec.height * nch);
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, raw.data()))
+      tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, in->geterror()));
+    // Tachyon keeps rows in the order the file stores them and maps v = 0 to
+    // the first: the top row of a PPM or PNG, the bottom row of a Targa
+    // (stored bottom-up). OpenImageIO hands every format over top-down.
+    const bool bottom_up = std::string_view(in->format_name()) == "targa";
+    img.rgb.resize(size_t(spec.width) * spec.height * 3);
+    for (int y = 0; y < spec.height; ++y)
+      for (int x = 0; x < spec.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          img.rgb[(size_t(bottom_up ? spec.height - 1 - y : y) * spec.width + x) * 3 + c] =
+              raw[(size_t(y) * spec.width + x) * nch + std::min(c, nch - 1)];
+    scene_.images.push_back(std::move(img));
+    const int id = static_cast<int>(scene_.images.size()) - 1;
+    images_[path] = id;
+    return id;
+  }
+
+  void light(const Token& kw, LightKind kind) {
+    Light l;
+    l.loc = kw.loc;
+    l.kind = kind;
+    expect_kw("CENTER");
+    l.position = vec3("a light centre coordinate");
+    expect_kw("RAD");
+    tok().number("the light radius");  // Tachyon draws lights as spheres; holoray's lights stay invisible
+    if (kind == LightKind::spot) {
+      expect_kw("DIRECTION");
+      l.direction = unit("spotlight direction");
+      expect_kw("FALLOFF_START");
+      const double start = tok().number("the falloff start angle (degrees)");
+      expect_kw("FALLOFF_END");
+      const Token e = tok().peek();
+      const double end = tok().number("the falloff end angle (degrees)");
+      if (!(end >= start)) tok().fail(e.loc, fmt::format("expected a falloff end >= its start ({}), found {}", start, e.text));
+      l.fall_start = start * std::numbers::pi / 180;
+      l.fall_end = end * std::numbers::pi / 180;
+    }
+    const Token t = tok().next();
+    if (is_kw(t, "ATTENUATION")) {
+      expect_kw("CONSTANT");
+      l.kc = tok().number("the constant attenuation");
+      expect_kw("LINEAR");
+      l.kl = tok().number("the linear attenuation");
+      expect_kw("QUADRATIC");
+      l.kq = tok().number("the quadratic attenuation");
+      if (l.kc < 0 || l.kl < 0 || l.kq < 0 || l.kc + l.kl + l.kq <= 0)
+        tok().fail(t.loc, "expected attenuation coefficients >= 0, not all 0");
+      expect_kw("COLOR");
+    } else if (!is_kw(t, "COLOR")) {
+      tok().fail_expected(t, "'COLOR' or 'ATTENUATION'");
+    }
+    l.colour = vec3("a light colour component");
+    add_light(kw, l);
+  }
+
+  void directional_light(const Token& kw) {
+    Light l;
+    l.loc = kw.loc;
+    l.kind = LightKind::directional;
+    expect_kw("DIRECTION");
+    l.direction = unit("light direction");
+    expect_kw("COLOR");
+    l.colour = vec3("a light colour component");
+    add_light(kw, l);
+  }
+
+  void add_light(const Token& kw, const Light& l) {
+    if (static_cast<long>(scene_.lights.size()) >= limits_.max_lights)
+      tok().fail(kw.loc, fmt::format("expected at most {} lights in one file, found more", limits_.max_lights));
+    scene_.lights.push_back(l);
+  }
+
+  void add(const Token& kw, auto shape, int material) {
+    if (static_cast<long>(scene_.objects.size()) >= limits_.max_objects)
+      tok().fail(kw.loc, fmt::format("expected at most {} objects in one file, found more", limits_.max_objects));
+    scene_.objects.push_back(ObjectDesc{std::move(shape), material, kw.loc});
+  }
+
+  void sphere(const Token& kw) {
+    expect_kw("CENTER");
+    SphereDesc s;
+    s.centre = vec3("a sphere centre coordinate");
+    expect_kw("RAD");
+    s.radius = positive("sphere radius");
+    add(kw, s, texture_ref());
+  }
+
+  // Tachyon's fcylinder is open (no caps), like NFF's cone with equal radii.
+  void fcylinder(const Token& kw) {
+    ConeDesc c;
+    expect_kw("BASE");
+    c.base = vec3("a cylinder base coordinate");
+    expect_kw("APEX");
+    c.apex = vec3("a cylinder apex coordinate");
+    if (c.base == c.apex) tok().fail(kw.loc, "expected distinct cylinder base and apex, found the same point");
+    expect_kw("RAD");
+    c.base_radius = c.apex_radius = positive("cylinder radius");
+    add(kw, c, texture_ref());
+  }
+
+  // A sphere at every point and an open cylinder between neighbours
+  // (Tachyon's rt_polycylinder), all one material.
+  void polycylinder(const Token& kw) {
+    expect_kw("POINTS");
+    const Token n_tok = tok().peek();
+    const long n = tok().integer("a point count");
+    if (n < 1 || n > limits_.max_polycylinder_points)
+      tok().fail(n_tok.loc, fmt::format("expected a point count from 1 to {}, found {}", limits_.max_polycylinder_points, n));
+    std::vector<Vec3> points;
+    for (long i = 0; i < n; ++i) points.push_back(vec3("a polycylinder point coordinate"));
+    expect_kw("RAD");
+    const double r = positive("polycylinder radius");
+    const int material = texture_ref();
+    for (size_t i = 0; i < points.size(); ++i) {
+      add(kw, SphereDesc{points[i], r}, material);
+      if (i > 0 && points[i] != points[i - 1]) add(kw, ConeDesc{points[i - 1], points[i], r, r}, material);
+    }
+  }
+
+  // An annulus (a disc when inner is 0) as one triangle mesh: 256 segments,
+  // which keeps its edge within 8e-5 of its radius, under a pixel in any
+  // view that shows the whole ring.
+  void ring(const Token& kw) {
+    expect_kw("CENTER");
+    const Vec3 c = vec3("a ring centre coordinate");
+    expect_kw("NORMAL");
+    const Vec3 n = unit("ring normal");
+    expect_kw("INNER");
+    const Token in_tok = tok().peek();
+    const double inner = tok().number("the inner radius");
+    expect_kw("OUTER");
+    const Token out_tok = tok().peek();
+    const double outer = tok().number("the outer radius");
+    if (inner < 0) tok().fail(in_tok.loc, fmt::format("expected an inner radius >= 0, found {}", in_tok.text));
+    if (!(outer > inner)) tok().fail(out_tok.loc, fmt::format("expected an outer radius larger than the inner ({}), found {}", inner, out_tok.text));
+    const Frame f = Frame::from_normal_up(c, n, std::fabs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+    constexpr int kSegments = 256;
+    TriangleMeshDesc m;
+    for (int i = 0; i < kSegments; ++i) {
+      const double a = 2 * std::numbers::pi * i / kSegments;
+      const Vec3 dir = f.x * std::cos(a) + f.y * std::sin(a);
+      m.vertices.push_back(c + dir * outer);
+      m.vertices.push_back(c + dir * inner);
+    }
+    for (uint32_t i = 0; i < kSegments; ++i) {
+      const uint32_t o0 = 2 * i, i0 = 2 * i + 1, o1 = 2 * ((i + 1) % kSegments), i1 = o1 + 1;
+      m.triangles.push_back({o0, o1, i0});  // counter-clockwise about n (f.x, f.y, n right-handed)
+      if (inner > 0) m.triangles.push_back({i0, o1, i1});
+    }
+    add(kw, std::move(m), texture_ref());
+  }
+
+  void plane(const Token& kw) {
+    PlaneDesc p;
+    expect_kw("CENTER");
+    p.point = vec3("a plane centre coordinate");
+    expect_kw("NORMAL");
+    p.normal = unit("plane normal");
+    add(kw, p, texture_ref());
+  }
+
+  // An axis-aligned box as 12 outward-facing triangles.
+  void box(const Token& kw) {
+    expect_kw("MIN");
+    const Vec3 lo = vec3("a box corner coordinate");
+    expect_kw("MAX");
+    const Vec3 hi = vec3("a box corner coordinate");
+    const Vec3 a{std::fmin(lo.x, hi.x), std::fmin(lo.y, hi.y), std::fmin(lo.z, hi.z)};
+    const Vec3 b{std::fmax(lo.x, hi.x), std::fmax(lo.y, hi.y), std::fmax(lo.z, hi.z)};
+    if (!(a.x < b.x && a.y < b.y && a.z < b.z)) tok().fail(kw.loc, "expected a box with volume, found a flat or empty one");
+    TriangleMeshDesc m;
+    for (int i = 0; i < 8; ++i) m.vertices.push_back({i & 1 ? b.x : a.x, i & 2 ? b.y : a.y, i & 4 ? b.z : a.z});
+    // Faces as corner bit patterns, counter-clockwise seen from outside.
+    static constexpr uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& q : faces) {
+      m.triangles.push_back({q[0], q[1], q[2]});
+      m.triangles.push_back({q[0], q[2], q[3]});
+    }
+    add(kw, std::move(m), texture_ref());
+  }
+
+  void triangle(const Token& kw, bool smooth) {
+    PolygonDesc p;
+    for (const char* v : {"V0", "V1", "V2"}) {
+      expect_kw(v);
+      p.vertices.push_back(vec3("a vertex coordinate"));
+    }
+    if (smooth)
+      for (const char* n : {"N0", "N1", "N2"}) {
+        expect_kw(n);
+        p.normals.push_back(vec3("a vertex normal component"));
+      }
+    if (length(cross(p.vertices[1] - p.vertices[0], p.vertices[2] - p.vertices[0])) == 0)
+      warn(kw.loc, "triangle with no area (collinear or repeated vertices), skipped");
+    add(kw, std::move(p), texture_ref());
+  }
+
+  void include(const Token& kw) {
+    const Token name = tok().next();
+    if (name.text.empty()) tok().fail_expected(name, "an include file name");
+    if (static_cast<int>(files_.size()) > limits_.max_include_depth)
+      tok().fail(kw.loc, fmt::format("expected includes nested at most {} deep, found deeper (a file including itself?)",
+                                     limits_.max_include_depth));
+    const std::string path = locate(name.text);
+    std::string text;
+    try {
+      text = read_text_file(path);
+    } catch (const std::runtime_error& e) {
+      tok().fail(name.loc, e.what());
+    }
+    push_file(text, path);
+  }
+
+  void warn(SourceLoc loc, std::string_view message) {
+    if (static_cast<long>(scene_.warning_count++) >= limits_.max_warnings_kept) return;
+    scene_.warnings.push_back(fmt::format("{}:{}:{}: warning: {}", tok().source(), loc.line, loc.col, message));
+  }
+
+  TachyonLimits limits_;
+  SceneDesc scene_;
+  std::deque<File> files_;
+  std::map<std::string, int> textures_;  // name -> material
+  std::map<std::string, int> images_;    // resolved path -> image
+  int default_material_ = -1;
+  int xres_ = 512, yres_ = 512;
+};
+
+}  // namespace
+
+SceneDesc parse_tachyon(std::string_view text, const std::string& source, const TachyonLimits& limits) {
+  return TachyonParser(text, source, limits).run();
+}
+
+SceneDesc read_tachyon_file(const std::string& path, const TachyonLimits& limits) {
+  return parse_tachyon(read_text_file(path), path, limits);
+}
+
+}  // namespace holoray
