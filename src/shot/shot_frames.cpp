@@ -20,6 +20,8 @@ ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
 
   const auto nff_view = std::find_if(descs_.begin(), descs_.end(), [](const SceneDesc& d) { return d.viewpoint.has_value(); });
   if (nff_view != descs_.end()) default_angle_ = nff_view->viewpoint->angle_deg;
+  // A Tachyon scene's camera path and keys are seen on Tachyon's (mirrored) screen.
+  if (nff_view != descs_.end()) mirrored_ = nff_view->viewpoint->mirrored;
   if (shot_.camera.angle_deg) default_angle_ = *shot_.camera.angle_deg;
 
   if (!shot_.camera.path.empty()) {
@@ -54,6 +56,7 @@ Viewpoint ShotFrames::viewpoint(int frame) const {
   const ShotCamera& cam = shot_.camera;
   Viewpoint vp;
   vp.angle_deg = default_angle_;
+  vp.mirrored = mirrored_;
   if (!cam.path.empty()) {
     const CameraPathFrame& f = cam.path[static_cast<size_t>(cam.path_start + frame)];
     vp.from = f.centre;

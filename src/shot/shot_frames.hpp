@@ -41,6 +41,7 @@ class ShotFrames {
   std::vector<SceneDesc> descs_;
   std::unique_ptr<RenderScene> scene_;
   double default_angle_ = 45;
+  bool mirrored_ = false;  // the scene's viewpoint is Tachyon's (Viewpoint::mirrored)
   double path_distance_ = 0;  // camera centre to array, along the view (path cameras)
 };
 
