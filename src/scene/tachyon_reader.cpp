@@ -64,6 +64,22 @@ class TachyonParser {
     yres_ = resolution("the y resolution");
     while (object()) {
     }
+    // A Tachyon camera has no look-at point; the array needs one (contract,
+    // "Placement": its width is the view's at `at`). Take the depth of the
+    // centre of the scene's bounded objects, as a shot's camera path does.
+    if (scene_.viewpoint) {
+      Viewpoint& v = *scene_.viewpoint;
+      Bounds3 b;
+      for (const ObjectDesc& o : scene_.objects) {
+        if (const auto* s = std::get_if<SphereDesc>(&o.shape)) b.extend(s->centre);
+        else if (const auto* c = std::get_if<ConeDesc>(&o.shape)) b.extend(c->base), b.extend(c->apex);
+        else if (const auto* p = std::get_if<PolygonDesc>(&o.shape)) for (const Vec3& q : p->vertices) b.extend(q);
+        else if (const auto* m = std::get_if<TriangleMeshDesc>(&o.shape)) for (const Vec3& q : m->vertices) b.extend(q);
+      }
+      const Vec3 view = v.at - v.from;
+      const double depth = b.empty() ? 0 : dot(b.centre() - v.from, view);
+      if (depth > 0) v.at = v.from + view * depth;
+    }
     if (!scene_.viewpoint) {
       // Tachyon's default camera (rt_newscene): at the origin looking down +z, zoom 1.
       Viewpoint v;
@@ -208,7 +224,7 @@ class TachyonParser {
     const Token end = tok().next();
     if (is_kw(end, "FRUSTUM")) tok().fail(end.loc, "camera frustums are not supported yet");
     if (!is_kw(end, "END_CAMERA")) tok().fail_expected(end, "'END_CAMERA'");
-    v.at = v.from + view;
+    v.at = v.from + view;  // moved to the scene's depth once the objects are read (run())
     v.angle_deg = zoom_to_angle(zoom);
     v.xres = xres_, v.yres = yres_;
     v.mirrored = true;
