@@ -38,6 +38,15 @@ Bounds3 finite_bounds(const std::vector<ScenePart>& parts) {
   return b;
 }
 
+// A vertex normal as the shading reads it. NFF's `pp` rule turns it into the
+// winding hemisphere (nff-notes §9); Tachyon keeps it as written and turns
+// the interpolated normal to the viewer exactly when the winding normal
+// faces away (triangle.c, stri_normal), which frame_of() then does.
+Vec3 vertex_normal(const Vec3& n, const Vec3& winding, ShadingModel shading) {
+  if (shading == ShadingModel::nff) return shading_normal_in_hemisphere(n, winding);
+  return length(n) > 0 ? normalize(n) : winding;
+}
+
 double coordinate_scale(const Bounds3& b) {
   double scale = 1;
   if (!b.empty()) {
@@ -125,7 +134,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
         const TriangleMeshDesc& mesh = std::holds_alternative<PlaneDesc>(obj.shape)
                                            ? plane_square(std::get<PlaneDesc>(obj.shape), finite, plane_half)
                                            : std::get<TriangleMeshDesc>(obj.shape);
-        add_mesh(mesh, id, tris);
+        add_mesh(mesh, id, desc.shading, tris);
       } else {
         const auto& poly = std::get<PolygonDesc>(obj.shape);
         const Tessellation tess = tessellate_polygon(poly.vertices);
@@ -147,9 +156,9 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
             tri_patch_.push_back(-1);
           } else {
             tri_patch_.push_back(static_cast<int32_t>(patch_normals_.size()));
-            patch_normals_.push_back({shading_normal_in_hemisphere(poly.normals[t[0]], tess.normal),
-                                      shading_normal_in_hemisphere(poly.normals[t[1]], tess.normal),
-                                      shading_normal_in_hemisphere(poly.normals[t[2]], tess.normal)});
+            patch_normals_.push_back({vertex_normal(poly.normals[t[0]], tess.normal, desc.shading),
+                                      vertex_normal(poly.normals[t[1]], tess.normal, desc.shading),
+                                      vertex_normal(poly.normals[t[2]], tess.normal, desc.shading)});
           }
         }
       }
@@ -171,7 +180,7 @@ void RenderScene::set_max_depth(int depth) {
   max_depth_ = depth;
 }
 
-void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, TriangleData& tris) {
+void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingModel shading, TriangleData& tris) {
   const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
   for (const Vec3& v : mesh.vertices) {
     tris.positions.push_back(static_cast<float>(v.x));
@@ -191,9 +200,9 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, TriangleDa
       tri_patch_.push_back(-1);
     } else {
       tri_patch_.push_back(static_cast<int32_t>(patch_normals_.size()));
-      patch_normals_.push_back({shading_normal_in_hemisphere(mesh.normals[t[0]], normalize(n)),
-                                shading_normal_in_hemisphere(mesh.normals[t[1]], normalize(n)),
-                                shading_normal_in_hemisphere(mesh.normals[t[2]], normalize(n))});
+      patch_normals_.push_back({vertex_normal(mesh.normals[t[0]], normalize(n), shading),
+                                vertex_normal(mesh.normals[t[1]], normalize(n), shading),
+                                vertex_normal(mesh.normals[t[2]], normalize(n), shading)});
     }
   }
 }

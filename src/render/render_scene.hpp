@@ -113,7 +113,7 @@ class RenderScene {
  private:
   void update_epsilon();
   /// Appends a triangle mesh (one object, id `id`) to a group's triangles.
-  void add_mesh(const TriangleMeshDesc& mesh, uint32_t id, TriangleData& tris);
+  void add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingModel shading, TriangleData& tris);
 
   int max_depth_ = kMaxRayDepth;
   ShadowCache* shadow_cache_ = nullptr;

@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <deque>
@@ -183,7 +184,7 @@ class TachyonParser {
     else if (k == "STRI") triangle(kw, true);
     else if (k == "INCLUDE") include(kw);
     else if (auto it = unsupported_objects().find(k); it != unsupported_objects().end())
-      tok().fail(kw.loc, fmt::format("{} are not supported yet ('{}'; docs/tachyon-notes.md §6)", it->second, kw.text));
+      tok().fail(kw.loc, fmt::format("'{}' ({}) is not supported yet (docs/tachyon-notes.md §6)", kw.text, it->second));
     else
       tok().fail_expected(kw, "a Tachyon object or declaration (camera, light, texdef, sphere, tri, plane, ...)");
     return true;
@@ -210,7 +211,8 @@ class TachyonParser {
     expect_kw("RAYDEPTH");
     const Token d = tok().peek();
     const long depth = tok().integer("the ray depth");
-    if (depth < 1 || depth > 16) tok().fail(d.loc, fmt::format("expected a ray depth from 1 to 16, found {}", d.text));
+    if (depth < 1) tok().fail(d.loc, fmt::format("expected a ray depth of at least 1, found {}", d.text));
+    if (depth > 16) warn(d.loc, fmt::format("raydepth {} is past holoray's cap; 16 used", d.text));
     Viewpoint v;
     v.loc = kw.loc;
     expect_kw("CENTER");
@@ -229,7 +231,7 @@ class TachyonParser {
     v.xres = xres_, v.yres = yres_;
     v.mirrored = true;
     scene_.viewpoint = v;
-    scene_.max_depth = static_cast<int>(depth);
+    scene_.max_depth = static_cast<int>(std::min(depth, 16L));
   }
 
   // The texture after an object: `texture <body>` inline, or a name.
