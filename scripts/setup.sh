@@ -10,7 +10,8 @@ packages=(
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev             # meshes: OBJ, PLY, STL, glTF, 3DS, COLLADA, AC3D
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
-  tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray also the pinhole test's reference
+  tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray and tachyon the pinhole tests' references
+  tachyon-doc               # bench/run_tachyon_compare.sh: Tachyon's manual and example scenes
 )
 missing=()
 for p in "${packages[@]}"; do

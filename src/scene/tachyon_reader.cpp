@@ -30,21 +30,21 @@ std::string upper(std::string_view s) {
 // to say about them (tachyon-notes §6).
 const std::map<std::string, std::string_view>& unsupported_objects() {
   static const std::map<std::string, std::string_view> m{
-      {"VCSTRI", "vertex-coloured triangles (vcstri)"},
+      {"VCSTRI", "vertex-coloured triangles"},
       {"VERTEXARRAY", "vertex arrays"},
       {"SPHEREARRAY", "sphere arrays"},
       {"SCALARVOL", "scalar volumes"},
-      {"IMAGEDEF", "inline image definitions (imagedef)"},
-      {"SKY_LIGHT", "sky lights (ambient occlusion)"},
-      {"SCAPE", "landscapes (scape)"},
+      {"IMAGEDEF", "inline image definitions"},
+      {"SKY_LIGHT", "ambient-occlusion sky lights"},
+      {"SCAPE", "landscapes"},
       {"SHADER_MODE", "shader modes"},
-      {"TPOLYFILE", "polygon files (tpolyfile)"},
+      {"TPOLYFILE", "polygon files"},
       {"MGFFILE", "MGF files"},
       {"FOG", "fog"},
       {"BACKGROUND_GRADIENT", "gradient backgrounds"},
       {"START_CLIPGROUP", "clip groups"},
       {"END_CLIPGROUP", "clip groups"},
-      {"CYLINDER", "infinite cylinders (use fcylinder)"},
+      {"CYLINDER", "infinite cylinders; fcylinder is read"},
   };
   return m;
 }
