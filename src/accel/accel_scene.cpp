@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <type_traits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,8 @@ template <class Shape>
 void shape_occluded(const RTCOccludedFunctionNArguments* args) {
   const auto* shapes = static_cast<const Shape*>(args->geometryUserPtr);
   const Shape& shape = shapes[args->primID];
+  if constexpr (std::is_same_v<Shape, Sphere>)
+    if (!shape.casts_shadow) return;
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
     if (args->valid[i] != -1) continue;

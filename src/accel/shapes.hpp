@@ -11,6 +11,7 @@ namespace holoray {
 struct Sphere {
   Vec3 centre;
   double radius = 1;
+  bool casts_shadow = true;  ///< false: occluded() queries pass through it
 };
 
 /// NFF open cone (no caps) from base to apex; radii of one sign, both

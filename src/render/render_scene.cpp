@@ -21,6 +21,7 @@ Bounds3 finite_bounds(const std::vector<ScenePart>& parts) {
   for (const ScenePart& part : parts) {
     for (const ObjectDesc& obj : part.desc->objects) {
       if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
+        if (!s->casts_shadow) continue;  // a light's sphere is not the scene
         const double r = std::fabs(s->radius);
         b.extend(s->centre - Vec3{r, r, r});
         b.extend(s->centre + Vec3{r, r, r});
@@ -56,24 +57,40 @@ double coordinate_scale(const Bounds3& b) {
   return scale;
 }
 
-// A plane as a square of two triangles centred on the point of the plane
-// nearest the finite bounds' centre, `half` wide each way. An axis-aligned
-// plane's corners keep its coordinate exactly in float.
+// A plane as a square centred on the point of the plane nearest the finite
+// bounds' centre, reaching `half` each way: a central square as wide as the
+// scene, then rings of eight cells each twice as wide as the last. Embree's
+// float triangle test errs in proportion to a triangle's coordinates, so the
+// triangles under the scene stay scene-sized (one square 1000 times the scene
+// put shadow-ray hits 4e-4 off on smallballs); an axis-aligned plane's
+// vertices keep its coordinate exactly in float.
 TriangleMeshDesc plane_square(const PlaneDesc& p, const Bounds3& finite, double half) {
   const Vec3 n = normalize(p.normal);
   const Vec3 c0 = finite.empty() ? p.point : finite.centre();
   const Vec3 c = c0 - n * dot(c0 - p.point, n);
   const Frame f = Frame::from_normal_up(c, n, std::fabs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+  const double inner = finite.empty() ? 1.0 : std::fmax(1e-6, length(finite.diagonal()));
   TriangleMeshDesc m;
-  for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
-    Vec3 v = c + f.x * (a * half) + f.y * (b * half);
-    // Keep the plane's own coordinate on the axes it is normal to.
+  auto vertex = [&](double a, double b) {
+    Vec3 v = c + f.x * a + f.y * b;
     if (std::fabs(n.x) == 1) v.x = p.point.x;
     if (std::fabs(n.y) == 1) v.y = p.point.y;
     if (std::fabs(n.z) == 1) v.z = p.point.z;
     m.vertices.push_back(v);
+    return static_cast<uint32_t>(m.vertices.size() - 1);
+  };
+  auto cell = [&](double a0, double b0, double a1, double b1) {  // counter-clockwise about n
+    const uint32_t v0 = vertex(a0, b0), v1 = vertex(a1, b0), v2 = vertex(a1, b1), v3 = vertex(a0, b1);
+    m.triangles.push_back({v0, v1, v2});
+    m.triangles.push_back({v0, v2, v3});
+  };
+  cell(-inner, -inner, inner, inner);
+  for (double a = inner; a < half; a *= 2) {
+    const double e[4] = {-2 * a, -a, a, 2 * a};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (i != 1 || j != 1) cell(e[i], e[j], e[i + 1], e[j + 1]);
   }
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
   return m;
 }
 
@@ -102,6 +119,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
     for (Material m : desc.materials) {
       if (m.texture >= 0) m.texture += texture_base;
       has_tachyon_ |= m.model == ShadingModel::tachyon;
+      has_tachyon_transparency_ |= m.model == ShadingModel::tachyon && m.transmittance > 0;
       materials_.push_back(m);
     }
     for (TextureDesc t : desc.textures) {
@@ -124,7 +142,8 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       object_material_.push_back(obj.material < 0 ? 0 : material_base + static_cast<uint32_t>(obj.material));
       const auto id = static_cast<uint32_t>(object_material_.size() - 1);
       if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
-        geo.spheres.push_back({s->centre, s->radius});
+        if (!s->casts_shadow) finite_scale_ = coordinate_scale(finite);
+        geo.spheres.push_back({s->centre, s->radius, s->casts_shadow});
         sphere_object_.push_back(id);
       } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
         geo.cones.push_back({c->base, c->apex, c->base_radius, c->apex_radius});
@@ -208,8 +227,9 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
 }
 
 void RenderScene::update_epsilon() {
-  // A plane's square is a thousand times the scene: its size says nothing of
-  // the precision the rest of the scene needs.
+  // A plane's square is a thousand times the scene, and a Tachyon light's
+  // sphere may sit far out: neither says anything of the precision the rest
+  // of the scene needs.
   const double scale = finite_scale_ > 0 ? finite_scale_ : coordinate_scale(accel_->bounds());
   // Float geometry is exact to ~6e-8 of its coordinates; stay well clear of that.
   epsilon_ = 1e-5 * scale;

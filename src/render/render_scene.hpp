@@ -98,6 +98,9 @@ class RenderScene {
   /// Whether any material follows Tachyon's shading (visibility reuse, which
   /// splits NFF's formula, then does not apply).
   bool has_tachyon_materials() const { return has_tachyon_; }
+  /// Whether a Tachyon material lets light through (opacity < 1): then
+  /// Tachyon's shadow rays are filtered through it instead of blocked.
+  bool has_tachyon_transparency() const { return has_tachyon_transparency_; }
   const Vec3& ambient() const { return ambient_; }      ///< Ia (nff-notes §4: 1/(2 sqrt(n)))
   const Vec3& background() const { return background_; }
   /// Geometry bounds (world); empty for a scene with no geometry.
@@ -128,8 +131,8 @@ class RenderScene {
   std::vector<PointLight> lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased
-  bool has_tachyon_ = false;
-  double finite_scale_ = 0;  // epsilon's scale without the planes' squares (0: no planes)
+  bool has_tachyon_ = false, has_tachyon_transparency_ = false;
+  double finite_scale_ = 0;  // epsilon's scale without planes and lights' spheres (0: the scene has neither)
   Vec3 ambient_, background_;
   double epsilon_ = 1e-6;
   size_t skipped_polygons_ = 0;

@@ -192,19 +192,47 @@ LightRay tachyon_light(const PointLight& light, const Vec3& p, const Vec3& n) {
 // with T the texture colour, H Blinn's half vector (Tachyon's default
 // highlight), Il' the light colour (plastic) or T (metal), both normals
 // turned to the viewer; past the depth limit a secondary ray sees the background.
+// How much of a light a Tachyon shadow ray lets through: 0 when an opaque
+// surface blocks it, else the product of (1 - opacity) over the transparent
+// surfaces it crosses (Tachyon's shadow filter; a surface with opacity < 1
+// casts no shadow of its own). Lights' spheres are passed through.
+double tachyon_shadow(const RenderScene& scene, Ray shadow, RayCounts& counts) {
+  ++counts.shadow;
+  if (!scene.has_tachyon_transparency()) return scene.accel().occluded(shadow) ? 0 : 1;
+  double filter = 1;
+  Hit h;
+  // Each step starts past the last hit; the cap stops a ray grazing a stack
+  // of coincident surfaces (past it, the light counts as blocked).
+  for (int step = 0; step < 64; ++step) {
+    if (!scene.accel().intersect(shadow, h)) return filter;
+    const Material& m = *scene.surface(shadow, h).material;
+    if (!m.emitter) {
+      if (m.model != ShadingModel::tachyon || !(m.transmittance > 0)) return 0;
+      filter *= m.transmittance;
+      if (filter < kMinContrib) return 0;
+    }
+    shadow.tnear = std::fmax(h.t, shadow.tnear) + scene.epsilon();
+    if (!(shadow.tnear < shadow.tfar)) return filter;
+    ++counts.shadow;
+  }
+  return 0;
+}
+
 Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
   const Material& m = *f.m;
   const Vec3 dir = normalize(ray.dir);
   const Vec3 texel = scene.surface_colour(m, sp.position, length(sp.position - ray.org));
+  if (m.emitter) return texel;
   Vec3 diffuse, highlight;
   if (m.kd > kMinContrib || m.phong > kMinContrib) {
     for (const PointLight& light : scene.lights()) {
       const LightRay l = tachyon_light(light, sp.position, f.ns);
       if (!(l.intensity > kMinContrib)) continue;
-      ++counts.shadow;
-      if (scene.accel().occluded(Ray{f.above, l.to_light, 0, l.distance - scene.epsilon()})) continue;
-      diffuse += light.intensity * l.intensity;
+      const double seen = tachyon_shadow(scene, Ray{f.above, l.to_light, 0, l.distance - scene.epsilon()}, counts);
+      if (seen == 0) continue;
+      const double inten = l.intensity * seen;
+      diffuse += light.intensity * inten;
       if (m.phong > kMinContrib) {
         const Vec3 h = l.to_light - dir;
         double spec = dot(f.ns, h);

@@ -68,6 +68,7 @@ struct Material {
   double phong = 0;          ///< tachyon: highlight weight (`phong plastic|metal W`)
   bool phong_metal = false;  ///< tachyon: the highlight takes the surface colour, not the light's
   int texture = -1;          ///< tachyon: index into SceneDesc::textures; -1: constant `colour`
+  bool emitter = false;      ///< tachyon: a light's sphere, seen in `colour`, unshaded
   SourceLoc loc;
 };
 
@@ -92,6 +93,9 @@ struct TextureDesc {
 struct SphereDesc {
   Vec3 centre;
   double radius = 1;
+  /// False for a Tachyon light's own sphere: seen by eye and mirror rays,
+  /// never by shadow rays (Tachyon's lights cast no shadows).
+  bool casts_shadow = true;
 };
 
 /// NFF `c`: open truncated cone (no caps) from base to apex. Both radii

@@ -415,7 +415,9 @@ class TachyonParser {
     expect_kw("CENTER");
     l.position = vec3("a light centre coordinate");
     expect_kw("RAD");
-    tok().number("the light radius");  // Tachyon draws lights as spheres; holoray's lights stay invisible
+    const Token rad_tok = tok().peek();
+    const double radius = tok().number("the light radius");
+    if (radius < 0) tok().fail(rad_tok.loc, fmt::format("expected a light radius >= 0, found {}", rad_tok.text));
     if (kind == LightKind::spot) {
       expect_kw("DIRECTION");
       l.direction = unit("spotlight direction");
@@ -444,6 +446,17 @@ class TachyonParser {
     }
     l.colour = vec3("a light colour component");
     add_light(kw, l);
+    // Tachyon draws a point light or spotlight as a sphere in its colour,
+    // seen by eye and mirror rays but casting no shadow (light.c).
+    if (radius > 0) {
+      Material glow;
+      glow.model = ShadingModel::tachyon;
+      glow.emitter = true;
+      glow.colour = l.colour;
+      glow.loc = kw.loc;
+      scene_.materials.push_back(glow);
+      add(kw, SphereDesc{l.position, radius, false}, static_cast<int>(scene_.materials.size()) - 1);
+    }
   }
 
   void directional_light(const Token& kw) {
