@@ -108,6 +108,10 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   ambient_ = Vec3{level, level, level};
   if (!parts.empty()) background_ = parts.front().desc->background;
   if (!parts.empty() && parts.front().desc->max_depth) max_depth_ = *parts.front().desc->max_depth;
+  if (!parts.empty()) fog_ = parts.front().desc->fog;
+  // Tachyon fogs what a ray misses as if it were infinitely far: the fog's
+  // colour, unless an exponential fog has no density.
+  if (fog_ && !(fog_->mode != FogDesc::Mode::linear && fog_->density <= 0)) background_ = fog_->colour;
   const Bounds3 finite = finite_bounds(parts);
   const double plane_half = 1000 * coordinate_scale(finite);
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "accel/accel_scene.hpp"
@@ -103,6 +104,8 @@ class RenderScene {
   bool has_tachyon_transparency() const { return has_tachyon_transparency_; }
   const Vec3& ambient() const { return ambient_; }      ///< Ia (nff-notes §4: 1/(2 sqrt(n)))
   const Vec3& background() const { return background_; }
+  /// The first scene file's Tachyon fog, if any (applied by Tachyon shading).
+  const std::optional<FogDesc>& fog() const { return fog_; }
   /// Geometry bounds (world); empty for a scene with no geometry.
   const Bounds3& bounds() const { return accel_->bounds(); }
   /// Offset for spawning secondary rays, relative to the scene's coordinate scale.
@@ -132,6 +135,7 @@ class RenderScene {
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased
   bool has_tachyon_ = false, has_tachyon_transparency_ = false;
+  std::optional<FogDesc> fog_;
   double finite_scale_ = 0;  // epsilon's scale without planes and lights' spheres (0: the scene has neither)
   Vec3 ambient_, background_;
   double epsilon_ = 1e-6;

@@ -256,6 +256,21 @@ Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint&
     ++counts.refracted;
     colour += secondary(Ray{sp.position - f.ng * scene.epsilon(), dir, 0, INFINITY}, m.transmittance);
   }
+  if (const auto& fog = scene.fog()) {
+    const double r = length(sp.position - ray.org);
+    double k = 1;
+    switch (fog->mode) {
+      case FogDesc::Mode::linear: k = (fog->end - r) / (fog->end - fog->start); break;
+      case FogDesc::Mode::exp: k = std::exp(-fog->density * (r - fog->start)); break;
+      case FogDesc::Mode::exp2: {
+        const double v = fog->density * (r - fog->start);
+        k = std::exp(-v * v);
+        break;
+      }
+    }
+    k = std::clamp(k, 0.0, 1.0);
+    colour = colour * k + fog->colour * (1 - k);
+  }
   return colour;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace holoray {
 
@@ -10,6 +11,30 @@ int bit_count(int n) {
   int b = 0;
   for (; n; n >>= 1) ++b;
   return b;
+}
+
+// Tachyon's xyztocyl (unit height): u the angle about z in turns from +x,
+// counter-clockwise seen from +z; v the height z.
+void to_cylinder(const Vec3& p, double& u, double& v) {
+  const double r = std::sqrt(p.x * p.x + p.y * p.y);
+  v = p.z;
+  const double a = r > 0 ? std::acos(std::clamp(p.x / r, -1.0, 1.0)) / (2 * std::numbers::pi) : 0;
+  u = p.y < 0 ? 1 - a : a;
+}
+
+// Tachyon's xyztospr: v from the -y pole (0) to the +y pole (1), u the
+// angle about y in turns.
+void to_sphere(const Vec3& p, double& u, double& v) {
+  const double r = length(p);
+  if (!(r > 0)) {
+    u = v = 0;
+    return;
+  }
+  const double phi = std::acos(std::clamp(-p.y / r, -1.0, 1.0));
+  v = phi / 3.1415926;
+  const double s = std::sin(phi);
+  const double theta = s > 0 ? std::acos(std::clamp(p.x / r / s, -1.0, 1.0)) / (2 * std::numbers::pi) : 0;
+  u = p.z > 0 ? theta : 1 - theta;
 }
 
 // u - trunc(u), wrapped into [0, 1): Tachyon's repeat.
@@ -86,6 +111,25 @@ Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base,
       const long x = static_cast<long>(std::fabs(q.x) * 3 + 0.5) % 2, y = static_cast<long>(std::fabs(q.y) * 3 + 0.5) % 2,
                  z = static_cast<long>(std::fabs(q.z) * 3 + 0.5) % 2;
       return (x + y + z) % 2 == 1 ? Vec3{1, 0.2, 0} : Vec3{0, 0.2, 1};
+    }
+    case TextureDesc::Kind::cylinder_checker: {
+      double u, v;
+      to_cylinder(q, u, v);
+      const long x = static_cast<long>(std::fabs(u) * 18.0) % 2, y = static_cast<long>(std::fabs(v) * 10.0) % 2;
+      return (x + y) % 2 == 1 ? Vec3{1, 0.2, 0} : Vec3{0, 0.2, 1};
+    }
+    case TextureDesc::Kind::cylindrical_image:
+    case TextureDesc::Kind::spherical_image: {
+      if (mip == nullptr) return base;
+      double u, v;
+      // The cylinder's axis is the texture's y: Tachyon swaps y and z first.
+      if (tex.kind == TextureDesc::Kind::cylindrical_image) to_cylinder({q.x, q.z, q.y}, u, v);
+      else to_sphere(q, u, v);
+      u = wrap(u * tex.scale.x + tex.rotate.x);
+      v = wrap(v * tex.scale.y + tex.rotate.y);
+      const double max_scale = std::fabs(tex.scale.x) > std::fabs(tex.scale.y) ? tex.scale.x : tex.scale.y;
+      // MIP distance per unit of angle: divided by 8 radii (Tachyon's).
+      return mip->sample(u, v, 0.05 * optic_dist * std::fabs(max_scale) / (1e-8 + 8 * length(q)));
     }
     case TextureDesc::Kind::wood: {
       const double x = q.x / tex.scale.x, y = q.y / tex.scale.y, z = q.z / tex.scale.z;

@@ -82,7 +82,14 @@ struct ImageMap {
 /// Tachyon `texfunc` (tachyon-notes §3): a colour that varies over the
 /// surface, evaluated at the world-space hit point.
 struct TextureDesc {
-  enum class Kind { checker3d = 1, wood = 4, planar_image = 9 };
+  enum class Kind {
+    checker3d = 1,
+    wood = 4,
+    cylinder_checker = 6,
+    cylindrical_image = 7,
+    spherical_image = 8,
+    planar_image = 9
+  };
   Kind kind = Kind::checker3d;
   Vec3 centre, rotate, scale{1, 1, 1}, uaxis{1, 0, 0}, vaxis{0, 1, 0};
   int image = -1;  ///< index into SceneDesc::images (image maps)
@@ -134,6 +141,17 @@ struct ObjectDesc {
   SourceLoc loc;
 };
 
+/// Tachyon `fog` (tachyon-notes §3): each shaded colour C at distance r along
+/// its ray segment becomes f C + (1 - f) colour, with f = (end - r) / (end -
+/// start) (linear), exp(-density (r - start)) (exp) or exp(-(density (r -
+/// start))^2) (exp2), clamped to [0, 1].
+struct FogDesc {
+  enum class Mode { linear, exp, exp2 };
+  Mode mode = Mode::linear;
+  double start = 0, end = 1, density = 1;
+  Vec3 colour;
+};
+
 /// A whole scene as read from one file.
 struct SceneDesc {
   std::string source;                 // file name used in messages
@@ -147,6 +165,7 @@ struct SceneDesc {
   /// Whose conventions the lights follow: NFF's (intensity from the light
   /// count, nff-notes §4) or Tachyon's (the colour as written).
   ShadingModel shading = ShadingModel::nff;
+  std::optional<FogDesc> fog;  ///< Tachyon `fog`, when on
   /// Ray-tree depth the file asks for (Tachyon `raydepth`), eye ray = 1.
   std::optional<int> max_depth;
   /// "file:line:col: warning: ..." for input that was accepted but is

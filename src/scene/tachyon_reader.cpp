@@ -34,13 +34,10 @@ const std::map<std::string, std::string_view>& unsupported_objects() {
       {"VERTEXARRAY", "vertex arrays"},
       {"SPHEREARRAY", "sphere arrays"},
       {"SCALARVOL", "scalar volumes"},
-      {"IMAGEDEF", "inline image definitions"},
       {"SKY_LIGHT", "ambient-occlusion sky lights"},
       {"SCAPE", "landscapes"},
       {"SHADER_MODE", "shader modes"},
-      {"TPOLYFILE", "polygon files"},
       {"MGFFILE", "MGF files"},
-      {"FOG", "fog"},
       {"BACKGROUND_GRADIENT", "gradient backgrounds"},
       {"START_CLIPGROUP", "clip groups"},
       {"END_CLIPGROUP", "clip groups"},
@@ -183,6 +180,9 @@ class TachyonParser {
     else if (k == "TRI") triangle(kw, false);
     else if (k == "STRI") triangle(kw, true);
     else if (k == "INCLUDE") include(kw);
+    else if (k == "IMAGEDEF") imagedef(kw);
+    else if (k == "FOG") fog();
+    else if (k == "TPOLYFILE") tpolyfile(kw);
     else if (auto it = unsupported_objects().find(k); it != unsupported_objects().end())
       tok().fail(kw.loc, fmt::format("'{}' ({}) is not supported yet (docs/tachyon-notes.md §6)", kw.text, it->second));
     else
@@ -312,14 +312,14 @@ class TachyonParser {
     const long func = tok().integer("a texture function number (0 to 10)");
     switch (func) {
       case 0: break;
-      case 1: case 4: m.texture = procedural(f, func); break;
-      case 9: m.texture = planar_image(f); break;
+      case 1: case 4: case 6: m.texture = procedural(f, func); break;
+      case 7: case 8: case 9: m.texture = image_texture(f, func); break;
       default: {
         static constexpr std::string_view names[] = {"constant", "3D checker", "grit", "marble", "wood", "gradient",
                                                      "cylindrical checker", "cylindrical image", "spherical image",
                                                      "planar image", "volume image"};
         if (func > 10) tok().fail(f.loc, fmt::format("expected a texture function from 0 to 10, found {}", f.text));
-        tok().fail(f.loc, fmt::format("texfunc {} ({}) is not supported yet (0, 1, 4 and 9 are)", func,
+        tok().fail(f.loc, fmt::format("texfunc {} ({}) is not supported yet (0, 1, 4, 6, 7, 8 and 9 are)", func,
                                       names[func]));
       }
     }
@@ -347,17 +347,21 @@ class TachyonParser {
     return static_cast<int>(scene_.textures.size()) - 1;
   }
 
-  int planar_image(const Token& at) {
+  // texfunc 7 (cylindrical), 8 (spherical), 9 (planar): an image map name,
+  // the placement, and for planar maps the u and v axes.
+  int image_texture(const Token& at, long func) {
     TextureDesc t;
     t.loc = at.loc;
-    t.kind = TextureDesc::Kind::planar_image;
+    t.kind = static_cast<TextureDesc::Kind>(func);
     const Token file = tok().next();
     if (file.text.empty()) tok().fail_expected(file, "an image file name");
     placement(t);
-    expect_kw("UAXIS");
-    t.uaxis = vec3("a u axis component");
-    expect_kw("VAXIS");
-    t.vaxis = vec3("a v axis component");
+    if (t.kind == TextureDesc::Kind::planar_image) {
+      expect_kw("UAXIS");
+      t.uaxis = vec3("a u axis component");
+      expect_kw("VAXIS");
+      t.vaxis = vec3("a v axis component");
+    }
     t.image = image(file);
     scene_.textures.push_back(t);
     return static_cast<int>(scene_.textures.size()) - 1;
@@ -375,7 +379,46 @@ class TachyonParser {
     return p.string();
   }
 
+  // IMAGEDEF name FORMAT RGB24 RESOLUTION x y 1 ENCODING HEX rrggbb ...: an
+  // image map given inline, found by its name before any file (imap.c).
+  // Each texel is 3, 6, 9 or 12 hex digits, 1 to 4 per channel.
+  void imagedef(const Token& kw) {
+    const Token name = tok().next();
+    if (name.text.empty()) tok().fail_expected(name, "an image name");
+    expect_kw("FORMAT");
+    expect_kw("RGB24");
+    expect_kw("RESOLUTION");
+    const Token res = tok().peek();
+    const long x = tok().integer("the image width"), y = tok().integer("the image height");
+    const Token z_tok = tok().peek();
+    const long z = tok().integer("the image depth");
+    if (x < 1 || y < 1 || x * y > limits_.max_image_pixels)
+      tok().fail(res.loc, fmt::format("expected an image of 1 to {} pixels, found {}x{}", limits_.max_image_pixels, x, y));
+    if (z != 1) tok().fail(z_tok.loc, fmt::format("volume images (depth {}) are not supported yet", z));
+    expect_kw("ENCODING");
+    expect_kw("HEX");
+    ImageMap img;
+    img.path = std::string(name.text);
+    img.width = static_cast<int>(x), img.height = static_cast<int>(y);
+    for (long i = 0; i < x * y; ++i) {
+      const Token t = tok().next();
+      const size_t digits = t.text.size() / 3;
+      if (t.text.size() % 3 != 0 || digits < 1 || digits > 4 ||
+          t.text.find_first_not_of("0123456789abcdefABCDEF") != std::string_view::npos)
+        tok().fail_expected(t, "a hex colour of 3, 6, 9 or 12 digits");
+      for (int c = 0; c < 3; ++c) {
+        const int v = std::stoi(std::string(t.text.substr(c * digits, digits)), nullptr, 16);
+        // To 8 bits: one digit repeated, two as they are, more truncated.
+        img.rgb.push_back(static_cast<unsigned char>(digits == 1 ? v * 17 : v >> (4 * (digits - 2))));
+      }
+    }
+    (void)kw;
+    scene_.images.push_back(std::move(img));
+    inline_images_[std::string(name.text)] = static_cast<int>(scene_.images.size()) - 1;
+  }
+
   int image(const Token& file) {
+    if (auto it = inline_images_.find(std::string(file.text)); it != inline_images_.end()) return it->second;
     const std::string path = locate(file.text);
     if (auto it = images_.find(path); it != images_.end()) return it->second;
     auto in = OIIO::ImageInput::open(path);
@@ -602,6 +645,80 @@ class TachyonParser {
     add(kw, std::move(p), texture_ref());
   }
 
+  // TPOLYFILE SCALE s ROT r CENTER c FILE f texture: triangles from a file of
+  // "3 x y z x y z x y z" records, each vertex scaled, rotated by Tachyon's
+  // InitRot3d of r degrees (reproduced as it is, rz1 = sin(ry) included) and
+  // moved by c, wound v1 v0 v2 (parse.c, GetTPolyFile).
+  void tpolyfile(const Token& kw) {
+    expect_kw("SCALE");
+    const Vec3 scale = vec3("a scale component");
+    expect_kw("ROT");
+    const Vec3 r = vec3("a rotation angle (degrees)") * (3.1415926 / 180.0);
+    expect_kw("CENTER");
+    const Vec3 centre = vec3("a centre coordinate");
+    expect_kw("FILE");
+    const Token name = tok().next();
+    if (name.text.empty()) tok().fail_expected(name, "a polygon file name");
+    const int material = texture_ref();
+    const std::string path = locate(name.text);
+    std::string text;
+    try {
+      text = read_text_file(path);
+    } catch (const std::runtime_error& e) {
+      tok().fail(name.loc, e.what());
+    }
+    const double cx = std::cos(r.x), sx = std::sin(r.x), cy = std::cos(r.y), sy = std::sin(r.y), cz = std::cos(r.z),
+                 sz = std::sin(r.z);
+    const Vec3 row_x{cy * cz, sx * sy * cz - cx * sz, sx * sz + cx * cz * sy};
+    const Vec3 row_y{cy * sz, cx * cz + sx * sy * sz, cx * sy * sz - sx * cz};
+    const Vec3 row_z{sy, sx * cy, cx * cy};
+    auto place = [&](const Vec3& v) {
+      const Vec3 s = mul(v, scale);
+      return Vec3{dot(row_x, s), dot(row_y, s), dot(row_z, s)} + centre;
+    };
+    Tokenizer poly(text, path);
+    while (!poly.at_end()) {
+      const Token count = poly.peek();
+      if (count.text != "3") break;  // Tachyon stops at the first record that is not a triangle
+      poly.next();
+      Vec3 v[3];
+      for (Vec3& p : v) {
+        p.x = poly.number("a vertex coordinate");
+        p.y = poly.number("a vertex coordinate");
+        p.z = poly.number("a vertex coordinate");
+      }
+      PolygonDesc tri;
+      tri.vertices = {place(v[1]), place(v[0]), place(v[2])};
+      add(kw, std::move(tri), material);
+    }
+  }
+
+  // FOG LINEAR|EXP|EXP2|OFF START s END e DENSITY d COLOR rgb
+  void fog() {
+    const Token mode = tok().next();
+    FogDesc f;
+    const std::string m = upper(mode.text);
+    bool off = false;
+    if (m == "LINEAR") f.mode = FogDesc::Mode::linear;
+    else if (m == "EXP") f.mode = FogDesc::Mode::exp;
+    else if (m == "EXP2") f.mode = FogDesc::Mode::exp2;
+    else if (m == "OFF") off = true;
+    else tok().fail_expected(mode, "'LINEAR', 'EXP', 'EXP2' or 'OFF'");
+    expect_kw("START");
+    f.start = tok().number("the fog start distance");
+    expect_kw("END");
+    const Token e = tok().peek();
+    f.end = tok().number("the fog end distance");
+    if (f.mode == FogDesc::Mode::linear && !off && !(f.end > f.start))
+      tok().fail(e.loc, fmt::format("expected a fog end past its start ({}), found {}", f.start, e.text));
+    expect_kw("DENSITY");
+    f.density = tok().number("the fog density");
+    expect_kw("COLOR");
+    f.colour = vec3("a fog colour component");
+    if (off) scene_.fog.reset();
+    else scene_.fog = f;
+  }
+
   void include(const Token& kw) {
     const Token name = tok().next();
     if (name.text.empty()) tok().fail_expected(name, "an include file name");
@@ -628,6 +745,7 @@ class TachyonParser {
   std::deque<File> files_;
   std::map<std::string, int> textures_;  // name -> material
   std::map<std::string, int> images_;    // resolved path -> image
+  std::map<std::string, int> inline_images_;  // IMAGEDEF name -> image
   int default_material_ = -1;
   int xres_ = 512, yres_ = 512;
 };
