@@ -34,6 +34,7 @@ const std::map<std::string, std::string_view>& unsupported_objects() {
       {"VERTEXARRAY", "vertex arrays"},
       {"SPHEREARRAY", "sphere arrays"},
       {"SCALARVOL", "scalar volumes"},
+      {"IMAGEDEF", "inline image definitions"},
       {"SKY_LIGHT", "ambient-occlusion sky lights"},
       {"SCAPE", "landscapes"},
       {"SHADER_MODE", "shader modes"},
@@ -180,7 +181,6 @@ class TachyonParser {
     else if (k == "TRI") triangle(kw, false);
     else if (k == "STRI") triangle(kw, true);
     else if (k == "INCLUDE") include(kw);
-    else if (k == "IMAGEDEF") imagedef(kw);
     else if (k == "FOG") fog();
     else if (k == "TPOLYFILE") tpolyfile(kw);
     else if (auto it = unsupported_objects().find(k); it != unsupported_objects().end())
@@ -379,46 +379,7 @@ class TachyonParser {
     return p.string();
   }
 
-  // IMAGEDEF name FORMAT RGB24 RESOLUTION x y 1 ENCODING HEX rrggbb ...: an
-  // image map given inline, found by its name before any file (imap.c).
-  // Each texel is 3, 6, 9 or 12 hex digits, 1 to 4 per channel.
-  void imagedef(const Token& kw) {
-    const Token name = tok().next();
-    if (name.text.empty()) tok().fail_expected(name, "an image name");
-    expect_kw("FORMAT");
-    expect_kw("RGB24");
-    expect_kw("RESOLUTION");
-    const Token res = tok().peek();
-    const long x = tok().integer("the image width"), y = tok().integer("the image height");
-    const Token z_tok = tok().peek();
-    const long z = tok().integer("the image depth");
-    if (x < 1 || y < 1 || x * y > limits_.max_image_pixels)
-      tok().fail(res.loc, fmt::format("expected an image of 1 to {} pixels, found {}x{}", limits_.max_image_pixels, x, y));
-    if (z != 1) tok().fail(z_tok.loc, fmt::format("volume images (depth {}) are not supported yet", z));
-    expect_kw("ENCODING");
-    expect_kw("HEX");
-    ImageMap img;
-    img.path = std::string(name.text);
-    img.width = static_cast<int>(x), img.height = static_cast<int>(y);
-    for (long i = 0; i < x * y; ++i) {
-      const Token t = tok().next();
-      const size_t digits = t.text.size() / 3;
-      if (t.text.size() % 3 != 0 || digits < 1 || digits > 4 ||
-          t.text.find_first_not_of("0123456789abcdefABCDEF") != std::string_view::npos)
-        tok().fail_expected(t, "a hex colour of 3, 6, 9 or 12 digits");
-      for (int c = 0; c < 3; ++c) {
-        const int v = std::stoi(std::string(t.text.substr(c * digits, digits)), nullptr, 16);
-        // To 8 bits: one digit repeated, two as they are, more truncated.
-        img.rgb.push_back(static_cast<unsigned char>(digits == 1 ? v * 17 : v >> (4 * (digits - 2))));
-      }
-    }
-    (void)kw;
-    scene_.images.push_back(std::move(img));
-    inline_images_[std::string(name.text)] = static_cast<int>(scene_.images.size()) - 1;
-  }
-
   int image(const Token& file) {
-    if (auto it = inline_images_.find(std::string(file.text)); it != inline_images_.end()) return it->second;
     const std::string path = locate(file.text);
     if (auto it = images_.find(path); it != images_.end()) return it->second;
     auto in = OIIO::ImageInput::open(path);
@@ -745,7 +706,6 @@ class TachyonParser {
   std::deque<File> files_;
   std::map<std::string, int> textures_;  // name -> material
   std::map<std::string, int> images_;    // resolved path -> image
-  std::map<std::string, int> inline_images_;  // IMAGEDEF name -> image
   int default_material_ = -1;
   int xres_ = 512, yres_ = 512;
 };
