@@ -73,9 +73,11 @@ TEST(MeshImport, ObjRendersAsTheSameTrianglesWrittenAsNff) {
   ASSERT_EQ(mesh.lights.size(), 1u);
   nff += fmt::format("l {}\nf 0.8 0.8 0.8 1 0 0 0 1\n", vec(mesh.lights[0].position));
   for (const ObjectDesc& o : mesh.objects) {
-    const auto& poly = std::get<PolygonDesc>(o.shape);
-    nff += "p 3\n";
-    for (const Vec3& p : poly.vertices) nff += vec(p) + "\n";
+    const auto& m = std::get<TriangleMeshDesc>(o.shape);
+    for (const auto& t : m.triangles) {
+      nff += "p 3\n";
+      for (uint32_t k : t) nff += vec(m.vertices[k]) + "\n";
+    }
   }
   const FrameBuffers a = render_eia(mesh), b = render_eia(parse_nff(nff, "box.nff"));
   EXPECT_EQ(a.colour.data, b.colour.data);
@@ -111,7 +113,7 @@ TEST(MeshImport, DefaultViewShowsTheWholeMesh) {
   const Viewpoint& v = *d.viewpoint;
   const PinholeCamera cam(PinholeDesc{v.from, v.at, v.up, v.angle_deg, 200, 200});
   for (const ObjectDesc& o : d.objects)
-    for (const Vec3& p : std::get<PolygonDesc>(o.shape).vertices) {
+    for (const Vec3& p : std::get<TriangleMeshDesc>(o.shape).vertices) {
       PanelHit h;
       ASSERT_TRUE(cam.project(p, h));
       EXPECT_GT(h.i, 5);

@@ -211,21 +211,23 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
     tris.positions.push_back(static_cast<float>(v.z));
   }
   for (const auto& t : mesh.triangles) {
-    const Vec3 n = cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    // The Newell normal, as a `p` polygon of the same three vertices gets it.
+    const std::array<Vec3, 3> corners{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+    const Vec3 n = polygon_normal(corners);
     if (!(length(n) > 0)) {
       ++skipped_polygons_;
       continue;
     }
     for (uint32_t k : t) tris.indices.push_back(base + k);
     tri_object_.push_back(id);
-    tri_normal_.push_back(normalize(n));
+    tri_normal_.push_back(n);
     if (mesh.normals.empty()) {
       tri_patch_.push_back(-1);
     } else {
       tri_patch_.push_back(static_cast<int32_t>(patch_normals_.size()));
-      patch_normals_.push_back({vertex_normal(mesh.normals[t[0]], normalize(n), shading),
-                                vertex_normal(mesh.normals[t[1]], normalize(n), shading),
-                                vertex_normal(mesh.normals[t[2]], normalize(n), shading)});
+      patch_normals_.push_back({vertex_normal(mesh.normals[t[0]], n, shading),
+                                vertex_normal(mesh.normals[t[1]], n, shading),
+                                vertex_normal(mesh.normals[t[2]], n, shading)});
     }
   }
 }

@@ -131,28 +131,37 @@ class MeshReader {
       warn(fmt::format("mesh '{}': points and lines are not rendered", mesh.mName.C_Str()));
       return;
     }
-    const bool smooth = mesh.HasNormals();
+    // One object per mesh, its vertices shared by index (a triangle per
+    // object cost ~200 bytes of description per triangle).
+    TriangleMeshDesc m;
+    m.vertices.reserve(mesh.mNumVertices);
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const Vec3 p = xf.point(mesh.mVertices[v]);
+      if (!is_finite(p))
+        throw std::runtime_error(
+            fmt::format("cannot read '{}': mesh '{}' has a vertex that is not finite", out_.source, mesh.mName.C_Str()));
+      m.vertices.push_back(p);
+    }
+    if (mesh.HasNormals()) {
+      m.normals.reserve(mesh.mNumVertices);
+      // A zero or broken normal in the file becomes zero: the build step
+      // puts the triangle's own normal in its place.
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        const Vec3 n = xf.norm(mesh.mNormals[v]);
+        m.normals.push_back(is_finite(n) ? n : Vec3{});
+      }
+    }
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines SortByPType left in a mixed mesh
-      PolygonDesc poly;
-      for (unsigned c = 0; c < 3; ++c) {
-        const unsigned v = face.mIndices[c];
-        const Vec3 p = xf.point(mesh.mVertices[v]);
-        if (!is_finite(p))
-          throw std::runtime_error(
-              fmt::format("cannot read '{}': mesh '{}' has a vertex that is not finite", out_.source, mesh.mName.C_Str()));
-        bounds_.extend(p);
-        poly.vertices.push_back(p);
-        if (smooth) poly.normals.push_back(xf.norm(mesh.mNormals[v]));
-      }
-      if (smooth && !(is_finite(poly.normals[0]) && is_finite(poly.normals[1]) && is_finite(poly.normals[2])))
-        poly.normals.clear();  // a zero normal in the file: shade this triangle flat
-      ObjectDesc obj;
-      obj.shape = std::move(poly);
-      obj.material = mesh.mMaterialIndex < out_.materials.size() ? static_cast<int>(mesh.mMaterialIndex) : -1;
-      out_.objects.push_back(std::move(obj));
+      m.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+      for (unsigned c = 0; c < 3; ++c) bounds_.extend(m.vertices[face.mIndices[c]]);
     }
+    if (m.triangles.empty()) return;
+    ObjectDesc obj;
+    obj.shape = std::move(m);
+    obj.material = mesh.mMaterialIndex < out_.materials.size() ? static_cast<int>(mesh.mMaterialIndex) : -1;
+    out_.objects.push_back(std::move(obj));
   }
 
   aiMatrix4x4 global(const aiString& name) const {

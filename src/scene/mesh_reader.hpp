@@ -3,8 +3,9 @@
 // SceneDesc as NFF, so every renderer path takes them unchanged.
 //
 // What becomes what (docs/mesh-import.md has the whole table):
-// - every triangle an object (PolygonDesc, with the file's per-vertex normals
-//   when it has them, flat otherwise); node transforms are applied;
+// - every mesh one object (TriangleMeshDesc: shared vertices, the file's
+//   per-vertex normals when it has them, flat otherwise); node transforms are
+//   applied;
 // - materials mapped to NFF's Whitted model: colour = diffuse colour, Kd 1,
 //   Ks = reflectivity (NFF ties the highlight to the mirror weight, so a
 //   highlight without reflection is dropped), Phong exponent = shininess,
