@@ -13,6 +13,7 @@
 
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
+#include "scene/tachyon_reader.hpp"
 #include "scene/tessellate.hpp"
 #include "shot/camera_path.hpp"
 #include "shot/shot_reader.hpp"
@@ -42,6 +43,18 @@ inline void shot(const uint8_t* data, size_t size) {
   try {
     (void)parse_shot(as_text(data, size), "/nonexistent-holoray-fuzz/shot.toml");
   } catch (const std::runtime_error&) {  // ParseError is one
+  }
+}
+
+/// Tachyon scenes (.dat). Allowed error: ParseError (a file it names that
+/// cannot be read is one too). Relative names resolve under a folder that
+/// does not exist; absolute ones that are not regular files are refused.
+inline void tachyon(const uint8_t* data, size_t size) {
+  try {
+    TachyonLimits limits;
+    limits.max_objects = 100'000;  // the fuzzer's inputs are short; keep its memory small
+    (void)parse_tachyon(as_text(data, size), "/nonexistent-holoray-fuzz/fuzz.dat", limits);
+  } catch (const ParseError&) {
   }
 }
 

@@ -35,6 +35,7 @@ void replay(const std::string& target, Body body) {
 }
 
 TEST(FuzzRegressions, NffInputsParseOrFailWithParseError) { replay("nff", fuzz::nff); }
+TEST(FuzzRegressions, TachyonInputsParseOrFailWithParseError) { replay("tachyon", fuzz::tachyon); }
 TEST(FuzzRegressions, ShotInputsParseOrFailWithTheirErrors) { replay("shot", fuzz::shot); }
 TEST(FuzzRegressions, CameraPathInputsParseOrFailWithParseError) { replay("camera_path", fuzz::camera_path); }
 

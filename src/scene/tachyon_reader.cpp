@@ -369,18 +369,24 @@ class TachyonParser {
 
   // Where a file named in the scene is: beside the naming file, else (as
   // Tachyon, which opens it as written) relative to the working folder.
-  std::string locate(std::string_view name) const {
+  // Only regular files are opened: a device or a pipe (/dev/zero, a FIFO)
+  // would read forever.
+  std::string locate(const Token& name) {
     namespace fs = std::filesystem;
-    const fs::path p(name);
-    if (p.is_absolute()) return p.string();
-    const fs::path beside = fs::path(files_.back().source).parent_path() / p;
+    const fs::path p(name.text);
+    std::string found = p.string();
     std::error_code ec;
-    if (fs::exists(beside, ec)) return beside.string();
-    return p.string();
+    if (!p.is_absolute()) {
+      const fs::path beside = fs::path(files_.back().source).parent_path() / p;
+      if (fs::exists(beside, ec)) found = beside.string();
+    }
+    if (fs::exists(found, ec) && !fs::is_regular_file(found, ec))
+      tok().fail(name.loc, fmt::format("expected a regular file, found '{}', which is not one", found));
+    return found;
   }
 
   int image(const Token& file) {
-    const std::string path = locate(file.text);
+    const std::string path = locate(file);
     if (auto it = images_.find(path); it != images_.end()) return it->second;
     auto in = OIIO::ImageInput::open(path);
     if (!in) tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, OIIO::geterror()));
@@ -621,7 +627,7 @@ class TachyonParser {
     const Token name = tok().next();
     if (name.text.empty()) tok().fail_expected(name, "a polygon file name");
     const int material = texture_ref();
-    const std::string path = locate(name.text);
+    const std::string path = locate(name);
     std::string text;
     try {
       text = read_text_file(path);
@@ -686,7 +692,7 @@ class TachyonParser {
     if (static_cast<int>(files_.size()) > limits_.max_include_depth)
       tok().fail(kw.loc, fmt::format("expected includes nested at most {} deep, found deeper (a file including itself?)",
                                      limits_.max_include_depth));
-    const std::string path = locate(name.text);
+    const std::string path = locate(name);
     std::string text;
     try {
       text = read_text_file(path);
