@@ -3,7 +3,8 @@
 # every example scene of Debian's tachyon-doc plus the paper's three in
 # ../shared/scenes/tachyon, at each file's own resolution, one sample per
 # pixel where Tachyon samples (--sample-at tachyon), tachyon-nox with
-# -aasamples 0. Scenes holoray refuses are listed with the refusal.
+# -aasamples 0. Scenes holoray refuses are listed with the refusal. Then the
+# wall time of both on the paper's three scenes (bench/tachyon_speed.py).
 # Writes bench/tachyon_results.md. Usage: bash bench/run_tachyon_compare.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,4 +39,12 @@ run_dir() {  # folder, label prefix
 }
 run_dir ../shared/scenes/tachyon "shared/"
 run_dir /usr/share/doc/tachyon/examples/scenes ""
+if [ -d ../shared/scenes/tachyon ]; then
+  {
+    echo
+    echo "## Speed, the same work (python3 bench/tachyon_speed.py, 5 alternated runs, medians)"
+    echo
+    python3 bench/tachyon_speed.py "$holoray" ../shared/scenes/tachyon/{room,smallballs,teapot}.dat --runs 5
+  } >> "$report"
+fi
 cat "$report"

@@ -218,43 +218,59 @@ double tachyon_shadow(const RenderScene& scene, Ray shadow, RayCounts& counts) {
   return 0;
 }
 
-Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
-  const HitFrame f = frame_of(scene, ray, sp);
-  const Material& m = *f.m;
-  const Vec3 dir = normalize(ray.dir);
-  const Vec3 texel = scene.surface_colour(m, sp.position, length(sp.position - ray.org));
-  if (m.emitter) return texel;
-  Vec3 diffuse, highlight;
-  if (m.kd > kMinContrib || m.phong > kMinContrib) {
-    for (const PointLight& light : scene.lights()) {
-      const LightRay l = tachyon_light(light, sp.position, f.ns);
-      if (!(l.intensity > kMinContrib)) continue;
-      const double seen = tachyon_shadow(scene, Ray{f.above, l.to_light, 0, l.distance - scene.epsilon()}, counts);
-      if (seen == 0) continue;
-      const double inten = l.intensity * seen;
-      diffuse += light.intensity * inten;
-      if (m.phong > kMinContrib) {
-        const Vec3 h = l.to_light - dir;
-        double spec = dot(f.ns, h);
-        if (spec > kMinContrib) {
-          spec = std::pow(spec / length(h), m.shine) * m.phong;
-          highlight += (m.phong_metal ? texel : light.intensity) * spec;
-        }
-      }
+// One hit's Tachyon shading in three steps, so that a packet of hits can
+// trace its shadow rays together between the first and the last and still
+// give each lane the bits of shade_tachyon().
+struct TachyonHit {
+  HitFrame f;
+  Vec3 dir, texel, diffuse, highlight;
+  bool lit = false;  // its diffuse or highlight weight needs the lights
+};
+
+TachyonHit tachyon_begin(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
+  TachyonHit t;
+  t.f = frame_of(scene, ray, sp);
+  t.dir = normalize(ray.dir);
+  t.texel = scene.surface_colour(*t.f.m, sp.position, length(sp.position - ray.org));
+  t.lit = !t.f.m->emitter && (t.f.m->kd > kMinContrib || t.f.m->phong > kMinContrib);
+  return t;
+}
+
+// The light's terms, once its shadow ray let `seen` of it through.
+void tachyon_add_light(TachyonHit& t, const PointLight& light, const LightRay& l, double seen) {
+  const Material& m = *t.f.m;
+  const double inten = l.intensity * seen;
+  t.diffuse += light.intensity * inten;
+  if (m.phong > kMinContrib) {
+    const Vec3 h = l.to_light - t.dir;
+    double spec = dot(t.f.ns, h);
+    if (spec > kMinContrib) {
+      spec = std::pow(spec / length(h), m.shine) * m.phong;
+      t.highlight += (m.phong_metal ? t.texel : light.intensity) * spec;
     }
   }
-  Vec3 colour = mul(texel, diffuse * m.kd + Vec3{m.ambient, m.ambient, m.ambient}) + highlight;
+}
+
+Ray tachyon_shadow_ray(const RenderScene& scene, const TachyonHit& t, const LightRay& l) {
+  return Ray{t.f.above, l.to_light, 0, l.distance - scene.epsilon()};
+}
+
+Vec3 tachyon_finish(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const TachyonHit& t, int depth,
+                    RayCounts& counts) {
+  const Material& m = *t.f.m;
+  if (m.emitter) return t.texel;
+  Vec3 colour = mul(t.texel, t.diffuse * m.kd + Vec3{m.ambient, m.ambient, m.ambient}) + t.highlight;
   auto secondary = [&](const Ray& r, double weight) {
     if (depth >= scene.max_depth()) return scene.background() * weight;
     return trace(scene, r, depth + 1, counts) * weight;
   };
   if (m.ks > kMinContrib) {
     ++counts.reflected;
-    colour += secondary(Ray{f.above, normalize(reflect(dir, f.ns)), 0, INFINITY}, m.ks);
+    colour += secondary(Ray{t.f.above, normalize(reflect(t.dir, t.f.ns)), 0, INFINITY}, m.ks);
   }
   if (m.transmittance > kMinContrib) {
     ++counts.refracted;
-    colour += secondary(Ray{sp.position - f.ng * scene.epsilon(), dir, 0, INFINITY}, m.transmittance);
+    colour += secondary(Ray{sp.position - t.f.ng * scene.epsilon(), t.dir, 0, INFINITY}, m.transmittance);
   }
   if (const auto& fog = scene.fog()) {
     const double r = length(sp.position - ray.org);
@@ -272,6 +288,57 @@ Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint&
     colour = colour * k + fog->colour * (1 - k);
   }
   return colour;
+}
+
+Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+  TachyonHit t = tachyon_begin(scene, ray, sp);
+  if (t.lit) {
+    for (const PointLight& light : scene.lights()) {
+      const LightRay l = tachyon_light(light, sp.position, t.f.ns);
+      if (!(l.intensity > kMinContrib)) continue;
+      const double seen = tachyon_shadow(scene, tachyon_shadow_ray(scene, t, l), counts);
+      if (seen != 0) tachyon_add_light(t, light, l, seen);
+    }
+  }
+  return tachyon_finish(scene, ray, sp, t, depth, counts);
+}
+
+// shade_tachyon() for the lanes of a packet with tachyon[k] set: the shadow
+// rays toward each light go as one packet (rtcOccluded16) unless the scene
+// has transparent surfaces, whose filtering walks each ray on its own.
+void shade_tachyon(const RenderScene& scene, const RayPacket& rays, const bool tachyon[kPacketSize],
+                   const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
+  TachyonHit t[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k)
+    if (tachyon[k]) t[k] = tachyon_begin(scene, rays.rays[k], sps[k]);
+  const bool filtered = scene.has_tachyon_transparency();
+  RayPacket shadows;
+  LightRay l[kPacketSize];
+  bool blocked[kPacketSize];
+  for (const PointLight& light : scene.lights()) {
+    int cast = 0;
+    for (int k = 0; k < kPacketSize; ++k) {
+      shadows.active[k] = false;
+      if (!tachyon[k] || !t[k].lit) continue;
+      l[k] = tachyon_light(light, sps[k].position, t[k].f.ns);
+      if (!(l[k].intensity > kMinContrib)) continue;
+      if (filtered) {
+        const double seen = tachyon_shadow(scene, tachyon_shadow_ray(scene, t[k], l[k]), counts);
+        if (seen != 0) tachyon_add_light(t[k], light, l[k], seen);
+        continue;
+      }
+      shadows.rays[k] = tachyon_shadow_ray(scene, t[k], l[k]);
+      shadows.active[k] = true;
+      ++cast;
+    }
+    if (cast == 0) continue;
+    counts.shadow += static_cast<uint64_t>(cast);
+    scene.accel().occluded(shadows, blocked);
+    for (int k = 0; k < kPacketSize; ++k)
+      if (shadows.active[k] && !blocked[k]) tachyon_add_light(t[k], light, l[k], 1.0);
+  }
+  for (int k = 0; k < kPacketSize; ++k)
+    if (tachyon[k]) colours[k] = tachyon_finish(scene, rays.rays[k], sps[k], t[k], depth, counts);
 }
 
 }  // namespace
@@ -408,16 +475,15 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
            ShadeParts parts[kPacketSize]) {
-  // Tachyon materials are shaded one lane at a time (their shadow rays are
-  // not yet gathered into packets); the NFF lanes go on as a packet.
-  bool hit[kPacketSize];
+  // Tachyon materials take their own packet path; the NFF lanes go on below.
+  bool hit[kPacketSize], tachyon[kPacketSize];
+  bool any_tachyon = false;
   for (int k = 0; k < kPacketSize; ++k) {
-    hit[k] = hit_in[k];
-    if (hit[k] && sps[k].material->model == ShadingModel::tachyon) {
-      colours[k] = shade_tachyon(scene, rays.rays[k], sps[k], depth, counts);
-      hit[k] = false;
-    }
+    tachyon[k] = hit_in[k] && sps[k].material->model == ShadingModel::tachyon;
+    hit[k] = hit_in[k] && !tachyon[k];
+    any_tachyon |= tachyon[k];
   }
+  if (any_tachyon) shade_tachyon(scene, rays, tachyon, sps, depth, counts, colours);
   if (parts)
     for (int k = 0; k < kPacketSize; ++k) parts[k] = ShadeParts{};
   auto mark_lit = [&](int k, size_t l) {
