@@ -1,6 +1,7 @@
 // Tachyon's scene language (scene/tachyon_reader.hpp) and Tachyon shading:
 // what each construct becomes, exact refusals, the left-handed screen, and
 // agreement with tachyon-nox itself on a scene using every construct read.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -204,6 +205,21 @@ TEST(TachyonShading, ScreenIsLeftHandedAndAmbientIsTextureTimesAmbient) {
     }
   EXPECT_GT(right, 20);
   EXPECT_EQ(left, 0);
+}
+
+// Tachyon lanes of a packet trace their shadow rays as packets; single-ray
+// styles trace them one by one: the same image, bit for bit (the scene has
+// no ray exactly on a shared triangle edge).
+TEST(TachyonShading, PacketAndSingleRayStylesGiveTheSameEia) {
+  const std::string data = test::source_dir() + "/tests/data/tachyon/shapes.dat";
+  test::TempDir dir;
+  for (const char* style : {"packet", "horizontal"}) {
+    const auto r = test::run_cli(fmt::format("render {} --lenses 24x24 --style {} -o {} -q", data, style,
+                                             dir.file(std::string(style) + ".exr")));
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  const ImageBuffer a = read_image(dir.file("packet.exr")), b = read_image(dir.file("horizontal.exr"));
+  EXPECT_EQ(a.data, b.data);
 }
 
 // The independent check: tachyon-nox renders tests/data/tachyon/shapes.dat
