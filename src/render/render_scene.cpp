@@ -14,14 +14,23 @@ RenderScene::RenderScene(const SceneDesc& desc) : RenderScene(std::vector<SceneP
 
 namespace {
 
-// Bounds of everything but planes, and the first viewpoint's eye: what a
+// A Tachyon sphere around the first viewpoint's eye: a sky dome (umr.dat
+// wraps its scene in one of radius 2e6), background rather than scene. (NFF
+// scenes keep their epsilon as it always was.)
+bool is_dome(const SphereDesc& s, const SceneDesc& desc, const std::vector<ScenePart>& parts) {
+  if (desc.shading != ShadingModel::tachyon || parts.empty() || !parts.front().desc->viewpoint) return false;
+  return length(parts.front().desc->viewpoint->from - s.centre) < std::fabs(s.radius);
+}
+
+// Bounds of everything but planes, lights' spheres and sky domes, and the
+// first viewpoint's eye: the scale of the scene's precision, and what a
 // plane's square must reach beyond.
 Bounds3 finite_bounds(const std::vector<ScenePart>& parts) {
   Bounds3 b;
   for (const ScenePart& part : parts) {
     for (const ObjectDesc& obj : part.desc->objects) {
       if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
-        if (!s->casts_shadow) continue;  // a light's sphere is not the scene
+        if (!s->casts_shadow || is_dome(*s, *part.desc, parts)) continue;  // a light's sphere, a sky: not the scene
         const double r = std::fabs(s->radius);
         b.extend(s->centre - Vec3{r, r, r});
         b.extend(s->centre + Vec3{r, r, r});
@@ -146,7 +155,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       object_material_.push_back(obj.material < 0 ? 0 : material_base + static_cast<uint32_t>(obj.material));
       const auto id = static_cast<uint32_t>(object_material_.size() - 1);
       if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
-        if (!s->casts_shadow) finite_scale_ = coordinate_scale(finite);
+        if (!s->casts_shadow || is_dome(*s, desc, parts)) finite_scale_ = coordinate_scale(finite);
         geo.spheres.push_back({s->centre, s->radius, s->casts_shadow});
         sphere_object_.push_back(id);
       } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
