@@ -19,5 +19,20 @@ render room examples/room.nff
 # A close-up of the elemental images: the top-left 96x96 pixels of the teapot EIA, 4x.
 oiiotool "$out/teapot_eia.png" --cut 96x96+208+208 --resize 384x384 --filter box -o "$out/teapot_eia_closeup.png" 2>/dev/null ||
   oiiotool "$out/teapot_eia.png" --cut 96x96+208+208 --resize 384x384 -o "$out/teapot_eia_closeup.png"
+# The paper's Room in Tachyon's language: holoray's pinhole view, Tachyon's
+# own (tachyon-nox, run from the scene's folder for its image maps), the
+# pseudoscopic EIA (the camera is inside the room) and its centre view.
+room=../shared/scenes/tachyon/room.dat
+"$h" render "$room" --camera pinhole -o "$tmp/room_pinhole.png" -q
+oiiotool "$tmp/room_pinhole.png" --resize 256x256 -o "$out/room_tachyon_pinhole.png"
+(cd "$(dirname "$room")" && tachyon-nox room.dat -aasamples 0 -format PNG -o "$tmp/room_tachyon.png" >/dev/null)
+oiiotool "$tmp/room_tachyon.png" --resize 256x256 -o "$out/room_tachyon_reference.png"
+"$h" render "$room" --mode pseudoscopic -o "$out/room_tachyon_eia.png" -q
+"$h" subaperture "$out/room_tachyon_eia.png" -o "$tmp/room_view.png"
+oiiotool "$tmp/room_view.png" --resize 256x256 -o "$out/room_tachyon_view.png"
+# Tachyon's three AC3D models (Debian tachyon-doc) in their default views.
+ac=/usr/share/doc/tachyon/examples/scenes
+for m in f117 goblet tie2; do "$h" render "$ac/$m.ac" --camera pinhole -o "$tmp/ac_$m.png" -q; done
+oiiotool "$tmp/ac_f117.png" "$tmp/ac_goblet.png" "$tmp/ac_tie2.png" --mosaic 3x1 --resize 768x256 -o "$out/ac_models.png"
 rm -rf "$tmp"
 ls -la "$out"
