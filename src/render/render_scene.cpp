@@ -57,6 +57,17 @@ Vec3 vertex_normal(const Vec3& n, const Vec3& winding, ShadingModel shading) {
   return length(n) > 0 ? normalize(n) : winding;
 }
 
+// Appends vertices to a group's float positions; returns the first one's index.
+uint32_t append_positions(const std::vector<Vec3>& vertices, TriangleData& tris) {
+  const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
+  for (const Vec3& v : vertices) {
+    tris.positions.push_back(static_cast<float>(v.x));
+    tris.positions.push_back(static_cast<float>(v.y));
+    tris.positions.push_back(static_cast<float>(v.z));
+  }
+  return base;
+}
+
 double coordinate_scale(const Bounds3& b) {
   double scale = 1;
   if (!b.empty()) {
@@ -174,12 +185,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
           ++skipped_polygons_;
           continue;
         }
-        const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
-        for (const Vec3& v : poly.vertices) {
-          tris.positions.push_back(static_cast<float>(v.x));
-          tris.positions.push_back(static_cast<float>(v.y));
-          tris.positions.push_back(static_cast<float>(v.z));
-        }
+        const uint32_t base = append_positions(poly.vertices, tris);
         for (const auto& t : tess.triangles) {
           for (int k : t) tris.indices.push_back(base + static_cast<uint32_t>(k));
           tri_object_.push_back(id);
@@ -213,12 +219,7 @@ void RenderScene::set_max_depth(int depth) {
 }
 
 void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingModel shading, TriangleData& tris) {
-  const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
-  for (const Vec3& v : mesh.vertices) {
-    tris.positions.push_back(static_cast<float>(v.x));
-    tris.positions.push_back(static_cast<float>(v.y));
-    tris.positions.push_back(static_cast<float>(v.z));
-  }
+  const uint32_t base = append_positions(mesh.vertices, tris);
   for (const auto& t : mesh.triangles) {
     // The Newell normal, as a `p` polygon of the same three vertices gets it.
     const std::array<Vec3, 3> corners{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};

@@ -136,6 +136,12 @@ class TachyonParser {
     return v;
   }
 
+  // KEYWORD number: the pattern of most of Tachyon's fields.
+  double keyed(std::string_view kw, std::string_view what) {
+    expect_kw(kw);
+    return tok().number(what);
+  }
+
   Vec3 unit(std::string_view what) {
     const Token t = tok().peek();
     const Vec3 v = vec3(what);
@@ -280,12 +286,9 @@ class TachyonParser {
     Material m;
     m.model = ShadingModel::tachyon;
     m.loc = at.loc;
-    expect_kw("AMBIENT");
-    m.ambient = tok().number("the ambient coefficient");
-    expect_kw("DIFFUSE");
-    m.kd = tok().number("the diffuse coefficient");
-    expect_kw("SPECULAR");
-    m.ks = tok().number("the specular (mirror) coefficient");
+    m.ambient = keyed("AMBIENT", "the ambient coefficient");
+    m.kd = keyed("DIFFUSE", "the diffuse coefficient");
+    m.ks = keyed("SPECULAR", "the specular (mirror) coefficient");
     expect_kw("OPACITY");
     const Token o = tok().peek();
     const double opacity = tok().number("the opacity");
@@ -301,8 +304,7 @@ class TachyonParser {
       m.phong_metal = is_kw(kind, "METAL");
       if (!m.phong_metal && !is_kw(kind, "PLASTIC")) tok().fail_expected(kind, "'PLASTIC' or 'METAL'");
       m.phong = tok().number("the phong highlight weight");
-      expect_kw("PHONG_SIZE");
-      m.shine = tok().number("the phong exponent");
+      m.shine = keyed("PHONG_SIZE", "the phong exponent");
       t = tok().next();
     }
     if (!is_kw(t, "COLOR")) tok().fail_expected(t, "'COLOR'");
@@ -442,12 +444,9 @@ class TachyonParser {
     }
     const Token t = tok().next();
     if (is_kw(t, "ATTENUATION")) {
-      expect_kw("CONSTANT");
-      l.kc = tok().number("the constant attenuation");
-      expect_kw("LINEAR");
-      l.kl = tok().number("the linear attenuation");
-      expect_kw("QUADRATIC");
-      l.kq = tok().number("the quadratic attenuation");
+      l.kc = keyed("CONSTANT", "the constant attenuation");
+      l.kl = keyed("LINEAR", "the linear attenuation");
+      l.kq = keyed("QUADRATIC", "the quadratic attenuation");
       if (l.kc < 0 || l.kl < 0 || l.kq < 0 || l.kc + l.kl + l.kq <= 0)
         tok().fail(t.loc, "expected attenuation coefficients >= 0, not all 0");
       expect_kw("COLOR");
@@ -671,15 +670,13 @@ class TachyonParser {
     else if (m == "EXP2") f.mode = FogDesc::Mode::exp2;
     else if (m == "OFF") off = true;
     else tok().fail_expected(mode, "'LINEAR', 'EXP', 'EXP2' or 'OFF'");
-    expect_kw("START");
-    f.start = tok().number("the fog start distance");
+    f.start = keyed("START", "the fog start distance");
     expect_kw("END");
     const Token e = tok().peek();
     f.end = tok().number("the fog end distance");
     if (f.mode == FogDesc::Mode::linear && !off && !(f.end > f.start))
       tok().fail(e.loc, fmt::format("expected a fog end past its start ({}), found {}", f.start, e.text));
-    expect_kw("DENSITY");
-    f.density = tok().number("the fog density");
+    f.density = keyed("DENSITY", "the fog density");
     expect_kw("COLOR");
     f.colour = vec3("a fog colour component");
     if (off) scene_.fog.reset();
