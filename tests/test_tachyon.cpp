@@ -165,6 +165,29 @@ TEST(TachyonReader, PolygonFilesAreScaledRotatedMovedAndRewound) {
   EXPECT_NEAR(p[2].z, 6, 1e-6);
 }
 
+TEST(TachyonReader, VertexArraysBecomeOneMeshPerStripOrTriangleList) {
+  const SceneDesc d = parse_tachyon(
+      scene_text("vertexarray numverts 4 coords 0 0 3 1 0 3 0 1 3 1 1 3 normals 0 0 -1 0 0 -1 0 0 -1 0 0 -1\n"
+                 "colors 1 0 0 0 1 0 0 0 1 1 1 1\n"
+                 "tristrip 4 0 1 2 3\n"
+                 "texture ambient 0.2 diffuse 0.8 specular 0 opacity 1 color 1 1 1 texfunc 0\n"
+                 "trimesh 1 3 2 1\n"
+                 "end_vertexarray\n"),
+      "t.dat");
+  ASSERT_EQ(d.objects.size(), 2u);
+  const auto& strip = std::get<TriangleMeshDesc>(d.objects[0].shape);
+  // Every other triangle of a strip turns round, so all face the same way.
+  ASSERT_EQ(strip.triangles.size(), 2u);
+  EXPECT_EQ(strip.triangles[0], (std::array<uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(strip.triangles[1], (std::array<uint32_t, 3>{2, 1, 3}));
+  EXPECT_EQ(strip.colours.size(), 4u);
+  // Before any TEXTURE, Tachyon's default texture; after it, that texture.
+  EXPECT_DOUBLE_EQ(d.materials[static_cast<size_t>(d.objects[0].material)].kd, 0.9);
+  EXPECT_DOUBLE_EQ(d.materials[static_cast<size_t>(d.objects[1].material)].kd, 0.8);
+  EXPECT_EQ(error_of(scene_text("vertexarray numverts 1 coords 0 0 0 normals 0 0 1 trimesh 1 0 0 1 end_vertexarray\n")),
+            "t.dat:4:65: error: expected a vertex index below 1, found 1");
+}
+
 TEST(TachyonReader, FogIsReadAndOffClearsIt) {
   const SceneDesc on = parse_tachyon(scene_text("fog exp2 start 1 end 9 density 0.5 color 1 0.5 0.25\n"), "t.dat");
   ASSERT_TRUE(on.fog);
@@ -250,9 +273,9 @@ TEST(TachyonShading, AgreesWithTachyon) {
             diff.psnr_all() - 3);
 }
 
-// The rest of what holoray reads (fog, a polygon file, the cylindrical
-// checker, cylindrical and spherical image maps) against tachyon-nox:
-// measured 48.1 dB.
+// The rest of what holoray reads (fog, a polygon file, a coloured vertex
+// array and a vertex-coloured triangle, the cylindrical checker,
+// cylindrical and spherical image maps) against tachyon-nox: measured 48.1 dB.
 TEST(TachyonShading, FogPolygonFilesAndCurvedImageMapsAgreeWithTachyon) {
   if (test::run_shell("command -v tachyon-nox").status != 0)
     GTEST_SKIP() << "tachyon-nox is not installed (scripts/setup.sh installs it)";

@@ -229,6 +229,11 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
       continue;
     }
     for (uint32_t k : t) tris.indices.push_back(base + k);
+    if (!mesh.colours.empty()) {
+      tri_colour_.resize(tri_object_.size(), -1);
+      tri_colour_.push_back(static_cast<int32_t>(tri_colours_.size()));
+      tri_colours_.push_back({mesh.colours[t[0]], mesh.colours[t[1]], mesh.colours[t[2]]});
+    }
     tri_object_.push_back(id);
     tri_normal_.push_back(n);
     if (mesh.normals.empty()) {
@@ -249,6 +254,22 @@ void RenderScene::update_epsilon() {
   const double scale = finite_scale_ > 0 ? finite_scale_ : coordinate_scale(accel_->bounds());
   // Float geometry is exact to ~6e-8 of its coordinates; stay well clear of that.
   epsilon_ = 1e-5 * scale;
+}
+
+Vec3 RenderScene::surface_colour(const SurfacePoint& sp, double optic_dist) const {
+  if (sp.kind == PrimKind::triangle && !tri_colour_.empty()) {
+    const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
+    if (t < tri_colour_.size() && tri_colour_[t] >= 0) {
+      const auto& c = tri_colours_[static_cast<size_t>(tri_colour_[t])];
+      const double u = sp.u, v = sp.v;
+      return c[0] * (1 - u - v) + c[1] * u + c[2] * v;
+    }
+  }
+  const Material& m = *sp.material;
+  if (m.texture < 0) return m.colour;
+  const TextureDesc& t = textures_[static_cast<size_t>(m.texture)];
+  return texture_colour(t, t.image >= 0 ? &mips_[static_cast<size_t>(t.image)] : nullptr, m.colour, sp.position,
+                        optic_dist);
 }
 
 int RenderScene::object_of(uint32_t group, PrimKind kind, uint32_t prim) const {

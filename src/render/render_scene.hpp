@@ -88,14 +88,11 @@ class RenderScene {
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;
 
   const std::vector<PointLight>& lights() const { return lights_; }
-  /// A material's colour at a hit: its texture's (Tachyon texfunc,
-  /// render/textures.hpp) seen at `optic_dist` from the eye, else its colour.
-  Vec3 surface_colour(const Material& m, const Vec3& p_world, double optic_dist) const {
-    if (m.texture < 0) return m.colour;
-    const TextureDesc& t = textures_[static_cast<size_t>(m.texture)];
-    return texture_colour(t, t.image >= 0 ? &mips_[static_cast<size_t>(t.image)] : nullptr, m.colour, p_world,
-                          optic_dist);
-  }
+  /// The surface colour at a hit: its triangle's vertex colours
+  /// interpolated (Tachyon vcstri), else its material's texture (Tachyon
+  /// texfunc, render/textures.hpp) seen at `optic_dist` from the eye, else
+  /// the material's colour.
+  Vec3 surface_colour(const SurfacePoint& sp, double optic_dist) const;
   /// Whether any material follows Tachyon's shading (visibility reuse, which
   /// splits NFF's formula, then does not apply).
   bool has_tachyon_materials() const { return has_tachyon_; }
@@ -131,6 +128,10 @@ class RenderScene {
   std::vector<Vec3> tri_normal_;                 // winding normal per triangle
   std::vector<int32_t> tri_patch_;               // index into patch_normals_, -1 for flat `p`
   std::vector<std::array<Vec3, 3>> patch_normals_;
+  // Per triangle, an index into tri_colours_ or -1; sized only once a
+  // vertex-coloured mesh is added (shorter: the rest have none).
+  std::vector<int32_t> tri_colour_;
+  std::vector<std::array<Vec3, 3>> tri_colours_;
   std::vector<PointLight> lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased

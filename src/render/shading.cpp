@@ -231,7 +231,7 @@ TachyonHit tachyon_begin(const RenderScene& scene, const Ray& ray, const Surface
   TachyonHit t;
   t.f = frame_of(scene, ray, sp);
   t.dir = normalize(ray.dir);
-  t.texel = scene.surface_colour(*t.f.m, sp.position, length(sp.position - ray.org));
+  t.texel = scene.surface_colour(sp, length(sp.position - ray.org));
   t.lit = !t.f.m->emitter && (t.f.m->kd > kMinContrib || t.f.m->phong > kMinContrib);
   return t;
 }

@@ -124,6 +124,9 @@ struct PolygonDesc {
 struct TriangleMeshDesc {
   std::vector<Vec3> vertices;
   std::vector<Vec3> normals;
+  /// One per vertex (Tachyon vcstri and coloured vertex arrays): the surface
+  /// colour, interpolated over each triangle, in place of the material's.
+  std::vector<Vec3> colours;
   std::vector<std::array<uint32_t, 3>> triangles;  ///< counter-clockwise seen from the front
 };
 

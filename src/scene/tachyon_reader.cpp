@@ -30,8 +30,6 @@ std::string upper(std::string_view s) {
 // to say about them (tachyon-notes §6).
 const std::map<std::string, std::string_view>& unsupported_objects() {
   static const std::map<std::string, std::string_view> m{
-      {"VCSTRI", "vertex-coloured triangles"},
-      {"VERTEXARRAY", "vertex arrays"},
       {"SPHEREARRAY", "sphere arrays"},
       {"SCALARVOL", "scalar volumes"},
       {"IMAGEDEF", "inline image definitions"},
@@ -185,6 +183,8 @@ class TachyonParser {
     else if (k == "PLANE") plane(kw);
     else if (k == "BOX") box(kw);
     else if (k == "TRI") triangle(kw, false);
+    else if (k == "VCSTRI") vcstri(kw);
+    else if (k == "VERTEXARRAY") vertex_array(kw);
     else if (k == "STRI") triangle(kw, true);
     else if (k == "INCLUDE") include(kw);
     else if (k == "FOG") fog();
@@ -282,7 +282,9 @@ class TachyonParser {
 
   // AMBIENT a DIFFUSE d SPECULAR s OPACITY o [PHONG PLASTIC|METAL p PHONG_SIZE e]
   // COLOR r g b TEXFUNC n [its parameters] (parse.c, GetTexBody).
-  int texture_body(const Token& at) {
+  // With `vertex_coloured` (vcstri), `VCST` stands where COLOR and TEXFUNC
+  // would: the colour comes from the vertices (parse.c, GetTexBody mode 1).
+  int texture_body(const Token& at, bool vertex_coloured = false) {
     Material m;
     m.model = ShadingModel::tachyon;
     m.loc = at.loc;
@@ -306,6 +308,12 @@ class TachyonParser {
       m.phong = tok().number("the phong highlight weight");
       m.shine = keyed("PHONG_SIZE", "the phong exponent");
       t = tok().next();
+    }
+    if (vertex_coloured) {
+      if (!is_kw(t, "VCST")) tok().fail_expected(t, "'VCST'");
+      m.colour = {1, 1, 1};
+      scene_.materials.push_back(m);
+      return static_cast<int>(scene_.materials.size()) - 1;
     }
     if (!is_kw(t, "COLOR")) tok().fail_expected(t, "'COLOR'");
     m.colour = vec3("a texture colour component");
@@ -681,6 +689,82 @@ class TachyonParser {
     f.colour = vec3("a fog colour component");
     if (off) scene_.fog.reset();
     else scene_.fog = f;
+  }
+
+  // VCSTRI V0 V1 V2 N0 N1 N2 C0 C1 C2 <texture body ending in VCST>: a
+  // smooth triangle coloured by its vertices.
+  void vcstri(const Token& kw) {
+    TriangleMeshDesc m;
+    for (const char* v : {"V0", "V1", "V2"}) {
+      expect_kw(v);
+      m.vertices.push_back(vec3("a vertex coordinate"));
+    }
+    for (const char* n : {"N0", "N1", "N2"}) {
+      expect_kw(n);
+      m.normals.push_back(vec3("a vertex normal component"));
+    }
+    for (const char* c : {"C0", "C1", "C2"}) {
+      expect_kw(c);
+      m.colours.push_back(vec3("a vertex colour component"));
+    }
+    m.triangles.push_back({0, 1, 2});
+    const int material = texture_body(kw, true);
+    add(kw, std::move(m), material);
+  }
+
+  // VERTEXARRAY NUMVERTS n COORDS (n points) NORMALS (n normals), then any of
+  // COLORS (n colours), TEXTURE <body>, TRIMESH f (f index triples) and
+  // TRISTRIP m (m indices), until END_VERTEXARRAY (parse.c,
+  // GetVertexArray). Each TRIMESH or TRISTRIP is one object of the
+  // texture given before it (Tachyon's default before any); with COLORS its
+  // vertices colour it.
+  void vertex_array(const Token& kw) {
+    expect_kw("NUMVERTS");
+    const Token n_tok = tok().peek();
+    const long n = tok().integer("a vertex count");
+    if (n < 1 || n > limits_.max_objects)
+      tok().fail(n_tok.loc, fmt::format("expected a vertex count from 1 to {}, found {}", limits_.max_objects, n));
+    TriangleMeshDesc base;
+    expect_kw("COORDS");
+    for (long i = 0; i < n; ++i) base.vertices.push_back(vec3("a vertex coordinate"));
+    expect_kw("NORMALS");
+    for (long i = 0; i < n; ++i) base.normals.push_back(vec3("a vertex normal component"));
+    int material = -1;
+    for (;;) {
+      const Token t = tok().next();
+      if (is_kw(t, "END_VERTEXARRAY")) return;
+      if (is_kw(t, "COLORS")) {
+        base.colours.clear();
+        for (long i = 0; i < n; ++i) base.colours.push_back(vec3("a vertex colour component"));
+      } else if (is_kw(t, "TEXTURE")) {
+        material = texture_body(t);
+      } else if (is_kw(t, "TRIMESH") || is_kw(t, "TRISTRIP")) {
+        const bool strip = is_kw(t, "TRISTRIP");
+        const Token c_tok = tok().peek();
+        const long count = tok().integer(strip ? "a strip length" : "a triangle count");
+        if (count > limits_.max_objects)
+          tok().fail(c_tok.loc, fmt::format("expected at most {}, found {}", limits_.max_objects, count));
+        std::vector<uint32_t> idx;
+        for (long i = 0; i < (strip ? count : 3 * count); ++i) {
+          const Token v = tok().peek();
+          const long k = tok().integer("a vertex index");
+          if (k >= n) tok().fail(v.loc, fmt::format("expected a vertex index below {}, found {}", n, k));
+          idx.push_back(static_cast<uint32_t>(k));
+        }
+        TriangleMeshDesc m = base;
+        if (strip) {
+          // Every other triangle of a strip is wound the other way round.
+          for (size_t i = 0; i + 2 < idx.size(); ++i)
+            m.triangles.push_back(i % 2 == 0 ? std::array<uint32_t, 3>{idx[i], idx[i + 1], idx[i + 2]}
+                                             : std::array<uint32_t, 3>{idx[i + 1], idx[i], idx[i + 2]});
+        } else {
+          for (size_t i = 0; i + 2 < idx.size(); i += 3) m.triangles.push_back({idx[i], idx[i + 1], idx[i + 2]});
+        }
+        if (!m.triangles.empty()) add(kw, std::move(m), material < 0 ? default_material() : material);
+      } else {
+        tok().fail_expected(t, "'COLORS', 'TEXTURE', 'TRIMESH', 'TRISTRIP' or 'END_VERTEXARRAY'");
+      }
+    }
   }
 
   void include(const Token& kw) {
