@@ -10,10 +10,10 @@
 // are read here, through OpenImageIO, relative to the scene file's folder
 // (then the working folder, where Tachyon looks).
 //
-// A construct holoray does not support yet (fog, volumes, vertex arrays,
-// clip groups, procedural textures other than the checkers and wood, other
-// projections, outlines, ...) is refused with `file:line:col` naming it,
-// never skipped.
+// A construct holoray does not support yet (volumes, landscapes, inline
+// images, clip groups, the noise textures, other projections, outlines, ...)
+// is refused with `file:line:col` naming it, never skipped. Included files,
+// polygon files and image maps must be regular files.
 #pragma once
 
 #include <string>
