@@ -188,5 +188,27 @@ TEST(PinholeView, AgreesWithPovRay) {
   EXPECT_GT(d.psnr_all(), 50);
 }
 
+// animate --camera pinhole renders each frame's viewpoint as render
+// --camera pinhole does: a still shot's frames are that view, bit for bit.
+TEST(PinholeView, AnimatePreviewFramesAreTheSceneView) {
+  test::TempDir dir;
+  const std::string scene = source_dir() + "/tests/data/pinhole/spheres.nff";
+  test::write_text(dir.file("shot.toml"), "frames = 2\n[[object]]\nscene = \"" + scene + "\"\n");
+  const auto anim = test::run_cli("animate " + dir.file("shot.toml") + " --camera pinhole --resolution 48x32 -o " +
+                                  dir.file("frames") + " -q");
+  ASSERT_EQ(anim.status, 0) << anim.output;
+  const auto still = test::run_cli("render " + scene + " --camera pinhole --resolution 48x32 -o " +
+                                   dir.file("still.png") + " -q");
+  ASSERT_EQ(still.status, 0) << still.output;
+  const ImageBuffer a = read_image(dir.file("frames/frame_0001.png")), b = read_image(dir.file("still.png"));
+  EXPECT_EQ(a.width, 48);
+  EXPECT_EQ(a.height, 32);
+  EXPECT_EQ(a.data, b.data);
+  const auto reuse = test::run_cli("animate " + dir.file("shot.toml") + " --camera pinhole --method reverse -o " +
+                                   dir.file("r") + " -q");
+  EXPECT_EQ(reuse.status, 1);
+  EXPECT_NE(reuse.output.find("--camera pinhole: goes with --method full"), std::string::npos) << reuse.output;
+}
+
 }  // namespace
 }  // namespace holoray

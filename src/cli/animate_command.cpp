@@ -1,5 +1,7 @@
 #include "cli/animate_command.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <oneapi/tbb/global_control.h>
 
@@ -48,7 +50,9 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("animate", "Render an animated shot (TOML) as numbered EIA frames");
   cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required();
   cmd->add_option("-o,--output", o.output, "Output folder (created if missing)")->required();
-  cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot), reproject (keyframes + the paper's forward reprojection) or full (trace every frame)")->capture_default_str();
+  cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot; the default), reproject (keyframes + the paper's forward reprojection) or full (trace every frame; the default and only choice with --camera pinhole)");
+  cmd->add_option("--camera", o.camera, "integral (EIA frames) or pinhole (a preview: each frame's viewpoint as an ordinary view, traced in full)")->capture_default_str();
+  cmd->add_option("--resolution", o.resolution, "With --camera pinhole: frame size WxH (default: the first scene's resolution, else 512x512)");
   cmd->add_option("--keyframe-interval", o.keyframe_interval, "K: trace every K-th frame and the last")->capture_default_str();
   cmd->add_option("--reuse", o.reuse,
                   "What a reprojected pixel reuses. --method reproject: geometry (default; re-shade the reused hit) or "
@@ -72,7 +76,23 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
 int run_animate(const AnimateCommandOptions& o) {
   try {
     SequenceOptions so;
-    so.method = pick<Method>("--method", o.method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
+    const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
+    const std::string method = !o.method.empty() ? o.method : pinhole ? "full" : "reverse";
+    so.method = pick<Method>("--method", method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
+    if (pinhole && so.method != Method::full)
+      throw std::invalid_argument("--camera pinhole: goes with --method full (reuse works on elemental images)");
+    if (!o.resolution.empty()) {
+      if (!pinhole) throw std::invalid_argument("--resolution: goes with --camera pinhole (an EIA's size is the shot's [array])");
+      int w = 0, h = 0;
+      parse_resolution(o.resolution, w, h);
+      so.pinhole = std::array<int, 2>{w, h};
+    } else if (pinhole) {
+      so.pinhole = std::array<int, 2>{0, 0};  // the scene's, filled in once the shot is read
+    }
+    if (pinhole && !o.report.empty())
+      throw std::invalid_argument("--report: goes with the integral camera (pinhole previews are traced in full)");
+    if (pinhole && cache_enabled(o.cache))
+      throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
     const std::string reuse = !o.reuse.empty() ? o.reuse : so.method == Method::reverse ? "color" : "geometry";
     if (so.method == Method::reverse)
       so.reverse.reuse =
@@ -101,6 +121,13 @@ int run_animate(const AnimateCommandOptions& o) {
 
     ShotFrames shot(read_shot_file(o.shot));
     const int frames = shot.frame_count();
+    if (so.pinhole && (*so.pinhole)[0] == 0) {
+      auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
+                                    [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
+      so.pinhole = first_res != shot.scenes().end()
+                       ? std::array<int, 2>{first_res->viewpoint->xres, first_res->viewpoint->yres}
+                       : std::array<int, 2>{512, 512};
+    }
     const LensArray first(shot.camera(0));  // sizes and the printed description
     const std::unique_ptr<ShadowCache> cache = make_cache(shot.scene(), first.desc().pitch, o.cache);
     so.cache = cache.get();
@@ -136,9 +163,12 @@ int run_animate(const AnimateCommandOptions& o) {
       const LensArray& cam = first;
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
                  shot.shot().objects.size());
-      fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),
-                 to_string(cam.desc().grid), cam.lens_count_x(), cam.lens_count_y(), cam.desc().pixels_per_lens,
-                 to_string(cam.desc().mode));
+      if (so.pinhole)
+        fmt::print("view       {}x{} px, pinhole, each frame's viewpoint\n", (*so.pinhole)[0], (*so.pinhole)[1]);
+      else
+        fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),
+                   to_string(cam.desc().grid), cam.lens_count_x(), cam.lens_count_y(), cam.desc().pixels_per_lens,
+                   to_string(cam.desc().mode));
       if (so.method == Method::reproject)
         fmt::print("method     reproject: keyframe every {}, reuse {}, fill {}, reach {}{}\n", o.keyframe_interval,
                    reuse, o.fill, o.reach, o.no_leak_check ? ", no leak check" : "");

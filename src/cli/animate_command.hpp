@@ -10,7 +10,8 @@
 namespace holoray::cli {
 
 struct AnimateCommandOptions {
-  std::string shot, output, method = "reverse", fill = "trace", reuse, reach = "near";
+  std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
+  std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
   std::string format = "png", encoding = "linear", report;
   int keyframe_interval = 8, threads = 0;
   double rebuild_above = 5;  // percent of holes

@@ -1,5 +1,8 @@
 #include "temporal/sequence.hpp"
 
+#include "camera/pinhole.hpp"
+#include "render/view_renderer.hpp"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -77,10 +80,26 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     return r;
   };
 
+  if (opt.pinhole && opt.method != Method::full)
+    throw std::invalid_argument("pinhole frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
     for (int f = 0; f < frames; ++f) {
       if (done(f)) continue;
       if (stop()) return;
+      if (opt.pinhole) {
+        shot.seek(f);
+        const Viewpoint vp = shot.viewpoint(f);
+        const PinholeCamera view(
+            PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, (*opt.pinhole)[0], (*opt.pinhole)[1], vp.mirrored});
+        RenderOptions ro;
+        ro.spp = shot.shot().spp;
+        ro.threads = opt.threads;
+        RenderStats stats;
+        const auto start = Clock::now();
+        const FrameBuffers b = render_view(shot.scene(), view, ro, stats);
+        emit(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
+        continue;
+      }
       const Traced t = trace_frame(shot, f, false, opt.threads);
       emit(f, t.buffers.colour, keyframe_report(f, t.buffers.colour, t.stats, t.seconds));
     }

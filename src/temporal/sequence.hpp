@@ -6,6 +6,7 @@
 // its eye rays and reusing the keyframes' shading (reverse.hpp).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -42,6 +43,10 @@ struct SequenceOptions {
   /// (for the report): FrameReport::reference and ::difference.
   bool reference = false;
   Encoding encoding = Encoding::linear;  ///< the 8-bit quantisation compared against
+  /// Method::full only: render each frame's viewpoint (ShotFrames::viewpoint)
+  /// as a pinhole view of this width and height (render_view) instead of
+  /// the EIA: previews of a shot's camera path.
+  std::optional<std::array<int, 2>> pinhole;
   /// Shadow cache (reuse/shadow_cache.hpp) for traced frames, filling and
   /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
   /// it lives across frames while nothing moves. The reference frames
