@@ -215,7 +215,7 @@ int run_animate(const AnimateCommandOptions& o) {
     }
     if (!o.report.empty()) {
       std::string cmdline =
-          fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, o.method, o.cache.cache);
+          fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, method, o.cache.cache);
       if (so.method == Method::reproject)
         cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}",
                                o.keyframe_interval, reuse, o.fill, o.rebuild_above, o.reach,
