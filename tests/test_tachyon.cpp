@@ -77,6 +77,19 @@ TEST(TachyonReader, KeywordsAreCaseInsensitiveTextureNamesAreNot) {
                            "diffuse 0.9) used");
 }
 
+// Tachyon's texture hash keeps a name's first entry; VMD-style exports that
+// reuse names rely on it (lattice.dat: 17.8 dB before, 43.8 after).
+TEST(TachyonReader, ATextureNameDefinedAgainKeepsItsFirstDefinition) {
+  const SceneDesc d = parse_tachyon(scene_text("texdef m ambient 0.1 diffuse 0.9 specular 0 opacity 1 color 1 0 0 texfunc 0\n"
+                                               "texdef m ambient 0.1 diffuse 0.9 specular 0 opacity 1 color 0 0 1 texfunc 0\n"
+                                               "sphere center 0 0 3 rad 1 m\n"),
+                                    "t.dat");
+  ASSERT_EQ(d.objects.size(), 1u);
+  EXPECT_EQ(d.materials[static_cast<size_t>(d.objects[0].material)].colour, (Vec3{1, 0, 0}));
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_EQ(d.warnings[0], "t.dat:5:8: warning: texture 'm' defined again: Tachyon keeps the first definition");
+}
+
 TEST(TachyonReader, CompositeObjectsBecomeTheirPrimitives) {
   const std::string tex = " texture ambient 0.1 diffuse 0.9 specular 0 opacity 1 color 1 1 1 texfunc 0\n";
   const SceneDesc d = parse_tachyon(

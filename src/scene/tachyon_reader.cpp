@@ -265,10 +265,19 @@ class TachyonParser {
     return default_material_;
   }
 
+  // A name defined again keeps its first texture: Tachyon's texture hash
+  // does not replace an entry (VMD's exports reuse names past txt999, and
+  // lattice.dat renders wrong without this). Warned, since it surprises.
+  void name_texture(const Token& name, int material) {
+    const auto [it, fresh] = textures_.try_emplace(std::string(name.text), material);
+    if (!fresh)
+      warn(name.loc, fmt::format("texture '{}' defined again: Tachyon keeps the first definition", name.text));
+  }
+
   void texdef() {
     const Token name = tok().next();
     if (name.text.empty()) tok().fail_expected(name, "a texture name");
-    textures_[std::string(name.text)] = texture_body(name);
+    name_texture(name, texture_body(name));
   }
 
   void texalias() {
@@ -277,7 +286,7 @@ class TachyonParser {
     const Token old = tok().next();
     const auto it = textures_.find(std::string(old.text));
     if (it == textures_.end()) tok().fail(old.loc, fmt::format("expected a defined texture name, found {}", describe_token(old)));
-    textures_[std::string(name.text)] = it->second;
+    name_texture(name, it->second);
   }
 
   // AMBIENT a DIFFUSE d SPECULAR s OPACITY o [PHONG PLASTIC|METAL p PHONG_SIZE e]
