@@ -26,6 +26,22 @@ const char* kHeader =
 
 std::string scene_text(const std::string& body) { return std::string(kHeader) + body + "end_scene\n"; }
 
+// PSNR of holoray's pinhole view of tests/data/tachyon/`scene` (with
+// `options`) against tachyon-nox's picture of it (-aasamples 0), both run
+// from that folder. Fails the test when either program fails.
+double psnr_against_tachyon(const std::string& scene, const std::string& options) {
+  test::TempDir dir;
+  const std::string data = test::source_dir() + "/tests/data/tachyon/";
+  const auto ref = test::run_shell("cd " + data + " && tachyon-nox " + scene + " -aasamples 0 -format PNG -o " +
+                                   dir.file("tachyon.png"));
+  EXPECT_EQ(ref.status, 0) << ref.output;
+  const auto ours = test::run_cli("render " + data + scene + " --camera pinhole " + options + " -o " +
+                                  dir.file("holoray.png") + " -q");
+  EXPECT_EQ(ours.status, 0) << ours.output;
+  if (ref.status != 0 || ours.status != 0) return 0;
+  return compare_images(read_image(dir.file("holoray.png")), read_image(dir.file("tachyon.png"))).psnr_all();
+}
+
 std::string error_of(const std::string& text) {
   try {
     parse_tachyon(text, "t.dat");
@@ -269,21 +285,10 @@ TEST(TachyonShading, PacketAndSingleRayStylesGiveTheSameEia) {
 TEST(TachyonShading, AgreesWithTachyon) {
   if (test::run_shell("command -v tachyon-nox").status != 0)
     GTEST_SKIP() << "tachyon-nox is not installed (scripts/setup.sh installs it)";
-  test::TempDir dir;
-  const std::string data = test::source_dir() + "/tests/data/tachyon/";
-  const auto ref = test::run_shell("cd " + data + " && tachyon-nox shapes.dat -aasamples 0 -format PNG -o " +
-                                   dir.file("tachyon.png"));
-  ASSERT_EQ(ref.status, 0) << ref.output;
-  const auto ours = test::run_cli("render " + data + "shapes.dat --camera pinhole --sample-at tachyon -o " +
-                                  dir.file("holoray.png") + " -q");
-  ASSERT_EQ(ours.status, 0) << ours.output;
-  const ImageDifference diff = compare_images(read_image(dir.file("holoray.png")), read_image(dir.file("tachyon.png")));
-  EXPECT_GT(diff.psnr_all(), 35);
+  const double at_tachyons_samples = psnr_against_tachyon("shapes.dat", "--sample-at tachyon");
+  EXPECT_GT(at_tachyons_samples, 35);
   // Sampling at pixel centres shifts the picture by half a pixel: measurably worse.
-  const auto centred = test::run_cli("render " + data + "shapes.dat --camera pinhole -o " + dir.file("centre.png") + " -q");
-  ASSERT_EQ(centred.status, 0) << centred.output;
-  EXPECT_LT(compare_images(read_image(dir.file("centre.png")), read_image(dir.file("tachyon.png"))).psnr_all(),
-            diff.psnr_all() - 3);
+  EXPECT_LT(psnr_against_tachyon("shapes.dat", "--sample-at centre"), at_tachyons_samples - 3);
 }
 
 // The rest of what holoray reads (fog, a polygon file, a coloured vertex
@@ -292,15 +297,7 @@ TEST(TachyonShading, AgreesWithTachyon) {
 TEST(TachyonShading, FogPolygonFilesAndCurvedImageMapsAgreeWithTachyon) {
   if (test::run_shell("command -v tachyon-nox").status != 0)
     GTEST_SKIP() << "tachyon-nox is not installed (scripts/setup.sh installs it)";
-  test::TempDir dir;
-  const std::string data = test::source_dir() + "/tests/data/tachyon/";
-  const auto ref = test::run_shell("cd " + data + " && tachyon-nox extras.dat -aasamples 0 -format PNG -o " +
-                                   dir.file("tachyon.png"));
-  ASSERT_EQ(ref.status, 0) << ref.output;
-  const auto ours = test::run_cli("render " + data + "extras.dat --camera pinhole --sample-at tachyon -o " +
-                                  dir.file("holoray.png") + " -q");
-  ASSERT_EQ(ours.status, 0) << ours.output;
-  EXPECT_GT(compare_images(read_image(dir.file("holoray.png")), read_image(dir.file("tachyon.png"))).psnr_all(), 42);
+  EXPECT_GT(psnr_against_tachyon("extras.dat", "--sample-at tachyon"), 42);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "camera/camera.hpp"
 #include "math/vec.hpp"
+#include "scene/scene_desc.hpp"
 
 namespace holoray {
 
@@ -33,6 +34,12 @@ struct PinholeDesc {
   /// comparing with it pixel for pixel (tachyon-notes §2).
   double sample_u = 0.5, sample_v = 0.5;
 };
+
+/// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,
+/// mirrored), at `width` x `height` pixels.
+inline PinholeDesc view_of(const Viewpoint& vp, int width, int height) {
+  return PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, width, height, vp.mirrored};
+}
 
 /// A pinhole camera. Immutable after construction; safe to share between threads.
 class PinholeCamera final : public Camera {

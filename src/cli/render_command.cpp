@@ -132,7 +132,7 @@ int run_render(const RenderCommandOptions& o) {
         res_w = vp.xres > 0 ? vp.xres : 512;
         res_h = vp.yres > 0 ? vp.yres : 512;
       }
-      PinholeDesc pd{vp.from, vp.at, vp.up, vp.angle_deg, res_w, res_h, vp.mirrored};
+      PinholeDesc pd = view_of(vp, res_w, res_h);
       if (tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
       view.emplace(pd);
     } else {

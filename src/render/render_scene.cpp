@@ -24,13 +24,25 @@ bool is_dome(const SphereDesc& s, const SceneDesc& desc, const std::vector<Scene
 
 // Bounds of everything but planes, lights' spheres and sky domes, and the
 // first viewpoint's eye: the scale of the scene's precision, and what a
-// plane's square must reach beyond.
-Bounds3 finite_bounds(const std::vector<ScenePart>& parts) {
-  Bounds3 b;
+// plane's square must reach beyond. `left_out`: whether any object was
+// left out (then these bounds, not the BVH's, set epsilon).
+struct FiniteBounds {
+  Bounds3 bounds;
+  bool left_out = false;
+};
+
+FiniteBounds finite_bounds(const std::vector<ScenePart>& parts) {
+  FiniteBounds f;
+  Bounds3& b = f.bounds;
   for (const ScenePart& part : parts) {
     for (const ObjectDesc& obj : part.desc->objects) {
-      if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
-        if (!s->casts_shadow || is_dome(*s, *part.desc, parts)) continue;  // a light's sphere, a sky: not the scene
+      if (std::holds_alternative<PlaneDesc>(obj.shape)) {
+        f.left_out = true;
+      } else if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
+        if (!s->casts_shadow || is_dome(*s, *part.desc, parts)) {  // a light's sphere, a sky: not the scene
+          f.left_out = true;
+          continue;
+        }
         const double r = std::fabs(s->radius);
         b.extend(s->centre - Vec3{r, r, r});
         b.extend(s->centre + Vec3{r, r, r});
@@ -45,7 +57,7 @@ Bounds3 finite_bounds(const std::vector<ScenePart>& parts) {
     }
   }
   if (!parts.empty() && parts.front().desc->viewpoint) b.extend(parts.front().desc->viewpoint->from);
-  return b;
+  return f;
 }
 
 // A vertex normal as the shading reads it. NFF's `pp` rule turns it into the
@@ -132,8 +144,10 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   // Tachyon fogs what a ray misses as if it were infinitely far: the fog's
   // colour, unless an exponential fog has no density.
   if (fog_ && !(fog_->mode != FogDesc::Mode::linear && fog_->density <= 0)) background_ = fog_->colour;
-  const Bounds3 finite = finite_bounds(parts);
+  const FiniteBounds fb = finite_bounds(parts);
+  const Bounds3& finite = fb.bounds;
   const double plane_half = 1000 * coordinate_scale(finite);
+  if (fb.left_out) finite_scale_ = coordinate_scale(finite);
 
   for (const ScenePart& part : parts) {
     const SceneDesc& desc = *part.desc;
@@ -166,18 +180,15 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       object_material_.push_back(obj.material < 0 ? 0 : material_base + static_cast<uint32_t>(obj.material));
       const auto id = static_cast<uint32_t>(object_material_.size() - 1);
       if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
-        if (!s->casts_shadow || is_dome(*s, desc, parts)) finite_scale_ = coordinate_scale(finite);
         geo.spheres.push_back({s->centre, s->radius, s->casts_shadow});
         sphere_object_.push_back(id);
       } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
         geo.cones.push_back({c->base, c->apex, c->base_radius, c->apex_radius});
         cone_object_.push_back(id);
-      } else if (std::holds_alternative<TriangleMeshDesc>(obj.shape) || std::holds_alternative<PlaneDesc>(obj.shape)) {
-        if (std::holds_alternative<PlaneDesc>(obj.shape)) finite_scale_ = coordinate_scale(finite);
-        const TriangleMeshDesc& mesh = std::holds_alternative<PlaneDesc>(obj.shape)
-                                           ? plane_square(std::get<PlaneDesc>(obj.shape), finite, plane_half)
-                                           : std::get<TriangleMeshDesc>(obj.shape);
-        add_mesh(mesh, id, desc.shading, tris);
+      } else if (const auto* plane = std::get_if<PlaneDesc>(&obj.shape)) {
+        add_mesh(plane_square(*plane, finite, plane_half), id, desc.shading, tris);
+      } else if (const auto* mesh = std::get_if<TriangleMeshDesc>(&obj.shape)) {
+        add_mesh(*mesh, id, desc.shading, tris);
       } else {
         const auto& poly = std::get<PolygonDesc>(obj.shape);
         const Tessellation tess = tessellate_polygon(poly.vertices);

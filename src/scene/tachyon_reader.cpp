@@ -134,10 +134,18 @@ class TachyonParser {
     return v;
   }
 
-  // KEYWORD number: the pattern of most of Tachyon's fields.
+  // KEYWORD value: the pattern of most of Tachyon's fields.
   double keyed(std::string_view kw, std::string_view what) {
     expect_kw(kw);
     return tok().number(what);
+  }
+  Vec3 keyed_vec3(std::string_view kw, std::string_view what) {
+    expect_kw(kw);
+    return vec3(what);
+  }
+  Vec3 keyed_unit(std::string_view kw, std::string_view what) {
+    expect_kw(kw);
+    return unit(what);
   }
 
   Vec3 unit(std::string_view what) {
@@ -221,10 +229,8 @@ class TachyonParser {
     if (depth > 16) warn(d.loc, fmt::format("raydepth {} is past holoray's cap; 16 used", d.text));
     Viewpoint v;
     v.loc = kw.loc;
-    expect_kw("CENTER");
-    v.from = vec3("a camera centre coordinate");
-    expect_kw("VIEWDIR");
-    const Vec3 view = unit("view direction");
+    v.from = keyed_vec3("CENTER", "a camera centre coordinate");
+    const Vec3 view = keyed_unit("VIEWDIR", "view direction");
     const Token up_tok = expect_kw("UPDIR");
     v.up = vec3("an up direction component");
     if (!(length(cross(v.up, view)) > 1e-12 * length(v.up)))
@@ -347,12 +353,9 @@ class TachyonParser {
   }
 
   void placement(TextureDesc& t) {
-    expect_kw("CENTER");
-    t.centre = vec3("a texture centre coordinate");
-    expect_kw("ROTATE");
-    t.rotate = vec3("a texture rotation component");
-    expect_kw("SCALE");
-    t.scale = vec3("a texture scale component");
+    t.centre = keyed_vec3("CENTER", "a texture centre coordinate");
+    t.rotate = keyed_vec3("ROTATE", "a texture rotation component");
+    t.scale = keyed_vec3("SCALE", "a texture scale component");
   }
 
   int procedural(const Token& at, long func) {
@@ -376,10 +379,8 @@ class TachyonParser {
     if (file.text.empty()) tok().fail_expected(file, "an image file name");
     placement(t);
     if (t.kind == TextureDesc::Kind::planar_image) {
-      expect_kw("UAXIS");
-      t.uaxis = vec3("a u axis component");
-      expect_kw("VAXIS");
-      t.vaxis = vec3("a v axis component");
+      t.uaxis = keyed_vec3("UAXIS", "a u axis component");
+      t.vaxis = keyed_vec3("VAXIS", "a v axis component");
     }
     t.image = image(file);
     scene_.textures.push_back(t);
@@ -441,15 +442,13 @@ class TachyonParser {
     Light l;
     l.loc = kw.loc;
     l.kind = kind;
-    expect_kw("CENTER");
-    l.position = vec3("a light centre coordinate");
+    l.position = keyed_vec3("CENTER", "a light centre coordinate");
     expect_kw("RAD");
     const Token rad_tok = tok().peek();
     const double radius = tok().number("the light radius");
     if (radius < 0) tok().fail(rad_tok.loc, fmt::format("expected a light radius >= 0, found {}", rad_tok.text));
     if (kind == LightKind::spot) {
-      expect_kw("DIRECTION");
-      l.direction = unit("spotlight direction");
+      l.direction = keyed_unit("DIRECTION", "spotlight direction");
       expect_kw("FALLOFF_START");
       const double start = tok().number("the falloff start angle (degrees)");
       expect_kw("FALLOFF_END");
@@ -489,10 +488,8 @@ class TachyonParser {
     Light l;
     l.loc = kw.loc;
     l.kind = LightKind::directional;
-    expect_kw("DIRECTION");
-    l.direction = unit("light direction");
-    expect_kw("COLOR");
-    l.colour = vec3("a light colour component");
+    l.direction = keyed_unit("DIRECTION", "light direction");
+    l.colour = keyed_vec3("COLOR", "a light colour component");
     add_light(kw, l);
   }
 
@@ -520,10 +517,8 @@ class TachyonParser {
   // Tachyon's fcylinder is open (no caps), like NFF's cone with equal radii.
   void fcylinder(const Token& kw) {
     ConeDesc c;
-    expect_kw("BASE");
-    c.base = vec3("a cylinder base coordinate");
-    expect_kw("APEX");
-    c.apex = vec3("a cylinder apex coordinate");
+    c.base = keyed_vec3("BASE", "a cylinder base coordinate");
+    c.apex = keyed_vec3("APEX", "a cylinder apex coordinate");
     if (c.base == c.apex) tok().fail(kw.loc, "expected distinct cylinder base and apex, found the same point");
     expect_kw("RAD");
     c.base_radius = c.apex_radius = positive("cylinder radius");
@@ -553,10 +548,8 @@ class TachyonParser {
   // which keeps its edge within 8e-5 of its radius, under a pixel in any
   // view that shows the whole ring.
   void ring(const Token& kw) {
-    expect_kw("CENTER");
-    const Vec3 c = vec3("a ring centre coordinate");
-    expect_kw("NORMAL");
-    const Vec3 n = unit("ring normal");
+    const Vec3 c = keyed_vec3("CENTER", "a ring centre coordinate");
+    const Vec3 n = keyed_unit("NORMAL", "ring normal");
     expect_kw("INNER");
     const Token in_tok = tok().peek();
     const double inner = tok().number("the inner radius");
@@ -584,19 +577,15 @@ class TachyonParser {
 
   void plane(const Token& kw) {
     PlaneDesc p;
-    expect_kw("CENTER");
-    p.point = vec3("a plane centre coordinate");
-    expect_kw("NORMAL");
-    p.normal = unit("plane normal");
+    p.point = keyed_vec3("CENTER", "a plane centre coordinate");
+    p.normal = keyed_unit("NORMAL", "plane normal");
     add(kw, p, texture_ref());
   }
 
   // An axis-aligned box as 12 outward-facing triangles.
   void box(const Token& kw) {
-    expect_kw("MIN");
-    const Vec3 lo = vec3("a box corner coordinate");
-    expect_kw("MAX");
-    const Vec3 hi = vec3("a box corner coordinate");
+    const Vec3 lo = keyed_vec3("MIN", "a box corner coordinate");
+    const Vec3 hi = keyed_vec3("MAX", "a box corner coordinate");
     const Vec3 a{std::fmin(lo.x, hi.x), std::fmin(lo.y, hi.y), std::fmin(lo.z, hi.z)};
     const Vec3 b{std::fmax(lo.x, hi.x), std::fmax(lo.y, hi.y), std::fmax(lo.z, hi.z)};
     if (!(a.x < b.x && a.y < b.y && a.z < b.z)) tok().fail(kw.loc, "expected a box with volume, found a flat or empty one");
@@ -614,15 +603,9 @@ class TachyonParser {
 
   void triangle(const Token& kw, bool smooth) {
     PolygonDesc p;
-    for (const char* v : {"V0", "V1", "V2"}) {
-      expect_kw(v);
-      p.vertices.push_back(vec3("a vertex coordinate"));
-    }
+    for (const char* v : {"V0", "V1", "V2"}) p.vertices.push_back(keyed_vec3(v, "a vertex coordinate"));
     if (smooth)
-      for (const char* n : {"N0", "N1", "N2"}) {
-        expect_kw(n);
-        p.normals.push_back(vec3("a vertex normal component"));
-      }
+      for (const char* n : {"N0", "N1", "N2"}) p.normals.push_back(keyed_vec3(n, "a vertex normal component"));
     if (length(cross(p.vertices[1] - p.vertices[0], p.vertices[2] - p.vertices[0])) == 0)
       warn(kw.loc, "triangle with no area (collinear or repeated vertices), skipped");
     add(kw, std::move(p), texture_ref());
@@ -633,12 +616,9 @@ class TachyonParser {
   // InitRot3d of r degrees (reproduced as it is, rz1 = sin(ry) included) and
   // moved by c, wound v1 v0 v2 (parse.c, GetTPolyFile).
   void tpolyfile(const Token& kw) {
-    expect_kw("SCALE");
-    const Vec3 scale = vec3("a scale component");
-    expect_kw("ROT");
-    const Vec3 r = vec3("a rotation angle (degrees)") * (3.1415926 / 180.0);
-    expect_kw("CENTER");
-    const Vec3 centre = vec3("a centre coordinate");
+    const Vec3 scale = keyed_vec3("SCALE", "a scale component");
+    const Vec3 r = keyed_vec3("ROT", "a rotation angle (degrees)") * (3.1415926 / 180.0);
+    const Vec3 centre = keyed_vec3("CENTER", "a centre coordinate");
     expect_kw("FILE");
     const Token name = tok().next();
     if (name.text.empty()) tok().fail_expected(name, "a polygon file name");
@@ -694,8 +674,7 @@ class TachyonParser {
     if (f.mode == FogDesc::Mode::linear && !off && !(f.end > f.start))
       tok().fail(e.loc, fmt::format("expected a fog end past its start ({}), found {}", f.start, e.text));
     f.density = keyed("DENSITY", "the fog density");
-    expect_kw("COLOR");
-    f.colour = vec3("a fog colour component");
+    f.colour = keyed_vec3("COLOR", "a fog colour component");
     if (off) scene_.fog.reset();
     else scene_.fog = f;
   }
@@ -704,18 +683,9 @@ class TachyonParser {
   // smooth triangle coloured by its vertices.
   void vcstri(const Token& kw) {
     TriangleMeshDesc m;
-    for (const char* v : {"V0", "V1", "V2"}) {
-      expect_kw(v);
-      m.vertices.push_back(vec3("a vertex coordinate"));
-    }
-    for (const char* n : {"N0", "N1", "N2"}) {
-      expect_kw(n);
-      m.normals.push_back(vec3("a vertex normal component"));
-    }
-    for (const char* c : {"C0", "C1", "C2"}) {
-      expect_kw(c);
-      m.colours.push_back(vec3("a vertex colour component"));
-    }
+    for (const char* v : {"V0", "V1", "V2"}) m.vertices.push_back(keyed_vec3(v, "a vertex coordinate"));
+    for (const char* n : {"N0", "N1", "N2"}) m.normals.push_back(keyed_vec3(n, "a vertex normal component"));
+    for (const char* c : {"C0", "C1", "C2"}) m.colours.push_back(keyed_vec3(c, "a vertex colour component"));
     m.triangles.push_back({0, 1, 2});
     const int material = texture_body(kw, true);
     add(kw, std::move(m), material);

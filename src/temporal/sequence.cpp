@@ -89,8 +89,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       if (opt.pinhole) {
         shot.seek(f);
         const Viewpoint vp = shot.viewpoint(f);
-        const PinholeCamera view(
-            PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, (*opt.pinhole)[0], (*opt.pinhole)[1], vp.mirrored});
+        const PinholeCamera view(view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1]));
         RenderOptions ro;
         ro.spp = shot.shot().spp;
         ro.threads = opt.threads;
