@@ -16,8 +16,8 @@ median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
   echo
   echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); 2048x2048 EIA, 128x128 lenses x 16 px, cells of one lens pitch; $ROUNDS rounds alternated, medians of the trace time."
   echo
-  echo "| scene | off s | on s | speed-up | PSNR dB | queries by cells | by occluder hints | traced | sample rays | cache MiB |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| scene | off s | on s | speed-up | PSNR dB | queries by cells | traced | sample rays | cache MiB |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 } > bench/cache_results.md
 for scene in balls_s4 gears_s4 teapot_s6 tree_s11; do
   f=../shared/scenes/nff/$scene.nff
@@ -30,7 +30,7 @@ for scene in balls_s4 gears_s4 teapot_s6 tree_s11; do
   off=$(median < "$tmp/$scene.off"); on=$(median < "$tmp/$scene.on")
   psnr=$("$bin" compare "$tmp/off.exr" "$tmp/on.exr" | awk '/^all/ {print $4}')
   line=$(grep '^cache' "$tmp/on.log")
-  shares=$(sed -E 's/.*: ([0-9.]+)% by cells, ([0-9.]+)% by occluder hints, ([0-9.]+)% traced; ([0-9]+) sample rays.*/\1% | \2% | \3% | \4/' <<<"$line")
+  shares=$(sed -E 's/.*: ([0-9.]+)% by cells, ([0-9.]+)% traced; ([0-9]+) sample rays.*/\1% | \2% | \3/' <<<"$line")
   mib=$(sed -E 's/.* ([0-9.]+) MiB .*/\1/' <<<"$line")
   echo "| $scene | $off | $on | $(awk -v a="$off" -v b="$on" 'BEGIN {printf "%.2fx", a / b}') | $psnr | $shares | $mib |" >> bench/cache_results.md
   echo "$scene: off $off s, on $on s, PSNR $psnr dB"

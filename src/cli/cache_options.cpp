@@ -36,10 +36,10 @@ std::string cache_summary(const ShadowCache& cache, const RayCounts& r, const Ca
   const auto& cells = cache.cells();
   return fmt::format(
       "cache      {} cells of {:.4g} units, {:.1f} MiB (bound {:g} MiB){}; shadow queries {}: {:.1f}% by cells, "
-      "{:.1f}% by occluder hints, {:.1f}% traced; {} sample rays\n",
+      "{:.1f}% traced; {} sample rays\n",
       cells.slot_count(), cells.cell_size(), cache.bytes() / 1048576.0, o.memory_mib,
       cells.uncovered_primitives() ? fmt::format(", {} primitives uncovered", cells.uncovered_primitives()) : "",
-      r.shadow_queries(), 100.0 * r.shadow_cached / q, 100.0 * r.shadow_hinted / q, 100.0 * r.shadow / q,
+      r.shadow_queries(), 100.0 * r.shadow_cached / q, 100.0 * r.shadow / q,
       r.cache_samples);
 }
 

@@ -11,22 +11,20 @@ struct RayCounts {
   uint64_t shadow = 0;     ///< shadow rays traced through the BVH
   uint64_t reflected = 0;  ///< mirror rays, and total-internal-reflection rays
   uint64_t refracted = 0;
-  /// Shadow cache: shadow queries answered by a whole cell (no ray), answered
-  /// by the cell's occluder hint (one primitive tested, no BVH), and the
+  /// Shadow cache: shadow queries answered by a whole cell (no ray), and the
   /// sample rays that classified cells (traced through the BVH).
-  uint64_t shadow_cached = 0, shadow_hinted = 0, cache_samples = 0;
+  uint64_t shadow_cached = 0, cache_samples = 0;
 
   /// Rays traced through the BVH.
   uint64_t total() const { return eye + shadow + reflected + refracted + cache_samples; }
   /// Shadow questions asked, however answered.
-  uint64_t shadow_queries() const { return shadow + shadow_cached + shadow_hinted; }
+  uint64_t shadow_queries() const { return shadow + shadow_cached; }
   RayCounts& operator+=(const RayCounts& o) {
     eye += o.eye;
     shadow += o.shadow;
     reflected += o.reflected;
     refracted += o.refracted;
     shadow_cached += o.shadow_cached;
-    shadow_hinted += o.shadow_hinted;
     cache_samples += o.cache_samples;
     return *this;
   }

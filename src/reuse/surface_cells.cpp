@@ -66,18 +66,56 @@ Vec3 square_unmap(int face, double s, const Vec3& e1, const Vec3& e2) {
   }
 }
 
-// A square patch's samples in the layout samples() documents: its corners
-// (i, j), (i+1, j), (i, j+1), (i+1, j+1), then its centre; at(a, b) maps
-// patch coordinates to a sample.
-template <class At>
-int patch_samples(int i, int j, At&& at, CellSample out[SurfaceCells::kMaxSamples]) {
-  out[0] = at(i, j);
-  out[1] = at(i + 1, j);
-  out[2] = at(i, j + 1);
-  out[3] = at(i + 1, j + 1);
-  out[4] = at(i + 0.5, j + 0.5);
-  return 5;
+// Where cell `local` of an n x n (or, for cones, n x m) grid of square
+// patches lies: its face and its lower corner (i, j).
+struct PatchCell {
+  int face, i, j;
+};
+
+PatchCell sphere_cell(uint32_t local, int n) {
+  const int face = static_cast<int>(local) / (n * n), rest = static_cast<int>(local) % (n * n);
+  return {face, rest / n, rest % n};
 }
+
+PatchCell cone_cell(uint32_t local, int m) {
+  return {static_cast<int>(local) / m % 4, static_cast<int>(local) / (4 * m), static_cast<int>(local) % m};
+}
+
+// The point of a sphere's cube-map face at grid coordinates (fi, fj) of n.
+CellSample sphere_at(const Sphere& s, int face, int n, double fi, double fj) {
+  const int axis = face / 2;
+  const double sign = face % 2 ? -1 : 1;
+  int a, b;
+  face_axes(axis, a, b);
+  const double sa = -1 + 2 * fi / n, sb = -1 + 2 * fj / n;
+  const Vec3 d = normalize(axis_vec(axis, sign) + axis_vec(a, sa) + axis_vec(b, sb));
+  return {s.centre + d * std::fabs(s.radius), d};
+}
+
+// The point of a cone at grid coordinates (fh of n along the axis, fi of m
+// across the square-map face).
+CellSample cone_at(const Cone& cone, int face, int n, int m, double fh, double fi) {
+  Vec3 ax, e1, e2;
+  double len;
+  cone_frame(cone, ax, len, e1, e2);
+  const double h = fh / n;
+  const Vec3 radial = square_unmap(face, -1 + 2 * fi / m, e1, e2);
+  // Negative radii only turn which side is visible, not where the surface is.
+  const double rb = std::fabs(cone.base_radius), ra = std::fabs(cone.apex_radius);
+  const double r = rb + (ra - rb) * h;
+  // Normal of the surface base + ax*h*len + radial*r(h): across the circle
+  // and the slope both.
+  const Vec3 nrm = normalize(radial * len - ax * (ra - rb));
+  return {cone.base + ax * (h * len) + radial * r, nrm};
+}
+
+// Vertex (a, b), a + b <= n, of a triangle's barycentric grid, numbered row
+// by row: row a holds n + 1 - a vertices.
+uint64_t triangle_vertex(int n, int a, int b) {
+  return uint64_t(a) * (n + 1) - uint64_t(a) * (a - 1) / 2 + b;
+}
+
+uint64_t triangle_vertices(int n) { return uint64_t(n + 1) * (n + 2) / 2; }
 
 }  // namespace
 
@@ -91,15 +129,18 @@ SurfaceCells::SurfaceCells(const AccelScene& accel, double cell_size, uint64_t m
 }
 
 uint64_t SurfaceCells::build(double c, uint64_t max_slots) {
-  slots_ = uncovered_ = 0;
+  slots_ = vertices_ = uncovered_ = 0;
   for (auto& k : prims_) k.assign(accel_.group_count(), {});
-  auto place = [&](PrimCells& pc, uint64_t count) {
-    if (slots_ + count > max_slots) {
+  cone_frames_.assign(accel_.group_count(), {});
+  auto place = [&](PrimCells& pc, uint64_t count, uint64_t vertices) {
+    if (slots_ + vertices_ + count + vertices > max_slots) {
       ++uncovered_;
       return;
     }
     pc.first = slots_;
+    pc.first_vertex = vertices_;
     slots_ += count;
+    vertices_ += vertices;
   };
   for (uint32_t g = 0; g < accel_.group_count(); ++g) {
     const GeometryGroup& geo = accel_.geometry(g);
@@ -112,22 +153,25 @@ uint64_t SurfaceCells::build(double c, uint64_t max_slots) {
       // get few cells, not (longest edge / c)^2 of them.
       const double area = 0.5 * length(cross(v1 - v0, v2 - v0));
       tp[t].n = static_cast<uint16_t>(cells_for(std::sqrt(2 * area), c));
-      place(tp[t], 2 * uint64_t{tp[t].n} * tp[t].n);
+      place(tp[t], 2 * uint64_t{tp[t].n} * tp[t].n, triangle_vertices(tp[t].n));
     }
     auto& sp = prims_[1][g];
     sp.resize(geo.spheres.size());
     for (size_t k = 0; k < geo.spheres.size(); ++k) {
       sp[k].n = static_cast<uint16_t>(cells_for(std::fabs(geo.spheres[k].radius) * kQuarterTurn, c));
-      place(sp[k], 6 * uint64_t{sp[k].n} * sp[k].n);
+      place(sp[k], 6 * uint64_t{sp[k].n} * sp[k].n, 6 * uint64_t(sp[k].n + 1) * (sp[k].n + 1));
     }
     auto& cp = prims_[2][g];
     cp.resize(geo.cones.size());
+    cone_frames_[g].resize(geo.cones.size());
     for (size_t k = 0; k < geo.cones.size(); ++k) {
       const Cone& cone = geo.cones[k];
+      ConeFrame& cf = cone_frames_[g][k];
+      cone_frame(cone, cf.axis, cf.length, cf.e1, cf.e2);
       const double r = std::max(std::fabs(cone.base_radius), std::fabs(cone.apex_radius));
       cp[k].n = static_cast<uint16_t>(cells_for(length(cone.apex - cone.base), c));
       cp[k].m = static_cast<uint16_t>(cells_for(r * kQuarterTurn, c));
-      place(cp[k], 4 * uint64_t{cp[k].n} * cp[k].m);
+      place(cp[k], 4 * uint64_t{cp[k].n} * cp[k].m, 4 * uint64_t(cp[k].n + 1) * (cp[k].m + 1));
     }
   }
   return slots_;
@@ -164,9 +208,9 @@ CellRef SurfaceCells::locate(uint32_t group, PrimKind kind, uint32_t prim, doubl
     }
     case PrimKind::cone: {
       const Cone& cone = geo.cones[prim];
-      Vec3 ax, e1, e2;
-      double len;
-      cone_frame(cone, ax, len, e1, e2);
+      const ConeFrame& cf = cone_frames_[group][prim];
+      const Vec3 &ax = cf.axis, &e1 = cf.e1, &e2 = cf.e2;
+      const double len = cf.length;
       const Vec3 r = p_object - cone.base;
       const double h = len > 0 ? dot(r, ax) / len : 0;
       int face;
@@ -181,8 +225,8 @@ CellRef SurfaceCells::locate(uint32_t group, PrimKind kind, uint32_t prim, doubl
   return ref;
 }
 
-int SurfaceCells::samples(uint32_t group, PrimKind kind, uint32_t prim, uint32_t local,
-                          CellSample out[kMaxSamples]) const {
+int SurfaceCells::corners(uint32_t group, PrimKind kind, uint32_t prim, uint32_t local,
+                          CellCorner out[kMaxCorners]) const {
   const PrimCells& pc = prims_[static_cast<int>(kind)][group][prim];
   const GeometryGroup& geo = accel_.geometry(group);
   switch (kind) {
@@ -193,53 +237,69 @@ int SurfaceCells::samples(uint32_t group, PrimKind kind, uint32_t prim, uint32_t
       const Vec3 v0 = vertex(geo.triangles, prim, 0);
       const Vec3 e1 = vertex(geo.triangles, prim, 1) - v0, e2 = vertex(geo.triangles, prim, 2) - v0;
       const Vec3 normal = normalize(cross(e1, e2));
-      auto at = [&](int a, int b) { return v0 + e1 * (static_cast<double>(a) / n) + e2 * (static_cast<double>(b) / n); };
-      const Vec3 c0 = upper ? at(i + 1, j) : at(i, j), c1 = upper ? at(i, j + 1) : at(i + 1, j),
-                 c2 = upper ? at(i + 1, j + 1) : at(i, j + 1);
-      out[0] = {c0, normal};
-      out[1] = {c1, normal};
-      out[2] = {c2, normal};
-      out[3] = {(c0 + c1 + c2) / 3.0, normal};
-      return 4;
+      auto at = [&](int a, int b) {
+        return CellCorner{pc.first_vertex + triangle_vertex(n, a, b),
+                          {v0 + e1 * (static_cast<double>(a) / n) + e2 * (static_cast<double>(b) / n), normal}};
+      };
+      if (upper) {
+        out[0] = at(i + 1, j), out[1] = at(i, j + 1), out[2] = at(i + 1, j + 1);
+      } else {
+        out[0] = at(i, j), out[1] = at(i + 1, j), out[2] = at(i, j + 1);
+      }
+      return 3;
     }
     case PrimKind::sphere: {
       const int n = pc.n;
-      const Sphere& s = geo.spheres[prim];
-      const int face = static_cast<int>(local) / (n * n), rest = static_cast<int>(local) % (n * n);
-      const int i = rest / n, j = rest % n, axis = face / 2;
-      const double sign = face % 2 ? -1 : 1;
-      int a, b;
-      face_axes(axis, a, b);
-      auto at = [&](double fi, double fj) {
-        const double sa = -1 + 2 * fi / n, sb = -1 + 2 * fj / n;
-        const Vec3 d = normalize(axis_vec(axis, sign) + axis_vec(a, sa) + axis_vec(b, sb));
-        return CellSample{s.centre + d * std::fabs(s.radius), d};
-      };
-      return patch_samples(i, j, at, out);
+      const PatchCell c = sphere_cell(local, n);
+      const uint64_t face_base = pc.first_vertex + uint64_t(c.face) * (n + 1) * (n + 1);
+      for (int k = 0; k < 4; ++k) {
+        const int a = c.i + (k & 1), b = c.j + (k >> 1);
+        out[k] = {face_base + uint64_t(a) * (n + 1) + b, sphere_at(geo.spheres[prim], c.face, n, a, b)};
+      }
+      return 4;
     }
     case PrimKind::cone: {
-      const Cone& cone = geo.cones[prim];
-      const int m = pc.m;
-      const int hi = static_cast<int>(local) / (4 * m), face = static_cast<int>(local) / m % 4,
-                i = static_cast<int>(local) % m;
-      Vec3 ax, e1, e2;
-      double len;
-      cone_frame(cone, ax, len, e1, e2);
-      auto at = [&](double fh, double fi) {
-        const double h = fh / pc.n;
-        const Vec3 radial = square_unmap(face, -1 + 2 * fi / m, e1, e2);
-        // Negative radii only turn which side is visible, not where the surface is.
-        const double rb = std::fabs(cone.base_radius), ra = std::fabs(cone.apex_radius);
-        const double r = rb + (ra - rb) * h;
-        // Normal of the surface base + ax*h*len + radial*r(h): across the
-        // circle and the slope both.
-        const Vec3 n = normalize(radial * len - ax * (ra - rb));
-        return CellSample{cone.base + ax * (h * len) + radial * r, n};
-      };
-      return patch_samples(hi, i, at, out);
+      const int n = pc.n, m = pc.m;
+      const PatchCell c = cone_cell(local, m);
+      const uint64_t face_base = pc.first_vertex + uint64_t(c.face) * (n + 1) * (m + 1);
+      for (int k = 0; k < 4; ++k) {
+        const int a = c.i + (k & 1), b = c.j + (k >> 1);
+        out[k] = {face_base + uint64_t(a) * (m + 1) + b, cone_at(geo.cones[prim], c.face, n, m, a, b)};
+      }
+      return 4;
     }
   }
   return 0;
+}
+
+CellSample SurfaceCells::centre(uint32_t group, PrimKind kind, uint32_t prim, uint32_t local) const {
+  const PrimCells& pc = prims_[static_cast<int>(kind)][group][prim];
+  const GeometryGroup& geo = accel_.geometry(group);
+  switch (kind) {
+    case PrimKind::triangle: {
+      CellCorner c[kMaxCorners];
+      corners(group, kind, prim, local, c);
+      return {(c[0].sample.p_object + c[1].sample.p_object + c[2].sample.p_object) / 3.0, c[0].sample.n_object};
+    }
+    case PrimKind::sphere: {
+      const PatchCell p = sphere_cell(local, pc.n);
+      return sphere_at(geo.spheres[prim], p.face, pc.n, p.i + 0.5, p.j + 0.5);
+    }
+    case PrimKind::cone: {
+      const PatchCell p = cone_cell(local, pc.m);
+      return cone_at(geo.cones[prim], p.face, pc.n, pc.m, p.i + 0.5, p.j + 0.5);
+    }
+  }
+  return {};
+}
+
+int SurfaceCells::samples(uint32_t group, PrimKind kind, uint32_t prim, uint32_t local,
+                          CellSample out[kMaxSamples]) const {
+  CellCorner c[kMaxCorners];
+  const int n = corners(group, kind, prim, local, c);
+  for (int k = 0; k < n; ++k) out[k] = c[k].sample;
+  out[n] = centre(group, kind, prim, local);
+  return n + 1;
 }
 
 }  // namespace holoray
