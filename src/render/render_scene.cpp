@@ -133,9 +133,22 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   std::vector<GeometryGroup> groups;
   // NFF's ambient and per-light intensity come from the count of NFF lights
   // (nff-notes §4); Tachyon lights shine with their colour as written.
+  // A reader's stand-in light (Light::headlight) only where no file has a
+  // light, and one at most: a shot of several mesh files is lit once.
+  bool own_lights = false;
+  for (const ScenePart& part : parts)
+    for (const Light& l : part.desc->lights) own_lights |= !l.headlight;
+  bool headlight_kept = false;
+  auto keep = [&](const Light& l) {
+    if (!l.headlight) return true;
+    if (own_lights || headlight_kept) return false;
+    return headlight_kept = true;
+  };
   size_t light_count = 0;
   for (const ScenePart& part : parts)
-    if (part.desc->shading == ShadingModel::nff) light_count += part.desc->lights.size();
+    for (const Light& l : part.desc->lights)
+      if (keep(l) && part.desc->shading == ShadingModel::nff) ++light_count;
+  headlight_kept = false;
   const double level = 1.0 / (2.0 * std::sqrt(static_cast<double>(std::max<size_t>(1, light_count))));
   ambient_ = Vec3{level, level, level};
   if (!parts.empty()) background_ = parts.front().desc->background;
@@ -167,8 +180,9 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
     for (const ImageMap& img : desc.images) mips_.emplace_back(img);
     const double intensity = desc.shading == ShadingModel::nff ? level : 1.0;
     for (const Light& l : desc.lights)
-      lights_.push_back({l.position, l.colour * intensity, l.kind, l.direction, l.kc, l.kl, l.kq, l.fall_start,
-                         l.fall_end});
+      if (keep(l))
+        lights_.push_back({l.position, l.colour * intensity, l.kind, l.direction, l.kc, l.kl, l.kq, l.fall_start,
+                           l.fall_end});
     group_base_.push_back({static_cast<uint32_t>(tri_object_.size()), static_cast<uint32_t>(sphere_object_.size()),
                            static_cast<uint32_t>(cone_object_.size())});
     GeometryGroup& geo = groups.emplace_back();

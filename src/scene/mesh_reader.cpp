@@ -38,11 +38,25 @@ struct Xform {
   Vec3 norm(const aiVector3D& n) const { return normalize(to_vec(normal * n)); }
 };
 
+Affine to_affine(const aiMatrix4x4& a) {
+  Affine m;
+  m.m = {a.a1, a.a2, a.a3, a.b1, a.b2, a.b3, a.c1, a.c2, a.c3};
+  m.translation = {a.a4, a.b4, a.c4};
+  return m;
+}
+
+bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
 class MeshReader {
  public:
-  MeshReader(const aiScene& s, std::string source, bool gltf, const MeshLimits& limits)
-      : s_(s), limits_(limits), gltf_(gltf) {
+  MeshReader(const aiScene& s, std::string source, bool gltf, const MeshLimits& limits, MeshAnimation* animation)
+      : s_(s), limits_(limits), gltf_(gltf), animation_(animation) {
     out_.source = std::move(source);
+    if (animation_ && s_.mNumAnimations > 0) read_animation(*s_.mAnimations[0]);
+    if (!animation_ && s_.mNumAnimations > 0)
+      warn("its node animation is not played in a still (nodes stand at rest); a shot plays it (holoray animate)");
+    if (animation_ && s_.mNumAnimations > 1)
+      warn(fmt::format("{} animations: only the first is played", s_.mNumAnimations));
   }
 
   SceneDesc read() {
@@ -54,7 +68,7 @@ class MeshReader {
       throw std::runtime_error(fmt::format("cannot read '{}': {} triangles, over the limit of {}", out_.source, triangles,
                                            limits_.max_triangles));
     out_.objects.reserve(static_cast<size_t>(triangles));
-    walk(s_.mRootNode, aiMatrix4x4());
+    walk(s_.mRootNode, aiMatrix4x4(), aiMatrix4x4(), -1);
     read_lights();
     read_camera();
     return std::move(out_);
@@ -117,16 +131,73 @@ class MeshReader {
     for (unsigned k = 0; k < node->mNumChildren; ++k) count(node->mChildren[k], triangles);
   }
 
-  void walk(const aiNode* node, const aiMatrix4x4& parent) {
-    const aiMatrix4x4 world = parent * node->mTransformation;
-    global_[node->mName.C_Str()] = world;
-    Xform xf{world, aiMatrix3x3(world)};
-    xf.normal.Inverse().Transpose();
-    for (unsigned k = 0; k < node->mNumMeshes; ++k) add_mesh(*s_.mMeshes[node->mMeshes[k]], xf);
-    for (unsigned k = 0; k < node->mNumChildren; ++k) walk(node->mChildren[k], world);
+  // The keys of each channel, in seconds, by node name.
+  void read_animation(const aiAnimation& anim) {
+    const double tps = anim.mTicksPerSecond > 0 ? anim.mTicksPerSecond : 25.0;  // assimp's documented fallback
+    animation_->duration_s = anim.mDuration / tps;
+    for (unsigned c = 0; c < anim.mNumChannels; ++c) {
+      const aiNodeAnim& ch = *anim.mChannels[c];
+      NodeTrack track;
+      auto time = [&](double ticks, const char* what) {
+        if (!std::isfinite(ticks))
+          throw std::runtime_error(fmt::format("cannot read '{}': node '{}' has a {} key at a time that is not finite",
+                                               out_.source, ch.mNodeName.C_Str(), what));
+        return ticks / tps;
+      };
+      auto bad = [&](const char* what) {
+        return std::runtime_error(fmt::format("cannot read '{}': node '{}' has a {} key that is not finite", out_.source,
+                                              ch.mNodeName.C_Str(), what));
+      };
+      for (unsigned k = 0; k < ch.mNumPositionKeys; ++k) {
+        if (!finite(ch.mPositionKeys[k].mValue)) throw bad("translation");
+        track.translation.emplace_back(time(ch.mPositionKeys[k].mTime, "translation"), to_vec(ch.mPositionKeys[k].mValue));
+      }
+      for (unsigned k = 0; k < ch.mNumScalingKeys; ++k) {
+        if (!finite(ch.mScalingKeys[k].mValue)) throw bad("scale");
+        track.scale.emplace_back(time(ch.mScalingKeys[k].mTime, "scale"), to_vec(ch.mScalingKeys[k].mValue));
+      }
+      for (unsigned k = 0; k < ch.mNumRotationKeys; ++k) {
+        const aiQuaternion& q = ch.mRotationKeys[k].mValue;
+        if (!(std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z))) throw bad("rotation");
+        track.rotation.emplace_back(time(ch.mRotationKeys[k].mTime, "rotation"), Quaternion{q.w, q.x, q.y, q.z});
+      }
+      auto by_time = [](const auto& a, const auto& b) { return a.first < b.first; };
+      std::stable_sort(track.translation.begin(), track.translation.end(), by_time);
+      std::stable_sort(track.scale.begin(), track.scale.end(), by_time);
+      std::stable_sort(track.rotation.begin(), track.rotation.end(), by_time);
+      track_of_[ch.mNodeName.C_Str()] = static_cast<int>(animation_->tracks.size());
+      animation_->tracks.push_back(std::move(track));
+    }
   }
 
-  void add_mesh(const aiMesh& mesh, const Xform& xf) {
+  // `world`: the parent's rest transform to the file's frame (lights,
+  // cameras, the default view); `rel`: the parent's transform to the frame
+  // of the moving part it belongs to (part -1: the file's, standing still).
+  // An animated node starts a part of its own: its track replaces its rest
+  // transform.
+  void walk(const aiNode* node, const aiMatrix4x4& parent_world, const aiMatrix4x4& parent_rel, int part) {
+    const aiMatrix4x4 world = parent_world * node->mTransformation;
+    global_[node->mName.C_Str()] = world;
+    aiMatrix4x4 rel = parent_rel * node->mTransformation;
+    if (const auto it = track_of_.find(node->mName.C_Str()); it != track_of_.end()) {
+      MeshAnimation::Part p;
+      p.node = node->mName.C_Str();
+      p.scene.source = out_.source;
+      if (part >= 0) p.chain = animation_->parts[static_cast<size_t>(part)].chain;
+      p.chain.push_back({to_affine(parent_rel), it->second});
+      part = static_cast<int>(animation_->parts.size());
+      animation_->parts.push_back(std::move(p));
+      rel = aiMatrix4x4();
+    }
+    Xform xf{rel, aiMatrix3x3(rel)};
+    xf.normal.Inverse().Transpose();
+    SceneDesc& target = part < 0 ? out_ : animation_->parts[static_cast<size_t>(part)].scene;
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) add_mesh(*s_.mMeshes[node->mMeshes[k]], xf, world, target);
+    for (unsigned k = 0; k < node->mNumChildren; ++k) walk(node->mChildren[k], world, rel, part);
+  }
+
+  // `xf` places the vertices in `target`'s frame; `world` (rest) bounds the default view.
+  void add_mesh(const aiMesh& mesh, const Xform& xf, const aiMatrix4x4& world, SceneDesc& target) {
     if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) {
       warn(fmt::format("mesh '{}': points and lines are not rendered", mesh.mName.C_Str()));
       return;
@@ -155,13 +226,15 @@ class MeshReader {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines SortByPType left in a mixed mesh
       m.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
-      for (unsigned c = 0; c < 3; ++c) bounds_.extend(m.vertices[face.mIndices[c]]);
+      for (unsigned c = 0; c < 3; ++c)
+        bounds_.extend(&target == &out_ ? m.vertices[face.mIndices[c]] : to_vec(world * mesh.mVertices[face.mIndices[c]]));
     }
     if (m.triangles.empty()) return;
     ObjectDesc obj;
     obj.shape = std::move(m);
     obj.material = mesh.mMaterialIndex < out_.materials.size() ? static_cast<int>(mesh.mMaterialIndex) : -1;
-    out_.objects.push_back(std::move(obj));
+    if (&target != &out_ && target.materials.empty()) target.materials = out_.materials;
+    target.objects.push_back(std::move(obj));
   }
 
   aiMatrix4x4 global(const aiString& name) const {
@@ -216,6 +289,7 @@ class MeshReader {
     if (out_.lights.empty()) {
       Light headlight;
       headlight.position = vp.from;
+      headlight.headlight = true;
       out_.lights.push_back(headlight);
     }
   }
@@ -223,6 +297,8 @@ class MeshReader {
   const aiScene& s_;
   MeshLimits limits_;
   bool gltf_;  // the file went through assimp's glTF 2 importer (read_camera)
+  MeshAnimation* animation_;  // null: nodes at rest
+  std::unordered_map<std::string, int> track_of_;  // node name -> animation_->tracks index
   SceneDesc out_;
   Bounds3 bounds_;
   std::unordered_map<std::string, aiMatrix4x4> global_;
@@ -258,7 +334,13 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
 
 }  // namespace
 
-SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits) {
+Affine MeshAnimation::transform(size_t part, double seconds) const {
+  Affine m;
+  for (const Link& l : parts.at(part).chain) m = m * l.fixed * tracks.at(static_cast<size_t>(l.track)).at(seconds);
+  return m;
+}
+
+SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, MeshAnimation* animation) {
   std::ifstream in = open_for_reading(path);
   const std::string ext = lower_extension(path);
   std::error_code ec;
@@ -271,14 +353,16 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits) {
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
-  return MeshReader(*scene, path, ext == ".gltf" || ext == ".glb", limits).read();
+  if (animation) *animation = MeshAnimation{};
+  return MeshReader(*scene, path, ext == ".gltf" || ext == ".glb", limits, animation).read();
 }
 
-SceneDesc read_scene_file(const std::string& path) {
+SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation) {
   const std::string ext = lower_extension(path);
+  if (animation) *animation = MeshAnimation{};
   if (ext == ".nff") return read_nff_file(path);
   if (ext == ".dat") return read_tachyon_file(path);
-  return read_mesh_file(path);
+  return read_mesh_file(path, {}, animation);
 }
 
 }  // namespace holoray

@@ -17,12 +17,20 @@
 //   centre, along (0.5, 0.5, 1) (y up, 40 degrees, the bounding sphere
 //   filling 90 % of the view);
 //   a file with no point light gets one at that eye, so nothing renders black.
+// - node animation (the file's first animation; glTF's translation,
+//   rotation and scale channels), when the caller asks for it: every
+//   animated node becomes a moving part, its meshes and those of its
+//   descendants without animation of their own, in the node's frame, with
+//   the chain of transforms that places it (MeshAnimation). Without the
+//   request, or for a still, nodes stand at their rest transforms.
 // What it cannot map yet it keeps as a warning, never silently: texture
 // maps, directional and spot lights, points and lines.
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "math/node_track.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace holoray {
@@ -33,13 +41,36 @@ struct MeshLimits {
   long max_warnings_kept = 100;
 };
 
+/// What a mesh file's first animation moves. Part k sits in the file's
+/// frame at time t (seconds) by transform(k, t): the product, outermost
+/// first, of each chain link's fixed matrix times its track's TRS at t.
+struct MeshAnimation {
+  struct Link {
+    Affine fixed;    ///< rest transforms from the previous link's node to this node's parent
+    int track = -1;  ///< index into tracks: the animated node's own TRS
+  };
+  struct Part {
+    std::string node;  ///< the animated node's name (messages)
+    SceneDesc scene;   ///< its meshes in its own frame; the file's materials, no lights or camera
+    std::vector<Link> chain;
+  };
+  std::vector<NodeTrack> tracks;
+  std::vector<Part> parts;
+  double duration_s = 0;  ///< the animation's length (assimp's mDuration in seconds)
+
+  Affine transform(size_t part, double seconds) const;
+};
+
 /// Reads a mesh file. Throws std::runtime_error "cannot read 'FILE': REASON"
 /// (assimp's reason) when it cannot be read or parsed, and when it holds no
-/// triangles or more than limits.max_triangles.
-SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits = {});
+/// triangles or more than limits.max_triangles. With `animation`, the nodes
+/// the file's first animation moves go there as parts and the returned
+/// scene keeps only what stands still (lights and camera at rest).
+SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits = {}, MeshAnimation* animation = nullptr);
 
 /// The scene file's reader by its extension: `.nff` (read_nff_file), `.dat`
-/// (read_tachyon_file), else read_mesh_file. Throws as they do.
-SceneDesc read_scene_file(const std::string& path);
+/// (read_tachyon_file), else read_mesh_file (with `animation`: NFF and
+/// Tachyon files have none, it is left empty). Throws as they do.
+SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation = nullptr);
 
 }  // namespace holoray

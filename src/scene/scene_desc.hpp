@@ -46,6 +46,10 @@ struct Light {
   Vec3 direction{0, 0, -1};           ///< directional: where the light travels; spot: the cone's axis (unit)
   double kc = 1, kl = 0, kq = 0;      ///< intensity / (kc + kl d + kq d^2), d in world units
   double fall_start = 0, fall_end = 0;  ///< spot: full intensity to fall_start, none past fall_end (radians off axis)
+  /// Put there by a reader because the file has no light (mesh files): the
+  /// build step keeps it only when no file of the scene has a light of its
+  /// own, and keeps one such light at most.
+  bool headlight = false;
   SourceLoc loc;
 };
 

@@ -11,10 +11,22 @@
 namespace holoray {
 
 ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
-  descs_.reserve(shot_.objects.size());
-  for (const ShotObject& o : shot_.objects) descs_.push_back(read_scene_file(o.scene));
+  // A mesh file's animated nodes become parts of their own, after the file's
+  // still part; descs_ must not reallocate once parts point into it.
+  animations_.resize(shot_.objects.size());
+  for (size_t k = 0; k < shot_.objects.size(); ++k) {
+    MeshAnimation& anim = animations_[k];
+    descs_.push_back(read_scene_file(shot_.objects[k].scene, &anim));
+    entries_.push_back({k, -1});
+    for (size_t p = 0; p < anim.parts.size(); ++p) {
+      descs_.push_back(std::move(anim.parts[p].scene));
+      anim.parts[p].scene = SceneDesc{};
+      entries_.push_back({k, static_cast<int>(p)});
+    }
+  }
   std::vector<ScenePart> parts;
-  for (size_t k = 0; k < descs_.size(); ++k) parts.push_back({&descs_[k], !shot_.objects[k].motion.is_static()});
+  for (size_t e = 0; e < entries_.size(); ++e)
+    parts.push_back({&descs_[e], entries_[e].part >= 0 || !shot_.objects[entries_[e].object].motion.is_static()});
   scene_ = std::make_unique<RenderScene>(parts);
   if (shot_.background) scene_->set_background(*shot_.background);
 
@@ -48,7 +60,12 @@ ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
 
 std::vector<Affine> ShotFrames::transforms(double frame) const {
   std::vector<Affine> out;
-  for (const ShotObject& o : shot_.objects) out.push_back(o.motion.matrix(frame));
+  for (const Entry& e : entries_) {
+    const Affine placed = shot_.objects[e.object].motion.matrix(frame);
+    // The file's own animation runs on the shot's clock: frame f is f / fps seconds.
+    out.push_back(e.part < 0 ? placed
+                             : placed * animations_[e.object].transform(static_cast<size_t>(e.part), frame / shot_.fps));
+  }
   return out;
 }
 

@@ -1,6 +1,7 @@
 // holoray/shot: a shot made ready to render frame by frame: its scene files
-// read and built into one RenderScene (a moving file becomes an Embree
-// instance), and for every frame the objects' transforms and the lens array.
+// read and built into one RenderScene (a moving file, and each node a mesh
+// file's animation moves, becomes an Embree instance), and for every frame
+// the objects' transforms and the lens array.
 #pragma once
 
 #include <memory>
@@ -8,13 +9,15 @@
 
 #include "camera/lens_array.hpp"
 #include "render/render_scene.hpp"
+#include "scene/mesh_reader.hpp"
 #include "shot/shot.hpp"
 
 namespace holoray {
 
 class ShotFrames {
  public:
-  /// Reads every scene file (NFF) and builds the scene. Throws what the
+  /// Reads every scene file (NFF, Tachyon, meshes with their node
+  /// animation) and builds the scene. Throws what the
   /// readers throw (ParseError, std::runtime_error) and std::invalid_argument
   /// when the array cannot be placed (no camera keys, path or NFF viewpoint;
   /// a path whose first camera looks away from the scene).
@@ -23,9 +26,12 @@ class ShotFrames {
   const Shot& shot() const { return shot_; }
   int frame_count() const { return shot_.frames; }
   const RenderScene& scene() const { return *scene_; }
+  /// The scene parts: each file's still part, then its animated nodes' parts.
   const std::vector<SceneDesc>& scenes() const { return descs_; }
 
-  /// Object-to-world transform of every scene file at `frame` (may be fractional).
+  /// Object-to-world transform of every scene part at `frame` (may be
+  /// fractional): the shot's motion of its file, times, for an animated
+  /// node, the file's animation at frame / fps seconds.
   std::vector<Affine> transforms(double frame) const;
   /// The lens array at `frame` (contract placement from the frame's viewpoint).
   LensArrayDesc camera(int frame) const;
@@ -37,8 +43,14 @@ class ShotFrames {
   void set_shadow_cache(ShadowCache* cache) { scene_->set_shadow_cache(cache); }
 
  private:
+  struct Entry {
+    size_t object;  ///< index into shot_.objects
+    int part;       ///< -1: the file's still part; else index into its MeshAnimation::parts
+  };
   Shot shot_;
-  std::vector<SceneDesc> descs_;
+  std::vector<SceneDesc> descs_;               // per entry
+  std::vector<Entry> entries_;
+  std::vector<MeshAnimation> animations_;      // per object (parts' scenes moved to descs_)
   std::unique_ptr<RenderScene> scene_;
   double default_angle_ = 45;
   bool mirrored_ = false;  // the scene's viewpoint is Tachyon's (Viewpoint::mirrored)
