@@ -34,5 +34,12 @@ oiiotool "$tmp/room_view.png" --resize 256x256 -o "$out/room_tachyon_view.png"
 ac=/usr/share/doc/tachyon/examples/scenes
 for m in f117 goblet tie2; do "$h" render "$ac/$m.ac" --camera pinhole -o "$tmp/ac_$m.png" -q; done
 oiiotool "$tmp/ac_f117.png" "$tmp/ac_goblet.png" "$tmp/ac_tie2.png" --mosaic 3x1 --resize 768x256 -o "$out/ac_models.png"
+# A glTF file's node animation played by a shot: frames 0, 16, 32 and 47
+# previewed as pinhole views, and frame 24's EIA.
+"$h" animate examples/shots/swinging_box.toml --camera pinhole --resolution 256x256 -o "$tmp/swing_views" -q
+oiiotool "$tmp/swing_views/frame_0000.png" "$tmp/swing_views/frame_0016.png" "$tmp/swing_views/frame_0032.png" \
+  "$tmp/swing_views/frame_0047.png" --mosaic 4x1 -o "$out/swinging_box_views.png"
+"$h" animate examples/shots/swinging_box.toml -o "$tmp/swing_eia" -q
+cp "$tmp/swing_eia/frame_0024.png" "$out/swinging_box_eia.png"
 rm -rf "$tmp"
 ls -la "$out"

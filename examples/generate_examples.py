@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the example scenes examples/primitives.nff and examples/room.nff.
+"""Writes the example scenes examples/primitives.nff, examples/room.nff and
+examples/swinging_box.gltf.
 
 Primitives: the paper's test scene of every primitive kind (sphere, cone,
 cylinder, polygons, smooth patches, a mirror and a glass object). Room: a
@@ -7,8 +8,11 @@ furnished room in the spirit of the paper's Room. Both are plain NFF
 (shared/docs/nff-notes.md) and both straddle the lens array: the NFF `at`
 point sits inside the scene, so orthoscopic EIAs show depth on both sides.
 """
+import base64
+import json
 import math
 import os
+import struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -125,6 +129,62 @@ def room():
     return o
 
 
+def swinging_box():
+    """box_on_floor.obj as glTF 2.0 with node animation (docs/mesh-import.md,
+    "Node animation"): the red box slides across the floor and turns half a
+    turn about the vertical (y) in 2 s; a KHR_lights_punctual point light.
+    Played by examples/shots/swinging_box.toml."""
+    buf = bytearray()
+    views, accessors = [], []
+
+    def accessor(fmt, values, typ, component, extra=None):
+        data = b"".join(struct.pack("<" + fmt, *v) if isinstance(v, tuple) else struct.pack("<" + fmt, v)
+                        for v in values)
+        views.append({"buffer": 0, "byteOffset": len(buf), "byteLength": len(data)})
+        buf.extend(data)
+        a = {"bufferView": len(views) - 1, "componentType": component, "count": len(values), "type": typ}
+        a.update(extra or {})
+        accessors.append(a)
+        return len(accessors) - 1
+
+    def mesh(positions, indices, material):
+        lo = [min(p[k] for p in positions) for k in range(3)]
+        hi = [max(p[k] for p in positions) for k in range(3)]
+        pa = accessor("3f", positions, "VEC3", 5126, {"min": lo, "max": hi})
+        ia = accessor("I", indices, "SCALAR", 5125)
+        return {"primitives": [{"attributes": {"POSITION": pa}, "indices": ia, "material": material}]}
+
+    cube = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    cube_idx = [i for a, b, c, d in faces for i in (a, b, c, a, c, d)]
+    floor = [(-4, -1.01, -4), (4, -1.01, -4), (4, -1.01, 4), (-4, -1.01, 4)]
+    times = [0.0, 1.0, 2.0]
+    t_in = accessor("f", times, "SCALAR", 5126, {"min": [0.0], "max": [2.0]})
+    slide = accessor("3f", [(-2, -0.26, 0), (0, -0.26, 1), (2, -0.26, 0)], "VEC3", 5126)  # resting on the floor
+    turn = accessor("4f", [(0, math.sin(a / 2), 0, math.cos(a / 2)) for a in (0, math.pi / 2, math.pi)], "VEC4", 5126)
+    gltf = {
+        "asset": {"version": "2.0", "generator": "examples/generate_examples.py"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 1}]}},
+        "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [{"name": "floor", "mesh": 1}, {"name": "box", "mesh": 0, "scale": [0.75, 0.75, 0.75]},
+                  {"name": "light", "translation": [3, 5, 4], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "meshes": [mesh(cube, cube_idx, 0), mesh(floor, [0, 2, 1, 0, 3, 2], 1)],
+        "materials": [{"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.15, 0.1, 1], "metallicFactor": 0}},
+                      {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.65, 1], "metallicFactor": 0}}],
+        "animations": [{"name": "swing",
+                        "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}},
+                                     {"sampler": 1, "target": {"node": 1, "path": "rotation"}}],
+                        "samplers": [{"input": t_in, "output": slide}, {"input": t_in, "output": turn}]}],
+        "buffers": [{"byteLength": len(buf),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buf)).decode()}],
+        "bufferViews": views, "accessors": accessors,
+    }
+    return json.dumps(gltf, indent=1)
+
+
 for name, lines in (("primitives.nff", primitives()), ("room.nff", room())):
     with open(os.path.join(HERE, name), "w") as f:
         f.write("\n".join(lines) + "\n")
+with open(os.path.join(HERE, "swinging_box.gltf"), "w") as f:
+    f.write(swinging_box() + "\n")
