@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <oneapi/tbb/global_control.h>
 
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <memory>
@@ -21,6 +23,7 @@
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
 #include "shot/shot_reader.hpp"
+#include "temporal/keyframe_schedule.hpp"
 #include "temporal/report.hpp"
 #include "temporal/sequence.hpp"
 
@@ -53,7 +56,17 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot; the default), reproject (keyframes + the paper's forward reprojection) or full (trace every frame; the default and only choice with --camera pinhole)");
   cmd->add_option("--camera", o.camera, "integral (EIA frames) or pinhole (a preview: each frame's viewpoint as an ordinary view, traced in full)")->capture_default_str();
   cmd->add_option("--resolution", o.resolution, "With --camera pinhole: frame size WxH (default: the first scene's resolution, else 512x512)");
-  cmd->add_option("--keyframe-interval", o.keyframe_interval, "K: trace every K-th frame and the last")->capture_default_str();
+  cmd->add_option("--keyframe-interval", o.keyframe_interval,
+                  "K: trace every K-th frame and the last; auto: place keyframes by how far point images move "
+                  "(--keyframe-motion), sparse where nothing moves, dense where it moves fast")
+      ->capture_default_str();
+  cmd->add_option("--keyframe-motion", o.keyframe_motion,
+                  "With --keyframe-interval auto: the most pixels a point image may move between a frame and its "
+                  "earlier keyframe")
+      ->capture_default_str();
+  cmd->add_option("--max-keyframe-interval", o.max_keyframe_interval,
+                  "With --keyframe-interval auto: the most frames from one keyframe to the next")
+      ->capture_default_str();
   cmd->add_option("--reuse", o.reuse,
                   "What a reprojected pixel reuses. --method reproject: geometry (default; re-shade the reused hit) or "
                   "color (the keyframe colour); --method reverse: color (default; the keyframe colour) or visibility "
@@ -104,13 +117,24 @@ int run_animate(const AnimateCommandOptions& o) {
     so.reproject.detect_leaks = !o.no_leak_check;
     const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
     so.encoding = parse_encoding(o.encoding);
-    if (o.keyframe_interval < 1)
-      throw std::invalid_argument(fmt::format("--keyframe-interval: must be at least 1, got {}", o.keyframe_interval));
+    const bool auto_keys = o.keyframe_interval == "auto";
+    int interval = 0;
+    if (!auto_keys) {
+      const std::string& k = o.keyframe_interval;
+      const auto [end, err] = std::from_chars(k.data(), k.data() + k.size(), interval);
+      if (err != std::errc() || end != k.data() + k.size() || interval < 1)
+        throw std::invalid_argument(
+            fmt::format("--keyframe-interval: must be a whole number of frames, at least 1, or auto; got '{}'", k));
+    }
+    if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
+      throw std::invalid_argument(fmt::format("--keyframe-motion: must be a positive number of pixels, got {}", o.keyframe_motion));
+    if (o.max_keyframe_interval < 1)
+      throw std::invalid_argument(fmt::format("--max-keyframe-interval: must be at least 1, got {}", o.max_keyframe_interval));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     if (!(o.rebuild_above >= 0 && o.rebuild_above <= 100))
       throw std::invalid_argument(fmt::format("--rebuild-above: must be a percentage from 0 to 100, got {}", o.rebuild_above));
     so.max_interpolated_share = o.rebuild_above / 100;
-    so.keyframe_interval = o.keyframe_interval;
+    if (!auto_keys) so.keyframe_interval = interval;
     so.threads = o.threads;
     so.reproject.threads = o.threads;
     so.reference = !o.report.empty();
@@ -128,6 +152,17 @@ int run_animate(const AnimateCommandOptions& o) {
                        ? std::array<int, 2>{first_res->viewpoint->xres, first_res->viewpoint->yres}
                        : std::array<int, 2>{512, 512};
     }
+    if (auto_keys && so.method != Method::full)
+      so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
+    // How the keyframes were placed, for the printed method and the report.
+    const std::string key_rule =
+        auto_keys ? fmt::format("{} keyframes placed by motion (at most {:g} px, {} frames apart)", so.keys.size(),
+                                o.keyframe_motion, o.max_keyframe_interval)
+                  : fmt::format("keyframe every {}", interval);
+    const std::string key_args =
+        auto_keys ? fmt::format("--keyframe-interval auto --keyframe-motion {:g} --max-keyframe-interval {}",
+                                o.keyframe_motion, o.max_keyframe_interval)
+                  : fmt::format("--keyframe-interval {}", interval);
     const LensArray first(shot.camera(0));  // sizes and the printed description
     const std::unique_ptr<ShadowCache> cache = make_cache(shot.scene(), first.desc().pitch, o.cache);
     so.cache = cache.get();
@@ -170,10 +205,10 @@ int run_animate(const AnimateCommandOptions& o) {
                    to_string(cam.desc().grid), cam.lens_count_x(), cam.lens_count_y(), cam.desc().pixels_per_lens,
                    to_string(cam.desc().mode));
       if (so.method == Method::reproject)
-        fmt::print("method     reproject: keyframe every {}, reuse {}, fill {}, reach {}{}\n", o.keyframe_interval,
-                   reuse, o.fill, o.reach, o.no_leak_check ? ", no leak check" : "");
+        fmt::print("method     reproject: {}, reuse {}, fill {}, reach {}{}\n", key_rule, reuse, o.fill, o.reach,
+                   o.no_leak_check ? ", no leak check" : "");
       else if (so.method == Method::reverse)
-        fmt::print("method     reverse: keyframe every {}, eye rays traced, reuse {}\n", o.keyframe_interval, reuse);
+        fmt::print("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, reuse);
       else
         fmt::print("method     full ray tracing\n");
     }
@@ -217,11 +252,10 @@ int run_animate(const AnimateCommandOptions& o) {
       std::string cmdline =
           fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, method, o.cache.cache);
       if (so.method == Method::reproject)
-        cmdline += fmt::format(" --keyframe-interval {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}",
-                               o.keyframe_interval, reuse, o.fill, o.rebuild_above, o.reach,
-                               o.no_leak_check ? " --no-leak-check" : "");
+        cmdline += fmt::format(" {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}", key_args, reuse, o.fill,
+                               o.rebuild_above, o.reach, o.no_leak_check ? " --no-leak-check" : "");
       else if (so.method == Method::reverse)
-        cmdline += fmt::format(" --keyframe-interval {} --reuse {}", o.keyframe_interval, reuse);
+        cmdline += fmt::format(" {} --reuse {}", key_args, reuse);
       const LensArray& cam = first;
       write_text_file(o.report,
                       markdown_report(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),

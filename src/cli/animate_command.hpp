@@ -13,7 +13,10 @@ struct AnimateCommandOptions {
   std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
   std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
   std::string format = "png", encoding = "linear", report;
-  int keyframe_interval = 8, threads = 0;
+  std::string keyframe_interval = "8";  ///< K, or "auto" (keyframe_schedule.hpp)
+  double keyframe_motion = 4;           ///< auto: most pixels a point image moves from its keyframe
+  int max_keyframe_interval = 32;       ///< auto: longest run of frames between keyframes
+  int threads = 0;
   double rebuild_above = 5;  // percent of holes
   bool resume = false, no_leak_check = false, quiet = false, verbose = false;
   CacheCommandOptions cache;

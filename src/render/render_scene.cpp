@@ -17,11 +17,6 @@ namespace {
 // A Tachyon sphere around the first viewpoint's eye: a sky dome (umr.dat
 // wraps its scene in one of radius 2e6), background rather than scene. (NFF
 // scenes keep their epsilon as it always was.)
-bool is_dome(const SphereDesc& s, const SceneDesc& desc, const std::vector<ScenePart>& parts) {
-  if (desc.shading != ShadingModel::tachyon || parts.empty() || !parts.front().desc->viewpoint) return false;
-  return length(parts.front().desc->viewpoint->from - s.centre) < std::fabs(s.radius);
-}
-
 // Bounds of everything but planes, lights' spheres and sky domes, and the
 // first viewpoint's eye: the scale of the scene's precision, and what a
 // plane's square must reach beyond. `left_out`: whether any object was
@@ -33,30 +28,15 @@ struct FiniteBounds {
 
 FiniteBounds finite_bounds(const std::vector<ScenePart>& parts) {
   FiniteBounds f;
-  Bounds3& b = f.bounds;
+  std::optional<Vec3> eye;
+  if (!parts.empty() && parts.front().desc->viewpoint) eye = parts.front().desc->viewpoint->from;
   for (const ScenePart& part : parts) {
-    for (const ObjectDesc& obj : part.desc->objects) {
-      if (std::holds_alternative<PlaneDesc>(obj.shape)) {
-        f.left_out = true;
-      } else if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
-        if (!s->casts_shadow || is_dome(*s, *part.desc, parts)) {  // a light's sphere, a sky: not the scene
-          f.left_out = true;
-          continue;
-        }
-        const double r = std::fabs(s->radius);
-        b.extend(s->centre - Vec3{r, r, r});
-        b.extend(s->centre + Vec3{r, r, r});
-      } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
-        const double r = std::fmax(std::fabs(c->base_radius), std::fabs(c->apex_radius));
-        for (const Vec3& e : {c->base, c->apex}) b.extend(e - Vec3{r, r, r}), b.extend(e + Vec3{r, r, r});
-      } else if (const auto* p = std::get_if<PolygonDesc>(&obj.shape)) {
-        for (const Vec3& v : p->vertices) b.extend(v);
-      } else if (const auto* m = std::get_if<TriangleMeshDesc>(&obj.shape)) {
-        for (const Vec3& v : m->vertices) b.extend(v);
-      }
-    }
+    bool left_out = false;
+    const Bounds3 b = finite_bounds(*part.desc, eye, &left_out);
+    f.left_out |= left_out;
+    if (!b.empty()) f.bounds.extend(b.lo), f.bounds.extend(b.hi);
   }
-  if (!parts.empty() && parts.front().desc->viewpoint) b.extend(parts.front().desc->viewpoint->from);
+  if (eye) f.bounds.extend(*eye);
   return f;
 }
 
@@ -127,6 +107,34 @@ TriangleMeshDesc plane_square(const PlaneDesc& p, const Bounds3& finite, double 
 }
 
 }  // namespace
+
+Bounds3 finite_bounds(const SceneDesc& desc, const std::optional<Vec3>& eye, bool* left_out) {
+  Bounds3 b;
+  bool out = false;
+  for (const ObjectDesc& obj : desc.objects) {
+    if (std::holds_alternative<PlaneDesc>(obj.shape)) {
+      out = true;
+    } else if (const auto* s = std::get_if<SphereDesc>(&obj.shape)) {
+      const double r = std::fabs(s->radius);
+      const bool dome = desc.shading == ShadingModel::tachyon && eye && length(*eye - s->centre) < r;
+      if (!s->casts_shadow || dome) {  // a light's sphere, a sky: not the scene
+        out = true;
+        continue;
+      }
+      b.extend(s->centre - Vec3{r, r, r});
+      b.extend(s->centre + Vec3{r, r, r});
+    } else if (const auto* c = std::get_if<ConeDesc>(&obj.shape)) {
+      const double r = std::fmax(std::fabs(c->base_radius), std::fabs(c->apex_radius));
+      for (const Vec3& e : {c->base, c->apex}) b.extend(e - Vec3{r, r, r}), b.extend(e + Vec3{r, r, r});
+    } else if (const auto* p = std::get_if<PolygonDesc>(&obj.shape)) {
+      for (const Vec3& v : p->vertices) b.extend(v);
+    } else if (const auto* m = std::get_if<TriangleMeshDesc>(&obj.shape)) {
+      for (const Vec3& v : m->vertices) b.extend(v);
+    }
+  }
+  if (left_out) *left_out = out;
+  return b;
+}
 
 RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   materials_.push_back(Material{});  // grey diffuse for objects before the first `f` (nff-notes §1)

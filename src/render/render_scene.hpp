@@ -56,6 +56,13 @@ struct ScenePart {
   bool movable = false;
 };
 
+/// The bounds (the file's object space) of what `desc` holds, leaving out
+/// what is not "the scene" for precision and framing: planes (infinite),
+/// lights' spheres (unshadowed) and, when `eye` is given, Tachyon sky domes
+/// (spheres enclosing the eye). `left_out` (optional) tells whether
+/// anything was left out. Empty when nothing remains.
+Bounds3 finite_bounds(const SceneDesc& desc, const std::optional<Vec3>& eye, bool* left_out = nullptr);
+
 class RenderScene {
  public:
   /// A still scene. Throws std::runtime_error if Embree fails.

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <stdexcept>
@@ -110,7 +111,10 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   if (shot.shot().spp > 1)
     throw std::invalid_argument(fmt::format(
         "reprojection needs spp = 1 (the shot asks for {}): point images hold the pixel-centre sample", shot.shot().spp));
-  const std::vector<int> keys = keyframes(frames, opt.keyframe_interval);
+  const std::vector<int> keys = opt.keys.empty() ? keyframes(frames, opt.keyframe_interval) : opt.keys;
+  if (keys.empty() || keys.front() != 0 || keys.back() != frames - 1 || !std::is_sorted(keys.begin(), keys.end()) ||
+      std::adjacent_find(keys.begin(), keys.end()) != keys.end())
+    throw std::invalid_argument(fmt::format("the keyframes must rise strictly from frame 0 to the last frame, {}", frames - 1));
 
   // Point images of the segment's two keyframes; the later one is reused as
   // the earlier one of the next segment.

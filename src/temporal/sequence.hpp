@@ -29,6 +29,9 @@ enum class Method {
 struct SequenceOptions {
   Method method = Method::full;
   int keyframe_interval = 8;  ///< K >= 1
+  /// The keyframes, when not every K-th (KeyframePlanner::keyframes): sorted,
+  /// from frame 0 to the last frame.
+  std::vector<int> keys;
   ReprojectOptions reproject;  ///< Method::reproject
   ReverseOptions reverse;      ///< Method::reverse
   Fill fill = Fill::trace;
