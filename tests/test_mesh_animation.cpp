@@ -225,6 +225,60 @@ scale = [{}, {}, {}]
   EXPECT_LT(compare_images(a.front(), a.back()).psnr_all(), 30);
 }
 
+// A glTF whose camera node slides over a box, looking down -z: the shot
+// without [camera] follows it, frame for frame as the same motion written
+// as camera keys.
+std::string moving_camera_gltf() {
+  Gltf g;
+  const std::string box = mesh_json(g, kBoxPositions, kBoxIndices, 0);
+  const std::string floor = mesh_json(g, kFloorPositions, kFloorIndices, 1);
+  const int times = g.accessor(std::vector<float>{0, 1}, "SCALAR", 5126, 2);
+  const int moves = g.accessor(std::vector<float>{-1, 0, 6, 1, 0.5f, 6}, "VEC3", 5126, 2);
+  return g.json(fmt::format(R"("scene": 0, "scenes": [{{"nodes": [0, 1, 2]}}],
+ "nodes": [{{"name": "floor", "mesh": 1}}, {{"name": "box", "mesh": 0}}, {{"name": "eye", "camera": 0}}],
+ "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.7, "aspectRatio": 1.0, "znear": 0.1}}}}],
+ "meshes": [{}, {}], {},
+ "animations": [{{"channels": [{{"sampler": 0, "target": {{"node": 2, "path": "translation"}}}}],
+                 "samplers": [{{"input": {}, "output": {}}}]}}])",
+                            box, floor, kMaterials, times, moves));
+}
+
+TEST(MeshAnimation, AnimatedGltfCameraPlacesTheArrayAsTheSameCameraKeys) {
+  test::TempDir dir;
+  test::write_text(dir.file("light.nff"), "l 3 -4 6\n");
+  test::write_text(dir.file("cam.gltf"), moving_camera_gltf());
+  MeshAnimation anim;
+  const SceneDesc still = read_mesh_file(dir.file("cam.gltf"), {}, &anim);
+  ASSERT_TRUE(anim.camera);
+  ASSERT_TRUE(still.viewpoint);
+  const double angle = still.viewpoint->angle_deg;
+  const std::string head = "frames = 5\nfps = 4\n[array]\nlenses = 24\npixels_per_lens = 6\n";
+  const std::string objects = "[[object]]\nscene = \"light.nff\"\n[[object]]\nscene = \"cam.gltf\"\n";
+  test::write_text(dir.file("a.toml"), head + objects);
+  test::write_text(dir.file("b.toml"),
+                   head + fmt::format(R"([camera]
+[[camera.key]]
+frame = 0
+from = [-1, 0, 6]
+at = [-1, 0, 5]
+up = [0, 1, 0]
+angle = {0:.17g}
+[[camera.key]]
+frame = 4
+from = [1, 0.5, 6]
+at = [1, 0.5, 5]
+up = [0, 1, 0]
+angle = {0:.17g}
+)",
+                                      angle) +
+                       objects);
+  const std::vector<ImageBuffer> a = render_shot(dir.file("a.toml")), b = render_shot(dir.file("b.toml"));
+  ASSERT_EQ(a.size(), 5u);
+  for (size_t f = 0; f < a.size(); ++f) EXPECT_GE(compare_images(a[f], b[f]).psnr_all(), 60) << "frame " << f;
+  // The camera moved: the first and last frames differ.
+  EXPECT_LT(compare_images(a.front(), a.back()).psnr_all(), 30);
+}
+
 TEST(MeshAnimation, WithoutTheRequestNodesStandAtRest) {
   test::TempDir dir;
   test::write_text(dir.file("anim.gltf"), animated_gltf());

@@ -189,6 +189,12 @@ class MeshReader {
       animation_->parts.push_back(std::move(p));
       rel = aiMatrix4x4();
     }
+    if (part >= 0 && s_.mNumCameras > 0 && node->mName == s_.mCameras[0]->mName) {
+      MeshAnimation::Camera cam;
+      cam.chain = animation_->parts[static_cast<size_t>(part)].chain;
+      cam.fixed = to_affine(rel);
+      animation_->camera = cam;  // its lens and angle: read_camera()
+    }
     Xform xf{rel, aiMatrix3x3(rel)};
     xf.normal.Inverse().Transpose();
     SceneDesc& target = part < 0 ? out_ : animation_->parts[static_cast<size_t>(part)].scene;
@@ -273,6 +279,13 @@ class MeshReader {
       const double aspect = c.mAspect > 0 ? c.mAspect : 1.0;
       const double vertical = gltf_ ? c.mHorizontalFOV / aspect : 2 * std::atan(std::tan(c.mHorizontalFOV) / aspect);
       vp.angle_deg = vertical * 180 / std::numbers::pi;
+      if (animation_ && animation_->camera) {
+        MeshAnimation::Camera& moving = *animation_->camera;
+        moving.from = to_vec(gltf_ ? aiVector3D(0, 0, 0) : c.mPosition);
+        moving.look = to_vec(c.mLookAt);
+        moving.up = to_vec(c.mUp);
+        moving.angle_deg = vp.angle_deg;
+      }
     } else {
       // A three-quarter view from +z (raised toward +y, moved toward +x),
       // framing the bounding sphere: radius r at distance r / sin(angle / 2),
@@ -334,10 +347,27 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
 
 }  // namespace
 
-Affine MeshAnimation::transform(size_t part, double seconds) const {
+namespace {
+Affine chain_at(const std::vector<MeshAnimation::Link>& chain, const std::vector<NodeTrack>& tracks, double seconds) {
   Affine m;
-  for (const Link& l : parts.at(part).chain) m = m * l.fixed * tracks.at(static_cast<size_t>(l.track)).at(seconds);
+  for (const MeshAnimation::Link& l : chain) m = m * l.fixed * tracks.at(static_cast<size_t>(l.track)).at(seconds);
   return m;
+}
+}  // namespace
+
+Affine MeshAnimation::transform(size_t part, double seconds) const {
+  return chain_at(parts.at(part).chain, tracks, seconds);
+}
+
+Viewpoint MeshAnimation::camera_at(double seconds) const {
+  const Camera& c = camera.value();
+  const Affine m = chain_at(c.chain, tracks, seconds) * c.fixed;
+  Viewpoint vp;
+  vp.from = m.point(c.from);
+  vp.at = vp.from + m.dir(c.look);
+  vp.up = m.dir(c.up);
+  vp.angle_deg = c.angle_deg;
+  return vp;
 }
 
 SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, MeshAnimation* animation) {

@@ -22,11 +22,13 @@
 //   animated node becomes a moving part, its meshes and those of its
 //   descendants without animation of their own, in the node's frame, with
 //   the chain of transforms that places it (MeshAnimation). Without the
-//   request, or for a still, nodes stand at their rest transforms.
+//   request, or for a still, nodes stand at their rest transforms. A camera
+//   the animation moves is kept as MeshAnimation::camera.
 // What it cannot map yet it keeps as a warning, never silently: texture
 // maps, directional and spot lights, points and lines.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,11 +56,24 @@ struct MeshAnimation {
     SceneDesc scene;   ///< its meshes in its own frame; the file's materials, no lights or camera
     std::vector<Link> chain;
   };
+  /// The file's first camera when the animation moves it (its node or an
+  /// ancestor has a track): the chain to its moving ancestor, then `fixed`
+  /// from there to the camera's node frame, where it sits at `from` looking
+  /// along `look` with `up` (the still scene's viewpoint is its rest pose).
+  struct Camera {
+    std::vector<Link> chain;
+    Affine fixed;
+    Vec3 from, look, up;
+    double angle_deg = 45;
+  };
   std::vector<NodeTrack> tracks;
   std::vector<Part> parts;
+  std::optional<Camera> camera;
   double duration_s = 0;  ///< the animation's length (assimp's mDuration in seconds)
 
   Affine transform(size_t part, double seconds) const;
+  /// The moving camera's viewpoint at `seconds` (file frame; needs `camera`).
+  Viewpoint camera_at(double seconds) const;
 };
 
 /// Reads a mesh file. Throws std::runtime_error "cannot read 'FILE': REASON"

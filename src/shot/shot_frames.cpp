@@ -97,9 +97,16 @@ Viewpoint ShotFrames::viewpoint(int frame) const {
     vp.angle_deg = angle_a + (angle_b - angle_a) * w;
     return vp;
   }
-  for (const SceneDesc& d : descs_)
-    if (d.viewpoint) {
+  for (size_t e = 0; e < descs_.size(); ++e)
+    if (const SceneDesc& d = descs_[e]; d.viewpoint) {
       vp = *d.viewpoint;
+      // A mesh file whose animation moves its camera: the camera at the
+      // frame's time (in the file's frame, as its still viewpoint: the
+      // object's keys do not carry it).
+      if (const MeshAnimation& anim = animations_[entries_[e].object]; anim.camera) {
+        const Viewpoint moving = anim.camera_at(frame / shot_.fps);
+        vp.from = moving.from, vp.at = moving.at, vp.up = moving.up;
+      }
       if (shot_.camera.angle_deg) vp.angle_deg = *shot_.camera.angle_deg;
       return vp;
     }
