@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -87,7 +88,6 @@ struct Gltf {
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
       minmax = fmt::format(R"(, "min": [{}], "max": [{}])", *lo, *hi);
     }
-    if (std::string(type) == "VEC3" && count > 0 && accessors.empty()) minmax = "";
     accessors.push_back(fmt::format(R"({{"bufferView": {}, "componentType": {}, "count": {}, "type": "{}"{}}})",
                                     views.size() - 1, component, count, type, minmax));
     return static_cast<int>(accessors.size() - 1);

@@ -143,20 +143,19 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   // (nff-notes §4); Tachyon lights shine with their colour as written.
   // A reader's stand-in light (Light::headlight) only where no file has a
   // light, and one at most: a shot of several mesh files is lit once.
+  const Light* kept_headlight = nullptr;
   bool own_lights = false;
   for (const ScenePart& part : parts)
-    for (const Light& l : part.desc->lights) own_lights |= !l.headlight;
-  bool headlight_kept = false;
-  auto keep = [&](const Light& l) {
-    if (!l.headlight) return true;
-    if (own_lights || headlight_kept) return false;
-    return headlight_kept = true;
-  };
+    for (const Light& l : part.desc->lights) {
+      own_lights |= !l.headlight;
+      if (l.headlight && !kept_headlight) kept_headlight = &l;
+    }
+  if (own_lights) kept_headlight = nullptr;
+  auto keep = [&](const Light& l) { return !l.headlight || &l == kept_headlight; };
   size_t light_count = 0;
   for (const ScenePart& part : parts)
     for (const Light& l : part.desc->lights)
       if (keep(l) && part.desc->shading == ShadingModel::nff) ++light_count;
-  headlight_kept = false;
   const double level = 1.0 / (2.0 * std::sqrt(static_cast<double>(std::max<size_t>(1, light_count))));
   ambient_ = Vec3{level, level, level};
   if (!parts.empty()) background_ = parts.front().desc->background;

@@ -45,8 +45,6 @@ Affine to_affine(const aiMatrix4x4& a) {
   return m;
 }
 
-bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 class MeshReader {
  public:
   MeshReader(const aiScene& s, std::string source, bool gltf, const MeshLimits& limits, MeshAnimation* animation)
@@ -149,11 +147,11 @@ class MeshReader {
                                               ch.mNodeName.C_Str(), what));
       };
       for (unsigned k = 0; k < ch.mNumPositionKeys; ++k) {
-        if (!finite(ch.mPositionKeys[k].mValue)) throw bad("translation");
+        if (!is_finite(to_vec(ch.mPositionKeys[k].mValue))) throw bad("translation");
         track.translation.emplace_back(time(ch.mPositionKeys[k].mTime, "translation"), to_vec(ch.mPositionKeys[k].mValue));
       }
       for (unsigned k = 0; k < ch.mNumScalingKeys; ++k) {
-        if (!finite(ch.mScalingKeys[k].mValue)) throw bad("scale");
+        if (!is_finite(to_vec(ch.mScalingKeys[k].mValue))) throw bad("scale");
         track.scale.emplace_back(time(ch.mScalingKeys[k].mTime, "scale"), to_vec(ch.mScalingKeys[k].mValue));
       }
       for (unsigned k = 0; k < ch.mNumRotationKeys; ++k) {

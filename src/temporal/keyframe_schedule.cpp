@@ -44,8 +44,9 @@ KeyframePlanner::View KeyframePlanner::view_at(int frame) const {
   return v;
 }
 
-double KeyframePlanner::image_motion(int a, int b) const {
-  const View va = view_at(a), vb = view_at(b);
+double KeyframePlanner::image_motion(int a, int b) const { return motion(view_at(a), view_at(b)); }
+
+double KeyframePlanner::motion(const View& va, const View& vb) {
   double worst = 0;
   for (size_t l = 0; l < va.lenses.size(); ++l)
     for (size_t p = 0; p < va.probes.size(); ++p) {
@@ -68,8 +69,9 @@ std::vector<int> KeyframePlanner::keyframes(double max_pixels, int max_interval)
   std::vector<int> keys{0};
   int k = 0;
   while (k < frames - 1) {
+    const View from = view_at(k);  // once per keyframe, not per candidate
     int f = k + 1;
-    while (f < frames - 1 && f + 1 - k <= max_interval && image_motion(k, f + 1) <= max_pixels) ++f;
+    while (f < frames - 1 && f + 1 - k <= max_interval && motion(from, view_at(f + 1)) <= max_pixels) ++f;
     keys.push_back(f);
     k = f;
   }

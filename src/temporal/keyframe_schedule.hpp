@@ -47,6 +47,7 @@ class KeyframePlanner {
     double pitch = 0;
   };
   View view_at(int frame) const;
+  static double motion(const View& a, const View& b);
 
   const ShotFrames& shot_;
   std::vector<std::vector<Vec3>> probes_;  // per scene part, object space
