@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "camera/placement.hpp"
 #include "image/metrics.hpp"
@@ -140,6 +141,69 @@ TEST(ReverseReprojection, HitsFollowTheirObjectsMotion) {
       EXPECT_EQ(rf.count(PixelStatus::reprojected), 0u);
     }
   }
+}
+
+// The reprojected frame looks up Embree's unrefined hits and refines only
+// those it shades: resolving a raw hit must give intersect()'s hit bit for
+// bit, so shaded pixels stay full tracing's.
+TEST(AccelRawHits, ResolvedRawHitsAreIntersectsHits) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  const LensArray cam(camera_at(desc, {}));
+  size_t compared = 0;
+  for (int j = 0; j < cam.height(); j += 3)
+    for (int i0 = 0; i0 + kPacketSize <= cam.width(); i0 += 4 * kPacketSize) {
+      PixelXY px[kPacketSize];
+      for (int l = 0; l < kPacketSize; ++l) px[l] = {i0 + l, j};
+      PrimaryRay primary[kPacketSize];
+      bool ok[kPacketSize];
+      primary_rays(cam, scene.bounds(), scene.epsilon(), px, kPacketSize, 0, primary, ok);
+      RayPacket rays;
+      for (int l = 0; l < kPacketSize; ++l) rays.active[l] = ok[l], rays.rays[l] = primary[l].ray;
+      Hit hits[kPacketSize];
+      RawHit raw[kPacketSize];
+      bool found[kPacketSize], found_raw[kPacketSize];
+      scene.accel().intersect(rays, hits, found);
+      scene.accel().intersect_raw(rays, raw, found_raw);
+      for (int l = 0; l < kPacketSize; ++l) {
+        ASSERT_EQ(found[l], found_raw[l]);
+        if (!found[l]) continue;
+        Hit h;
+        scene.accel().resolve(rays.rays[l], raw[l], h);
+        EXPECT_EQ(std::memcmp(&h.t, &hits[l].t, sizeof h.t), 0);
+        EXPECT_EQ(h.prim, hits[l].prim);
+        EXPECT_EQ(h.group, hits[l].group);
+        EXPECT_EQ(h.kind, hits[l].kind);
+        EXPECT_EQ(std::memcmp(&h.ng, &hits[l].ng, sizeof h.ng), 0);
+        EXPECT_EQ(std::memcmp(&h.p_object, &hits[l].p_object, sizeof h.p_object), 0);
+        // The float answer is within 1e-5 of its distance of the refined one.
+        EXPECT_NEAR(raw[l].t, h.t, 1e-5 * h.t);
+        ++compared;
+      }
+    }
+  EXPECT_GT(compared, 1000u);
+}
+
+// The keyframe's object ids (what the same-surface tests read) are the
+// objects its records hit, -1 for background.
+TEST(ReverseReprojection, KeyframeObjectIdsAreTheObjectsItsRecordsHit) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  RenderStats stats;
+  const PointImage key = trace_point_image(scene, LensArray(camera_at(desc, {})), 0, ReverseReuse::color, 0, stats);
+  ASSERT_EQ(key.object.size(), key.hits.size());
+  size_t background = 0;
+  for (size_t p = 0; p < key.hits.size(); ++p) {
+    const PrimaryHit& h = key.hits[p];
+    if (h.status != PrimaryHit::kHit) {
+      EXPECT_EQ(key.object[p], -1);
+      ++background;
+      continue;
+    }
+    EXPECT_EQ(key.object[p], scene.object_of(h.group, static_cast<PrimKind>(h.kind), h.prim));
+  }
+  EXPECT_GT(background, 0u);
+  EXPECT_LT(background, key.hits.size());
 }
 
 TEST(ReverseReprojection, RefusesKeyframesItCannotUse) {

@@ -362,14 +362,7 @@ bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_gues
 
 void AccelScene::resolve(const Ray& r, unsigned geom_id, unsigned inst_id, unsigned prim_id, const float ng[3],
                          float u, float v, float t, Hit& hit) const {
-  if (inst_id != RTC_INVALID_GEOMETRY_ID) {
-    hit.group = inst_id / 3;
-    hit.kind = static_cast<PrimKind>(geom_id);
-  } else {
-    hit.group = geom_id / 3;
-    hit.kind = static_cast<PrimKind>(geom_id % 3);
-  }
-  hit.prim = prim_id;
+  primitive_of(RawHit{geom_id, inst_id, prim_id, {}, 0, 0, 0}, hit.group, hit.kind, hit.prim);
   const Group& g = groups_[hit.group];
   // Embree's normal is in object space; used only if the double refinement fails.
   const Vec3 ng_obj = normalize(Vec3{ng[0], ng[1], ng[2]});
@@ -418,8 +411,8 @@ void to_rtc_packet(const RayPacket& p, RTCRayK& ray, int valid[kPacketSize]) {
 }
 }  // namespace
 
-void AccelScene::intersect(const RayPacket& p, Hit hits[kPacketSize], bool found[kPacketSize],
-                           RayCoherence coherence) const {
+void AccelScene::intersect_raw(const RayPacket& p, RawHit raw[kPacketSize], bool found[kPacketSize],
+                               RayCoherence coherence) const {
   static_assert(kPacketSize == 16, "the packet kernels below are Embree's 16-wide ones");
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -435,10 +428,28 @@ void AccelScene::intersect(const RayPacket& p, Hit hits[kPacketSize], bool found
   for (int k = 0; k < kPacketSize; ++k) {
     found[k] = p.active[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
     if (!found[k]) continue;
-    const float ng[3] = {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]};
-    resolve(p.rays[k], rh.hit.geomID[k], rh.hit.instID[0][k], rh.hit.primID[k], ng, rh.hit.u[k], rh.hit.v[k],
-            rh.ray.tfar[k], hits[k]);
+    raw[k] = {rh.hit.geomID[k], rh.hit.instID[0][k], rh.hit.primID[k], {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]},
+              rh.hit.u[k], rh.hit.v[k], rh.ray.tfar[k]};
   }
+}
+
+void AccelScene::intersect(const RayPacket& p, Hit hits[kPacketSize], bool found[kPacketSize],
+                           RayCoherence coherence) const {
+  RawHit raw[kPacketSize];
+  intersect_raw(p, raw, found, coherence);
+  for (int k = 0; k < kPacketSize; ++k)
+    if (found[k]) resolve(p.rays[k], raw[k], hits[k]);
+}
+
+void AccelScene::primitive_of(const RawHit& raw, uint32_t& group, PrimKind& kind, uint32_t& prim) const {
+  if (raw.inst_id != RTC_INVALID_GEOMETRY_ID) {
+    group = raw.inst_id / 3;
+    kind = static_cast<PrimKind>(raw.geom_id);
+  } else {
+    group = raw.geom_id / 3;
+    kind = static_cast<PrimKind>(raw.geom_id % 3);
+  }
+  prim = raw.prim_id;
 }
 
 void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize]) const {

@@ -52,6 +52,18 @@ struct Hit {
   Vec3 p_object;
 };
 
+/// Embree's answer for one ray before the double-precision refinement:
+/// which primitive (Embree's ids), float t, normal and barycentrics.
+/// AccelScene::resolve turns it into the Hit that intersect() gives, bit for
+/// bit; until then it costs nothing but the traversal, for callers that
+/// need only which surface was hit and roughly where (the reverse
+/// reprojection's lookups, temporal/reverse.cpp).
+struct RawHit {
+  unsigned geom_id = 0, inst_id = 0, prim_id = 0;
+  float ng[3] = {0, 0, 0};
+  float u = 0, v = 0, t = 0;
+};
+
 /// Hint for Embree's traversal: primary rays of one lens are coherent.
 enum class RayCoherence { coherent, incoherent };
 
@@ -100,6 +112,15 @@ class AccelScene {
   /// and single-ray kernels pick the same primitive (all but exact ties).
   void intersect(const RayPacket& packet, Hit hits[kPacketSize], bool found[kPacketSize],
                  RayCoherence coherence = RayCoherence::incoherent) const;
+  /// intersect() without the refinement: raw[k] where found[k].
+  void intersect_raw(const RayPacket& packet, RawHit raw[kPacketSize], bool found[kPacketSize],
+                     RayCoherence coherence = RayCoherence::incoherent) const;
+  /// The scene group, primitive kind and primitive of a raw hit.
+  void primitive_of(const RawHit& raw, uint32_t& group, PrimKind& kind, uint32_t& prim) const;
+  /// The refined hit of `ray`'s raw hit: what intersect() gives for it.
+  void resolve(const Ray& ray, const RawHit& raw, Hit& hit) const {
+    resolve(ray, raw.geom_id, raw.inst_id, raw.prim_id, raw.ng, raw.u, raw.v, raw.t, hit);
+  }
   /// occluded() for every active lane at once (rtcOccluded16); false for
   /// inactive lanes.
   void occluded(const RayPacket& packet, bool blocked[kPacketSize]) const;

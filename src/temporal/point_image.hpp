@@ -3,8 +3,9 @@
 // object's own space so it follows the object's motion, the depth t along the
 // pixel line) and the shaded colour.
 //
-// Memory: 36 bytes per pixel (PrimaryHit 24 + RGB float 12); a 2048x2048 EIA
-// takes 144 MiB per keyframe, and reprojection holds two.
+// Memory: 36 bytes per pixel (PrimaryHit 24 + RGB float 12), 40 with the
+// reverse reprojection's object ids; a 2048x2048 EIA takes 144 (160) MiB per
+// keyframe, and reprojection holds two.
 #pragma once
 
 #include <vector>
@@ -28,6 +29,11 @@ struct PointImage {
   /// W*H, what each pixel's shading rays found (reverse reprojection with
   /// ReverseReuse::visibility); empty otherwise.
   std::vector<ShadeParts> parts;
+  /// W*H, the object id each pixel saw (-1 background), for the reverse
+  /// reprojection's same-surface tests (four per reused hit; reading it is
+  /// cheaper than RenderScene::object_of); empty in the forward
+  /// reprojection's keyframes.
+  std::vector<int32_t> object;
 
   static constexpr size_t kBytesPerPixel = sizeof(PrimaryHit) + 3 * sizeof(float);
 };

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -25,13 +26,21 @@ struct Key {
   double footprint = 0;  // s / g of the keyframe camera
 };
 
+// What a lookup needs of an eye-ray hit: where (world), in which scene
+// group (whose motion maps it back) and on which object.
+struct EyeHit {
+  Vec3 position;
+  uint32_t group = 0;
+  int object = -1;
+};
+
 // Answers the hits of a reprojected frame from its keyframes. Called from
 // worker threads: const and thread-safe.
 class PointImageLookup {
  public:
   PointImageLookup(const RenderScene& scene, const PointImage* prev, const PointImage* next, double w_next,
                    const ReverseOptions& opt)
-      : scene_(scene), reuse_(opt.reuse), same_surface_(opt.same_surface),
+      : scene_(scene), same_surface_(opt.same_surface),
         tiny_(1e-7 * std::fmax(1.0, length(scene.bounds().diagonal()))) {
     // The keyframe nearer in time first.
     const PointImage* images[2] = {prev, next};
@@ -52,16 +61,16 @@ class PointImageLookup {
     }
   }
 
-  // The colour of an eye-ray hit from the keyframes, true when they have it:
-  // `ray` the eye ray, `line_dir` the pixel's line direction (world, unit,
-  // toward the viewer's side of the array); rays traced go to `counts`.
+  // The colour of an eye-ray hit from the keyframes with visibility reuse,
+  // true when they have it: `ray` the eye ray, `line_dir` the pixel's line
+  // direction (world, unit, toward the viewer's side of the array); rays
+  // traced go to `counts`. (Colour reuse: filtered_colour.)
   bool find(const Ray& ray, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, RayCounts& counts,
             Vec3& colour) const {
-    if (reuse_ == ReverseReuse::color) return filtered_colour(line_dir, hit, sp, colour);
     for (const Key& key : keys_) {
       if (!key.image || key.anything_moved) continue;
       PanelHit ph;
-      const size_t idx = locate(key, line_dir, hit, sp, ph);
+      const size_t idx = locate(key, line_dir, {sp.position, hit.group, sp.object}, ph);
       if (idx == kNone) continue;
       const ShadeParts& parts = key.image->parts[idx];
       uint32_t shadow_edges = 0;
@@ -79,11 +88,11 @@ class PointImageLookup {
 
   // The keyframe pixel that saw this hit, or kNone; `ph` gets where the
   // hit lands on the keyframe's panel, `landing` (optional) its lens.
-  size_t locate(const Key& key, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, PanelHit& ph,
+  size_t locate(const Key& key, const Vec3& line_dir, const EyeHit& hit, PanelHit& ph,
                 LensIndex* landing = nullptr) const {
     const LensArray& kc = key.image->camera;
     const Frame& kf = kc.desc().frame;
-    Vec3 p = sp.position, d = line_dir;
+    Vec3 p = hit.position, d = line_dir;
     if (key.moved[hit.group]) {
       const Affine& m = key.now_to_key[hit.group];
       p = m.point(p);
@@ -100,16 +109,17 @@ class PointImageLookup {
       return kNone;
     if (landing) *landing = landed;  // project_through sets it to the lens it succeeded through
     const size_t idx = static_cast<size_t>(ph.j) * kc.width() + ph.i;
-    return same_surface(key, idx, sp.object, ph.t) ? idx : kNone;
+    return same_surface(key, idx, hit.object, ph.t) ? idx : kNone;
   }
 
   // Keyframe pixel idx saw object `object` at line parameter t (within
   // same_surface_ footprints).
   bool same_surface(const Key& key, size_t idx, int object, double t) const {
     const PrimaryHit& rec = key.image->hits[idx];
-    return rec.status == PrimaryHit::kHit &&
-           scene_.object_of(rec.group, static_cast<PrimKind>(rec.kind), rec.prim) == object &&
-           std::fabs(rec.t - t) <= same_surface_ * key.footprint * std::fabs(t) + tiny_;
+    const int seen = key.image->object.empty()
+                         ? (rec.status == PrimaryHit::kHit ? scene_.object_of(rec.group, static_cast<PrimKind>(rec.kind), rec.prim) : -1)
+                         : key.image->object[idx];
+    return seen == object && object >= 0 && std::fabs(rec.t - t) <= same_surface_ * key.footprint * std::fabs(t) + tiny_;
   }
 
   // Colour reuse, filtered as Nehab et al. filter their cache: the bilinear
@@ -121,12 +131,12 @@ class PointImageLookup {
   // K = 8): +0.6 to +1.3 dB for 2 to 5 points of time saved. Blending both
   // keyframes by time gave +0.6 dB more but cost a second lookup per hit,
   // more than it saved.
-  bool filtered_colour(const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, Vec3& colour) const {
+  bool filtered_colour(const Vec3& line_dir, const EyeHit& hit, Vec3& colour) const {
     for (const Key& key : keys_) {
       if (!key.image) continue;
       PanelHit ph;
       LensIndex lens;
-      const size_t idx = locate(key, line_dir, hit, sp, ph, &lens);
+      const size_t idx = locate(key, line_dir, hit, ph, &lens);
       if (idx == kNone) continue;
       const LensArray& kc = key.image->camera;
       const double fx = ph.u - 0.5, fy = ph.v - 0.5;
@@ -141,7 +151,7 @@ class PointImageLookup {
           if (wa <= 0 || i < 0 || j < 0 || i >= kc.width() || j >= kc.height() || !kc.pixel_in_lens(i, j, lens))
             continue;
           const size_t q = static_cast<size_t>(j) * kc.width() + i;
-          if (q != idx && !same_surface(key, q, sp.object, ph.t)) continue;
+          if (q != idx && !same_surface(key, q, hit.object, ph.t)) continue;
           const float* k = key.image->colour.data.data() + 3 * q;
           c += Vec3{k[0], k[1], k[2]} * wa;
           w += wa;
@@ -180,7 +190,6 @@ class PointImageLookup {
   }
 
   const RenderScene& scene_;
-  ReverseReuse reuse_;
   Key keys_[2];
   double same_surface_, tiny_;
 };
@@ -194,6 +203,9 @@ void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse
   if (k->to_world.size() != scene.accel().group_count())
     throw std::invalid_argument(fmt::format("the point image of frame {} has {} transforms for {} scene groups",
                                             k->frame, k->to_world.size(), scene.accel().group_count()));
+  if (!k->object.empty() && k->object.size() != pixels)
+    throw std::invalid_argument(
+        fmt::format("the point image of frame {} has {} object ids for {} pixels", k->frame, k->object.size(), pixels));
   if (reuse == ReverseReuse::visibility && k->parts.size() != pixels)
     throw std::invalid_argument(fmt::format(
         "the point image of frame {} has {} shading records for {} pixels: trace it for visibility reuse", k->frame,
@@ -305,33 +317,68 @@ ReprojectedFrame trace_keyframe(const RenderScene& scene, const LensArray& camer
 
 // A reprojected frame: every eye ray traced in the packets of full tracing;
 // `lookup` answers the hits it can, the others are queued and shaded in
-// full packets.
+// full packets. Colour reuse looks up Embree's float hit (RawHit: its
+// position is good to about 1e-7 of its distance, far below the
+// same-surface tolerance) and refines only the hits it must shade; the
+// refinement and the surface point (normals, material) were a fifth of a
+// reprojected frame. Visibility reuse shades at every hit and refines all.
 ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera, const PointImageLookup& lookup,
-                               int threads) {
+                               ReverseReuse reuse, int threads) {
   const int W = camera.width();
   ReprojectedFrame out = blank_frame(camera);
   const Vec3 background = scene.background();
+  const AccelScene& accel = scene.accel();
   out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
-    EyePacket eye;
     ShadeQueue queue;
     each_packet([&](const PixelXY* px, int k) {
-      trace_eye_packet(scene, camera, px, k, 0, counts, eye);
+      PrimaryRay primary[kPacketSize];
+      bool ok[kPacketSize];
+      primary_rays(camera, scene.bounds(), scene.epsilon(), px, k, 0, primary, ok);
+      RayPacket rays;
+      for (int l = 0; l < k; ++l) {
+        if (!ok[l]) continue;
+        rays.active[l] = true;
+        rays.rays[l] = primary[l].ray;
+        ++counts.eye;
+      }
+      RawHit raw[kPacketSize];
+      bool found[kPacketSize] = {};
+      if (std::any_of(rays.active, rays.active + k, [](bool a) { return a; }))
+        accel.intersect_raw(rays, raw, found, RayCoherence::coherent);
       for (int l = 0; l < k; ++l) {
         const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
-        if (!eye.found[l]) {
+        if (!found[l]) {
           store(out.colour, p, background);
           continue;
         }
-        out.object[p] = eye.surface[l].object;
-        const Ray& ray = eye.rays.rays[l];
+        const Ray& ray = rays.rays[l];
+        const Vec3 line_dir = ray.dir * primary[l].t_sign;
         Vec3 c;
-        if (lookup.find(ray, ray.dir * eye.primary[l].t_sign, eye.hits[l], eye.surface[l], counts, c)) {
+        bool reused = false;
+        if (reuse == ReverseReuse::color) {
+          EyeHit eh;
+          PrimKind kind;
+          uint32_t prim;
+          accel.primitive_of(raw[l], eh.group, kind, prim);
+          eh.object = out.object[p] = scene.object_of(eh.group, kind, prim);
+          eh.position = ray.org + ray.dir * static_cast<double>(raw[l].t);
+          reused = lookup.filtered_colour(line_dir, eh, c);
+        }
+        Hit hit;
+        SurfacePoint sp;
+        if (!reused) {
+          accel.resolve(ray, raw[l], hit);
+          sp = scene.surface(ray, hit);
+          out.object[p] = sp.object;
+          reused = reuse == ReverseReuse::visibility && lookup.find(ray, line_dir, hit, sp, counts, c);
+        }
+        if (reused) {
           store(out.colour, p, c);
           out.status[p] = PixelStatus::reprojected;
           out.received[p] = 1;
           continue;
         }
-        queue.push(ray, eye.surface[l], p);
+        queue.push(ray, sp, p);
         if (queue.full()) queue.flush(scene, counts, out.colour);
       }
     });
@@ -345,11 +392,12 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
 PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
                              int threads, RenderStats& stats) {
   const auto start = std::chrono::steady_clock::now();
-  PointImage key{frame, camera, {}, {}, {}, {}};
+  PointImage key{frame, camera, {}, {}, {}, {}, {}};
   const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights &&
                           !scene.has_tachyon_materials();
   ReprojectedFrame traced = trace_keyframe(scene, camera, key.hits, want_parts ? &key.parts : nullptr, threads);
   key.colour = std::move(traced.colour);
+  key.object = std::move(traced.object);
   for (size_t g = 0; g < scene.accel().group_count(); ++g)
     key.to_world.push_back(scene.accel().transform(static_cast<uint32_t>(g)));
   stats.rays = traced.rays;
@@ -372,7 +420,8 @@ ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& ca
   if (prev && next && next->frame != prev->frame) w_next = double(frame - prev->frame) / double(next->frame - prev->frame);
   const auto start = std::chrono::steady_clock::now();
   std::vector<PrimaryHit> unused;
-  ReprojectedFrame out = reusable ? trace_reusing(scene, camera, PointImageLookup(scene, prev, next, w_next, opt), opt.threads)
+  ReprojectedFrame out = reusable ? trace_reusing(scene, camera, PointImageLookup(scene, prev, next, w_next, opt),
+                                                  opt.reuse, opt.threads)
                                   : trace_keyframe(scene, camera, unused, nullptr, opt.threads);
   out.seconds.check = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
