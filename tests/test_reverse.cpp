@@ -60,6 +60,7 @@ TEST(ReverseReprojection, AtTheKeyframesCameraEveryHitFindsItsOwnPixel) {
     const PointImage key = trace_point_image(scene, LensArray(cam), 0, reuse, 0, stats);
     ReverseOptions opt;
     opt.reuse = reuse;
+    opt.copy_still_frames = false;  // the lookups, not the copy of a hold
     const ReprojectedFrame rf = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, opt);
     EXPECT_GT(rf.count(PixelStatus::reprojected), hits_of(key) * 95 / 100);
     if (reuse == ReverseReuse::color) EXPECT_EQ(rf.colour.data, key.colour.data);
@@ -204,6 +205,34 @@ TEST(ReverseReprojection, KeyframeObjectIdsAreTheObjectsItsRecordsHit) {
   }
   EXPECT_GT(background, 0u);
   EXPECT_LT(background, key.hits.size());
+}
+
+// A hold: the keyframe's camera and nothing moved. The frame is the
+// keyframe's full trace, copied without a ray; a camera moved by a hair, or
+// an object moved out of sight, are not holds and trace their eye rays.
+TEST(ReverseReprojection, AHoldIsItsKeyframeExactlyAndTracesNothing) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const SceneDesc far_ball = parse_nff("f 1 1 1 1 0 0 0 1\ns 100 100 100 1\n", "far.nff");
+  RenderScene scene({{&desc, false}, {&far_ball, true}});
+  scene.set_transforms({Affine{}, Affine{}});
+  const LensArrayDesc cam = camera_at(desc, {});
+  for (ReverseReuse reuse : {ReverseReuse::color, ReverseReuse::visibility}) {
+    RenderStats stats;
+    const PointImage key = trace_point_image(scene, LensArray(cam), 0, reuse, 0, stats);
+    const ReprojectedFrame hold = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, ReverseOptions{reuse});
+    EXPECT_EQ(hold.colour.data, key.colour.data);
+    EXPECT_EQ(hold.object, key.object);
+    EXPECT_EQ(hold.rays.total(), 0u);
+    EXPECT_EQ(hold.count(PixelStatus::reprojected), hits_of(key));
+
+    const ReprojectedFrame nudged =
+        reverse_reproject(scene, LensArray(camera_at(desc, {1e-9, 0, 0})), 1, &key, nullptr, ReverseOptions{reuse});
+    EXPECT_GT(nudged.rays.eye, 0u);
+    scene.set_transforms({Affine{}, Affine::translate({0, 0, 1})});
+    const ReprojectedFrame moved = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, ReverseOptions{reuse});
+    EXPECT_GT(moved.rays.eye, 0u);
+    scene.set_transforms({Affine{}, Affine{}});
+  }
 }
 
 TEST(ReverseReprojection, RefusesKeyframesItCannotUse) {

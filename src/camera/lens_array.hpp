@@ -40,6 +40,8 @@ struct LensArrayDesc {
   double gap = 1;            ///< lens plane to pixel panel (scene units)
   double view_distance = INFINITY;  ///< lenticular vertical perspective distance V
   Frame frame;               ///< array placement in the world
+  /// Equal descriptions give every pixel the same line, bit for bit.
+  friend bool operator==(const LensArrayDesc&, const LensArrayDesc&) = default;
 };
 
 /// Lens index: column lx from the left, row ly from the top.

@@ -108,6 +108,7 @@ struct Frame {
     return {dot(r, x), dot(r, y), dot(r, z)};
   }
   Vec3 to_local_dir(const Vec3& d_world) const { return {dot(d_world, x), dot(d_world, y), dot(d_world, z)}; }
+  friend bool operator==(const Frame&, const Frame&) = default;
 };
 
 }  // namespace holoray

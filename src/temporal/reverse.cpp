@@ -387,6 +387,36 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
   return out;
 }
 
+// A keyframe that is this frame exactly, or null: the same camera (equal
+// descriptions give every pixel the keyframe pixel's line) and every scene
+// group where the keyframe saw it. Holds and the still stretches of a
+// locked-off shot: the keyframe's image is this frame's full trace.
+const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, const PointImage* prev,
+                             const PointImage* next) {
+  const AccelScene& accel = scene.accel();
+  for (const PointImage* k : {prev, next}) {
+    if (!k || !(k->camera.desc() == camera.desc()) || k->to_world.size() != accel.group_count() ||
+        k->object.size() != k->hits.size())
+      continue;
+    bool still = true;
+    for (size_t g = 0; g < k->to_world.size() && still; ++g) {
+      const Affine& now = accel.transform(static_cast<uint32_t>(g));
+      still = k->to_world[g].m == now.m && k->to_world[g].translation == now.translation;
+    }
+    if (still) return k;
+  }
+  return nullptr;
+}
+
+ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
+  ReprojectedFrame out = blank_frame(camera);
+  out.colour = key.colour;
+  out.object = key.object;
+  for (size_t p = 0; p < out.object.size(); ++p)
+    if (out.object[p] >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
+  return out;
+}
+
 }  // namespace
 
 PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
@@ -420,7 +450,9 @@ ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& ca
   if (prev && next && next->frame != prev->frame) w_next = double(frame - prev->frame) / double(next->frame - prev->frame);
   const auto start = std::chrono::steady_clock::now();
   std::vector<PrimaryHit> unused;
-  ReprojectedFrame out = reusable ? trace_reusing(scene, camera, PointImageLookup(scene, prev, next, w_next, opt),
+  const PointImage* same = opt.copy_still_frames ? same_frame(scene, camera, prev, next) : nullptr;
+  ReprojectedFrame out = same       ? copy_of(camera, *same)
+                         : reusable ? trace_reusing(scene, camera, PointImageLookup(scene, prev, next, w_next, opt),
                                                   opt.reuse, opt.threads)
                                   : trace_keyframe(scene, camera, unused, nullptr, opt.threads);
   out.seconds.check = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

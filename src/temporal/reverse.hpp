@@ -50,6 +50,10 @@ struct ReverseOptions {
   /// Same surface: the keyframe pixel's depth within this many pixel
   /// footprints (s * |t| / g) of the projected point's.
   double same_surface = 2.0;
+  /// A frame with a keyframe's camera and every object where that keyframe
+  /// saw it (a hold) is that keyframe's image, exactly and without a ray.
+  /// False sends it through the lookups like any frame (their tests).
+  bool copy_still_frames = true;
 };
 
 /// Traces the keyframe `frame` seen by `camera` (the scene at its time) into
@@ -60,9 +64,10 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
 
 /// Builds frame `frame`, seen by `camera`, from keyframes `prev` and `next`
 /// (either may be null, not both; the nearer in time is tried first) by
-/// reverse reprojection; `scene` must already be at that frame. Status per
-/// pixel: `reprojected` (reused) or `traced` (shaded, or background); never
-/// missed. Throws std::invalid_argument for a keyframe of another size, with
+/// reverse reprojection; `scene` must already be at that frame. A frame
+/// identical to a keyframe (same camera, nothing moved) is that keyframe
+/// (ReverseOptions::copy_still_frames). Status per pixel: `reprojected`
+/// (reused) or `traced` (shaded, or background); never missed. Throws std::invalid_argument for a keyframe of another size, with
 /// no transforms, or without the parts `options.reuse` needs.
 ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& camera, int frame,
                                    const PointImage* prev, const PointImage* next, const ReverseOptions& options);
