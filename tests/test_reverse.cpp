@@ -60,7 +60,7 @@ TEST(ReverseReprojection, AtTheKeyframesCameraEveryHitFindsItsOwnPixel) {
     const PointImage key = trace_point_image(scene, LensArray(cam), 0, reuse, 0, stats);
     ReverseOptions opt;
     opt.reuse = reuse;
-    opt.copy_still_frames = false;  // the lookups, not the copy of a hold
+    opt.copy_unchanged = false;  // the lookups, not the copy of a hold
     const ReprojectedFrame rf = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, opt);
     EXPECT_GT(rf.count(PixelStatus::reprojected), hits_of(key) * 95 / 100);
     if (reuse == ReverseReuse::color) EXPECT_EQ(rf.colour.data, key.colour.data);
@@ -209,7 +209,8 @@ TEST(ReverseReprojection, KeyframeObjectIdsAreTheObjectsItsRecordsHit) {
 
 // A hold: the keyframe's camera and nothing moved. The frame is the
 // keyframe's full trace, copied without a ray; a camera moved by a hair, or
-// an object moved out of sight, are not holds and trace their eye rays.
+// an object moved out of sight (visibility reuse), are not holds and trace
+// their eye rays.
 TEST(ReverseReprojection, AHoldIsItsKeyframeExactlyAndTracesNothing) {
   const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
   const SceneDesc far_ball = parse_nff("f 1 1 1 1 0 0 0 1\ns 100 100 100 1\n", "far.nff");
@@ -228,11 +229,41 @@ TEST(ReverseReprojection, AHoldIsItsKeyframeExactlyAndTracesNothing) {
     const ReprojectedFrame nudged =
         reverse_reproject(scene, LensArray(camera_at(desc, {1e-9, 0, 0})), 1, &key, nullptr, ReverseOptions{reuse});
     EXPECT_GT(nudged.rays.eye, 0u);
+    // Colour reuse copies the elemental images no moved object can reach
+    // (LockedOffShot... below): with the ball far out of sight, all of them.
     scene.set_transforms({Affine{}, Affine::translate({0, 0, 1})});
     const ReprojectedFrame moved = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, ReverseOptions{reuse});
-    EXPECT_GT(moved.rays.eye, 0u);
+    if (reuse == ReverseReuse::visibility) EXPECT_GT(moved.rays.eye, 0u);
+    else EXPECT_EQ(moved.colour.data, key.colour.data);
     scene.set_transforms({Affine{}, Affine{}});
   }
+}
+
+// A locked-off shot with a small ball moving at one side: elemental images
+// none of whose lines can reach the ball (where it is or where the keyframe
+// saw it) are copied from the keyframe without a ray, and the frame equals
+// the one built with every pixel through the lookups.
+TEST(ReverseReprojection, LockedOffShotCopiesTheElementalImagesNoMovingObjectReaches) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const SceneDesc ball = parse_nff("f 0.9 0.2 0.2 1 0 0 0 1\ns 0 0 0 0.15\n", "ball.nff");
+  RenderScene scene({{&desc, false}, {&ball, true}});
+  const LensArrayDesc cam = camera_at(desc, {});
+  // At the array's left edge, in front of it (seen by a few lenses there).
+  const Frame& f = cam.frame;
+  const Vec3 left = f.to_world_point({-0.4 * cam.lenses_x * cam.pitch, 0, 1.5});
+  scene.set_transforms({Affine{}, Affine::translate(left)});
+  RenderStats stats;
+  const PointImage key = trace_point_image(scene, LensArray(cam), 0, ReverseReuse::color, 0, stats);
+  scene.set_transforms({Affine{}, Affine::translate(left + f.y * 0.2)});
+  ReverseOptions copy, lookups;
+  lookups.copy_unchanged = false;
+  const ReprojectedFrame fast = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, copy);
+  const ReprojectedFrame slow = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, lookups);
+  EXPECT_LT(max_difference(fast.colour.data, slow.colour.data), 1e-6f);
+  EXPECT_EQ(fast.object, slow.object);
+  EXPECT_GT(fast.rays.eye, 0u);                   // the lenses that see the ball trace
+  EXPECT_LT(fast.rays.eye, slow.rays.eye / 2);    // most are copied
+  EXPECT_NE(fast.object, key.object);             // and the ball moved in the image
 }
 
 TEST(ReverseReprojection, RefusesKeyframesItCannotUse) {

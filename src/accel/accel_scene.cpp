@@ -285,6 +285,10 @@ void AccelScene::set_transforms(const std::vector<Affine>& object_to_world) {
   m.check("moving the scene's objects");
 }
 
+Bounds3 AccelScene::group_bounds(uint32_t group, const Affine& to_world) const {
+  return transformed(groups_[group].object_bounds, to_world);
+}
+
 size_t AccelScene::triangle_count() const {
   return std::accumulate(groups_.begin(), groups_.end(), size_t{0},
                          [](size_t n, const Group& g) { return n + g.geo.triangles.indices.size() / 3; });

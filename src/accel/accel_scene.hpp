@@ -132,6 +132,10 @@ class AccelScene {
 
   /// Bounds of all geometry at the current transforms (world); empty for an empty scene.
   const Bounds3& bounds() const { return bounds_; }
+  /// Bounds (world) of one group's geometry placed by `to_world` (its
+  /// transform at some frame): its object-space box carried by the
+  /// transform, so it may be loose; empty for an empty group.
+  Bounds3 group_bounds(uint32_t group, const Affine& to_world) const;
   size_t triangle_count() const;
   size_t sphere_count() const;
   size_t cone_count() const;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -24,6 +25,10 @@ struct Key {
   std::vector<uint8_t> moved;      // per group: now_to_key is not the identity
   bool anything_moved = false;
   double footprint = 0;  // s / g of the keyframe camera
+  bool same_camera = false;  // the frame's camera: every pixel has its keyframe pixel's line
+  // Bounding spheres (world centre, radius) of the groups moved since the
+  // keyframe, where they are now and where the keyframe saw them.
+  std::vector<std::pair<Vec3, double>> moved_spheres;
 };
 
 // What a lookup needs of an eye-ray hit: where (world), in which scene
@@ -38,8 +43,8 @@ struct EyeHit {
 // worker threads: const and thread-safe.
 class PointImageLookup {
  public:
-  PointImageLookup(const RenderScene& scene, const PointImage* prev, const PointImage* next, double w_next,
-                   const ReverseOptions& opt)
+  PointImageLookup(const RenderScene& scene, const LensArray& camera, const PointImage* prev, const PointImage* next,
+                   double w_next, const ReverseOptions& opt)
       : scene_(scene), same_surface_(opt.same_surface),
         tiny_(1e-7 * std::fmax(1.0, length(scene.bounds().diagonal()))) {
     // The keyframe nearer in time first.
@@ -57,8 +62,54 @@ class PointImageLookup {
         key.now_to_key[g] = images[k]->to_world[g] * scene.accel().inverse_transform(static_cast<uint32_t>(g));
         key.moved[g] = !key.now_to_key[g].is_identity();
         key.anything_moved |= key.moved[g] != 0;
+        if (!key.moved[g]) continue;
+        const auto group = static_cast<uint32_t>(g);
+        for (const Affine& at : {scene.accel().transform(group), images[k]->to_world[g]}) {
+          const Bounds3 b = scene.accel().group_bounds(group, at);
+          if (!b.empty()) key.moved_spheres.emplace_back(b.centre(), 0.5 * length(b.diagonal()));
+        }
       }
+      key.same_camera = images[k]->camera.desc() == camera.desc() && images[k]->object.size() == images[k]->hits.size();
     }
+    const LensArrayDesc& d = camera.desc();
+    // Lines of one lens leave its centre within this angle of the array
+    // normal (the corners of a square elemental image, pitch / sqrt(2) off axis).
+    lens_half_angle_ = std::atan(d.pitch / (std::sqrt(2.0) * d.gap));
+  }
+
+  // A keyframe with the frame's own camera on a square grid (a locked-off
+  // shot whose objects move), whose elemental images lens_unchanged() may
+  // copy; null otherwise.
+  const PointImage* same_camera_image(const LensArray& camera) const {
+    if (camera.desc().grid != Grid::square) return nullptr;
+    for (const Key& key : keys_)
+      if (key.image && key.same_camera) return key.image;
+    return nullptr;
+  }
+
+  // Elemental image `lens` of same_camera_image() is this frame's: no line
+  // of the lens (through its centre, within its field of view, either way
+  // along it) meets a group that moved since that keyframe, where the group
+  // is now or where the keyframe saw it; each line then meets what it met in
+  // the keyframe, and its colour reuse would read its own keyframe pixel.
+  // Tested against the groups' bounding spheres: the double cone of the
+  // lens's lines misses a sphere when the angle from the axis to the
+  // sphere's centre, less the sphere's angular radius, exceeds the cone's.
+  bool lens_unchanged(const LensArray& camera, LensIndex lens) const {
+    const Key* key = nullptr;
+    for (const Key& k : keys_)
+      if (k.image && k.same_camera) key = key ? key : &k;
+    if (!key) return false;
+    const Frame& f = camera.desc().frame;
+    const Vec3 c = f.to_world_point(camera.lens_centre_local(lens));
+    for (const auto& [centre, radius] : key->moved_spheres) {
+      const Vec3 v = centre - c;
+      const double dist = length(v);
+      if (dist <= radius) return false;
+      const double off_axis = std::acos(std::fmin(1.0, std::fabs(dot(v, f.z)) / dist));
+      if (off_axis - std::asin(radius / dist) <= lens_half_angle_) return false;
+    }
+    return true;
   }
 
   // The colour of an eye-ray hit from the keyframes with visibility reuse,
@@ -192,6 +243,7 @@ class PointImageLookup {
   const RenderScene& scene_;
   Key keys_[2];
   double same_surface_, tiny_;
+  double lens_half_angle_ = 0;
 };
 
 void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse) {
@@ -323,14 +375,32 @@ ReprojectedFrame trace_keyframe(const RenderScene& scene, const LensArray& camer
 // refinement and the surface point (normals, material) were a fifth of a
 // reprojected frame. Visibility reuse shades at every hit and refines all.
 ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera, const PointImageLookup& lookup,
-                               ReverseReuse reuse, int threads) {
+                               ReverseReuse reuse, bool copy, int threads) {
   const int W = camera.width();
   ReprojectedFrame out = blank_frame(camera);
   const Vec3 background = scene.background();
   const AccelScene& accel = scene.accel();
+  // Colour reuse in a locked-off shot: elemental images that no moving
+  // object can reach are the keyframe's (PointImageLookup::lens_unchanged).
+  const PointImage* same = copy && reuse == ReverseReuse::color ? lookup.same_camera_image(camera) : nullptr;
   out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
     ShadeQueue queue;
+    LensIndex last_lens{-1, -1};
+    bool last_unchanged = false;
     each_packet([&](const PixelXY* px, int k) {
+      if (same) {  // a packet lies in one elemental image (square grid)
+        const LensIndex lens = camera.lens_of_pixel(px[0].i, px[0].j);
+        if (!(lens == last_lens)) last_lens = lens, last_unchanged = lookup.lens_unchanged(camera, lens);
+        if (last_unchanged) {
+          for (int l = 0; l < k; ++l) {
+            const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
+            std::copy_n(same->colour.data.data() + 3 * p, 3, out.colour.data.data() + 3 * p);
+            out.object[p] = same->object[p];
+            if (out.object[p] >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
+          }
+          return;
+        }
+      }
       PrimaryRay primary[kPacketSize];
       bool ok[kPacketSize];
       primary_rays(camera, scene.bounds(), scene.epsilon(), px, k, 0, primary, ok);
@@ -450,10 +520,10 @@ ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& ca
   if (prev && next && next->frame != prev->frame) w_next = double(frame - prev->frame) / double(next->frame - prev->frame);
   const auto start = std::chrono::steady_clock::now();
   std::vector<PrimaryHit> unused;
-  const PointImage* same = opt.copy_still_frames ? same_frame(scene, camera, prev, next) : nullptr;
+  const PointImage* same = opt.copy_unchanged ? same_frame(scene, camera, prev, next) : nullptr;
   ReprojectedFrame out = same       ? copy_of(camera, *same)
-                         : reusable ? trace_reusing(scene, camera, PointImageLookup(scene, prev, next, w_next, opt),
-                                                  opt.reuse, opt.threads)
+                         : reusable ? trace_reusing(scene, camera, PointImageLookup(scene, camera, prev, next, w_next, opt),
+                                                  opt.reuse, opt.copy_unchanged, opt.threads)
                                   : trace_keyframe(scene, camera, unused, nullptr, opt.threads);
   out.seconds.check = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

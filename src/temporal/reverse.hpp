@@ -50,10 +50,13 @@ struct ReverseOptions {
   /// Same surface: the keyframe pixel's depth within this many pixel
   /// footprints (s * |t| / g) of the projected point's.
   double same_surface = 2.0;
-  /// A frame with a keyframe's camera and every object where that keyframe
-  /// saw it (a hold) is that keyframe's image, exactly and without a ray.
-  /// False sends it through the lookups like any frame (their tests).
-  bool copy_still_frames = true;
+  /// A frame with a keyframe's camera copies from that keyframe what cannot
+  /// have changed, without a ray: the whole image when every object is
+  /// where that keyframe saw it (a hold: exact); with colour reuse on a
+  /// square grid, each elemental image none of whose lines can reach an
+  /// object that moved (a locked-off shot: what the lookups would give).
+  /// False sends every pixel through the lookups (their tests).
+  bool copy_unchanged = true;
 };
 
 /// Traces the keyframe `frame` seen by `camera` (the scene at its time) into
@@ -66,7 +69,7 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
 /// (either may be null, not both; the nearer in time is tried first) by
 /// reverse reprojection; `scene` must already be at that frame. A frame
 /// identical to a keyframe (same camera, nothing moved) is that keyframe
-/// (ReverseOptions::copy_still_frames). Status per pixel: `reprojected`
+/// (ReverseOptions::copy_unchanged). Status per pixel: `reprojected`
 /// (reused) or `traced` (shaded, or background); never missed. Throws std::invalid_argument for a keyframe of another size, with
 /// no transforms, or without the parts `options.reuse` needs.
 ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& camera, int frame,
