@@ -385,6 +385,12 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
   const PointImage* same = copy && reuse == ReverseReuse::color ? lookup.same_camera_image(camera) : nullptr;
   out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
     ShadeQueue queue;
+    // Per tile, not per packet: constructing them costs (as EyePacket is).
+    PrimaryRay primary[kPacketSize];
+    RayPacket rays;
+    RawHit raw[kPacketSize];
+    Hit hits[kPacketSize];
+    SurfacePoint sps[kPacketSize];
     LensIndex last_lens{-1, -1};
     bool last_unchanged = false;
     each_packet([&](const PixelXY* px, int k) {
@@ -401,54 +407,63 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
           return;
         }
       }
-      PrimaryRay primary[kPacketSize];
       bool ok[kPacketSize];
       primary_rays(camera, scene.bounds(), scene.epsilon(), px, k, 0, primary, ok);
-      RayPacket rays;
+      std::fill(rays.active, rays.active + kPacketSize, false);
       for (int l = 0; l < k; ++l) {
         if (!ok[l]) continue;
         rays.active[l] = true;
         rays.rays[l] = primary[l].ray;
         ++counts.eye;
       }
-      RawHit raw[kPacketSize];
       bool found[kPacketSize] = {};
       if (std::any_of(rays.active, rays.active + k, [](bool a) { return a; }))
         accel.intersect_raw(rays, raw, found, RayCoherence::coherent);
+      // Colour reuse first, from the raw hits; then the lanes left are
+      // refined and given surface points together (as full tracing does,
+      // lane after lane in one loop), then reused by visibility or queued.
+      bool left[kPacketSize] = {};
       for (int l = 0; l < k; ++l) {
         const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
         if (!found[l]) {
           store(out.colour, p, background);
           continue;
         }
+        left[l] = true;
+        if (reuse != ReverseReuse::color) continue;
         const Ray& ray = rays.rays[l];
-        const Vec3 line_dir = ray.dir * primary[l].t_sign;
+        EyeHit eh;
+        PrimKind kind;
+        uint32_t prim;
+        accel.primitive_of(raw[l], eh.group, kind, prim);
+        eh.object = out.object[p] = scene.object_of(eh.group, kind, prim);
+        eh.position = ray.org + ray.dir * static_cast<double>(raw[l].t);
         Vec3 c;
-        bool reused = false;
-        if (reuse == ReverseReuse::color) {
-          EyeHit eh;
-          PrimKind kind;
-          uint32_t prim;
-          accel.primitive_of(raw[l], eh.group, kind, prim);
-          eh.object = out.object[p] = scene.object_of(eh.group, kind, prim);
-          eh.position = ray.org + ray.dir * static_cast<double>(raw[l].t);
-          reused = lookup.filtered_colour(line_dir, eh, c);
+        if (lookup.filtered_colour(ray.dir * primary[l].t_sign, eh, c)) {
+          store(out.colour, p, c);
+          out.status[p] = PixelStatus::reprojected;
+          out.received[p] = 1;
+          left[l] = false;
         }
-        Hit hit;
-        SurfacePoint sp;
-        if (!reused) {
-          accel.resolve(ray, raw[l], hit);
-          sp = scene.surface(ray, hit);
-          out.object[p] = sp.object;
-          reused = reuse == ReverseReuse::visibility && lookup.find(ray, line_dir, hit, sp, counts, c);
-        }
-        if (reused) {
+      }
+      for (int l = 0; l < k; ++l)
+        if (left[l]) accel.resolve(rays.rays[l], raw[l], hits[l]);
+      for (int l = 0; l < k; ++l)
+        if (left[l]) sps[l] = scene.surface(rays.rays[l], hits[l]);
+      for (int l = 0; l < k; ++l) {
+        if (!left[l]) continue;
+        const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
+        const Ray& ray = rays.rays[l];
+        out.object[p] = sps[l].object;
+        Vec3 c;
+        if (reuse == ReverseReuse::visibility &&
+            lookup.find(ray, ray.dir * primary[l].t_sign, hits[l], sps[l], counts, c)) {
           store(out.colour, p, c);
           out.status[p] = PixelStatus::reprojected;
           out.received[p] = 1;
           continue;
         }
-        queue.push(ray, sp, p);
+        queue.push(ray, sps[l], p);
         if (queue.full()) queue.flush(scene, counts, out.colour);
       }
     });
