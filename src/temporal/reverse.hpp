@@ -6,8 +6,12 @@
 // 1. Every pixel of the frame traces its own eye ray, in 16-ray packets per
 //    elemental image as full tracing does, so visibility, silhouettes, the
 //    slab near the array and the background are exact and nothing is missed
-//    or filled. Measured: eye rays and surface points are 20-30 % of a full
-//    frame, shading (shadow, mirror and refraction rays) the rest.
+//    or filled. Colour reuse looks up Embree's unrefined hit (RawHit) and
+//    refines only the hits it shades. Two exceptions copy instead, where
+//    nothing can have changed: a frame with a keyframe's camera in which
+//    nothing moved (a hold) is that keyframe; with a keyframe's camera and
+//    colour reuse, an elemental image whose lines cannot reach a moved
+//    object is the keyframe's (ReverseOptions::copy_unchanged).
 // 2. Only the shading is reused. The hit is moved to each keyframe's time by
 //    its object's transforms (object space, as the point image records it)
 //    and projected through the keyframe's integral camera into the lens that
