@@ -37,7 +37,7 @@ void shape_bounds(const RTCBoundsFunctionArguments* args) {
 inline bool hit_shape(const Sphere& s, const Vec3& o, const Vec3& d, double tn, double tf, double& t, Vec3& n) {
   return intersect_sphere(s, o, d, tn, tf, t, n);
 }
-inline bool hit_shape(const Cone& c, const Vec3& o, const Vec3& d, double tn, double tf, double& t, Vec3& n) {
+inline bool hit_shape(const PreparedCone& c, const Vec3& o, const Vec3& d, double tn, double tf, double& t, Vec3& n) {
   return intersect_cone(c, o, d, tn, tf, t, n);
 }
 
@@ -140,7 +140,8 @@ GeometryGroup single_group(TriangleData triangles, std::vector<Sphere> spheres, 
   return g;
 }
 
-void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, unsigned id_base) {
+void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, std::vector<PreparedCone>& cones,
+                     unsigned id_base) {
   TriangleData& tri = geo.triangles;
   if (!tri.indices.empty()) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -166,7 +167,7 @@ void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, unsig
     rtcReleaseGeometry(g);
   };
   add_user(geo.spheres, PrimKind::sphere);
-  add_user(geo.cones, PrimKind::cone);
+  add_user(cones, PrimKind::cone);
 }
 
 Bounds3 geometry_bounds(const GeometryGroup& geo) {
@@ -226,13 +227,15 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
     Group& g = groups_[gi];
     g.geo = std::move(groups[gi]);
     g.object_bounds = geometry_bounds(g.geo);
+    g.cones.reserve(g.geo.cones.size());
+    for (const Cone& c : g.geo.cones) g.cones.push_back(prepare_cone(c));
     const unsigned base = 3 * static_cast<unsigned>(gi);
     if (!g.geo.movable) {
-      attach_geometry(m.device, m.scene, g.geo, base);
+      attach_geometry(m.device, m.scene, g.geo, g.cones, base);
       continue;
     }
     RTCScene child = new_scene();
-    attach_geometry(m.device, child, g.geo, 0);
+    attach_geometry(m.device, child, g.geo, g.cones, 0);
     rtcCommitScene(child);
     m.children[gi] = child;
     RTCGeometry inst = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -346,7 +349,7 @@ bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_gues
       const double slack = strict ? INFINITY : 1e-4 * std::fabs(t_guess) + 1e-7;
       const double lo = strict ? r.tnear : t_guess - slack, hi = strict ? r.tfar : t_guess + slack;
       const bool ok = hit.kind == PrimKind::sphere ? intersect_sphere(g.geo.spheres[hit.prim], o, d, lo, hi, t, n)
-                                                   : intersect_cone(g.geo.cones[hit.prim], o, d, lo, hi, t, n);
+                                                   : intersect_cone(g.cones[hit.prim], o, d, lo, hi, t, n);
       if (!ok) {
         if (strict) return false;
         hit.t = t_guess;  // keep Embree's float answer (and normal, set by the caller)

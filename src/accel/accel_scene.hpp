@@ -146,6 +146,7 @@ class AccelScene {
  private:
   struct Group {
     GeometryGroup geo;
+    std::vector<PreparedCone> cones;  // geo.cones prepared: what Embree's callbacks and refine() test
     Bounds3 object_bounds;
     Affine to_world, to_object;
     bool identity = true;

@@ -51,13 +51,26 @@ bool intersect_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnea
   return false;
 }
 
-bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+PreparedCone prepare_cone(const Cone& c) {
+  PreparedCone p;
+  p.cone = c;
   const Vec3 axis_full = c.apex - c.base;
-  const double len = length(axis_full);
-  const Vec3 a = axis_full / len;
-  const double rb = std::fabs(c.base_radius), ra = std::fabs(c.apex_radius);
-  const double k = (ra - rb) / len;  // radius change per unit height
-  const Vec3 w = o - c.base;
+  p.len = length(axis_full);
+  p.a = axis_full / p.len;
+  p.rb = std::fabs(c.base_radius);
+  p.k = (std::fabs(c.apex_radius) - p.rb) / p.len;  // radius change per unit height
+  return p;
+}
+
+bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+  return intersect_cone(prepare_cone(c), o, d, tnear, tfar, t, n);
+}
+
+bool intersect_cone(const PreparedCone& pc, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t,
+                    Vec3& n) {
+  const Vec3& a = pc.a;
+  const double len = pc.len, k = pc.k, rb = pc.rb;
+  const Vec3 w = o - pc.cone.base;
   const double hw = dot(w, a), hd = dot(d, a);
   const Vec3 wp = w - a * hw, dp = d - a * hd;
   const double r0 = rb + k * hw;  // radius at the origin's height
@@ -74,7 +87,7 @@ bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, d
     if (rb + k * h < 0) continue;  // the mirrored nappe beyond a cone's tip
     const Vec3 radial = normalize(wp + dp * root);
     const Vec3 nn = normalize(radial - a * k);
-    if (c.base_radius < 0 && dot(nn, d) <= 0) continue;  // inside-only
+    if (pc.cone.base_radius < 0 && dot(nn, d) <= 0) continue;  // inside-only
     t = root;
     n = nn;
     return true;
