@@ -31,8 +31,8 @@ struct PointImage {
   std::vector<ShadeParts> parts;
   /// W*H, the object id each pixel saw (-1 background), for the reverse
   /// reprojection's same-surface tests (four per reused hit; reading it is
-  /// cheaper than RenderScene::object_of); empty in the forward
-  /// reprojection's keyframes.
+  /// cheaper than RenderScene::object_of); required there (a keyframe
+  /// without is refused), empty in the forward reprojection's keyframes.
   std::vector<int32_t> object;
 
   static constexpr size_t kBytesPerPixel = sizeof(PrimaryHit) + 3 * sizeof(float);

@@ -25,7 +25,6 @@ struct Key {
   std::vector<uint8_t> moved;      // per group: now_to_key is not the identity
   bool anything_moved = false;
   double footprint = 0;  // s / g of the keyframe camera
-  bool same_camera = false;  // the frame's camera: every pixel has its keyframe pixel's line
   // Bounding spheres (world centre, radius) of the groups moved since the
   // keyframe, where they are now and where the keyframe saw them.
   std::vector<std::pair<Vec3, double>> moved_spheres;
@@ -69,7 +68,9 @@ class PointImageLookup {
           if (!b.empty()) key.moved_spheres.emplace_back(b.centre(), 0.5 * length(b.diagonal()));
         }
       }
-      key.same_camera = images[k]->camera.desc() == camera.desc() && images[k]->object.size() == images[k]->hits.size();
+      // The frame's camera: every pixel has its keyframe pixel's line.
+      if (!same_camera_ && camera.desc().grid == Grid::square && images[k]->camera.desc() == camera.desc())
+        same_camera_ = &key;
     }
     const LensArrayDesc& d = camera.desc();
     // Lines of one lens leave its centre within this angle of the array
@@ -80,12 +81,7 @@ class PointImageLookup {
   // A keyframe with the frame's own camera on a square grid (a locked-off
   // shot whose objects move), whose elemental images lens_unchanged() may
   // copy; null otherwise.
-  const PointImage* same_camera_image(const LensArray& camera) const {
-    if (camera.desc().grid != Grid::square) return nullptr;
-    for (const Key& key : keys_)
-      if (key.image && key.same_camera) return key.image;
-    return nullptr;
-  }
+  const PointImage* same_camera_image() const { return same_camera_ ? same_camera_->image : nullptr; }
 
   // Elemental image `lens` of same_camera_image() is this frame's: no line
   // of the lens (through its centre, within its field of view, either way
@@ -96,13 +92,10 @@ class PointImageLookup {
   // lens's lines misses a sphere when the angle from the axis to the
   // sphere's centre, less the sphere's angular radius, exceeds the cone's.
   bool lens_unchanged(const LensArray& camera, LensIndex lens) const {
-    const Key* key = nullptr;
-    for (const Key& k : keys_)
-      if (k.image && k.same_camera) key = key ? key : &k;
-    if (!key) return false;
+    if (!same_camera_) return false;
     const Frame& f = camera.desc().frame;
     const Vec3 c = f.to_world_point(camera.lens_centre_local(lens));
-    for (const auto& [centre, radius] : key->moved_spheres) {
+    for (const auto& [centre, radius] : same_camera_->moved_spheres) {
       const Vec3 v = centre - c;
       const double dist = length(v);
       if (dist <= radius) return false;
@@ -167,10 +160,8 @@ class PointImageLookup {
   // same_surface_ footprints).
   bool same_surface(const Key& key, size_t idx, int object, double t) const {
     const PrimaryHit& rec = key.image->hits[idx];
-    const int seen = key.image->object.empty()
-                         ? (rec.status == PrimaryHit::kHit ? scene_.object_of(rec.group, static_cast<PrimKind>(rec.kind), rec.prim) : -1)
-                         : key.image->object[idx];
-    return seen == object && object >= 0 && std::fabs(rec.t - t) <= same_surface_ * key.footprint * std::fabs(t) + tiny_;
+    return key.image->object[idx] == object && object >= 0 &&
+           std::fabs(rec.t - t) <= same_surface_ * key.footprint * std::fabs(t) + tiny_;
   }
 
   // Colour reuse, filtered as Nehab et al. filter their cache: the bilinear
@@ -242,6 +233,7 @@ class PointImageLookup {
 
   const RenderScene& scene_;
   Key keys_[2];
+  const Key* same_camera_ = nullptr;  // the first of keys_ with the frame's camera (square grid)
   double same_surface_, tiny_;
   double lens_half_angle_ = 0;
 };
@@ -255,7 +247,7 @@ void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse
   if (k->to_world.size() != scene.accel().group_count())
     throw std::invalid_argument(fmt::format("the point image of frame {} has {} transforms for {} scene groups",
                                             k->frame, k->to_world.size(), scene.accel().group_count()));
-  if (!k->object.empty() && k->object.size() != pixels)
+  if (k->object.size() != pixels)
     throw std::invalid_argument(
         fmt::format("the point image of frame {} has {} object ids for {} pixels", k->frame, k->object.size(), pixels));
   if (reuse == ReverseReuse::visibility && k->parts.size() != pixels)
@@ -301,6 +293,15 @@ class ShadeQueue {
   size_t pixel_[kPacketSize] = {};
   int n_ = 0;
 };
+
+// Pixel p of a keyframe as the frame's own (nothing on its line changed):
+// its colour and object; a surface counts as reprojected, background as
+// traced (as a traced eye ray that met nothing would).
+void take_pixel(ReprojectedFrame& out, const PointImage& key, size_t p) {
+  std::copy_n(key.colour.data.data() + 3 * p, 3, out.colour.data.data() + 3 * p);
+  out.object[p] = key.object[p];
+  if (key.object[p] >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
+}
 
 // Frame setup shared by keyframes and reprojected frames.
 ReprojectedFrame blank_frame(const LensArray& camera) {
@@ -382,7 +383,7 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
   const AccelScene& accel = scene.accel();
   // Colour reuse in a locked-off shot: elemental images that no moving
   // object can reach are the keyframe's (PointImageLookup::lens_unchanged).
-  const PointImage* same = copy && reuse == ReverseReuse::color ? lookup.same_camera_image(camera) : nullptr;
+  const PointImage* same = copy && reuse == ReverseReuse::color ? lookup.same_camera_image() : nullptr;
   out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
     ShadeQueue queue;
     // Per tile, not per packet: constructing them costs (as EyePacket is).
@@ -398,12 +399,7 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
         const LensIndex lens = camera.lens_of_pixel(px[0].i, px[0].j);
         if (!(lens == last_lens)) last_lens = lens, last_unchanged = lookup.lens_unchanged(camera, lens);
         if (last_unchanged) {
-          for (int l = 0; l < k; ++l) {
-            const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
-            std::copy_n(same->colour.data.data() + 3 * p, 3, out.colour.data.data() + 3 * p);
-            out.object[p] = same->object[p];
-            if (out.object[p] >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
-          }
+          for (int l = 0; l < k; ++l) take_pixel(out, *same, static_cast<size_t>(px[l].j) * W + px[l].i);
           return;
         }
       }
@@ -495,10 +491,7 @@ const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, 
 
 ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
   ReprojectedFrame out = blank_frame(camera);
-  out.colour = key.colour;
-  out.object = key.object;
-  for (size_t p = 0; p < out.object.size(); ++p)
-    if (out.object[p] >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
+  for (size_t p = 0; p < key.object.size(); ++p) take_pixel(out, key, p);
   return out;
 }
 
