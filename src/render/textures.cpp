@@ -45,11 +45,11 @@ double wrap(double u) {
 }  // namespace
 
 MipMap::MipMap(const ImageMap& image) {
-  levels_.push_back({image.width, image.height, image.rgb});
-  const int count = std::max(bit_count(image.width), bit_count(image.height));
+  levels_.push_back({image.width, image.height, image.depth, image.rgb});
+  const int count = image.depth > 1 ? 1 : std::max(bit_count(image.width), bit_count(image.height));
   while (static_cast<int>(levels_.size()) < count) {
     const Level& a = levels_.back();
-    Level b{std::max(1, a.width >> 1), std::max(1, a.height >> 1), {}};
+    Level b{std::max(1, a.width >> 1), std::max(1, a.height >> 1), 1, {}};
     b.rgb.resize(size_t(b.width) * b.height * 3);
     // Tachyon's DecimateImage: the mean of 2x2 texels, truncated to 8 bits
     // (a 1-texel-wide image averages pairs along its length).
@@ -72,24 +72,33 @@ MipMap::MipMap(const ImageMap& image) {
   }
 }
 
-Vec3 MipMap::bilinear(const Level& l, double u, double v) {
-  const double x = (l.width - 1.0) * u, y = (l.height - 1.0) * v;
-  const int ix = static_cast<int>(x), iy = static_cast<int>(y);
-  const double px = x - ix, py = y - iy;
-  // Tachyon reads one texel past the edge at u or v = 1 exactly; clamp instead.
-  const int ix1 = std::min(ix + 1, l.width - 1), iy1 = std::min(iy + 1, l.height - 1);
-  auto texel = [&](int xx, int yy, int c) { return double(l.rgb[(size_t(yy) * l.width + xx) * 3 + c]); };
+// Tachyon's ImageMap and VolImageMapTrilinear: bilinear in x and y, then
+// linear between slices (a flat image has one, and w adds nothing).
+Vec3 MipMap::trilinear(const Level& l, double u, double v, double w) {
+  const double x = (l.width - 1.0) * u, y = (l.height - 1.0) * v, z = (l.depth - 1.0) * w;
+  const int ix = static_cast<int>(x), iy = static_cast<int>(y), iz = static_cast<int>(z);
+  const double px = x - ix, py = y - iy, pz = z - iz;
+  // Tachyon reads one texel past the edge at u, v or w = 1 exactly; clamp instead.
+  const int ix1 = std::min(ix + 1, l.width - 1), iy1 = std::min(iy + 1, l.height - 1),
+            iz1 = std::min(iz + 1, l.depth - 1);
+  auto texel = [&](int xx, int yy, int zz, int c) {
+    return double(l.rgb[((size_t(zz) * l.height + yy) * l.width + xx) * 3 + c]);
+  };
+  auto slice = [&](int zz, int c) {
+    const double lo = texel(ix, iy, zz, c) + px * (texel(ix1, iy, zz, c) - texel(ix, iy, zz, c));
+    const double hi = texel(ix, iy1, zz, c) + px * (texel(ix1, iy1, zz, c) - texel(ix, iy1, zz, c));
+    return lo + py * (hi - lo);
+  };
   double out[3];
   for (int c = 0; c < 3; ++c) {
-    const double lo = texel(ix, iy, c) + px * (texel(ix1, iy, c) - texel(ix, iy, c));
-    const double hi = texel(ix, iy1, c) + px * (texel(ix1, iy1, c) - texel(ix, iy1, c));
-    out[c] = (lo + py * (hi - lo)) / 255.0;
+    const double near = slice(iz, c);
+    out[c] = (l.depth > 1 ? near + pz * (slice(iz1, c) - near) : near) / 255.0;
   }
   return {out[0], out[1], out[2]};
 }
 
-Vec3 MipMap::sample(double u, double v, double d) const {
-  if (!(u >= 0 && u <= 1 && v >= 0 && v <= 1)) return {};
+template <class Lookup>
+Vec3 MipMap::blend_levels(double d, Lookup lookup) const {
   d = std::clamp(d, 0.0, 1.0);
   const int n = levels();
   const double level = d * (n - 0.9999);
@@ -97,10 +106,20 @@ Vec3 MipMap::sample(double u, double v, double d) const {
   const double frac = level - i;
   // Past the second-coarsest level Tachyon takes the coarsest, unblended.
   if (i < n - 2) {
-    const Vec3 a = bilinear(levels_[size_t(i)], u, v), b = bilinear(levels_[size_t(i) + 1], u, v);
+    const Vec3 a = lookup(levels_[size_t(i)]), b = lookup(levels_[size_t(i) + 1]);
     return a + (b - a) * frac;
   }
-  return bilinear(levels_.back(), u, v);
+  return lookup(levels_.back());
+}
+
+Vec3 MipMap::sample(double u, double v, double d) const {
+  if (!(u >= 0 && u <= 1 && v >= 0 && v <= 1)) return {};
+  return blend_levels(d, [&](const Level& l) { return trilinear(l, u, v, 0); });
+}
+
+Vec3 MipMap::sample_volume(double u, double v, double w, double d) const {
+  if (!(u >= 0 && u <= 1 && v >= 0 && v <= 1 && w >= 0 && w <= 1)) return {};
+  return blend_levels(d, [&](const Level& l) { return trilinear(l, u, v, w); });
 }
 
 Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base, const Vec3& p, double optic_dist) {
@@ -145,6 +164,15 @@ Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base,
       const double v = wrap(dot(tex.vaxis, q) * tex.scale.y + tex.rotate.y);
       const double max_scale = std::fabs(tex.scale.x) > std::fabs(tex.scale.y) ? tex.scale.x : tex.scale.y;
       return mip->sample(u, v, 0.05 * optic_dist * std::fabs(max_scale));
+    }
+    case TextureDesc::Kind::volume_image: {
+      if (mip == nullptr) return base;
+      const double u = wrap(dot(tex.uaxis, q) * tex.scale.x + tex.rotate.x);
+      const double v = wrap(dot(tex.vaxis, q) * tex.scale.y + tex.rotate.y);
+      const double w = wrap(dot(tex.waxis, q) * tex.scale.z + tex.rotate.z);
+      double max_scale = std::fabs(tex.scale.x) > std::fabs(tex.scale.y) ? tex.scale.x : tex.scale.y;
+      if (std::fabs(tex.scale.z) > std::fabs(max_scale)) max_scale = tex.scale.z;
+      return mip->sample_volume(u, v, w, 0.05 * optic_dist * std::fabs(max_scale));
     }
   }
   return base;

@@ -12,20 +12,27 @@
 namespace holoray {
 
 /// An image map's MIP levels; level 0 is the image, row 0 at the bottom.
+/// A volume image (depth > 1) keeps its one level: Tachyon's decimation is
+/// two-dimensional, so CreateMIPMap clamps volumes to a single level.
 class MipMap {
  public:
   explicit MipMap(const ImageMap& image);
   /// Tachyon's MIPMap(u, v, d): black outside [0,1]^2; d in [0,1] picks the
   /// level (0 the finest), bilinear within a level.
   Vec3 sample(double u, double v, double d) const;
+  /// Tachyon's VolMIPMap(u, v, w, d): black outside [0,1]^3; the level as in
+  /// sample(), trilinear within it (a flat image is its slice 0).
+  Vec3 sample_volume(double u, double v, double w, double d) const;
   int levels() const { return static_cast<int>(levels_.size()); }
 
  private:
   struct Level {
-    int width, height;
+    int width, height, depth;
     std::vector<unsigned char> rgb;
   };
-  static Vec3 bilinear(const Level& l, double u, double v);
+  static Vec3 trilinear(const Level& l, double u, double v, double w);
+  template <class Lookup>
+  Vec3 blend_levels(double d, Lookup lookup) const;
   std::vector<Level> levels_;
 };
 

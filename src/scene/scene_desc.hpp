@@ -78,9 +78,10 @@ struct Material {
 
 /// An RGB image in 8 bits, rows in the order the file stores them (Tachyon's image maps).
 struct ImageMap {
-  std::string path;  ///< as resolved, for messages
+  std::string path;  ///< as resolved (or the IMAGEDEF name), for messages
   int width = 0, height = 0;
-  std::vector<unsigned char> rgb;  ///< width*height*3
+  int depth = 1;  ///< slices of a volume image (Tachyon `IMAGEDEF ... RESOLUTION x y z`)
+  std::vector<unsigned char> rgb;  ///< width*height*depth*3, x fastest, then y, then z
 };
 
 /// Tachyon `texfunc` (tachyon-notes §3): a colour that varies over the
@@ -92,10 +93,11 @@ struct TextureDesc {
     cylinder_checker = 6,
     cylindrical_image = 7,
     spherical_image = 8,
-    planar_image = 9
+    planar_image = 9,
+    volume_image = 10
   };
   Kind kind = Kind::checker3d;
-  Vec3 centre, rotate, scale{1, 1, 1}, uaxis{1, 0, 0}, vaxis{0, 1, 0};
+  Vec3 centre, rotate, scale{1, 1, 1}, uaxis{1, 0, 0}, vaxis{0, 1, 0}, waxis{0, 0, 1};
   int image = -1;  ///< index into SceneDesc::images (image maps)
   SourceLoc loc;
 };

@@ -32,7 +32,6 @@ const std::map<std::string, std::string_view>& unsupported_objects() {
   static const std::map<std::string, std::string_view> m{
       {"SPHEREARRAY", "sphere arrays"},
       {"SCALARVOL", "scalar volumes"},
-      {"IMAGEDEF", "inline image definitions"},
       {"SKY_LIGHT", "ambient-occlusion sky lights"},
       {"SCAPE", "landscapes"},
       {"SHADER_MODE", "shader modes"},
@@ -195,6 +194,7 @@ class TachyonParser {
     else if (k == "VERTEXARRAY") vertex_array(kw);
     else if (k == "STRI") triangle(kw, true);
     else if (k == "INCLUDE") include(kw);
+    else if (k == "IMAGEDEF") imagedef();
     else if (k == "FOG") fog();
     else if (k == "TPOLYFILE") tpolyfile(kw);
     else if (auto it = unsupported_objects().find(k); it != unsupported_objects().end())
@@ -338,13 +338,13 @@ class TachyonParser {
     switch (func) {
       case 0: break;
       case 1: case 4: case 6: m.texture = procedural(f, func); break;
-      case 7: case 8: case 9: m.texture = image_texture(f, func); break;
+      case 7: case 8: case 9: case 10: m.texture = image_texture(f, func); break;
       default: {
         static constexpr std::string_view names[] = {"constant", "3D checker", "grit", "marble", "wood", "gradient",
                                                      "cylindrical checker", "cylindrical image", "spherical image",
                                                      "planar image", "volume image"};
         if (func > 10) tok().fail(f.loc, fmt::format("expected a texture function from 0 to 10, found {}", f.text));
-        tok().fail(f.loc, fmt::format("texfunc {} ({}) is not supported yet (0, 1, 4, 6, 7, 8 and 9 are)", func,
+        tok().fail(f.loc, fmt::format("texfunc {} ({}) is not supported yet (0, 1, 4 and 6 to 10 are)", func,
                                       names[func]));
       }
     }
@@ -369,8 +369,9 @@ class TachyonParser {
     return static_cast<int>(scene_.textures.size()) - 1;
   }
 
-  // texfunc 7 (cylindrical), 8 (spherical), 9 (planar): an image map name,
-  // the placement, and for planar maps the u and v axes.
+  // texfunc 7 (cylindrical), 8 (spherical), 9 (planar), 10 (volume): an
+  // image map name, the placement, the u and v axes for planar and volume
+  // maps and the w axis for volume maps.
   int image_texture(const Token& at, long func) {
     TextureDesc t;
     t.loc = at.loc;
@@ -378,10 +379,11 @@ class TachyonParser {
     const Token file = tok().next();
     if (file.text.empty()) tok().fail_expected(file, "an image file name");
     placement(t);
-    if (t.kind == TextureDesc::Kind::planar_image) {
+    if (t.kind == TextureDesc::Kind::planar_image || t.kind == TextureDesc::Kind::volume_image) {
       t.uaxis = keyed_vec3("UAXIS", "a u axis component");
       t.vaxis = keyed_vec3("VAXIS", "a v axis component");
     }
+    if (t.kind == TextureDesc::Kind::volume_image) t.waxis = keyed_vec3("WAXIS", "a w axis component");
     t.image = image(file);
     scene_.textures.push_back(t);
     return static_cast<int>(scene_.textures.size()) - 1;
@@ -405,7 +407,78 @@ class TachyonParser {
     return found;
   }
 
+  // IMAGEDEF name FORMAT RGB24 RESOLUTION x y z ENCODING HEX texels: an image
+  // map written in the scene, x fastest, then y, then z (z > 1: a volume for
+  // texfunc 10). A texel is 3 hex digits (one per channel, f = 255) or 6
+  // (two per channel). Texture functions find it by name before any file.
+  void imagedef() {
+    const Token name = tok().next();
+    if (name.text.empty()) tok().fail_expected(name, "an image name");
+    const Token format = tok().next();
+    if (!is_kw(format, "FORMAT")) tok().fail_expected(format, "'FORMAT'");
+    const Token rgb = tok().next();
+    if (!is_kw(rgb, "RGB24")) tok().fail_expected(rgb, "'RGB24' (the only inline image format)");
+    expect_kw("RESOLUTION");
+    const Token res = tok().peek();
+    long size[3];
+    for (long& n : size) {
+      n = tok().integer("an image resolution (x y z)");
+      if (n < 1 || n > limits_.max_image_pixels)
+        tok().fail(res.loc, fmt::format("expected an image resolution of 1 to {} texels per axis, found {}",
+                                        limits_.max_image_pixels, n));
+    }
+    // Each factor is at most the bound, so the products cannot overflow.
+    if (size[0] * size[1] > limits_.max_image_pixels || size[0] * size[1] * size[2] > limits_.max_image_pixels)
+      tok().fail(res.loc, fmt::format("expected an image of at most {} texels, found {}x{}x{}",
+                                      limits_.max_image_pixels, size[0], size[1], size[2]));
+    expect_kw("ENCODING");
+    const Token enc = tok().next();
+    if (!is_kw(enc, "HEX")) tok().fail_expected(enc, "'HEX' (the only inline image encoding)");
+    ImageMap img;
+    img.path = std::string(name.text);
+    img.width = static_cast<int>(size[0]), img.height = static_cast<int>(size[1]), img.depth = static_cast<int>(size[2]);
+    const long texels = size[0] * size[1] * size[2];
+    img.rgb.reserve(size_t(texels) * 3);
+    for (long i = 0; i < texels; ++i) {
+      const Token t = tok().next();
+      const size_t digits = t.text.size() / 3;
+      if ((t.text.size() != 3 && t.text.size() != 6) ||
+          t.text.find_first_not_of("0123456789abcdefABCDEF") != std::string_view::npos)
+        tok().fail_expected(t, fmt::format("texel {} of {} of image '{}': 3 or 6 hex digits", i + 1, texels, name.text));
+      for (size_t c = 0; c < 3; ++c) {
+        const int v = std::stoi(std::string(t.text.substr(c * digits, digits)), nullptr, 16);
+        img.rgb.push_back(static_cast<unsigned char>(digits == 1 ? v * 17 : v));
+      }
+    }
+    if (inline_images_.count(img.path))
+      warn(name.loc, fmt::format("image '{}' defined again: Tachyon keeps the first definition", name.text));
+    else {
+      scene_.images.push_back(std::move(img));
+      inline_images_[std::string(name.text)] = static_cast<int>(scene_.images.size()) - 1;
+    }
+  }
+
+  // Tachyon's stand-in for an image it cannot load (imageio.c): 4x4 white.
+  int stand_in_image(const Token& file) {
+    const std::string key = std::string(file.text);
+    if (auto it = inline_images_.find(key); it != inline_images_.end()) return it->second;
+    warn(file.loc, fmt::format("no inline image '{}' (IMAGEDEF) was defined: Tachyon's stand-in (4x4 white) used",
+                               file.text));
+    ImageMap img;
+    img.path = key;
+    img.width = img.height = 4;
+    img.rgb.assign(4 * 4 * 3, 255);
+    scene_.images.push_back(std::move(img));
+    inline_images_[key] = static_cast<int>(scene_.images.size()) - 1;
+    return inline_images_[key];
+  }
+
   int image(const Token& file) {
+    if (auto it = inline_images_.find(std::string(file.text)); it != inline_images_.end()) return it->second;
+    // "::name" is the inline-image convention: no file is meant, so an
+    // undefined one takes Tachyon's stand-in (imagedef.dat tests exactly
+    // that); a file that cannot be read is an error.
+    if (file.text.starts_with("::")) return stand_in_image(file);
     const std::string path = locate(file);
     if (auto it = images_.find(path); it != images_.end()) return it->second;
     auto in = OIIO::ImageInput::open(path);
@@ -772,6 +845,7 @@ class TachyonParser {
   std::deque<File> files_;
   std::map<std::string, int> textures_;  // name -> material
   std::map<std::string, int> images_;    // resolved path -> image
+  std::map<std::string, int> inline_images_;  // IMAGEDEF name -> image
   int default_material_ = -1;
   int xres_ = 512, yres_ = 512;
 };
