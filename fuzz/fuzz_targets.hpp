@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "display/display_file.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 #include "scene/tachyon_reader.hpp"
@@ -62,6 +63,14 @@ inline void tachyon(const uint8_t* data, size_t size) {
 inline void camera_path(const uint8_t* data, size_t size) {
   try {
     (void)parse_camera_path(as_text(data, size), "fuzz.cam");
+  } catch (const ParseError&) {
+  }
+}
+
+/// Display files (TOML). Allowed error: ParseError.
+inline void display(const uint8_t* data, size_t size) {
+  try {
+    (void)parse_display(as_text(data, size), "fuzz.toml");
   } catch (const ParseError&) {
   }
 }

@@ -5,12 +5,12 @@
 # is there, ../shared/scenes. Fails on the first finding and says where the
 # input is: add it to fuzz/regressions/<target>/ with the fix, and the test
 # suite (FuzzRegressions) replays it on every build from then on.
-# Usage: bash fuzz/run.sh [target...]   (targets: nff tachyon shot camera_path)
+# Usage: bash fuzz/run.sh [target...]   (targets: nff tachyon shot camera_path display)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
 targets=("$@")
-((${#targets[@]})) || targets=(nff tachyon shot camera_path)
+((${#targets[@]})) || targets=(nff tachyon shot camera_path display)
 
 command -v clang++ >/dev/null || { echo "fuzz/run.sh: clang++ not found (bash scripts/setup.sh installs it)" >&2; exit 1; }
 cmake -S fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -25,6 +25,7 @@ seeds() {  # the seed files of one target, small ones only (the fuzzer cuts inpu
     tachyon) files=(tests/data/tachyon/*.dat "$shared"/tachyon/*.dat) ;;
     shot) files=(bench/shots/*.toml tests/data/*.toml) ;;
     camera_path) files=("$shared"/tachyon/*.cam) ;;
+    display) files=(examples/displays/*.toml) ;;
   esac
   files+=(fuzz/regressions/"$1"/*)
   for f in "${files[@]}"; do

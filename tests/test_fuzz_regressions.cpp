@@ -38,6 +38,7 @@ TEST(FuzzRegressions, NffInputsParseOrFailWithParseError) { replay("nff", fuzz::
 TEST(FuzzRegressions, TachyonInputsParseOrFailWithParseError) { replay("tachyon", fuzz::tachyon); }
 TEST(FuzzRegressions, ShotInputsParseOrFailWithTheirErrors) { replay("shot", fuzz::shot); }
 TEST(FuzzRegressions, CameraPathInputsParseOrFailWithParseError) { replay("camera_path", fuzz::camera_path); }
+TEST(FuzzRegressions, DisplayInputsParseOrFailWithParseError) { replay("display", fuzz::display); }
 
 }  // namespace
 }  // namespace holoray

@@ -6,6 +6,20 @@
 
 namespace holoray {
 
+ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& vp) {
+  ViewPlacement out;
+  const Vec3 view = vp.at - vp.from;
+  if (mode == RecordingMode::orthoscopic)
+    out.frame = Frame::from_normal_up(vp.at, -view, vp.up);
+  else
+    out.frame = Frame::from_normal_up(vp.from, view, vp.up);
+  // Tachyon's screen is left-handed: so is the array it places (its
+  // sub-aperture views then show what Tachyon's camera shows).
+  if (vp.mirrored) out.frame.x = -out.frame.x;
+  out.width = 2 * length(view) * std::tan(vp.angle_deg * 3.14159265358979323846 / 360);
+  return out;
+}
+
 LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>& vp) {
   LensArrayDesc d;
   d.grid = s.grid;
@@ -29,16 +43,9 @@ LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>
     if (!vp)
       throw std::invalid_argument(
           "the scene has no viewpoint ('v'); place the array with --origin, --normal, --up and --pitch");
-    const Vec3 view = vp->at - vp->from;
-    if (s.mode == RecordingMode::orthoscopic)
-      d.frame = Frame::from_normal_up(vp->at, -view, vp->up);
-    else
-      d.frame = Frame::from_normal_up(vp->from, view, vp->up);
-    // Tachyon's screen is left-handed: so is the array it places (its
-    // sub-aperture views then show what Tachyon's camera shows).
-    if (vp->mirrored) d.frame.x = -d.frame.x;
-    const double width = 2 * length(view) * std::tan(vp->angle_deg * 3.14159265358979323846 / 360);
-    d.pitch = s.pitch ? *s.pitch : width / s.lenses_x;
+    const ViewPlacement placed = place_by_viewpoint(s.mode, *vp);
+    d.frame = placed.frame;
+    d.pitch = s.pitch ? *s.pitch : placed.width / s.lenses_x;
   }
 
   if (s.gap && s.fov_lens_deg) throw std::invalid_argument("give either --gap or --fov-lens, not both");

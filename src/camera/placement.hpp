@@ -27,6 +27,17 @@ struct ArraySettings {
 /// The default lens field of view, degrees (contract: "Placement").
 inline constexpr double kDefaultLensFovDeg = 20.0;
 
+/// The contract's placement of an array by a viewpoint ("Placement from an
+/// NFF viewpoint"): orthoscopic O = at, z = normalize(from - at);
+/// pseudoscopic O = from, z = normalize(at - from); a mirrored (Tachyon)
+/// viewpoint flips x. `width` = 2|from - at| tan(angle/2), the field the
+/// array spans. Throws std::invalid_argument when from = at or up is parallel.
+struct ViewPlacement {
+  Frame frame;
+  double width = 0;
+};
+ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& viewpoint);
+
 /// Resolves settings into a camera description. Explicit placement needs
 /// origin, normal, up and pitch; otherwise the viewpoint places the array:
 /// orthoscopic O = at, z = normalize(from - at); pseudoscopic O = from,

@@ -12,10 +12,13 @@
 #include <optional>
 
 #include "camera/placement.hpp"
+#include "display/display_file.hpp"
+#include "display/display_placement.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
+#include "render/display_renderer.hpp"
 #include "render/renderer.hpp"
 #include "render/view_renderer.hpp"
 #include "scene/mesh_reader.hpp"
@@ -60,15 +63,18 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--camera", o.camera, "integral (the EIA) or pinhole (the scene's own view, NFF v: previews and comparisons with other ray tracers)")->capture_default_str();
   cmd->add_option("--resolution", o.resolution, "With --camera pinhole: image size WxH (default: the scene's resolution, else 512x512)");
   cmd->add_option("--sample-at", o.sample_at, "With --camera pinhole: where in each pixel its single sample lies: centre, or tachyon (the upper-right corner, where Tachyon samples; for pixel-for-pixel comparisons)")->capture_default_str();
-  cmd->add_option("--grid", o.grid, "Lens grid: square, hex or lenticular")->capture_default_str();
-  cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")->capture_default_str();
-  cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();
-  cmd->add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)");
-  cmd->add_option("--fov-lens", o.fov_lens, "Lens field of view in degrees (default 20); sets the gap");
-  cmd->add_option("--gap", o.gap, "Lens plane to pixel panel distance, scene units");
-  cmd->add_option("--pitch", o.pitch, "Lens pitch, scene units (default: NFF view width / NX)");
-  cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")->capture_default_str();
-  cmd->add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)");
+  CLI::Option* display = cmd->add_option("--display", o.display, "Display file (TOML, docs/display-files.md): render the panel image of that display, each subpixel along its own line through its own lens; it sets the lens array, so the options below up to --view-distance go without it");
+  CLI::Option* array_options[] = {
+      cmd->add_option("--grid", o.grid, "Lens grid: square, hex or lenticular")->capture_default_str(),
+      cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")->capture_default_str(),
+      cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str(),
+      cmd->add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)"),
+      cmd->add_option("--fov-lens", o.fov_lens, "Lens field of view in degrees (default 20); sets the gap"),
+      cmd->add_option("--gap", o.gap, "Lens plane to pixel panel distance, scene units"),
+      cmd->add_option("--pitch", o.pitch, "Lens pitch, scene units (default: NFF view width / NX)"),
+      cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")->capture_default_str(),
+      cmd->add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)")};
+  for (CLI::Option* a : array_options) display->excludes(a);
   cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)");
   cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer");
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
@@ -112,6 +118,11 @@ int run_render(const RenderCommandOptions& o) {
       throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
     if (cache_enabled(o.cache) && pinhole)  // checked before the scene is read
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
+    std::optional<DisplayDesc> display;
+    if (!o.display.empty()) {
+      if (pinhole) throw std::invalid_argument("--display: renders the panel through its lenses; it goes without --camera pinhole");
+      display = read_display_file(o.display);
+    }
 
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
@@ -124,6 +135,7 @@ int run_render(const RenderCommandOptions& o) {
 
     std::optional<LensArray> array;
     std::optional<PinholeCamera> view;
+    std::optional<DisplayCamera> panel;
     if (pinhole) {
       if (!desc.viewpoint)
         throw std::invalid_argument(fmt::format("--camera pinhole: '{}' has no viewpoint (NFF 'v')", o.scene));
@@ -135,13 +147,26 @@ int run_render(const RenderCommandOptions& o) {
       PinholeDesc pd = view_of(vp, res_w, res_h);
       if (tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
       view.emplace(pd);
+    } else if (display) {
+      std::optional<Frame> frame;
+      if (settings.origin) frame = Frame::from_normal_up(*settings.origin, *settings.normal, *settings.up);
+      // An ordinary EIA in display units renders with the integral camera.
+      if (auto eia = as_lens_array(*display, desc.viewpoint, frame)) array.emplace(*eia);
+      else panel.emplace(place_display(*display, desc.viewpoint, frame));
     } else {
       array.emplace(place_array(settings, desc.viewpoint));
     }
-    const int width = pinhole ? view->width() : array->width(), height = pinhole ? view->height() : array->height();
+    if (panel && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
+      throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
+    if (panel && cache_enabled(o.cache))
+      throw std::invalid_argument("--cache on: goes with the integral camera; this display needs the display camera");
+    const int width = pinhole ? view->width() : panel ? panel->geometry().width : array->width();
+    const int height = pinhole ? view->height() : panel ? panel->height() : array->height();
     const int64_t pixels = static_cast<int64_t>(width) * height;
-    // Refuse before allocating: buffers plus the 8-bit or float copy made on output.
-    const uint64_t need = frame_bytes(pixels, aovs) + static_cast<uint64_t>(pixels) * 12;
+    // Refuse before allocating: buffers plus the 8-bit or float copy made on
+    // output (and a panel's samples, three per pixel with subpixels).
+    const int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : 0;
+    const uint64_t need = frame_bytes(pixels, aovs) + static_cast<uint64_t>(pixels) * 12 + frame_bytes(samples, aovs);
     const uint64_t have = physical_memory_bytes();
     if (have && need > have / 10 * 8)
       throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers, more than 80% of this machine's {:.2f} GiB",
@@ -150,7 +175,7 @@ int run_render(const RenderCommandOptions& o) {
     const auto t_build = Clock::now();
     RenderScene scene(desc);
     if (o.max_depth != 0) scene.set_max_depth(o.max_depth);
-    const std::unique_ptr<ShadowCache> cache = pinhole ? nullptr : make_cache(scene, array->desc().pitch, o.cache);
+    const std::unique_ptr<ShadowCache> cache = array ? make_cache(scene, array->desc().pitch, o.cache) : nullptr;
     scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);
 
@@ -173,7 +198,9 @@ int run_render(const RenderCommandOptions& o) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    fb = pinhole ? render_view(scene, *view, ropt, stats) : render_frame(scene, *array, ropt, stats);
+    if (pinhole) fb = render_view(scene, *view, ropt, stats);
+    else if (panel) fb = render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ropt, stats);
+    else fb = render_frame(scene, *array, ropt, stats);
     if (tty) std::fprintf(stderr, "\r             \r");
 
     const auto t_write = Clock::now();
@@ -192,7 +219,17 @@ int run_render(const RenderCommandOptions& o) {
       if (pinhole) {
         fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
                    view->desc().fov_deg);
+      } else if (panel) {
+        const DisplayDesc& d = *display;
+        const DisplayGeometry& g = panel->geometry();
+        fmt::print("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
+                   d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
+                   d.samples_per_pixel() == 1 ? "one line" : "three lines", to_string(d.grid),
+                   d.slant_deg != 0 ? fmt::format(" slanted {:.4g} deg", d.slant_deg) : "", to_string(d.mode));
+        fmt::print("lenses     pitch {:.6g} mm ({:.6g} px across a row), gap {:.6g} mm; {:.6g} scene units per mm\n",
+                   d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
       } else {
+        if (display) fmt::print("display    {}: whole pixels per lens, rendered as the EIA below\n", o.display);
         const LensArrayDesc& d = array->desc();
         fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid),
                    array->lens_count_x(), array->lens_count_y(), d.pixels_per_lens, to_string(d.mode));
@@ -200,7 +237,7 @@ int run_render(const RenderCommandOptions& o) {
       }
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
       fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), pinhole ? "packet" : o.style);
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), pinhole || panel ? "packet" : o.style);
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);

@@ -17,6 +17,7 @@ struct RenderCommandOptions {
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
   std::string camera = "integral", resolution, sample_at = "centre";  ///< --camera, --resolution, --sample-at (pinhole)
+  std::string display;  ///< --display FILE: the panel image of a physical display (issue 14)
   CacheCommandOptions cache;
   bool quiet = false;
 };

@@ -118,6 +118,14 @@ std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bo
   return pr;
 }
 
+std::optional<PrimaryRay> primary_ray_along(const PixelLine& line, const Bounds3& bounds, double margin,
+                                            RecordingMode mode) {
+  if (bounds.empty()) return std::nullopt;
+  PrimaryRay pr;
+  if (!clip_primary(line, grown(bounds, margin), margin, mode, pr)) return std::nullopt;
+  return pr;
+}
+
 void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin, const PixelXY px[], int n, int k,
                   PrimaryRay out[], bool ok[]) {
   if (n > kPacketSize) throw std::invalid_argument(fmt::format("at most {} rays at once, got {}", kPacketSize, n));

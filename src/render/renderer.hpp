@@ -162,6 +162,9 @@ struct PrimaryRay {
 /// nullopt when the pixel's line cannot meet the scene (records background).
 std::optional<PrimaryRay> primary_ray(const LensArray& camera, const Bounds3& bounds, double margin, int i, int j,
                                       double u = 0.5, double v = 0.5);
+/// The same for any line with its recording mode (the display camera's).
+std::optional<PrimaryRay> primary_ray_along(const PixelLine& line, const Bounds3& bounds, double margin,
+                                            RecordingMode mode);
 /// primary_ray() for pixels px[0..n), n <= kPacketSize, at sample k
 /// (sample_offset): ok[l] false where it would give nullopt, else out[l],
 /// bit for bit the same. The packet path: pixels of one lens share its

@@ -1,0 +1,32 @@
+#include "render/display_renderer.hpp"
+
+#include "render/line_renderer.hpp"
+
+namespace holoray {
+
+ImageBuffer pack_subpixels(const ImageBuffer& s, bool red_first) {
+  if (s.width % 3 != 0 || s.channels != 3)
+    throw std::invalid_argument(fmt::format("a subpixel image is 3 RGB samples per pixel, got {} wide, {} channels",
+                                            s.width, s.channels));
+  ImageBuffer out(s.width / 3, s.height, 3);
+  for (int j = 0; j < s.height; ++j)
+    for (int i = 0; i < out.width; ++i)
+      for (int c = 0; c < 3; ++c) out.at(i, j)[c] = s.at(3 * i + (red_first ? c : 2 - c), j)[c];
+  return out;
+}
+
+FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camera, bool red_first,
+                            const RenderOptions& opt, RenderStats& stats) {
+  if (opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id)
+    throw std::invalid_argument("AOVs are not written for native panel images yet (colour only)");
+  const RecordingMode mode = camera.geometry().mode;
+  FrameBuffers fb = detail::render_lines(scene, camera, opt, stats, [&](const PixelLine& line, PrimaryRay& out) {
+    const auto pr = primary_ray_along(line, scene.bounds(), scene.epsilon(), mode);
+    if (pr) out = *pr;
+    return pr.has_value();
+  });
+  if (camera.geometry().samples_per_pixel == 3) fb.colour = pack_subpixels(fb.colour, red_first);
+  return fb;
+}
+
+}  // namespace holoray
