@@ -43,3 +43,13 @@ oiiotool "$tmp/swing_views/frame_0000.png" "$tmp/swing_views/frame_0016.png" "$t
 cp "$tmp/swing_eia/frame_0024.png" "$out/swinging_box_eia.png"
 rm -rf "$tmp"
 ls -la "$out"
+# A native panel image (issue 14): examples/primitives.nff on the 4K slanted
+# lenticular display of examples/displays/lenticular_4k.toml, the whole panel
+# scaled down, and a 48x27-pixel close-up with each pixel drawn as its three
+# subpixel stripes, each lit by its own line's channel.
+"$h" render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o "$tmp/panel.png" -q
+oiiotool "$tmp/panel.png" --resize 480x270 -o "$out/panel_4k_lenticular.png"
+oiiotool "$tmp/panel.png" -o "$tmp/panel.ppm"
+python3 docs/subpixel_closeup.py "$tmp/panel.ppm" "$tmp/closeup.ppm" 1190 1175 48 27 4
+oiiotool "$tmp/closeup.ppm" -o "$out/panel_4k_lenticular_closeup.png"
+oiiotool "$tmp/panel.png" --cut 120x68+1150+1150 --resample:interp=0 480x272 -o "$out/panel_4k_lenticular_pixels.png"
