@@ -11,11 +11,13 @@
 
 #include "camera/display_camera.hpp"
 #include "camera/placement.hpp"
+#include "camera/quilt_camera.hpp"
 #include "display/display_file.hpp"
 #include "display/display_placement.hpp"
 #include "image/image_io.hpp"
 #include "render/display_renderer.hpp"
 #include "render/render_scene.hpp"
+#include "render/view_renderer.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 #include "test_util.hpp"
@@ -299,6 +301,91 @@ TEST(DisplayRender, EachChannelIsItsOwnSubpixelsSingleRayColour) {
       differing += c[0] != c[1] || c[1] != c[2];
     }
   EXPECT_GT(differing, 100);  // a grey would not show the channels apart
+}
+
+
+// A Looking Glass quilt, checked against the documented frustum written out
+// here: view k looks from from + r D tan(phi_k) along d, its window shifted
+// by -tan(phi_k), and sits in tile (k mod C, R - 1 - k div C) counted from
+// the top left (view 0 bottom left, the last view top right).
+TEST(Quilt, TileKIsThePinholeViewOfItsShearedFrustum) {
+  const SceneDesc desc = small_scene();
+  const RenderScene scene(desc);
+  QuiltDesc q;
+  q.columns = 3, q.rows = 2, q.view_width = 24, q.view_height = 18, q.view_cone_deg = 30;
+  const PinholeDesc centre = view_of(*desc.viewpoint, 24, 18);
+  const QuiltCamera cam(q, centre);
+  RenderOptions ro;
+  RenderStats stats;
+  const FrameBuffers quilt = render_quilt(scene, cam, ro, stats);
+  ASSERT_EQ(quilt.colour.width, 72);
+  ASSERT_EQ(quilt.colour.height, 36);
+  const Vec3 d = normalize(centre.at - centre.from), r = normalize(cross(d, centre.up));
+  const double D = length(centre.at - centre.from);
+  for (int k = 0; k < 6; ++k) {
+    SCOPED_TRACE(k);
+    const double phi = (-15.0 + 30.0 * k / 5) * kPi / 180;
+    PinholeDesc v = centre;
+    v.from = centre.from + r * (D * std::tan(phi));
+    v.at = centre.at + r * (D * std::tan(phi));
+    v.shift_x = -std::tan(phi);
+    const FrameBuffers one = render_view(scene, PinholeCamera(v), ro, stats);
+    const int x0 = (k % 3) * 24, y0 = (1 - k / 3) * 18;
+    for (int j = 0; j < 18; ++j)
+      for (int i = 0; i < 24; ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(quilt.colour.at(x0 + i, y0 + j)[c], one.colour.at(i, j)[c]) << i << "," << j;
+  }
+}
+
+// The views share the focal plane through `at`: a point on it sits at the
+// same pixel in every view, a point nearer the eye moves left as the views
+// move right, a point beyond moves right.
+TEST(Quilt, ViewsShareTheFocalPlaneAndShowParallaxAroundIt) {
+  const SceneDesc desc = small_scene();
+  QuiltDesc q;
+  q.columns = 4, q.rows = 2, q.view_width = 40, q.view_height = 30, q.view_cone_deg = 35;
+  const PinholeDesc centre = view_of(*desc.viewpoint, 40, 30);
+  const QuiltCamera cam(q, centre);
+  const Vec3 d = normalize(centre.at - centre.from);
+  const Vec3 on_plane = centre.at + normalize(cross(d, centre.up)) * 0.7, near = on_plane - d * 3, far = on_plane + d * 4;
+  double last_near = INFINITY, last_far = -INFINITY;
+  std::vector<PanelHit> hits;
+  for (int k = 0; k < 8; ++k) {
+    PanelHit a, n, f;
+    ASSERT_TRUE(cam.view(k).project(on_plane, a));
+    ASSERT_TRUE(cam.view(k).project(near, n));
+    ASSERT_TRUE(cam.view(k).project(far, f));
+    PanelHit a0;
+    ASSERT_TRUE(cam.view(0).project(on_plane, a0));
+    EXPECT_NEAR(a.i + a.u, a0.i + a0.u, 1e-9);
+    EXPECT_NEAR(a.j + a.v, a0.j + a0.v, 1e-9);
+    EXPECT_LT(n.i + n.u, last_near);
+    EXPECT_GT(f.i + f.u, last_far);
+    last_near = n.i + n.u, last_far = f.i + f.u;
+  }
+  // The quilt's projection: one hit per view, each the inverse of its line.
+  cam.project(near, hits);
+  ASSERT_EQ(hits.size(), 8u);
+  for (const PanelHit& h : hits) {
+    const PixelLine l = cam.line(h.i, h.j, h.u, h.v);
+    EXPECT_LT(length(l.origin + l.dir * h.t - near), 1e-9);
+  }
+}
+
+TEST(Quilt, FilesAreNamedAsLookingGlassToolsReadThem) {
+  QuiltDesc q;  // 8x6 of 420x560: Looking Glass Portrait
+  EXPECT_EQ(quilt_file_name("out.png", q), "out_qs8x6a0.75.png");
+  q.columns = 5, q.rows = 9, q.view_width = 819, q.view_height = 455;
+  EXPECT_EQ(quilt_file_name("renders/scene.exr", q), "renders/scene_qs5x9a1.8.exr");
+  EXPECT_EQ(quilt_file_name("mine_qs5x9a1.8.png", q), "mine_qs5x9a1.8.png");
+  test::TempDir dir;
+  test::write_text(dir.file("s.nff"), "v\nfrom 0 -8 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"
+                                      "l 4 -5 8\nf 0.9 0.3 0.2 1 0 0 0 0\ns 0 0 0 1\n");
+  const auto r = test::run_cli("render " + dir.file("s.nff") + " --quilt 3x2 --resolution 16x12 -o " + dir.file("q.png") + " -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const ImageBuffer img = read_image(dir.file("q_qs3x2a1.333.png"));
+  EXPECT_EQ(img.width, 48);
+  EXPECT_EQ(img.height, 24);
 }
 
 }  // namespace

@@ -33,6 +33,11 @@ struct PinholeDesc {
   /// through image-plane point (x, y) from the corner at pixel 0), for
   /// comparing with it pixel for pixel (tachyon-notes §2).
   double sample_u = 0.5, sample_v = 0.5;
+  /// An off-axis view: the image window moved right by this much on the
+  /// image plane at distance 1 (0: centred on d). A view of a Looking Glass
+  /// quilt (quilt_camera.hpp) shifts its eye sideways and its window back,
+  /// so that every view shares one focal plane (a sheared frustum).
+  double shift_x = 0;
 };
 
 /// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,

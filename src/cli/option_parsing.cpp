@@ -16,13 +16,15 @@ bool to_int(std::string_view s, int& out) {
 }
 }  // namespace
 
-void parse_lens_count(const std::string& text, int& nx, int& ny) {
+void parse_lens_count(const std::string& text, int& nx, int& ny, std::string_view option) {
   const auto x = text.find_first_of("xX");
   const bool ok = x == std::string::npos ? (to_int(text, nx) && (ny = nx, true))
                                          : (to_int(std::string_view(text).substr(0, x), nx) &&
                                             to_int(std::string_view(text).substr(x + 1), ny));
-  if (!ok) throw std::invalid_argument(fmt::format("--lenses: expected NXxNY (e.g. 64x64), got '{}'", text));
-  if (nx < 1 || ny < 1) throw std::invalid_argument(fmt::format("--lenses: lens counts must be at least 1, got '{}'", text));
+  if (!ok) throw std::invalid_argument(fmt::format("{}: expected NXxNY (e.g. 64x64), got '{}'", option, text));
+  if (nx < 1 || ny < 1)
+    throw std::invalid_argument(fmt::format("{}: {} counts must be at least 1, got '{}'", option,
+                                            option == "--lenses" ? "lens" : "view", text));
 }
 
 void parse_resolution(const std::string& text, int& width, int& height) {

@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "camera/lens_array.hpp"
@@ -16,8 +17,9 @@
 
 namespace holoray::cli {
 
-/// "NXxNY" (e.g. "64x64") or a single "N" meaning NxN.
-void parse_lens_count(const std::string& text, int& nx, int& ny);
+/// "NXxNY" (e.g. "64x64") or a single "N" meaning NxN; `option` names the
+/// option in messages (--lenses, --quilt).
+void parse_lens_count(const std::string& text, int& nx, int& ny, std::string_view option = "--lenses");
 /// "WxH" (e.g. 512x512) for --resolution; sizes from 1 to 65536 each.
 void parse_resolution(const std::string& text, int& width, int& height);
 /// "X,Y,Z" with finite numbers.

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "camera/placement.hpp"
+#include "camera/quilt_camera.hpp"
 #include "display/display_file.hpp"
 #include "display/display_placement.hpp"
 #include "cli/machine.hpp"
@@ -75,6 +76,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")->capture_default_str(),
       cmd->add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)")};
   for (CLI::Option* a : array_options) display->excludes(a);
+  CLI::Option* quilt = cmd->add_option("--quilt", o.quilt, "A Looking Glass quilt of CxR off-axis views (sheared frusta sharing the viewpoint's focal plane), tiled as Looking Glass tools expect: view 0, the leftmost, bottom left; written as NAME_qsCxRaASPECT.ext. --resolution sets one view's size (default 420x560)");
+  cmd->add_option("--view-cone", o.view_cone, "With --quilt: degrees from the leftmost to the rightmost view")->capture_default_str();
+  cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says");
+  for (CLI::Option* a : array_options) quilt->excludes(a);
+  quilt->excludes(display);
   cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)");
   cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer");
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
@@ -108,10 +114,29 @@ int run_render(const RenderCommandOptions& o) {
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
     const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
+    std::optional<QuiltDesc> quilt_desc;
+    if (!o.quilt.empty()) {
+      if (pinhole) throw std::invalid_argument("--quilt: renders its own views; it goes without --camera pinhole");
+      quilt_desc.emplace();
+      parse_lens_count(o.quilt, quilt_desc->columns, quilt_desc->rows, "--quilt");
+      quilt_desc->view_cone_deg = o.view_cone;
+      if (!(o.view_cone >= 0 && o.view_cone < 180))
+        throw std::invalid_argument(fmt::format("--view-cone: must be from 0 to 180 degrees, got {}", o.view_cone));
+      if (int64_t{quilt_desc->columns} * quilt_desc->rows > 4096)
+        throw std::invalid_argument(fmt::format("--quilt: at most 4096 views, got {}x{}", quilt_desc->columns, quilt_desc->rows));
+      if (o.quilt_view >= quilt_desc->columns * quilt_desc->rows)
+        throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", quilt_desc->columns,
+                                                quilt_desc->rows, quilt_desc->columns * quilt_desc->rows - 1, o.quilt_view));
+    } else if (o.quilt_view >= 0 || o.view_cone != 40) {
+      throw std::invalid_argument("--quilt-view and --view-cone go with --quilt");
+    }
+    if (o.quilt_view < -1) throw std::invalid_argument(fmt::format("--quilt-view: must be 0 or more, got {}", o.quilt_view));
     int res_w = 0, res_h = 0;
     if (!o.resolution.empty()) {
-      if (!pinhole) throw std::invalid_argument("--resolution: goes with --camera pinhole (an EIA's size is --lenses x --pixels-per-lens)");
+      if (!pinhole && !quilt_desc)
+        throw std::invalid_argument("--resolution: goes with --camera pinhole or --quilt (an EIA's size is --lenses x --pixels-per-lens)");
       parse_resolution(o.resolution, res_w, res_h);
+      if (quilt_desc) quilt_desc->view_width = res_w, quilt_desc->view_height = res_h;
     }
     const bool tachyon_samples = pick<bool>("--sample-at", o.sample_at, {{"centre", false}, {"tachyon", true}});
     if (tachyon_samples && (!pinhole || o.spp != 1))
@@ -136,7 +161,14 @@ int run_render(const RenderCommandOptions& o) {
     std::optional<LensArray> array;
     std::optional<PinholeCamera> view;
     std::optional<DisplayCamera> panel;
-    if (pinhole) {
+    std::optional<QuiltCamera> quilt;
+    if (quilt_desc) {
+      if (!desc.viewpoint)
+        throw std::invalid_argument(fmt::format("--quilt: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));
+      const PinholeDesc centre = view_of(*desc.viewpoint, quilt_desc->view_width, quilt_desc->view_height);
+      if (o.quilt_view >= 0) view.emplace(quilt_view(*quilt_desc, centre, o.quilt_view));
+      else quilt.emplace(*quilt_desc, centre);
+    } else if (pinhole) {
       if (!desc.viewpoint)
         throw std::invalid_argument(fmt::format("--camera pinhole: '{}' has no viewpoint (NFF 'v')", o.scene));
       const Viewpoint& vp = *desc.viewpoint;
@@ -160,8 +192,8 @@ int run_render(const RenderCommandOptions& o) {
       throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
     if (panel && cache_enabled(o.cache))
       throw std::invalid_argument("--cache on: goes with the integral camera; this display needs the display camera");
-    const int width = pinhole ? view->width() : panel ? panel->geometry().width : array->width();
-    const int height = pinhole ? view->height() : panel ? panel->height() : array->height();
+    const int width = view ? view->width() : quilt ? quilt->width() : panel ? panel->geometry().width : array->width();
+    const int height = view ? view->height() : quilt ? quilt->height() : panel ? panel->height() : array->height();
     const int64_t pixels = static_cast<int64_t>(width) * height;
     // Refuse before allocating: buffers plus the 8-bit or float copy made on
     // output (and a panel's samples, three per pixel with subpixels).
@@ -198,25 +230,35 @@ int run_render(const RenderCommandOptions& o) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    if (pinhole) fb = render_view(scene, *view, ropt, stats);
+    if (view) fb = render_view(scene, *view, ropt, stats);
+    else if (quilt) fb = render_quilt(scene, *quilt, ropt, stats);
     else if (panel) fb = render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ropt, stats);
     else fb = render_frame(scene, *array, ropt, stats);
     if (tty) std::fprintf(stderr, "\r             \r");
 
     const auto t_write = Clock::now();
-    const std::string ext = std::filesystem::path(o.output).extension().string().substr(1);
-    write_image(o.output, fb.colour, encoding);
-    if (aovs.albedo) write_image(aov_path(o.output, "albedo", ext), fb.albedo, encoding);
-    if (aovs.depth) write_image(aov_path(o.output, "depth", "exr"), fb.depth);
-    if (aovs.normal) write_image(aov_path(o.output, "normal", "exr"), fb.normal);
-    if (aovs.id) write_image(aov_path(o.output, "id", "exr"), fb.id);
+    // A quilt's name tells Looking Glass tools its layout.
+    const std::string output = quilt ? quilt_file_name(o.output, quilt->desc()) : o.output;
+    const std::string ext = std::filesystem::path(output).extension().string().substr(1);
+    write_image(output, fb.colour, encoding);
+    if (aovs.albedo) write_image(aov_path(output, "albedo", ext), fb.albedo, encoding);
+    if (aovs.depth) write_image(aov_path(output, "depth", "exr"), fb.depth);
+    if (aovs.normal) write_image(aov_path(output, "normal", "exr"), fb.normal);
+    if (aovs.id) write_image(aov_path(output, "id", "exr"), fb.id);
     const double write_s = seconds_since(t_write);
 
     if (!o.quiet) {
       const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
       fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
                  scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
-      if (pinhole) {
+      if (quilt) {
+        const QuiltDesc& q = quilt->desc();
+        fmt::print("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
+                   width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
+      } else if (quilt_desc) {
+        fmt::print("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, o.quilt_view,
+                   quilt_desc->columns, quilt_desc->rows, quilt_desc->view_cone_deg);
+      } else if (pinhole) {
         fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
                    view->desc().fov_deg);
       } else if (panel) {
@@ -237,12 +279,12 @@ int run_render(const RenderCommandOptions& o) {
       }
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
       fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), pinhole || panel ? "packet" : o.style);
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), array ? o.style : "packet");
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);
       if (cache) fmt::print("{}", cache_summary(*cache, r, o.cache));
-      fmt::print("wrote      {} ({:.3f} s)\n", o.output, write_s);
+      fmt::print("wrote      {} ({:.3f} s)\n", output, write_s);
     }
     return 0;
   } catch (const ParseError& e) {

@@ -18,6 +18,9 @@ struct RenderCommandOptions {
   std::string origin, normal, up;
   std::string camera = "integral", resolution, sample_at = "centre";  ///< --camera, --resolution, --sample-at (pinhole)
   std::string display;  ///< --display FILE: the panel image of a physical display (issue 14)
+  std::string quilt;    ///< --quilt CxR: a Looking Glass quilt of C*R views (issue 14)
+  double view_cone = 40;  ///< --view-cone DEG
+  int quilt_view = -1;  ///< --quilt-view K: only view K, as a plain image
   CacheCommandOptions cache;
   bool quiet = false;
 };

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "camera/pinhole.hpp"
+#include "camera/quilt_camera.hpp"
 #include "render/renderer.hpp"
 
 namespace holoray {
@@ -19,5 +20,13 @@ namespace holoray {
 /// std::invalid_argument when spp < 1 or threads < 0.
 FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, const RenderOptions& options,
                          RenderStats& stats);
+
+/// Renders a Looking Glass quilt (camera/quilt_camera.hpp): every view in one
+/// pass over the whole quilt image, as render_view renders one view, so the
+/// scene is built once and the threads never wait for a view to finish.
+/// With one sample per pixel, tile k of the result is render_view of quilt
+/// view k (more samples jitter by quilt pixel, not view pixel).
+FrameBuffers render_quilt(const RenderScene& scene, const QuiltCamera& camera, const RenderOptions& options,
+                          RenderStats& stats);
 
 }  // namespace holoray
