@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace holoray {
@@ -29,6 +30,27 @@ ImageBuffer extract_subaperture(const ImageBuffer& eia, const LensArray& cam, in
     }
   }
   return out;
+}
+
+LensArrayDesc eia_layout(int width, int height, Grid grid, int P) {
+  if (P < 1) throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", P));
+  LensArrayDesc d;
+  d.pixels_per_lens = P;
+  d.grid = grid;
+  if (width % P != 0)
+    throw std::invalid_argument(fmt::format("the EIA is {} pixels wide, not a multiple of {} pixels per lens", width, P));
+  d.lenses_x = width / P;
+  if (grid == Grid::square) {
+    if (height % P != 0)
+      throw std::invalid_argument(fmt::format("the EIA is {} pixels high, not a multiple of {} pixels per lens", height, P));
+    d.lenses_y = height / P;
+  } else if (grid == Grid::hex) {
+    d.lenses_y = std::max(1, static_cast<int>(std::lround(height / (P * std::sqrt(3.0) / 2))));
+    d.rows = height;
+  } else {
+    d.rows = height;  // lenticular
+  }
+  return d;
 }
 
 }  // namespace holoray

@@ -15,4 +15,10 @@ namespace holoray {
 /// EIA's size differs from the camera's or (u, v) is outside 0..P-1.
 ImageBuffer extract_subaperture(const ImageBuffer& eia, const LensArray& camera, int u, int v);
 
+/// The lens array of an EIA file with only its grid and pixels per lens
+/// known (pitch and gap do not matter to the pixels' layout): lens counts
+/// from the image's size. Throws std::invalid_argument when P < 1 or the
+/// width (square grid: and height) is not a multiple of P.
+LensArrayDesc eia_layout(int width, int height, Grid grid, int pixels_per_lens);
+
 }  // namespace holoray

@@ -5,6 +5,7 @@
 
 #include "cli/animate_command.hpp"
 #include "cli/compare_command.hpp"
+#include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
 
@@ -19,6 +20,10 @@ int main(int argc, char** argv) {
   CLI::App* animate = holoray::cli::add_animate_command(app, animate_opts);
   holoray::cli::CompareCommandOptions compare_opts;
   CLI::App* compare = holoray::cli::add_compare_command(app, compare_opts);
+  holoray::cli::SimulateCommandOptions simulate_opts;
+  CLI::App* simulate = holoray::cli::add_simulate_command(app, simulate_opts);
+  holoray::cli::ViewsCommandOptions views_opts;
+  CLI::App* views = holoray::cli::add_views_command(app, views_opts);
   // CLI11 would only say that a subcommand is required.
   const auto known = [&](const std::string& name) {
     for (const CLI::App* c : app.get_subcommands([](CLI::App*) { return true; }))
@@ -26,7 +31,7 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate or compare)\n", argv[1]);
+    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, compare, simulate or views)\n", argv[1]);
     return 2;
   }
   try {
@@ -41,5 +46,7 @@ int main(int argc, char** argv) {
   if (sub->parsed()) return holoray::cli::run_subaperture(sub_opts);
   if (animate->parsed()) return holoray::cli::run_animate(animate_opts);
   if (compare->parsed()) return holoray::cli::run_compare(compare_opts);
+  if (simulate->parsed()) return holoray::cli::run_simulate(simulate_opts);
+  if (views->parsed()) return holoray::cli::run_views(views_opts);
   return 2;
 }

@@ -29,24 +29,8 @@ int run_subaperture(const SubapertureCommandOptions& o) {
     const Grid grid = parse_grid(o.grid);
     const Encoding encoding = parse_encoding(o.encoding);
     const int P = o.pixels_per_lens;
-    if (P < 1) throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", P));
     const ImageBuffer eia = read_image(o.input);
-    LensArrayDesc d;
-    d.pixels_per_lens = P;
-    if (eia.width % P != 0)
-      throw std::invalid_argument(fmt::format("the EIA is {} pixels wide, not a multiple of {} pixels per lens", eia.width, P));
-    d.lenses_x = eia.width / P;
-    d.grid = grid;
-    if (grid == Grid::square) {
-      if (eia.height % P != 0)
-        throw std::invalid_argument(fmt::format("the EIA is {} pixels high, not a multiple of {} pixels per lens", eia.height, P));
-      d.lenses_y = eia.height / P;
-    } else if (grid == Grid::hex) {
-      d.lenses_y = std::max(1, static_cast<int>(std::lround(eia.height / (P * std::sqrt(3.0) / 2))));
-      d.rows = eia.height;
-    } else {
-      d.rows = eia.height;  // lenticular
-    }
+    const LensArrayDesc d = eia_layout(eia.width, eia.height, grid, P);
     const LensArray cam(d);
     const ImageBuffer view = extract_subaperture(eia, cam, o.u < 0 ? P / 2 : o.u, o.v < 0 ? P / 2 : o.v);
     write_image(o.output, view, encoding);

@@ -96,6 +96,43 @@ void write_image(const std::string& path, const ImageBuffer& image, Encoding enc
   }
 }
 
+void write_animation(const std::string& path, const std::vector<ImageBuffer>& frames, int fps, Encoding encoding) {
+  if (lower_ext(path) != ".gif")
+    throw std::runtime_error(fmt::format("cannot write '{}': an animation is written as .gif", path));
+  if (frames.empty()) throw std::runtime_error(fmt::format("cannot write '{}': no frames", path));
+  const fs::path dest(path);
+  const fs::path dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw std::runtime_error(fmt::format("cannot write '{}': folder '{}' does not exist", path, dir.string()));
+  const fs::path tmp = dir / fmt::format(".{}.tmp{}.gif", dest.stem().string(), static_cast<long>(::getpid()));
+  auto out = OIIO::ImageOutput::create(tmp.string());
+  if (!out || !out->supports("multiimage") || !out->supports("appendsubimage"))
+    throw std::runtime_error(fmt::format("cannot write '{}': this OpenImageIO writes no animated GIF", path));
+  bool ok = true;
+  for (size_t f = 0; f < frames.size() && ok; ++f) {
+    const ImageBuffer& img = frames[f];
+    if (img.width != frames[0].width || img.height != frames[0].height || img.channels != 3)
+      throw std::runtime_error(fmt::format("cannot write '{}': frame {} is {}x{}x{}, frame 0 {}x{}x3", path, f, img.width,
+                                           img.height, img.channels, frames[0].width, frames[0].height));
+    OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
+    const int rate[2] = {fps, 1};
+    spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
+    spec.attribute("gif:LoopCount", 0);  // forever
+    ok = f == 0 ? out->open(tmp.string(), spec) : out->open(tmp.string(), spec, OIIO::ImageOutput::AppendSubimage);
+    if (!ok) break;
+    std::vector<uint8_t> bytes(img.data.size());
+    for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = encode_8bit(img.data[k], encoding);
+    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  }
+  ok = out->close() && ok;
+  if (ok) fs::rename(tmp, dest, ec);
+  if (!ok || ec) {
+    const std::string reason = !ok ? out->geterror() : ec.message();
+    fs::remove(tmp, ec);
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
+  }
+}
+
 ImageBuffer read_image(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error(fmt::format("cannot read image '{}': {}", path, OIIO::geterror()));

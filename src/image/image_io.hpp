@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "image/image.hpp"
 
@@ -22,6 +23,13 @@ uint8_t encode_8bit(float v, Encoding encoding);
 /// std::runtime_error naming the path and reason (unknown extension, folder
 /// missing or not writable, disk full); the destination is then untouched.
 void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding = Encoding::linear);
+
+/// Writes `frames` (all the same size, RGB) as an animated GIF looping
+/// forever at `fps` frames per second, through a temporary name as
+/// write_image. Throws std::runtime_error naming the path (not `.gif`, no
+/// frames, sizes that differ, folder missing, disk full).
+void write_animation(const std::string& path, const std::vector<ImageBuffer>& frames, int fps,
+                     Encoding encoding = Encoding::linear);
 
 /// Reads any image OpenImageIO can; values as stored (8-bit scaled to 0..1,
 /// no decoding of sRGB). Throws std::runtime_error naming the path.
