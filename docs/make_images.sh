@@ -53,3 +53,14 @@ oiiotool "$tmp/panel.png" -o "$tmp/panel.ppm"
 python3 docs/subpixel_closeup.py "$tmp/panel.ppm" "$tmp/closeup.ppm" 1190 1175 48 27 4
 oiiotool "$tmp/closeup.ppm" -o "$out/panel_4k_lenticular_closeup.png"
 oiiotool "$tmp/panel.png" --cut 120x68+1150+1150 --resample:interp=0 480x272 -o "$out/panel_4k_lenticular_pixels.png"
+# What a viewer sees on that panel, simulated from two eye positions 80 mm
+# apart at 600 mm (holoray simulate), side by side.
+"$h" simulate "$tmp/panel.png" --display examples/displays/lenticular_4k.toml --eye -40,0,600 --width 480 -o "$tmp/eye_l.png"
+"$h" simulate "$tmp/panel.png" --display examples/displays/lenticular_4k.toml --eye 40,0,600 --width 480 -o "$tmp/eye_r.png"
+oiiotool "$tmp/eye_l.png" "$tmp/eye_r.png" --mosaic 2x1 -o "$out/simulated_eyes.png"
+# A Looking Glass quilt (8x6 views of 420x560), scaled down, and an EIA's
+# parallax sweep as a GIF (holoray views).
+"$h" render examples/primitives.nff --quilt 8x6 --view-cone 40 -o "$tmp/quilt.png" -q
+oiiotool "$tmp/quilt_qs8x6a0.75.png" --resize 672x672 -o "$out/quilt_qs8x6a0.75.png"
+"$h" render examples/primitives.nff --lenses 160x120 --pixels-per-lens 8 -o "$tmp/eia_views.png" -q
+"$h" views "$tmp/eia_views.png" --pixels-per-lens 8 -o "$out/parallax.gif"
