@@ -11,6 +11,7 @@
 #include <csignal>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -26,6 +27,7 @@
 #include "temporal/keyframe_schedule.hpp"
 #include "temporal/report.hpp"
 #include "temporal/sequence.hpp"
+#include "video/video_writer.hpp"
 
 namespace holoray::cli {
 
@@ -78,7 +80,9 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
-  cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder");
+  cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
+  cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete");
+  cmd->add_option("--crf", o.crf, "With --video .mp4: H.264 constant rate factor, 0 (best) to 51 (default 18)");
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
@@ -116,6 +120,18 @@ int run_animate(const AnimateCommandOptions& o) {
     so.fill = pick<Fill>("--fill", o.fill, {{"trace", Fill::trace}, {"interpolate", Fill::interpolate}});
     so.reproject.detect_leaks = !o.no_leak_check;
     const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
+    VideoOptions vo;
+    if (!o.video.empty()) {
+      if (!is_supported_video(o.video))
+        throw std::invalid_argument(fmt::format("--video: '{}' is neither .mkv (FFV1, lossless) nor .mp4 (H.264)", o.video));
+      const bool h264 = !is_lossless_video(o.video);
+      if (o.crf != -1 && !h264) throw std::invalid_argument("--crf: goes with an .mp4 video (FFV1 is lossless)");
+      if (o.crf != -1 && (o.crf < 0 || o.crf > 51))
+        throw std::invalid_argument(fmt::format("--crf: must be from 0 to 51, got {}", o.crf));
+      if (o.crf != -1) vo.crf = o.crf;
+    } else if (o.crf != -1) {
+      throw std::invalid_argument("--crf: goes with --video");
+    }
     so.encoding = parse_encoding(o.encoding);
     const bool auto_keys = o.keyframe_interval == "auto";
     int interval = 0;
@@ -178,6 +194,11 @@ int run_animate(const AnimateCommandOptions& o) {
     std::filesystem::create_directories(o.output, ec);
     if (!std::filesystem::is_directory(o.output))
       throw std::runtime_error(fmt::format("-o: cannot create the folder '{}'{}", o.output, ec ? ": " + ec.message() : ""));
+    if (!o.video.empty()) {  // after -o's folder is made: the video may go in it
+      const auto dir = std::filesystem::path(o.video).parent_path();
+      if (!dir.empty() && !std::filesystem::is_directory(dir))
+        throw std::invalid_argument(fmt::format("--video: folder '{}' does not exist", dir.string()));
+    }
     if (!o.report.empty()) {
       const auto dir = std::filesystem::path(o.report).parent_path();
       if (!dir.empty() && !std::filesystem::is_directory(dir))
@@ -238,6 +259,29 @@ int run_animate(const AnimateCommandOptions& o) {
       fmt::print(stderr, "holoray: interrupted by {} after {} new frames; every frame in '{}' is complete; "
                  "rerun with --resume to finish\n", interrupt.signal() == SIGINT ? "SIGINT" : "SIGTERM", written, o.output);
       return interrupt.exit_status();
+    }
+    if (!o.video.empty()) {
+      // From the frames on disk, in order: the video shows exactly what the
+      // folder holds, and a resumed run rebuilds it whole.
+      vo.fps = shot.shot().fps;
+      const auto t0 = std::chrono::steady_clock::now();
+      std::optional<VideoWriter> video;
+      std::vector<uint8_t> bytes;
+      for (int f = 0; f < frames; ++f) {
+        const ImageBuffer img = read_image(frame_path(o.output, f, frames, ext));
+        if (!video) video.emplace(o.video, img.width, img.height, vo);
+        if (img.channels < 3) throw std::runtime_error(fmt::format("frame {} has {} channels, not RGB", f, img.channels));
+        bytes.resize(size_t(img.width) * img.height * 3);
+        // PNG frames hold their codes already; EXR frames are encoded as PNG frames would be.
+        const Encoding enc = ext == "png" ? Encoding::linear : so.encoding;
+        for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+          for (int c = 0; c < 3; ++c) bytes[p * 3 + c] = encode_8bit(img.data[p * img.channels + c], enc);
+        video->add_frame(bytes.data());
+      }
+      video->finish();
+      if (!o.quiet)
+        fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, video_codec_name(o.video, vo),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     const RunSummary s = summarise(reports);
     if (!o.quiet) {

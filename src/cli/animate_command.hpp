@@ -13,6 +13,8 @@ struct AnimateCommandOptions {
   std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
   std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
   std::string format = "png", encoding = "linear", report;
+  std::string video;                    ///< --video PATH (.mkv FFV1 lossless, .mp4 H.264)
+  int crf = -1;                         ///< --crf N (H.264; -1: 18)
   std::string keyframe_interval = "8";  ///< K, or "auto" (keyframe_schedule.hpp)
   double keyframe_motion = 4;           ///< auto: most pixels a point image moves from its keyframe
   int max_keyframe_interval = 32;       ///< auto: longest run of frames between keyframes
@@ -25,7 +27,8 @@ struct AnimateCommandOptions {
 CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& opts);
 
 /// Returns the exit status (0 success, 1 failure). Frames are written as
-/// DIR/frame_NNNN.EXT, each to a temporary name then renamed.
+/// DIR/frame_NNNN.EXT, each to a temporary name then renamed; with --video,
+/// the video is encoded from the finished frames once all are there.
 int run_animate(const AnimateCommandOptions& opts);
 
 }  // namespace holoray::cli
