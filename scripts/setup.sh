@@ -10,6 +10,7 @@ packages=(
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev             # meshes: OBJ, PLY, STL, glTF, 3DS, COLLADA, AC3D
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev  # animate --video: FFV1 and H.264
+  nlohmann-json3-dev        # Looking Glass calibration files (JSON)
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
   tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray and tachyon the pinhole tests' references
   tachyon-doc               # bench/run_tachyon_compare.sh: Tachyon's manual and example scenes

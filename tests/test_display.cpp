@@ -14,7 +14,9 @@
 #include "camera/quilt_camera.hpp"
 #include "display/display_file.hpp"
 #include "display/display_placement.hpp"
+#include "display/looking_glass.hpp"
 #include "image/image_io.hpp"
+#include "image/metrics.hpp"
 #include "render/display_renderer.hpp"
 #include "render/render_scene.hpp"
 #include "render/view_renderer.hpp"
@@ -386,6 +388,70 @@ TEST(Quilt, FilesAreNamedAsLookingGlassToolsReadThem) {
   const ImageBuffer img = read_image(dir.file("q_qs3x2a1.333.png"));
   EXPECT_EQ(img.width, 48);
   EXPECT_EQ(img.height, 24);
+}
+
+// A calibration whose numbers make the mapping simple: 48 x 8 pixels, 12
+// lenticules across (4 pixels, 12 subpixels each), slope 3 (so a row moves
+// the phase by a twelfth too): every subpixel's f is a multiple of 1/12.
+LookingGlassCalibration twelfths() {
+  const double cos_slant = std::cos(std::atan(1.0 / 3));
+  return parse_looking_glass(fmt::format(R"({{"pitch": {{"value": {:.17g}}}, "slope": {{"value": 3}}, "center": {{"value": 0}},
+      "viewCone": {{"value": 30}}, "invView": {{"value": 0}}, "DPI": {{"value": 100}}, "screenW": {{"value": 48}},
+      "screenH": {{"value": 8}}, "flipImageX": {{"value": 0}}, "flipImageY": {{"value": 0}}, "flipSubp": {{"value": 0}}}})",
+                                         12 / ((48 / 100.0) * cos_slant)),
+                             "lg.json");
+}
+
+TEST(LookingGlass, CalibrationMapsSubpixelsAcrossTheirLenticule) {
+  const LookingGlassCalibration c = twelfths();
+  EXPECT_EQ(c.width, 48);
+  EXPECT_EQ(c.height, 8);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 48; ++i)
+      for (int s = 0; s < 3; ++s) {
+        const double f = looking_glass_view(c, i, j, s);
+        ASSERT_GE(f, 0);
+        ASSERT_LT(f, 1);
+        // Along a row a subpixel moves the phase by 1/12, a row up by 1/12 too,
+        // from (0.5/48) * 12 + (0.5/8) * (8/48/3) * 12 at the bottom-left pixel.
+        const double expected = (i + 0.5) / 4 + s / 12.0 + (8 - j - 0.5) / 12.0;
+        const double want = expected - std::floor(expected);
+        EXPECT_NEAR(std::fmod(f - want + 1.5, 1.0) - 0.5, 0, 1e-9) << i << "," << j << "," << s;
+      }
+  EXPECT_THROW(parse_looking_glass(R"({"pitch": {"value": 50}})", "lg.json"), std::runtime_error);
+  try {
+    parse_looking_glass(R"({"pitch": {"value": -1}, "slope": {"value": 3}, "center": {"value": 0}, "DPI": {"value": 100},
+                            "screenW": {"value": 48}, "screenH": {"value": 8}})",
+                        "lg.json");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "lg.json: expected a positive 'pitch' (lenticules per inch), found -1");
+  }
+}
+
+// Tracing each subpixel's view directly and interlacing a quilt agree where
+// every subpixel's view is one of the quilt's: here all of them (f is a
+// multiple of 1/12 and a 13-view quilt holds f = k/12).
+TEST(LookingGlass, TracingNativelyAgreesWithInterlacingAQuiltWhereViewsCoincide) {
+  const SceneDesc desc = small_scene();
+  const RenderScene scene(desc);
+  const LookingGlassCalibration c = twelfths();
+  const PinholeDesc centre = view_of(*desc.viewpoint, 48, 8);
+  RenderOptions ro;
+  RenderStats stats;
+  const FrameBuffers native = render_looking_glass(scene, LookingGlassCamera(c, centre), ro, stats);
+  QuiltDesc q;
+  q.columns = 13, q.rows = 1, q.view_width = 48, q.view_height = 8, q.view_cone_deg = 30;
+  const FrameBuffers quilt = render_quilt(scene, QuiltCamera(q, centre), ro, stats);
+  const ImageBuffer interlaced = interlace_quilt(quilt.colour, q, c);
+  ASSERT_EQ(native.colour.width, 48);
+  const double psnr = compare_images(native.colour, interlaced).psnr_all();
+  EXPECT_GT(psnr, 60);
+  // And a different quilt (4 views: f = k/3 only) does not agree as well.
+  QuiltDesc q4 = q;
+  q4.columns = 4;
+  const ImageBuffer coarse = interlace_quilt(render_quilt(scene, QuiltCamera(q4, centre), ro, stats).colour, q4, c);
+  EXPECT_LT(compare_images(native.colour, coarse).psnr_all(), psnr - 10);
 }
 
 }  // namespace

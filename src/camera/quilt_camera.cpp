@@ -12,13 +12,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }
 
-PinholeDesc quilt_view(const QuiltDesc& q, const PinholeDesc& centre, int k) {
-  const int n = q.columns * q.rows;
-  if (k < 0 || k >= n) throw std::invalid_argument(fmt::format("quilt view {} outside 0 to {}", k, n - 1));
-  if (!(q.view_cone_deg >= 0 && q.view_cone_deg < 180))
-    throw std::invalid_argument(fmt::format("the view cone must be from 0 to 180 degrees, got {}", q.view_cone_deg));
-  const double phi = n == 1 ? 0 : (-q.view_cone_deg / 2 + q.view_cone_deg * k / (n - 1)) * kPi / 180;
-  const double t = std::tan(phi);
+PinholeDesc sheared_view(const PinholeDesc& centre, double phi_rad, int width, int height) {
+  const double t = std::tan(phi_rad);
   // The image's right vector, as PinholeCamera builds it (mirrored screens too).
   Frame f = Frame::from_normal_up(centre.from, centre.from - centre.at, centre.up);
   if (centre.mirrored) f.x = -f.x;
@@ -26,10 +21,19 @@ PinholeDesc quilt_view(const QuiltDesc& q, const PinholeDesc& centre, int k) {
   PinholeDesc v = centre;
   v.from = centre.from + move;
   v.at = centre.at + move;
-  v.width = q.view_width;
-  v.height = q.view_height;
+  v.width = width;
+  v.height = height;
   v.shift_x = centre.shift_x - t;
   return v;
+}
+
+PinholeDesc quilt_view(const QuiltDesc& q, const PinholeDesc& centre, int k) {
+  const int n = q.columns * q.rows;
+  if (k < 0 || k >= n) throw std::invalid_argument(fmt::format("quilt view {} outside 0 to {}", k, n - 1));
+  if (!(q.view_cone_deg >= 0 && q.view_cone_deg < 180))
+    throw std::invalid_argument(fmt::format("the view cone must be from 0 to 180 degrees, got {}", q.view_cone_deg));
+  const double phi = n == 1 ? 0 : (-q.view_cone_deg / 2 + q.view_cone_deg * k / (n - 1)) * kPi / 180;
+  return sheared_view(centre, phi, q.view_width, q.view_height);
 }
 
 std::string quilt_file_name(const std::string& path, const QuiltDesc& q) {

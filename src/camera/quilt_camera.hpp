@@ -30,6 +30,10 @@ struct QuiltDesc {
   double view_cone_deg = 40;   ///< angle from the leftmost to the rightmost view, degrees, in [0, 180)
 };
 
+/// The sheared view at angle `phi_rad` from `centre` (documented above with
+/// phi = phi_k), width x height pixels.
+PinholeDesc sheared_view(const PinholeDesc& centre, double phi_rad, int width, int height);
+
 /// View k's pinhole description, as documented above. Throws
 /// std::invalid_argument for k outside [0, C*R) or a cone outside [0, 180).
 PinholeDesc quilt_view(const QuiltDesc& q, const PinholeDesc& centre, int k);

@@ -5,6 +5,7 @@
 
 #include "cli/animate_command.hpp"
 #include "cli/compare_command.hpp"
+#include "cli/interlace_command.hpp"
 #include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
@@ -22,6 +23,8 @@ int main(int argc, char** argv) {
   CLI::App* compare = holoray::cli::add_compare_command(app, compare_opts);
   holoray::cli::SimulateCommandOptions simulate_opts;
   CLI::App* simulate = holoray::cli::add_simulate_command(app, simulate_opts);
+  holoray::cli::InterlaceCommandOptions interlace_opts;
+  CLI::App* interlace = holoray::cli::add_interlace_command(app, interlace_opts);
   holoray::cli::ViewsCommandOptions views_opts;
   CLI::App* views = holoray::cli::add_views_command(app, views_opts);
   // CLI11 would only say that a subcommand is required.
@@ -31,7 +34,7 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, compare, simulate or views)\n", argv[1]);
+    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, compare, simulate, views or interlace)\n", argv[1]);
     return 2;
   }
   try {
@@ -48,5 +51,6 @@ int main(int argc, char** argv) {
   if (compare->parsed()) return holoray::cli::run_compare(compare_opts);
   if (simulate->parsed()) return holoray::cli::run_simulate(simulate_opts);
   if (views->parsed()) return holoray::cli::run_views(views_opts);
+  if (interlace->parsed()) return holoray::cli::run_interlace(interlace_opts);
   return 2;
 }

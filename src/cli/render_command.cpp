@@ -15,6 +15,7 @@
 #include "camera/quilt_camera.hpp"
 #include "display/display_file.hpp"
 #include "display/display_placement.hpp"
+#include "display/looking_glass.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
@@ -81,6 +82,10 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says");
   for (CLI::Option* a : array_options) quilt->excludes(a);
   quilt->excludes(display);
+  CLI::Option* lg = cmd->add_option("--looking-glass", o.looking_glass, "A Looking Glass's calibration file (visual.json): render its native panel image, each subpixel along the view its lenticule gives it (docs/display-files.md)");
+  for (CLI::Option* a : array_options) lg->excludes(a);
+  lg->excludes(display);
+  lg->excludes(quilt);
   cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)");
   cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer");
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
@@ -143,6 +148,12 @@ int run_render(const RenderCommandOptions& o) {
       throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
     if (cache_enabled(o.cache) && pinhole)  // checked before the scene is read
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
+    std::optional<LookingGlassCalibration> calibration;
+    if (!o.looking_glass.empty()) {
+      if (pinhole) throw std::invalid_argument("--looking-glass: renders the panel's own views; it goes without --camera pinhole");
+      if (!o.resolution.empty()) throw std::invalid_argument("--resolution: the calibration sets a Looking Glass panel's size");
+      calibration = read_looking_glass(o.looking_glass);
+    }
     std::optional<DisplayDesc> display;
     if (!o.display.empty()) {
       if (pinhole) throw std::invalid_argument("--display: renders the panel through its lenses; it goes without --camera pinhole");
@@ -162,7 +173,12 @@ int run_render(const RenderCommandOptions& o) {
     std::optional<PinholeCamera> view;
     std::optional<DisplayCamera> panel;
     std::optional<QuiltCamera> quilt;
-    if (quilt_desc) {
+    std::optional<LookingGlassCamera> glass;
+    if (calibration) {
+      if (!desc.viewpoint)
+        throw std::invalid_argument(fmt::format("--looking-glass: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));
+      glass.emplace(*calibration, view_of(*desc.viewpoint, calibration->width, calibration->height));
+    } else if (quilt_desc) {
       if (!desc.viewpoint)
         throw std::invalid_argument(fmt::format("--quilt: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));
       const PinholeDesc centre = view_of(*desc.viewpoint, quilt_desc->view_width, quilt_desc->view_height);
@@ -188,16 +204,16 @@ int run_render(const RenderCommandOptions& o) {
     } else {
       array.emplace(place_array(settings, desc.viewpoint));
     }
-    if (panel && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
+    if ((panel || glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
       throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
-    if (panel && cache_enabled(o.cache))
-      throw std::invalid_argument("--cache on: goes with the integral camera; this display needs the display camera");
-    const int width = view ? view->width() : quilt ? quilt->width() : panel ? panel->geometry().width : array->width();
-    const int height = view ? view->height() : quilt ? quilt->height() : panel ? panel->height() : array->height();
+    if (!array && cache_enabled(o.cache))
+      throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
+    const int width = glass ? calibration->width : view ? view->width() : quilt ? quilt->width() : panel ? panel->geometry().width : array->width();
+    const int height = glass ? calibration->height : view ? view->height() : quilt ? quilt->height() : panel ? panel->height() : array->height();
     const int64_t pixels = static_cast<int64_t>(width) * height;
     // Refuse before allocating: buffers plus the 8-bit or float copy made on
     // output (and a panel's samples, three per pixel with subpixels).
-    const int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : 0;
+    const int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : glass ? 3 * pixels : 0;
     const uint64_t need = frame_bytes(pixels, aovs) + static_cast<uint64_t>(pixels) * 12 + frame_bytes(samples, aovs);
     const uint64_t have = physical_memory_bytes();
     if (have && need > have / 10 * 8)
@@ -230,7 +246,8 @@ int run_render(const RenderCommandOptions& o) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    if (view) fb = render_view(scene, *view, ropt, stats);
+    if (glass) fb = render_looking_glass(scene, *glass, ropt, stats);
+    else if (view) fb = render_view(scene, *view, ropt, stats);
     else if (quilt) fb = render_quilt(scene, *quilt, ropt, stats);
     else if (panel) fb = render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ropt, stats);
     else fb = render_frame(scene, *array, ropt, stats);
@@ -251,7 +268,10 @@ int run_render(const RenderCommandOptions& o) {
       const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
       fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
                  scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
-      if (quilt) {
+      if (glass) {
+        fmt::print("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
+                   width, height, o.looking_glass, calibration->view_cone_deg);
+      } else if (quilt) {
         const QuiltDesc& q = quilt->desc();
         fmt::print("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
                    width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);

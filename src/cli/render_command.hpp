@@ -21,6 +21,7 @@ struct RenderCommandOptions {
   std::string quilt;    ///< --quilt CxR: a Looking Glass quilt of C*R views (issue 14)
   double view_cone = 40;  ///< --view-cone DEG
   int quilt_view = -1;  ///< --quilt-view K: only view K, as a plain image
+  std::string looking_glass;  ///< --looking-glass CAL.json: a Looking Glass's native panel
   CacheCommandOptions cache;
   bool quiet = false;
 };

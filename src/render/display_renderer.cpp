@@ -29,4 +29,16 @@ FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camer
   return fb;
 }
 
+FrameBuffers render_looking_glass(const RenderScene& scene, const LookingGlassCamera& camera,
+                                  const RenderOptions& opt, RenderStats& stats) {
+  if (opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id)
+    throw std::invalid_argument("AOVs are not written for native panel images yet (colour only)");
+  FrameBuffers fb = detail::render_lines(scene, camera, opt, stats, [](const PixelLine& line, PrimaryRay& out) {
+    out = PrimaryRay{Ray{line.origin, line.dir, 0, INFINITY}, 0, 1};
+    return true;
+  });
+  fb.colour = pack_subpixels(fb.colour, true);
+  return fb;
+}
+
 }  // namespace holoray

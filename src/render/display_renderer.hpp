@@ -5,6 +5,7 @@
 #pragma once
 
 #include "camera/display_camera.hpp"
+#include "display/looking_glass.hpp"
 #include "render/renderer.hpp"
 
 namespace holoray {
@@ -20,6 +21,12 @@ namespace holoray {
 /// or threads < 0.
 FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camera, bool red_first,
                             const RenderOptions& options, RenderStats& stats);
+
+/// A Looking Glass panel traced natively (display/looking_glass.hpp): each
+/// subpixel along its own view, channels packed as RGB (flipSubp is in the
+/// views already). Pinhole rays from each view's eye. Throws as render_display.
+FrameBuffers render_looking_glass(const RenderScene& scene, const LookingGlassCamera& camera,
+                                  const RenderOptions& options, RenderStats& stats);
 
 /// Packs a subpixel image (3W x H samples) into the W x H panel image:
 /// channel c of pixel i from sample 3i + (red_first ? c : 2 - c).

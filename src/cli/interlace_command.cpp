@@ -1,0 +1,55 @@
+#include "cli/interlace_command.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "camera/quilt_camera.hpp"
+#include "cli/option_parsing.hpp"
+#include "display/looking_glass.hpp"
+#include "image/image_io.hpp"
+
+namespace holoray::cli {
+
+CLI::App* add_interlace_command(CLI::App& app, InterlaceCommandOptions& o) {
+  CLI::App* cmd = app.add_subcommand("interlace", "A Looking Glass's native panel image from a quilt and the device's calibration");
+  cmd->add_option("quilt", o.input, "Quilt image (views tiled as Looking Glass tools do: view 0 bottom left), e.g. NAME_qs8x6a0.75.png")->required();
+  cmd->add_option("--looking-glass", o.calibration, "The device's calibration file (visual.json)")->required();
+  cmd->add_option("-o,--output", o.output, "Native panel image (.png or .exr)")->required();
+  cmd->add_option("--quilt", o.quilt, "Columns x rows of the quilt (default: read from the file's _qsCxR name)");
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb (the quilt's values are passed on as they are)")->capture_default_str();
+  return cmd;
+}
+
+int run_interlace(const InterlaceCommandOptions& o) {
+  try {
+    if (!is_supported_output(o.output))
+      throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
+    const Encoding encoding = parse_encoding(o.encoding);
+    QuiltDesc q;
+    if (!o.quilt.empty()) {
+      parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
+    } else {
+      std::smatch m;
+      const std::string name = std::filesystem::path(o.input).filename().string();
+      if (!std::regex_search(name, m, std::regex("_qs([0-9]{1,4})x([0-9]{1,4})")))
+        throw std::invalid_argument(fmt::format("'{}' names no quilt layout (_qsCxR); give --quilt CxR", name));
+      parse_lens_count(m[1].str() + "x" + m[2].str(), q.columns, q.rows, "--quilt");
+    }
+    const LookingGlassCalibration cal = read_looking_glass(o.calibration);
+    ImageBuffer quilt = read_image(o.input);
+    if (quilt.width % q.columns || quilt.height % q.rows)
+      throw std::invalid_argument(fmt::format("a {}x{} image is not {}x{} views of whole pixels", quilt.width, quilt.height,
+                                              q.columns, q.rows));
+    q.view_width = quilt.width / q.columns, q.view_height = quilt.height / q.rows;
+    q.view_cone_deg = cal.view_cone_deg;
+    write_image(o.output, interlace_quilt(quilt, q, cal), encoding);
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "holoray: error: {}\n", e.what());
+  }
+  return 1;
+}
+
+}  // namespace holoray::cli
