@@ -80,12 +80,20 @@ LookingGlassCamera::LookingGlassCamera(const LookingGlassCalibration& c, const P
   centre_.width = c.width, centre_.height = c.height;
   PinholeCamera check(centre_);  // validates the centre view
   (void)check;
+  frame_ = Frame::from_normal_up(centre_.from, centre_.from - centre_.at, centre_.up);
+  if (centre_.mirrored) frame_.x = -frame_.x;
+  distance_ = length(centre_.at - centre_.from);
+  pixel_ = 2 * std::tan(centre_.fov_deg * kPi / 360) / c.height;
 }
 
 PixelLine LookingGlassCamera::line(int c, int j, double u, double v) const {
+  // PinholeCamera(sheared_view(centre, phi)).line(i, j, u, v), with the
+  // centre view's frame computed once instead of per subpixel.
   const int i = c / 3, s = c % 3;
-  const double phi = (looking_glass_view(c_, i, j, s) - 0.5) * c_.view_cone_deg * kPi / 180;
-  return PinholeCamera(sheared_view(centre_, phi, c_.width, c_.height)).line(i, j, u, v);
+  const double t = std::tan((looking_glass_view(c_, i, j, s) - 0.5) * c_.view_cone_deg * kPi / 180);
+  const double x = (i + u + (centre_.sample_u - 0.5) - 0.5 * c_.width) * pixel_ + (centre_.shift_x - t);
+  const double y = (0.5 * c_.height - (j + v + (centre_.sample_v - 0.5))) * pixel_;
+  return {centre_.from + frame_.x * (distance_ * t), normalize(frame_.to_world_dir({x, y, -1}))};
 }
 
 void LookingGlassCamera::project(const Vec3&, std::vector<PanelHit>&) const {

@@ -69,6 +69,9 @@ class LookingGlassCamera final : public Camera {
  private:
   LookingGlassCalibration c_;
   PinholeDesc centre_;
+  Frame frame_;            // the centre view's: x right, y up, z toward the eye
+  double distance_ = 0;    // |at - from|
+  double pixel_ = 0;       // one pixel on the image plane at distance 1
 };
 
 /// The native panel made from a quilt (the interlacing path): each subpixel
