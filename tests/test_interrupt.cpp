@@ -146,6 +146,39 @@ TEST_P(AnimateInterrupted, LeavesOnlyCompleteFramesAndResumesToTheSameFiles) {
   EXPECT_EQ(folder_bytes(out), whole) << "a resumed run must leave exactly the uninterrupted run's files";
 }
 
+// With --video: a run stopped by SIGINT leaves its frames and no video (not
+// even a temporary one); --resume finishes the frames and writes the video,
+// byte for byte the uninterrupted run's.
+TEST(AnimateInterruptedWithVideo, LeavesNoVideoAndTheResumedRunWritesTheSameOne) {
+  TempDir dir;
+  write_shot(dir);
+  auto args = [&](const std::string& out, const std::string& video, bool resume) {
+    std::vector<std::string> a{"animate", dir.file("shot.toml"), "--method", "full", "-q", "-o", out, "--video", video};
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  auto run_to_end = [&](const std::vector<std::string>& a) {
+    const pid_t pid = spawn_cli(a, dir.file("log_end.txt"));
+    int st = 0;
+    waitpid(pid, &st, 0);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  };
+  ASSERT_EQ(run_to_end(args(dir.file("whole"), dir.file("whole.mkv"), false)), 0) << test::read_bytes(dir.file("log_end.txt"));
+  fs::create_directories(dir.file("videos"));
+  const pid_t pid = spawn_cli(args(dir.file("cut"), dir.file("videos/cut.mkv"), false), dir.file("log_cut.txt"));
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (frame_count(dir.file("cut")) < 3 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGINT);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  ASSERT_LT(frame_count(dir.file("cut")), 60u) << "the run ended before the signal; the test needs a longer shot";
+  EXPECT_TRUE(fs::is_empty(dir.file("videos"))) << "an interrupted run left a video file";
+  ASSERT_EQ(run_to_end(args(dir.file("cut"), dir.file("videos/cut.mkv"), true)), 0) << test::read_bytes(dir.file("log_end.txt"));
+  EXPECT_EQ(test::read_bytes(dir.file("videos/cut.mkv")), test::read_bytes(dir.file("whole.mkv")));
+}
+
 INSTANTIATE_TEST_SUITE_P(Signals, AnimateInterrupted,
                          ::testing::Values(KillCase{SIGINT, "reproject"}, KillCase{SIGTERM, "full"},
                                            KillCase{SIGKILL, "reverse"}),

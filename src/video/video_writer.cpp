@@ -109,6 +109,10 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
     av_opt_set(c->priv_data, "preset", "medium", 0);
   }
   if (s_->format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  // The same frames make the same file (no random segment id, no version
+  // strings): a resumed run's video is byte for byte an uninterrupted one's.
+  c->flags |= AV_CODEC_FLAG_BITEXACT;
+  s_->format->flags |= AVFMT_FLAG_BITEXACT;
   if ((err = avcodec_open2(c, enc, nullptr)) < 0) fail(av_message(err));
   if ((err = avcodec_parameters_from_context(s_->stream->codecpar, c)) < 0) fail(av_message(err));
   s_->stream->time_base = c->time_base;
