@@ -20,7 +20,7 @@ enum class SubpixelOrder { none, rgb, bgr };
 const char* to_string(SubpixelOrder o);
 
 /// A display file, in its own units (millimetres, degrees). Every value has
-/// been range-checked by the reader; `loc` points at the file's [lens] table.
+/// been range-checked by the reader (display_file.hpp).
 struct DisplayDesc {
   std::string source;  ///< the file, for messages
   // [panel]
