@@ -14,7 +14,7 @@ jobs=$(nproc)
 # and reverse), filling,
 # determinism over thread counts and tile orders (the shadow cache's too), and the
 # interrupted sequences.
-TSAN_TESTS="^(Render|ShadowCache|PathologicalScenes|Reprojection|ReverseReprojection|PinholeView|Tachyon|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted)"
+TSAN_TESTS="^(Render|ShadowCache|PathologicalScenes|Reprojection|ReverseReprojection|PinholeView|Tachyon|Fill|Temporal|Sequence|AnimateDeterminism|AnimateCli|Signals/AnimateInterrupted|DisplayRender|Quilt|LookingGlass)"
 for kind in "${kinds[@]}"; do
   case $kind in
     address)
