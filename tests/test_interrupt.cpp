@@ -179,6 +179,36 @@ TEST(AnimateInterruptedWithVideo, LeavesNoVideoAndTheResumedRunWritesTheSameOne)
   EXPECT_EQ(test::read_bytes(dir.file("videos/cut.mkv")), test::read_bytes(dir.file("whole.mkv")));
 }
 
+// --frames for render farms (issue 15, item 3): ranges whose ends fall
+// inside keyframe segments, two of them run at the same time into the same
+// folder, give byte for byte the folder of one run; a range past the shot is
+// refused.
+TEST(AnimateFrames, RangesRunApartGiveTheFolderOfOneRun) {
+  TempDir dir;
+  write_shot(dir);
+  auto args = [&](const std::string& out, const std::string& range) {
+    std::vector<std::string> a{"animate", dir.file("shot.toml"), "--method", "reverse", "--keyframe-interval", "8", "-q", "-o", out};
+    if (!range.empty()) a.insert(a.end(), {"--frames", range});
+    return a;
+  };
+  auto wait = [&](pid_t pid) {
+    int st = 0;
+    waitpid(pid, &st, 0);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  };
+  ASSERT_EQ(wait(spawn_cli(args(dir.file("whole"), ""), dir.file("log_whole.txt"))), 0) << test::read_bytes(dir.file("log_whole.txt"));
+  const pid_t a = spawn_cli(args(dir.file("parts"), "0:21"), dir.file("log_a.txt"));
+  const pid_t b = spawn_cli(args(dir.file("parts"), "22:45"), dir.file("log_b.txt"));
+  ASSERT_EQ(wait(a), 0) << test::read_bytes(dir.file("log_a.txt"));
+  ASSERT_EQ(wait(b), 0) << test::read_bytes(dir.file("log_b.txt"));
+  EXPECT_EQ(frame_count(dir.file("parts")), 46u);
+  ASSERT_EQ(wait(spawn_cli(args(dir.file("parts"), "46:59"), dir.file("log_c.txt"))), 0) << test::read_bytes(dir.file("log_c.txt"));
+  EXPECT_EQ(folder_bytes(dir.file("parts")), folder_bytes(dir.file("whole")));
+  const auto r = test::run_cli("animate " + dir.file("shot.toml") + " -o " + dir.file("bad") + " --frames 50:60 -q");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("--frames: the shot has frames 0 to 59, got '50:60'"), std::string::npos) << r.output;
+}
+
 INSTANTIATE_TEST_SUITE_P(Signals, AnimateInterrupted,
                          ::testing::Values(KillCase{SIGINT, "reproject"}, KillCase{SIGTERM, "full"},
                                            KillCase{SIGKILL, "reverse"}),

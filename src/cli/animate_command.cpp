@@ -41,12 +41,33 @@ std::string frame_path(const std::string& dir, int frame, int frames, const std:
 // A run killed outright (SIGKILL, power loss) can leave the temporary file of
 // the frame it was writing (image_io's ".<stem>.tmp<pid>.<ext>"); a resumed
 // run removes them so the folder ends as an uninterrupted run leaves it.
-void remove_stale_temporaries(const std::string& dir) {
+// Only those of its own frames [first, last]: tasks rendering other ranges
+// into the same folder may be writing theirs right now.
+void remove_stale_temporaries(const std::string& dir, int first, int last) {
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name.starts_with(".frame_") && name.find(".tmp") != std::string::npos) std::filesystem::remove(e.path(), ec);
+    if (!name.starts_with(".frame_") || name.find(".tmp") == std::string::npos) continue;
+    int frame = -1;
+    const char* digits = name.data() + 7;
+    std::from_chars(digits, name.data() + name.size(), frame);
+    if (frame >= first && frame <= last) std::filesystem::remove(e.path(), ec);
   }
+}
+
+// "A:B" (inclusive) or "N" for --frames; -1 ends mean "not given".
+void parse_frame_range(const std::string& text, int& first, int& last) {
+  const auto colon = text.find(':');
+  auto number = [&](std::string_view part, int& out) {
+    const auto r = std::from_chars(part.data(), part.data() + part.size(), out);
+    return !part.empty() && r.ec == std::errc() && r.ptr == part.data() + part.size() && out >= 0;
+  };
+  const bool ok = colon == std::string::npos
+                      ? number(text, first) && (last = first, true)
+                      : number(std::string_view(text).substr(0, colon), first) &&
+                            number(std::string_view(text).substr(colon + 1), last);
+  if (!ok) throw std::invalid_argument(fmt::format("--frames: expected A:B (first and last frame, from 0) or N, got '{}'", text));
+  if (last < first) throw std::invalid_argument(fmt::format("--frames: the last frame comes before the first in '{}'", text));
 }
 
 }  // namespace
@@ -80,6 +101,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
+  cmd->add_option("--frames", o.frames, "Render only frames A:B (inclusive, from 0; or one frame N) and the keyframes they need, as a render farm's task does: ranges covering the shot, run apart (even at once, into one folder), give the folder of one run");
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
   cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete");
   cmd->add_option("--crf", o.crf, "With --video .mp4: H.264 constant rate factor, 0 (best) to 51 (default 18)");
@@ -159,8 +181,16 @@ int run_animate(const AnimateCommandOptions& o) {
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
+    int range_first = 0, range_last = -1;
+    if (!o.frames.empty()) parse_frame_range(o.frames, range_first, range_last);
     ShotFrames shot(read_shot_file(o.shot));
     const int frames = shot.frame_count();
+    if (o.frames.empty()) range_last = frames - 1;
+    if (range_last >= frames)
+      throw std::invalid_argument(fmt::format("--frames: the shot has frames 0 to {}, got '{}'", frames - 1, o.frames));
+    const bool whole_shot = range_first == 0 && range_last == frames - 1;
+    if (!o.video.empty() && !whole_shot)
+      throw std::invalid_argument("--video: needs every frame; after the ranges, run the whole shot with --resume --video");
     if (so.pinhole && (*so.pinhole)[0] == 0) {
       auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
                                     [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
@@ -204,10 +234,14 @@ int run_animate(const AnimateCommandOptions& o) {
       if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
     }
-    if (o.resume) {
-      remove_stale_temporaries(o.output);
-      so.done = [&](int f) { return std::filesystem::exists(frame_path(o.output, f, frames, ext)); };
-    }
+    if (o.resume) remove_stale_temporaries(o.output, range_first, range_last);
+    // Frames outside the range count as done: never written, and their
+    // keyframes traced only where a frame in the range needs one. The
+    // keyframes are the whole shot's, so a range's frames are one run's.
+    if (o.resume || !whole_shot)
+      so.done = [&](int f) {
+        return f < range_first || f > range_last || (o.resume && std::filesystem::exists(frame_path(o.output, f, frames, ext)));
+      };
     const StopOnSignal interrupt;
     so.stop = [&] { return interrupt.requested(); };
 
@@ -285,8 +319,10 @@ int run_animate(const AnimateCommandOptions& o) {
     }
     const RunSummary s = summarise(reports);
     if (!o.quiet) {
-      fmt::print("wrote      {} frames to {}{}\n", written, o.output,
-                 o.resume ? fmt::format(" ({} already there)", frames - written) : "");
+      const int in_range = range_last - range_first + 1;
+      fmt::print("wrote      {} frames to {}{}{}\n", written, o.output,
+                 whole_shot ? "" : fmt::format(" (frames {} to {})", range_first, range_last),
+                 o.resume ? fmt::format(" ({} already there)", in_range - written) : "");
       fmt::print("time       {:.3f} s{}\n", s.accelerated_seconds,
                  so.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
                                             s.saved_percent(), s.mean_psnr)

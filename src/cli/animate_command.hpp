@@ -13,6 +13,7 @@ struct AnimateCommandOptions {
   std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
   std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
   std::string format = "png", encoding = "linear", report;
+  std::string frames;                   ///< --frames A:B (inclusive) or N: only those frames
   std::string video;                    ///< --video PATH (.mkv FFV1 lossless, .mp4 H.264)
   int crf = -1;                         ///< --crf N (H.264; -1: 18)
   std::string keyframe_interval = "8";  ///< K, or "auto" (keyframe_schedule.hpp)
