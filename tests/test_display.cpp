@@ -454,5 +454,28 @@ TEST(LookingGlass, TracingNativelyAgreesWithInterlacingAQuiltWhereViewsCoincide)
   EXPECT_LT(compare_images(native.colour, coarse).psnr_all(), psnr - 10);
 }
 
+// animate --display: each frame is `render --display` of the frame's
+// viewpoint (here the scene's own, the shot placing nothing), bit for bit.
+TEST(DisplayRender, AnimatedPanelFramesAreRenderDisplayOfTheirViewpoint) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.nff"), "v\nfrom 0 -8 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"
+                                      "l 4 -5 8\nf 0.9 0.3 0.2 1 0 0 0 0\ns 0 0 0 1\nf 0.2 0.8 0.3 1 0 0 0 0\ns 1.5 1 0.5 0.6\n");
+  test::write_text(dir.file("d.toml"), "[panel]\nresolution = [40, 30]\npixel_pitch_mm = 0.1\n"
+                                       "[lens]\npitch_mm = 0.43\nslant_deg = 9.5\nfocal_length_mm = 0.6\n");
+  test::write_text(dir.file("shot.toml"), "frames = 2\n[[object]]\nscene = \"s.nff\"\n");
+  const auto still = test::run_cli("render " + dir.file("s.nff") + " --display " + dir.file("d.toml") + " -o " +
+                                   dir.file("still.png") + " -q");
+  ASSERT_EQ(still.status, 0) << still.output;
+  const auto anim = test::run_cli("animate " + dir.file("shot.toml") + " --display " + dir.file("d.toml") + " -o " +
+                                  dir.file("frames") + " -q");
+  ASSERT_EQ(anim.status, 0) << anim.output;
+  for (const char* f : {"frame_0000.png", "frame_0001.png"})
+    EXPECT_EQ(test::read_bytes(dir.file(std::string("frames/") + f)), test::read_bytes(dir.file("still.png"))) << f;
+  const auto reuse = test::run_cli("animate " + dir.file("shot.toml") + " --display " + dir.file("d.toml") +
+                                   " --method reverse -o " + dir.file("x") + " -q");
+  EXPECT_EQ(reuse.status, 1);
+  EXPECT_NE(reuse.output.find("--display: goes with --method full"), std::string::npos) << reuse.output;
+}
+
 }  // namespace
 }  // namespace holoray

@@ -20,6 +20,7 @@
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
+#include "display/display_file.hpp"
 #include "image/image_io.hpp"
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
@@ -101,6 +102,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
+  cmd->add_option("--display", o.display, "Display file (docs/display-files.md): each frame as that display's native panel image, placed by the frame's viewpoint and traced in full (as render --display)");
   cmd->add_option("--frames", o.frames, "Render only frames A:B (inclusive, from 0; or one frame N) and the keyframes they need, as a render farm's task does: ranges covering the shot, run apart (even at once, into one folder), give the folder of one run");
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
   cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete");
@@ -116,7 +118,9 @@ int run_animate(const AnimateCommandOptions& o) {
   try {
     SequenceOptions so;
     const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
-    const std::string method = !o.method.empty() ? o.method : pinhole ? "full" : "reverse";
+    const bool panel = !o.display.empty();
+    if (panel && pinhole) throw std::invalid_argument("--display: renders the panel through its lenses; it goes without --camera pinhole");
+    const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
     so.method = pick<Method>("--method", method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
     if (pinhole && so.method != Method::full)
       throw std::invalid_argument("--camera pinhole: goes with --method full (reuse works on elemental images)");
@@ -128,6 +132,11 @@ int run_animate(const AnimateCommandOptions& o) {
     } else if (pinhole) {
       so.pinhole = std::array<int, 2>{0, 0};  // the scene's, filled in once the shot is read
     }
+    if (panel && so.method != Method::full)
+      throw std::invalid_argument("--display: goes with --method full (reuse works on elemental images)");
+    if (panel && (!o.report.empty() || cache_enabled(o.cache)))
+      throw std::invalid_argument("--display: goes without --report and --cache (native panels are traced in full, without the cache)");
+    if (panel) so.display = read_display_file(o.display);
     if (pinhole && !o.report.empty())
       throw std::invalid_argument("--report: goes with the integral camera (pinhole previews are traced in full)");
     if (pinhole && cache_enabled(o.cache))
@@ -213,12 +222,17 @@ int run_animate(const AnimateCommandOptions& o) {
     const std::unique_ptr<ShadowCache> cache = make_cache(shot.scene(), first.desc().pitch, o.cache);
     so.cache = cache.get();
     {
-      // Two point images, two z-buffers and the frame: refuse before the first trace.
-      const uint64_t need = static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
+      // Two point images, two z-buffers and the frame (a panel: its samples,
+      // three per pixel, and the packed frame): refuse before the first trace.
+      const uint64_t panel_pixels = so.display ? uint64_t(so.display->width) * so.display->height : 0;
+      const uint64_t need = so.display ? panel_pixels * (3 * 12 + 2 * 12)
+                                       : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
       const uint64_t have = physical_memory_bytes();
       if (have && need > have / 10 * 8)
         throw std::length_error(fmt::format("{}x{} frames need {:.2f} GiB while animating, more than 80% of this machine's {:.2f} GiB",
-                                            first.width(), first.height(), need / 1073741824.0, have / 1073741824.0));
+                                            so.display ? so.display->width : first.width(),
+                                            so.display ? so.display->height : first.height(), need / 1073741824.0,
+                                            have / 1073741824.0));
     }
     std::error_code ec;
     std::filesystem::create_directories(o.output, ec);
@@ -253,7 +267,9 @@ int run_animate(const AnimateCommandOptions& o) {
       const LensArray& cam = first;
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
                  shot.shot().objects.size());
-      if (so.pinhole)
+      if (so.display)
+        fmt::print("panel      {}x{} px from {}, each frame's viewpoint\n", so.display->width, so.display->height, o.display);
+      else if (so.pinhole)
         fmt::print("view       {}x{} px, pinhole, each frame's viewpoint\n", (*so.pinhole)[0], (*so.pinhole)[1]);
       else
         fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),

@@ -14,6 +14,7 @@ struct AnimateCommandOptions {
   std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
   std::string format = "png", encoding = "linear", report;
   std::string frames;                   ///< --frames A:B (inclusive) or N: only those frames
+  std::string display;                  ///< --display FILE: native panel frames, traced in full
   std::string video;                    ///< --video PATH (.mkv FFV1 lossless, .mp4 H.264)
   int crf = -1;                         ///< --crf N (H.264; -1: 18)
   std::string keyframe_interval = "8";  ///< K, or "auto" (keyframe_schedule.hpp)

@@ -1,6 +1,8 @@
 #include "temporal/sequence.hpp"
 
 #include "camera/pinhole.hpp"
+#include "display/display_placement.hpp"
+#include "render/display_renderer.hpp"
 #include "render/view_renderer.hpp"
 
 #include <fmt/format.h>
@@ -81,8 +83,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     return r;
   };
 
-  if (opt.pinhole && opt.method != Method::full)
-    throw std::invalid_argument("pinhole frames are traced in full (reuse works on elemental images)");
+  if ((opt.pinhole || opt.display) && opt.method != Method::full)
+    throw std::invalid_argument("pinhole and display frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
     for (int f = 0; f < frames; ++f) {
       if (done(f)) continue;
@@ -97,6 +99,23 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         RenderStats stats;
         const auto start = Clock::now();
         const FrameBuffers b = render_view(shot.scene(), view, ro, stats);
+        emit(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
+        continue;
+      }
+      if (opt.display) {
+        shot.seek(f);
+        const Viewpoint vp = shot.viewpoint(f);
+        RenderOptions ro;
+        ro.spp = shot.shot().spp;
+        ro.threads = opt.threads;
+        RenderStats stats;
+        const auto start = Clock::now();
+        // An ordinary EIA in display units renders with the integral camera, as in `render --display`.
+        const FrameBuffers b = [&] {
+          if (const auto eia = as_lens_array(*opt.display, vp)) return render_frame(shot.scene(), LensArray(*eia), ro, stats);
+          return render_display(shot.scene(), DisplayCamera(place_display(*opt.display, vp)),
+                                opt.display->subpixels != SubpixelOrder::bgr, ro, stats);
+        }();
         emit(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
         continue;
       }

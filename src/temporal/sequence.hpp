@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "display/display_desc.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "shot/shot_frames.hpp"
@@ -50,6 +51,10 @@ struct SequenceOptions {
   /// as a pinhole view of this width and height (render_view) instead of
   /// the EIA: previews of a shot's camera path.
   std::optional<std::array<int, 2>> pinhole;
+  /// Method::full only: render each frame as this display's native panel
+  /// image (display/display_file.hpp), placed by the frame's viewpoint
+  /// (ShotFrames::viewpoint) as `render --display` places it.
+  std::optional<DisplayDesc> display;
   /// Shadow cache (reuse/shadow_cache.hpp) for traced frames, filling and
   /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
   /// it lives across frames while nothing moves. The reference frames
