@@ -138,3 +138,23 @@ TEST(CliScenes, EveryShippedSceneRendersInEveryGridAndMode) {
       }
   }
 }
+
+// Built without MPI, holoray refuses to run as one of several MPI ranks
+// (each would render the same frames into the same files) and writes
+// nothing; as the only rank it runs (issue 15, item 5).
+TEST(Cli, RefusesToRunAsOneOfSeveralMpiRanksWithoutMpi) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.nff"), kScene);
+  const std::string render = std::string(HOLORAY_CLI) + " render " + dir.file("s.nff") + " --lenses 4x4 -q -o ";
+  const auto r = test::run_shell("OMPI_COMM_WORLD_SIZE=3 " + render + dir.file("a.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("holoray: error: launched as one of 3 MPI processes, but this holoray is built without MPI"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir.file("a.png")));
+  const auto slurm = test::run_shell("PMI_SIZE=2 " + render + dir.file("b.png"));
+  EXPECT_EQ(slurm.status, 1) << slurm.output;
+  const auto alone = test::run_shell("OMPI_COMM_WORLD_SIZE=1 " + render + dir.file("c.png"));
+  EXPECT_EQ(alone.status, 0) << alone.output;
+  EXPECT_TRUE(fs::exists(dir.file("c.png")));
+}

@@ -6,6 +6,7 @@
 #include "cli/animate_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/interlace_command.hpp"
+#include "cli/launch_check.hpp"
 #include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
@@ -44,6 +45,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;  // usage errors: one status whatever CLI11's internal code
+  }
+  if (render->parsed() || animate->parsed()) {
+    if (const std::string why = holoray::cli::mpi_launch_error(); !why.empty()) {
+      std::fprintf(stderr, "holoray: error: %s\n", why.c_str());
+      return 1;
+    }
   }
   if (render->parsed()) return holoray::cli::run_render(render_opts);
   if (sub->parsed()) return holoray::cli::run_subaperture(sub_opts);
