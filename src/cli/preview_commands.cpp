@@ -45,15 +45,7 @@ int run_simulate(const SimulateCommandOptions& o) {
     so.width = o.width;
     so.samples = o.samples;
     const DisplayDesc display = read_display_file(o.display);
-    const ImageBuffer panel = read_image(o.input);
-    if (panel.channels < 3) throw std::invalid_argument(fmt::format("'{}' has {} channels; expected RGB", o.input, panel.channels));
-    ImageBuffer rgb = panel;
-    if (panel.channels > 3) {
-      rgb = ImageBuffer(panel.width, panel.height, 3);
-      for (int y = 0; y < panel.height; ++y)
-        for (int x = 0; x < panel.width; ++x) std::copy_n(panel.at(x, y), 3, rgb.at(x, y));
-    }
-    write_image(o.output, simulate_view(rgb, display, so), encoding);
+    write_image(o.output, simulate_view(as_rgb(read_image(o.input)), display, so), encoding);
     return 0;
   } catch (const ParseError& e) {
     fmt::print(stderr, "{}\n", e.what());
@@ -65,21 +57,13 @@ int run_simulate(const SimulateCommandOptions& o) {
 
 int run_views(const ViewsCommandOptions& o) {
   try {
-    const std::string ext = std::filesystem::path(o.output).extension().string();
-    const bool gif = ext == ".gif" || ext == ".GIF";
+    const bool gif = lower_extension(o.output) == ".gif";
     if (!gif && !is_supported_output(o.output))
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png, .exr or .gif)", o.output));
     if (gif && (o.fps < 1 || o.fps > 100)) throw std::invalid_argument(fmt::format("--fps: must be 1 to 100, got {}", o.fps));
     const Encoding encoding = parse_encoding(o.encoding);
     const Grid grid = parse_grid(o.grid);
-    ImageBuffer eia = read_image(o.input);
-    if (eia.channels != 3) {
-      ImageBuffer rgb(eia.width, eia.height, 3);
-      for (int y = 0; y < eia.height; ++y)
-        for (int x = 0; x < eia.width; ++x)
-          for (int c = 0; c < 3; ++c) rgb.at(x, y)[c] = eia.at(x, y)[std::min(c, eia.channels - 1)];
-      eia = std::move(rgb);
-    }
+    const ImageBuffer eia = as_rgb(read_image(o.input));
     const LensArray cam(eia_layout(eia.width, eia.height, grid, o.pixels_per_lens));
     if (gif) write_animation(o.output, view_sweep(eia, cam), o.fps, encoding);
     else write_image(o.output, view_grid(eia, cam), encoding);

@@ -17,15 +17,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string lower_ext(const std::string& path) {
+float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
+
+}  // namespace
+
+std::string lower_extension(const std::string& path) {
   std::string e = fs::path(path).extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return e;
 }
 
-float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
-
-}  // namespace
+ImageBuffer as_rgb(const ImageBuffer& image) {
+  if (image.channels == 3) return image;
+  ImageBuffer rgb(image.width, image.height, 3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) rgb.at(x, y)[c] = image.at(x, y)[std::min(c, image.channels - 1)];
+  return rgb;
+}
 
 uint8_t encode_8bit(float v, Encoding encoding) {
   if (std::isnan(v)) return 0;
@@ -35,7 +44,7 @@ uint8_t encode_8bit(float v, Encoding encoding) {
 }
 
 bool is_supported_output(const std::string& path) {
-  const std::string e = lower_ext(path);
+  const std::string e = lower_extension(path);
   return e == ".png" || e == ".exr";
 }
 
@@ -45,7 +54,7 @@ std::string aov_path(const std::string& path, const std::string& aov, const std:
 }
 
 void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding) {
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".exr")
     throw std::runtime_error(fmt::format("cannot write '{}': unsupported extension '{}' (use .png or .exr)", path, ext));
   const fs::path dest(path);
@@ -97,7 +106,7 @@ void write_image(const std::string& path, const ImageBuffer& image, Encoding enc
 }
 
 void write_animation(const std::string& path, const std::vector<ImageBuffer>& frames, int fps, Encoding encoding) {
-  if (lower_ext(path) != ".gif")
+  if (lower_extension(path) != ".gif")
     throw std::runtime_error(fmt::format("cannot write '{}': an animation is written as .gif", path));
   if (frames.empty()) throw std::runtime_error(fmt::format("cannot write '{}': no frames", path));
   const fs::path dest(path);

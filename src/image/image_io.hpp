@@ -35,6 +35,12 @@ void write_animation(const std::string& path, const std::vector<ImageBuffer>& fr
 /// no decoding of sRGB). Throws std::runtime_error naming the path.
 ImageBuffer read_image(const std::string& path);
 
+/// The extension of `path`, dot included, in lower case ("a/B.PNG" -> ".png").
+std::string lower_extension(const std::string& path);
+
+/// RGB of any image: the first three channels, or a grey channel repeated.
+ImageBuffer as_rgb(const ImageBuffer& image);
+
 /// True for the extensions write_image accepts (".png", ".exr", any case).
 bool is_supported_output(const std::string& path);
 

@@ -4,6 +4,13 @@
 
 namespace holoray {
 
+namespace {
+void refuse_aovs(const AovSet& aovs) {
+  if (aovs.albedo || aovs.depth || aovs.normal || aovs.id)
+    throw std::invalid_argument("AOVs are not written for native panel images yet (colour only)");
+}
+}  // namespace
+
 ImageBuffer pack_subpixels(const ImageBuffer& s, bool red_first) {
   if (s.width % 3 != 0 || s.channels != 3)
     throw std::invalid_argument(fmt::format("a subpixel image is 3 RGB samples per pixel, got {} wide, {} channels",
@@ -17,8 +24,7 @@ ImageBuffer pack_subpixels(const ImageBuffer& s, bool red_first) {
 
 FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camera, bool red_first,
                             const RenderOptions& opt, RenderStats& stats) {
-  if (opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id)
-    throw std::invalid_argument("AOVs are not written for native panel images yet (colour only)");
+  refuse_aovs(opt.aovs);
   const RecordingMode mode = camera.geometry().mode;
   FrameBuffers fb = detail::render_lines(scene, camera, opt, stats, [&](const PixelLine& line, PrimaryRay& out) {
     const auto pr = primary_ray_along(line, scene.bounds(), scene.epsilon(), mode);
@@ -31,12 +37,8 @@ FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camer
 
 FrameBuffers render_looking_glass(const RenderScene& scene, const LookingGlassCamera& camera,
                                   const RenderOptions& opt, RenderStats& stats) {
-  if (opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id)
-    throw std::invalid_argument("AOVs are not written for native panel images yet (colour only)");
-  FrameBuffers fb = detail::render_lines(scene, camera, opt, stats, [](const PixelLine& line, PrimaryRay& out) {
-    out = PrimaryRay{Ray{line.origin, line.dir, 0, INFINITY}, 0, 1};
-    return true;
-  });
+  refuse_aovs(opt.aovs);
+  FrameBuffers fb = detail::render_lines(scene, camera, opt, stats, detail::eye_ray);
   fb.colour = pack_subpixels(fb.colour, true);
   return fb;
 }

@@ -23,6 +23,12 @@ inline constexpr int kLineTile = 32;   // pixels across a tile
 inline constexpr int kLineBlock = 4;   // pixels across a packet: 4 x 4 = kPacketSize rays
 static_assert(kLineBlock * kLineBlock == kPacketSize);
 
+/// A pinhole's primary ray: from the eye, unclipped (NFF's hither is not applied).
+inline bool eye_ray(const PixelLine& line, PrimaryRay& out) {
+  out = PrimaryRay{Ray{line.origin, line.dir, 0, INFINITY}, 0, 1};
+  return true;
+}
+
 template <class Cam, class MakeRay>
 FrameBuffers render_lines(const RenderScene& scene, const Cam& camera, const RenderOptions& opt, RenderStats& stats,
                           MakeRay make_ray) {

@@ -89,20 +89,10 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     for (int f = 0; f < frames; ++f) {
       if (done(f)) continue;
       if (stop()) return;
-      if (opt.pinhole) {
-        shot.seek(f);
-        const Viewpoint vp = shot.viewpoint(f);
-        const PinholeCamera view(view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1]));
-        RenderOptions ro;
-        ro.spp = shot.shot().spp;
-        ro.threads = opt.threads;
-        RenderStats stats;
-        const auto start = Clock::now();
-        const FrameBuffers b = render_view(shot.scene(), view, ro, stats);
-        emit(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
-        continue;
-      }
-      if (opt.display) {
+      if (opt.pinhole || opt.display) {
+        // A view of the frame's viewpoint: a pinhole preview, or a display's
+        // panel (through the integral camera when it is an ordinary EIA, as
+        // `render --display` does).
         shot.seek(f);
         const Viewpoint vp = shot.viewpoint(f);
         RenderOptions ro;
@@ -110,8 +100,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         ro.threads = opt.threads;
         RenderStats stats;
         const auto start = Clock::now();
-        // An ordinary EIA in display units renders with the integral camera, as in `render --display`.
         const FrameBuffers b = [&] {
+          if (!opt.display) return render_view(shot.scene(), PinholeCamera(view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1])), ro, stats);
           if (const auto eia = as_lens_array(*opt.display, vp)) return render_frame(shot.scene(), LensArray(*eia), ro, stats);
           return render_display(shot.scene(), DisplayCamera(place_display(*opt.display, vp)),
                                 opt.display->subpixels != SubpixelOrder::bgr, ro, stats);

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+
+#include "image/image_io.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -22,12 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string lower_ext(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
 std::string av_message(int err) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {};
   av_strerror(err, buf, sizeof buf);
@@ -37,11 +31,11 @@ std::string av_message(int err) {
 }  // namespace
 
 bool is_supported_video(const std::string& path) {
-  const std::string e = lower_ext(path);
+  const std::string e = lower_extension(path);
   return e == ".mkv" || e == ".mp4";
 }
 
-bool is_lossless_video(const std::string& path) { return lower_ext(path) == ".mkv"; }
+bool is_lossless_video(const std::string& path) { return lower_extension(path) == ".mkv"; }
 
 std::string video_codec_name(const std::string& path, const VideoOptions& o) {
   return is_lossless_video(path) ? "FFV1 (lossless)" : fmt::format("H.264, CRF {}", o.crf);
@@ -73,7 +67,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
     : s_(std::make_unique<State>()), path_(path), width_(width), height_(height) {
   auto fail = [&](const std::string& why) { throw std::runtime_error(fmt::format("cannot write '{}': {}", path, why)); };
   if (!is_supported_video(path)) fail("a video is .mkv (FFV1, lossless) or .mp4 (H.264)");
-  s_->lossless = lower_ext(path) == ".mkv";
+  s_->lossless = lower_extension(path) == ".mkv";
   if (width < 1 || height < 1) fail(fmt::format("frames of {}x{} pixels", width, height));
   if (!s_->lossless && (width % 2 || height % 2))
     fail(fmt::format("H.264 in 4:2:0 needs even sizes, the frames are {}x{}; write .mkv (lossless) instead", width, height));
@@ -83,7 +77,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
   const fs::path dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) fail(fmt::format("folder '{}' does not exist", dir.string()));
-  tmp_ = (dir / fmt::format(".{}.tmp{}{}", dest.stem().string(), static_cast<long>(::getpid()), lower_ext(path))).string();
+  tmp_ = (dir / fmt::format(".{}.tmp{}{}", dest.stem().string(), static_cast<long>(::getpid()), lower_extension(path))).string();
 
   av_log_set_level(AV_LOG_QUIET);  // failures come back as this message, not FFmpeg's log
   const AVCodec* enc = avcodec_find_encoder(s_->lossless ? AV_CODEC_ID_FFV1 : AV_CODEC_ID_H264);
