@@ -38,7 +38,7 @@ for kind in "${kinds[@]}"; do
   esac
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS="$flags -O1" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DHOLORAY_BENCH=OFF \
-    -DHOLORAY_STD_THREADS=$std_threads >/dev/null
+    -DHOLORAY_STD_THREADS=$std_threads -DHOLORAY_MPI=OFF >/dev/null
   cmake --build "$dir"
   echo "== $kind sanitizer: tests${filter:+ matching $filter}"
   ctest --test-dir "$dir" --output-on-failure -j"$jobs" ${filter:+-R "$filter"}

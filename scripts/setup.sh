@@ -11,6 +11,7 @@ packages=(
   libassimp-dev             # meshes: OBJ, PLY, STL, glTF, 3DS, COLLADA, AC3D
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev  # animate --video: FFV1 and H.264
   nlohmann-json3-dev        # Looking Glass calibration files (JSON)
+  libopenmpi-dev openmpi-bin  # mpirun -np N holoray animate|render (optional in CMake; installed so the README's commands build it)
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
   tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray and tachyon the pinhole tests' references
   tachyon-doc               # bench/run_tachyon_compare.sh: Tachyon's manual and example scenes

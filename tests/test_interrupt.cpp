@@ -3,8 +3,6 @@
 // of an uninterrupted one. Also: the same shot gives bit-identical frames for
 // any thread count.
 #include <signal.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,8 +17,6 @@
 #include <gtest/gtest.h>
 
 #include "test_util.hpp"
-
-extern char** environ;
 
 namespace holoray {
 namespace {
@@ -56,37 +52,15 @@ scene = "scene.nff"
 )");
 }
 
-std::map<std::string, std::string> folder_bytes(const std::string& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::directory_iterator(dir)) files[e.path().filename().string()] = test::read_bytes(e.path().string());
-  return files;
-}
-
-size_t frame_count(const std::string& dir) {
-  size_t n = 0;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec))
-    if (e.path().filename().string().starts_with("frame_")) ++n;
-  return n;
-}
+using test::folder_bytes;
+using test::frame_count;
 
 // Starts `holoray args...` with its output in `log`; returns the pid.
 pid_t spawn_cli(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<std::string> argv_s{HOLORAY_CLI};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
+  std::vector<std::string> argv{HOLORAY_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return test::spawn(argv, log);
 }
-
 
 struct KillCase {
   int signal;

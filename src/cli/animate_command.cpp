@@ -17,6 +17,8 @@
 #include <thread>
 
 #include "cli/interrupt.hpp"
+#include "cluster/group_dealer.hpp"
+#include "cluster/mpi_world.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
@@ -115,6 +117,15 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
 }
 
 int run_animate(const AnimateCommandOptions& o) {
+  const cluster::World& world = cluster::world();
+  // Under mpirun: a setup error (the same on every rank) is printed once and
+  // every rank returns 1; an error while rendering stops every rank.
+  bool rendering = false;
+  auto fail = [&](const std::string& message) {
+    if (rendering && world.distributed()) world.abort(message);
+    world.agree(false, message);
+    return 1;
+  };
   try {
     SequenceOptions so;
     const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
@@ -248,7 +259,10 @@ int run_animate(const AnimateCommandOptions& o) {
       if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
     }
-    if (o.resume) remove_stale_temporaries(o.output, range_first, range_last);
+    if (world.distributed() && !o.report.empty())
+      throw std::invalid_argument("--report: traces every frame in full for its tables; run it as one process, not under mpirun");
+    // Rank 0 alone, before any rank starts (agree() below waits for all).
+    if (o.resume && world.rank() == 0) remove_stale_temporaries(o.output, range_first, range_last);
     // Frames outside the range count as done: never written, and their
     // keyframes traced only where a frame in the range needs one. The
     // keyframes are the whole shot's, so a range's frames are one run's.
@@ -257,9 +271,27 @@ int run_animate(const AnimateCommandOptions& o) {
         return f < range_first || f > range_last || (o.resume && std::filesystem::exists(frame_path(o.output, f, frames, ext)));
       };
     const StopOnSignal interrupt;
-    so.stop = [&] { return interrupt.requested(); };
+    // Under mpirun, ranks are dealt groups of frames (cluster/group_dealer):
+    // weighted by the frames each has left to render.
+    std::optional<cluster::GroupDealer> dealer;
+    if (world.distributed()) {
+      std::vector<double> weights;
+      for (const FrameGroup& g : frame_groups(frames, so)) {
+        int left = 0;
+        for (int f = g.first; f <= g.last; ++f) left += !(so.done && so.done(f));
+        weights.push_back(left);
+      }
+      dealer.emplace(world, std::move(weights));
+      so.next_group = [&] { return dealer->next(); };
+    }
+    so.stop = [&] {
+      if (!interrupt.requested()) return false;
+      if (dealer) dealer->stop();
+      return true;
+    };
+    const std::string rank_tag = world.distributed() ? fmt::format("rank {:>2}  ", world.rank()) : "";
 
-    if (!o.quiet) {
+    if (!o.quiet && world.rank() == 0) {
       // Once per file: several shot objects may place the same scene file.
       std::set<std::string> warned;
       for (const SceneDesc& desc : shot.scenes())
@@ -282,7 +314,12 @@ int run_animate(const AnimateCommandOptions& o) {
         fmt::print("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, reuse);
       else
         fmt::print("method     full ray tracing\n");
+      if (world.distributed())
+        fmt::print("ranks      {}: groups of frames (a keyframe and the frames up to the next) dealt by rank 0\n", world.size());
     }
+    if (!world.agree(true, "")) return 1;
+    rendering = true;
+    const auto run_start = std::chrono::steady_clock::now();
 
     std::vector<FrameReport> reports;
     int written = 0;
@@ -292,10 +329,10 @@ int run_animate(const AnimateCommandOptions& o) {
       reports.push_back(r);
       if (o.quiet) return;
       if (r.keyframe) {
-        fmt::print("frame {:>5}  traced       {:.3f} s\n", f, r.seconds);
+        fmt::print("{}frame {:>5}  traced       {:.3f} s\n", rank_tag, f, r.seconds);
       } else {
         const double px = static_cast<double>(r.pixels);
-        fmt::print("frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", f,
+        fmt::print("{}frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", rank_tag, f,
                    r.seconds, 100 * r.reprojected / px, 100 * r.traced / px, 100 * r.interpolated / px,
                    r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr_all()) : "");
         if (o.verbose)
@@ -305,11 +342,21 @@ int run_animate(const AnimateCommandOptions& o) {
       std::fflush(stdout);
     });
 
-    if (interrupt.requested()) {
-      fmt::print(stderr, "holoray: interrupted by {} after {} new frames; every frame in '{}' is complete; "
-                 "rerun with --resume to finish\n", interrupt.signal() == SIGINT ? "SIGINT" : "SIGTERM", written, o.output);
-      return interrupt.exit_status();
+    const cluster::DealStats deal = dealer ? dealer->finish() : cluster::DealStats{};
+    // Totals over the ranks (collective: every rank has finished writing).
+    const int64_t written_all = world.sum(int64_t{written});
+    const RunSummary s = summarise(reports);
+    const double frame_seconds_all = world.sum(s.accelerated_seconds);
+    const int64_t interrupted_ranks = world.sum(int64_t{interrupt.requested() ? 1 : 0});
+    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+    if (interrupted_ranks > 0) {
+      if (world.rank() == 0)
+        fmt::print(stderr, "holoray: interrupted by {} after {} new frames; every frame in '{}' is complete; "
+                   "rerun with --resume to finish\n",
+                   interrupt.requested() ? (interrupt.signal() == SIGINT ? "SIGINT" : "SIGTERM") : "a signal", written_all, o.output);
+      return interrupt.requested() ? interrupt.exit_status() : 128 + SIGTERM;
     }
+    if (world.rank() != 0) return 0;
     if (!o.video.empty()) {
       // From the frames on disk, in order: the video shows exactly what the
       // folder holds, and a resumed run rebuilds it whole.
@@ -333,13 +380,16 @@ int run_animate(const AnimateCommandOptions& o) {
         fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, video_codec_name(o.video, vo),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
-    const RunSummary s = summarise(reports);
     if (!o.quiet) {
       const int in_range = range_last - range_first + 1;
-      fmt::print("wrote      {} frames to {}{}{}\n", written, o.output,
+      fmt::print("wrote      {} frames to {}{}{}\n", written_all, o.output,
                  whole_shot ? "" : fmt::format(" (frames {} to {})", range_first, range_last),
-                 o.resume ? fmt::format(" ({} already there)", in_range - written) : "");
-      fmt::print("time       {:.3f} s{}\n", s.accelerated_seconds,
+                 o.resume ? fmt::format(" ({} already there)", in_range - written_all) : "");
+      if (world.distributed())
+        fmt::print("ranks      {} ranks, {:.3f} s wall; {} groups dealt, {} started apart from their rank's previous group "
+                   "(a keyframe traced twice each), {} steals, {} bytes of requests\n",
+                   world.size(), wall_s, deal.groups_dealt, deal.unchained_starts, deal.steals, deal.request_bytes);
+      fmt::print("time       {:.3f} s{}\n", frame_seconds_all,
                  so.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
                                             s.saved_percent(), s.mean_psnr)
                               : "");
@@ -366,11 +416,10 @@ int run_animate(const AnimateCommandOptions& o) {
     }
     return 0;
   } catch (const ParseError& e) {
-    fmt::print(stderr, "{}\n", e.what());
+    return fail(e.what());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    return fail(fmt::format("holoray: error: {}", e.what()));
   }
-  return 1;
 }
 
 }  // namespace holoray::cli

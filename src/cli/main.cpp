@@ -10,8 +10,12 @@
 #include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
+#include "cluster/mpi_world.hpp"
 
 int main(int argc, char** argv) {
+  // Under mpirun (and built with MPI): this process's rank; else one of one.
+  const holoray::cluster::World world(argc, argv);
+  holoray::cluster::set_world(&world);
   CLI::App app{"holoray: integral image (elemental image array) renderer"};
   app.require_subcommand(1);
   holoray::cli::RenderCommandOptions render_opts;
@@ -46,7 +50,7 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;  // usage errors: one status whatever CLI11's internal code
   }
-  if (render->parsed() || animate->parsed()) {
+  if ((render->parsed() || animate->parsed()) && !holoray::cluster::built_with_mpi()) {
     if (const std::string why = holoray::cli::mpi_launch_error(); !why.empty()) {
       std::fprintf(stderr, "holoray: error: %s\n", why.c_str());
       return 1;

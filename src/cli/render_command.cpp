@@ -18,6 +18,9 @@
 #include "display/looking_glass.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
+#include "cluster/band_exchange.hpp"
+#include "cluster/mpi_world.hpp"
+#include "cluster/row_bands.hpp"
 #include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
 #include "render/display_renderer.hpp"
@@ -101,6 +104,14 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
 }
 
 int run_render(const RenderCommandOptions& o) {
+  const cluster::World& world = cluster::world();
+  // As in run_animate: setup errors once, errors while rendering stop every rank.
+  bool rendering = false;
+  auto fail = [&](const std::string& message) {
+    if (rendering && world.distributed()) world.abort(message);
+    world.agree(false, message);
+    return 1;
+  };
   try {
     // Everything the user typed is checked before the scene is read.
     if (!is_supported_output(o.output))
@@ -204,6 +215,9 @@ int run_render(const RenderCommandOptions& o) {
     } else {
       array.emplace(place_array(settings, desc.viewpoint));
     }
+    if (world.distributed() && !array)
+      throw std::invalid_argument("under mpirun, render splits an EIA into bands of lens rows; pinhole views, quilts and "
+                                  "native panel images render as one process");
     if ((panel || glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
       throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
     if (!array && cache_enabled(o.cache))
@@ -227,7 +241,9 @@ int run_render(const RenderCommandOptions& o) {
     scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);
 
-    const bool tty = !o.quiet && ::isatty(STDERR_FILENO);
+    if (!world.agree(true, "")) return 1;
+    rendering = true;
+    const bool tty = !o.quiet && world.rank() == 0 && ::isatty(STDERR_FILENO);
     std::mutex progress_mutex;
     int shown = -1;
     RenderOptions ropt;
@@ -250,7 +266,31 @@ int run_render(const RenderCommandOptions& o) {
     else if (view) fb = render_view(scene, *view, ropt, stats);
     else if (quilt) fb = render_quilt(scene, *quilt, ropt, stats);
     else if (panel) fb = render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ropt, stats);
-    else fb = render_frame(scene, *array, ropt, stats);
+    else if (!world.distributed()) fb = render_frame(scene, *array, ropt, stats);
+    double gather_s = 0, band_bytes = 0;
+    if (array && world.distributed()) {
+      // Bands of whole lens rows, dealt round robin (cluster/row_bands.hpp);
+      // each rank traces its own, rank 0 gathers them and writes the file.
+      const auto t_trace = Clock::now();
+      const std::vector<RowBand> bands = row_bands(height, array->desc().pixels_per_lens, world.size());
+      std::vector<FrameBuffers> mine;
+      RenderStats band_stats;
+      for (const RowBand& b : bands) {
+        if (b.rank != world.rank()) continue;
+        ropt.rows = std::array<int, 2>{b.y0, b.y1};
+        mine.push_back(render_frame(scene, *array, ropt, band_stats));
+        stats.rays += band_stats.rays;
+      }
+      const auto t_gather = Clock::now();
+      fb = cluster::gather_bands(world, bands, mine, width, height, aovs, band_bytes);
+      gather_s = seconds_since(t_gather);
+      stats.trace_seconds = seconds_since(t_trace);
+      for (uint64_t* n : {&stats.rays.eye, &stats.rays.shadow, &stats.rays.reflected, &stats.rays.refracted,
+                          &stats.rays.shadow_cached, &stats.rays.cache_samples})
+        *n = static_cast<uint64_t>(world.sum(static_cast<int64_t>(*n)));
+      band_bytes = world.sum(band_bytes);
+      if (world.rank() != 0) return 0;
+    }
     if (tty) std::fprintf(stderr, "\r             \r");
 
     const auto t_write = Clock::now();
@@ -298,8 +338,11 @@ int run_render(const RenderCommandOptions& o) {
         fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, array->lens_fov_deg());
       }
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
-      fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), array ? o.style : "packet");
+      fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", stats.trace_seconds, o.spp,
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), array ? o.style : "packet",
+                 world.distributed() ? fmt::format(" per rank; {} ranks, bands of lens rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
+                                                   world.size(), gather_s, band_bytes / 1048576.0)
+                                     : "");
       const RayCounts& r = stats.rays;
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);
@@ -308,11 +351,10 @@ int run_render(const RenderCommandOptions& o) {
     }
     return 0;
   } catch (const ParseError& e) {
-    fmt::print(stderr, "{}\n", e.what());
+    return fail(e.what());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    return fail(fmt::format("holoray: error: {}", e.what()));
   }
-  return 1;
 }
 
 }  // namespace holoray::cli

@@ -100,8 +100,9 @@ void write_image(const std::string& path, const ImageBuffer& image, Encoding enc
   }
   fs::rename(tmp, dest, ec);
   if (ec) {
+    const std::string reason = ec.message();  // before remove() reuses ec
     fs::remove(tmp, ec);
-    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, ec.message()));
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
   }
 }
 

@@ -226,25 +226,30 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
                           RenderStats& stats, uint64_t memory_limit_bytes) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));
-  const uint64_t need = frame_bytes(camera.pixel_count(), opt.aovs) + (opt.primary_hits ? camera.pixel_count() * sizeof(PrimaryHit) : 0);
+  const int W = camera.width();
+  const int y0 = opt.rows ? (*opt.rows)[0] : 0, y1 = opt.rows ? (*opt.rows)[1] : camera.height();
+  if (y0 < 0 || y1 > camera.height() || y0 >= y1)
+    throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the EIA", y0, y1, camera.height()));
+  const int H = y1 - y0;
+  const int64_t pixels = static_cast<int64_t>(W) * H;
+  const uint64_t need = frame_bytes(pixels, opt.aovs) + (opt.primary_hits ? pixels * sizeof(PrimaryHit) : 0);
   if (memory_limit_bytes && need > memory_limit_bytes)
     throw std::length_error(fmt::format("a {}x{} image needs {:.1f} MiB of buffers, over the limit of {:.1f} MiB",
-                                        camera.width(), camera.height(), need / 1048576.0, memory_limit_bytes / 1048576.0));
+                                        W, H, need / 1048576.0, memory_limit_bytes / 1048576.0));
 
-  const int W = camera.width(), H = camera.height();
   FrameBuffers fb = allocate_frame(W, H, opt.aovs);
-  if (opt.primary_hits) fb.primary.resize(static_cast<size_t>(camera.pixel_count()));
+  if (opt.primary_hits) fb.primary.resize(static_cast<size_t>(pixels));
   const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
   const auto start = std::chrono::steady_clock::now();
-  const ElementalTiles tiles(camera, opt.tile_order);
+  const ElementalTiles tiles(camera, opt.tile_order, y0, y1);
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
   const int P = camera.desc().pixels_per_lens;
   for_each_tile(tiles, opt.threads, [&](int tile) {
     RayCounts counts;
     auto store = [&](int i, int j, const Vec3& c, const PrimaryHit& ph, const SurfacePoint& sp) {
-      if (opt.primary_hits) fb.primary[static_cast<size_t>(j) * W + i] = ph;
+      if (opt.primary_hits) fb.primary[static_cast<size_t>(j - y0) * W + i] = ph;
       // Normals face the viewer: along +d orthoscopic (it looks back down
       // the line), along -d pseudoscopic (it sits at the lens).
       Vec3 toward;
@@ -252,7 +257,7 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
         const Vec3 d = camera.line(i, j).dir;
         toward = camera.desc().mode == RecordingMode::orthoscopic ? d : -d;
       }
-      store_pixel(fb, opt.aovs, i, j, c, ph.status == PrimaryHit::kHit ? &sp : nullptr, ph.t, toward);
+      store_pixel(fb, opt.aovs, i, j - y0, c, ph.status == PrimaryHit::kHit ? &sp : nullptr, ph.t, toward);
     };
     const TileRect r = tiles.rect(tile);
     // Tiles are P-aligned, so each P x P block is one elemental image

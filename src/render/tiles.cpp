@@ -16,8 +16,8 @@
 
 namespace holoray {
 
-ElementalTiles::ElementalTiles(const LensArray& camera, TileOrder order)
-    : width_(camera.width()), height_(camera.height()), order_(order) {
+ElementalTiles::ElementalTiles(const LensArray& camera, TileOrder order, int y0, int y1)
+    : width_(camera.width()), height_((y1 < 0 ? camera.height() : y1) - y0), y0_(y0), order_(order) {
   const int P = camera.desc().pixels_per_lens;
   const int lenses_per_tile = std::max(1, static_cast<int>(std::lround(64.0 / P)));
   tile_w_ = tile_h_ = P * lenses_per_tile;
@@ -35,7 +35,7 @@ TileRect ElementalTiles::rect(int k) const {
                    : order_ == TileOrder::strided ? static_cast<int>(static_cast<int64_t>(k) * stride_ % n)
                                                   : k;
   const int x0 = (tile % tiles_x_) * tile_w_, y0 = (tile / tiles_x_) * tile_h_;
-  return {x0, y0, std::min(width_, x0 + tile_w_), std::min(height_, y0 + tile_h_)};
+  return {x0, y0_ + y0, std::min(width_, x0 + tile_w_), y0_ + std::min(height_, y0 + tile_h_)};
 }
 
 int packet_order(const TileRect& b, PixelXY px[]) {

@@ -27,13 +27,15 @@ enum class TileOrder {
 /// lenticular tiles are P-aligned pixel blocks).
 class ElementalTiles {
  public:
-  explicit ElementalTiles(const LensArray& camera, TileOrder order = TileOrder::row_major);
+  /// Tiles of rows [y0, y1) only (y1 < 0: to the bottom), cut from y0: a
+  /// band of the EIA (mpirun render); rect() stays in EIA pixels.
+  explicit ElementalTiles(const LensArray& camera, TileOrder order = TileOrder::row_major, int y0 = 0, int y1 = -1);
   int count() const { return tiles_x_ * tiles_y_; }
   /// The rectangle of the tile handed out k-th, k in [0, count()).
   TileRect rect(int k) const;
 
  private:
-  int width_, height_, tile_w_, tile_h_, tiles_x_, tiles_y_;
+  int width_, height_, y0_, tile_w_, tile_h_, tiles_x_, tiles_y_;
   TileOrder order_;
   int stride_ = 1;  // coprime with count()
 };

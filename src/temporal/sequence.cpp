@@ -11,6 +11,7 @@
 #include <chrono>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 
 namespace holoray {
 
@@ -47,6 +48,29 @@ std::vector<int> keyframes(int frames, int interval) {
   for (int f = 0; f < frames; f += interval) keys.push_back(f);
   if (keys.back() != frames - 1) keys.push_back(frames - 1);
   return keys;
+}
+
+std::vector<int> sequence_keyframes(int frames, const SequenceOptions& opt) {
+  if (opt.keyframe_interval < 1)
+    throw std::invalid_argument(fmt::format("the keyframe interval must be at least 1, got {}", opt.keyframe_interval));
+  const std::vector<int> keys = opt.keys.empty() ? keyframes(frames, opt.keyframe_interval) : opt.keys;
+  if (keys.empty() || keys.front() != 0 || keys.back() != frames - 1 || !std::is_sorted(keys.begin(), keys.end()) ||
+      std::adjacent_find(keys.begin(), keys.end()) != keys.end())
+    throw std::invalid_argument(fmt::format("the keyframes must rise strictly from frame 0 to the last frame, {}", frames - 1));
+  return keys;
+}
+
+std::vector<FrameGroup> frame_groups(int frames, const SequenceOptions& opt) {
+  std::vector<FrameGroup> groups;
+  if (opt.method == Method::full) {
+    for (int f = 0; f < frames; ++f) groups.push_back({f, f});
+    return groups;
+  }
+  const std::vector<int> keys = sequence_keyframes(frames, opt);
+  if (keys.size() == 1) return {{0, 0}};
+  for (size_t k = 0; k + 1 < keys.size(); ++k)
+    groups.push_back({keys[k], k + 2 == keys.size() ? keys[k + 1] : keys[k + 1] - 1});
+  return groups;
 }
 
 void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
@@ -86,7 +110,10 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   if ((opt.pinhole || opt.display) && opt.method != Method::full)
     throw std::invalid_argument("pinhole and display frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
-    for (int f = 0; f < frames; ++f) {
+    // One group per frame (frame_groups).
+    size_t in_order = 0;
+    while (const auto g = opt.next_group ? opt.next_group() : in_order < size_t(frames) ? std::optional(in_order++) : std::nullopt) {
+      const int f = static_cast<int>(*g);
       if (done(f)) continue;
       if (stop()) return;
       if (opt.pinhole || opt.display) {
@@ -115,19 +142,11 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     return;
   }
 
-  if (opt.keyframe_interval < 1)
-    throw std::invalid_argument(fmt::format("the keyframe interval must be at least 1, got {}", opt.keyframe_interval));
   if (shot.shot().spp > 1)
     throw std::invalid_argument(fmt::format(
         "reprojection needs spp = 1 (the shot asks for {}): point images hold the pixel-centre sample", shot.shot().spp));
-  const std::vector<int> keys = opt.keys.empty() ? keyframes(frames, opt.keyframe_interval) : opt.keys;
-  if (keys.empty() || keys.front() != 0 || keys.back() != frames - 1 || !std::is_sorted(keys.begin(), keys.end()) ||
-      std::adjacent_find(keys.begin(), keys.end()) != keys.end())
-    throw std::invalid_argument(fmt::format("the keyframes must rise strictly from frame 0 to the last frame, {}", frames - 1));
+  const std::vector<int> keys = sequence_keyframes(frames, opt);
 
-  // Point images of the segment's two keyframes; the later one is reused as
-  // the earlier one of the next segment.
-  std::unique_ptr<PointImage> prev;
   // A keyframe traced, with its point image (transforms at its time) and its report.
   auto trace_key = [&](int f) {
     if (opt.method == Method::reverse) {
@@ -148,28 +167,37 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     for (size_t g = 0; g < accel.group_count(); ++g) image->to_world.push_back(accel.transform(static_cast<uint32_t>(g)));
     return std::pair{std::move(image), std::move(report)};
   };
-  auto segment_done = [&](size_t k) {
-    for (int f = keys[k] + 1; f < (k + 1 < keys.size() ? keys[k + 1] : frames); ++f)
-      if (!done(f)) return false;
-    return true;
-  };
 
-  for (size_t k = 0; k < keys.size(); ++k) {
-    const int f0 = keys[k];
-    const bool last = k + 1 == keys.size();
-    const bool need_points = !last && !segment_done(k);
-    if (!prev || prev->frame != f0) {
-      if (done(f0) && !need_points) {
-        prev.reset();
-        continue;
-      }
-      if (stop()) return;
-      auto [image, report] = trace_key(f0);
-      if (!done(f0)) emit(f0, image->colour, report);
-      prev = std::move(image);
+  if (keys.size() == 1) {  // a one-frame shot: one group, its only keyframe
+    size_t once = 0;
+    while (const auto g = opt.next_group ? opt.next_group() : once < 1 ? std::optional(once++) : std::nullopt) {
+      if (done(0) || stop()) continue;
+      auto [image, report] = trace_key(0);
+      emit(0, image->colour, report);
     }
-    if (!need_points) continue;
-    const int f1 = keys[k + 1];
+    return;
+  }
+  // Group k (frame_groups) owns keyframe keys[k] and the frames up to the
+  // next keyframe, the last group also the last keyframe. A group that
+  // follows the previous one on this worker starts from its later keyframe.
+  std::unique_ptr<PointImage> prev;
+  FrameReport prev_report;
+  const size_t groups = keys.size() - 1;
+  size_t in_order = 0;
+  while (const auto g = opt.next_group ? opt.next_group() : in_order < groups ? std::optional(in_order++) : std::nullopt) {
+    const size_t k = *g;
+    const int f0 = keys[k], f1 = keys[k + 1];
+    const bool last = k + 1 == groups;
+    bool need_points = false;
+    for (int f = f0 + 1; f < f1; ++f) need_points = need_points || !done(f);
+    const bool emit_f1 = last && !done(f1);
+    if (!need_points && !emit_f1 && done(f0)) continue;
+    if (!prev || prev->frame != f0) {
+      if (stop()) return;
+      std::tie(prev, prev_report) = trace_key(f0);
+    }
+    if (!done(f0)) emit(f0, prev->colour, prev_report);
+    if (!need_points && !emit_f1) continue;
     if (stop()) return;
     auto [next, key1_report] = trace_key(f1);
 
@@ -211,8 +239,9 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       }
       emit(f, rf.colour, r);
     }
-    if (!done(f1)) emit(f1, next->colour, key1_report);
+    if (emit_f1) emit(f1, next->colour, key1_report);
     prev = std::move(next);
+    prev_report = std::move(key1_report);
   }
 }
 

@@ -63,6 +63,13 @@ struct SequenceOptions {
   /// Frames already finished (resume): not emitted; a keyframe among them is
   /// still traced when a frame after it needs its point image.
   std::function<bool(int frame)> done;
+  /// The groups (frame_groups) this worker renders, asked before each: the
+  /// next group's index, nullopt when there are no more. Null: every group,
+  /// in order. Reuse stays inside a worker: a group that starts at the
+  /// keyframe the previous one ended on reuses its point image; any other
+  /// traces its first keyframe (a group costs one keyframe more when it does
+  /// not follow on). Frames outside the groups handed out are not rendered.
+  std::function<std::optional<size_t>()> next_group;
   /// Asked before each frame is started (keyframe or reprojected): true stops
   /// the sequence there, after the frames already emitted (SIGINT, SIGTERM).
   std::function<bool()> stop;
@@ -88,8 +95,25 @@ struct FrameReport {
 /// The keyframes of a shot of `frames` frames at interval K: 0, K, 2K, ... and the last.
 std::vector<int> keyframes(int frames, int interval);
 
+/// A unit of scheduling (issue 15): the frames [first, last] that one worker
+/// renders together so that reuse stays inside it. Full tracing: one frame.
+/// Reuse: keyframe keys[k] and the frames before keys[k + 1]; the last group
+/// also holds the last keyframe. A one-frame shot is one group.
+struct FrameGroup {
+  int first = 0, last = 0;
+};
+
+/// The keyframes render_sequence uses: options.keys, else every K-th frame
+/// and the last. Throws std::invalid_argument as render_sequence does.
+std::vector<int> sequence_keyframes(int frames, const SequenceOptions& options);
+
+/// The groups of a shot of `frames` frames under `options`, in frame order
+/// (SequenceOptions::next_group hands out their indices).
+std::vector<FrameGroup> frame_groups(int frames, const SequenceOptions& options);
+
 /// Renders the shot in frame order and hands each finished frame to
-/// `emit(frame, colour, report)`. Throws std::invalid_argument for K < 1 or a
+/// `emit(frame, colour, report)` (with next_group: the groups it hands
+/// out, each in frame order). Throws std::invalid_argument for K < 1 or a
 /// shot with spp > 1 under reprojection (point images hold the centre sample).
 void render_sequence(ShotFrames& shot, const SequenceOptions& options,
                      const std::function<void(int, const ImageBuffer&, const FrameReport&)>& emit);

@@ -1,0 +1,100 @@
+#include "cluster/mpi_world.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+#ifdef HOLORAY_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace holoray::cluster {
+
+namespace {
+const World* g_world = nullptr;
+
+#ifdef HOLORAY_WITH_MPI
+// Started by a launcher: OpenMPI, MPICH/Hydra and Slurm set these.
+bool launched_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+#endif
+}  // namespace
+
+bool built_with_mpi() {
+#ifdef HOLORAY_WITH_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+World::World([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
+#ifdef HOLORAY_WITH_MPI
+  if (!launched_by_mpirun()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
+  initialised_ = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  if (provided < MPI_THREAD_SERIALIZED && size_ > 1) {
+    if (rank_ == 0) std::fprintf(stderr, "holoray: error: this MPI library does not allow calls from a helper thread (MPI_THREAD_SERIALIZED)\n");
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+#endif
+}
+
+World::~World() {
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) MPI_Finalize();
+#endif
+}
+
+bool World::agree(bool ok, [[maybe_unused]] const std::string& message) const {
+  int first_failing = ok ? size_ : rank_;
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) MPI_Allreduce(MPI_IN_PLACE, &first_failing, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+#endif
+  if (first_failing == rank_ && !message.empty()) std::fprintf(stderr, "%s\n", message.c_str());
+  return first_failing == size_;
+}
+
+double World::sum(double value) const {
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+#endif
+  return value;
+}
+
+int64_t World::sum(int64_t value) const {
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+#endif
+  return value;
+}
+
+void World::barrier() const {
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) MPI_Barrier(MPI_COMM_WORLD);
+#endif
+}
+
+void World::abort(const std::string& message, int status) const {
+  if (distributed()) std::fprintf(stderr, "%s (rank %d of %d; stopping every rank)\n", message.c_str(), rank_, size_);
+  else std::fprintf(stderr, "%s\n", message.c_str());
+  std::fflush(stderr);
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) MPI_Abort(MPI_COMM_WORLD, status);
+#endif
+  std::exit(status);
+}
+
+const World& world() {
+  static const World one;
+  return g_world ? *g_world : one;
+}
+
+void set_world(const World* w) { g_world = w; }
+
+}  // namespace holoray::cluster

@@ -1,0 +1,55 @@
+// holoray/cluster: this process's place in an `mpirun` launch (issue 15).
+// MPI is optional (CMake's HOLORAY_MPI); built without it, World is always
+// one rank and every call here is a no-op, so the commands read the same
+// either way. Only the command line links this: the library never calls MPI.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace holoray::cluster {
+
+/// True when this holoray was built with MPI.
+bool built_with_mpi();
+
+/// The ranks of the launch. MPI is initialised (MPI_THREAD_SERIALIZED: rank
+/// 0 answers the others from a helper thread while its main thread renders,
+/// never both at once) only when built with MPI and started by a launcher;
+/// otherwise one rank of one. The destructor finalises.
+class World {
+ public:
+  World(int& argc, char**& argv);
+  /// One rank of one; MPI untouched.
+  World() = default;
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool distributed() const { return size_ > 1; }
+
+  /// Collective: true when every rank reached this point ok. After a failed
+  /// setup (bad option, unreadable scene, ...), the lowest failing rank
+  /// prints `message` and every rank returns 1: one message, not N.
+  bool agree(bool ok, const std::string& message) const;
+  /// Collective sums over the ranks, returned on every rank.
+  double sum(double value) const;
+  int64_t sum(int64_t value) const;
+  /// Collective: waits for every rank.
+  void barrier() const;
+  /// Prints `message` (with the rank when distributed) and ends every rank
+  /// with `status` (MPI_Abort): an error in the middle of the work, where
+  /// the other ranks cannot be told to stop otherwise.
+  [[noreturn]] void abort(const std::string& message, int status = 1) const;
+
+ private:
+  int rank_ = 0, size_ = 1;
+  bool initialised_ = false;
+};
+
+/// The World of this process, set by main(); a one-rank World when none.
+const World& world();
+void set_world(const World* w);
+
+}  // namespace holoray::cluster

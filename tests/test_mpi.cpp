@@ -1,0 +1,197 @@
+// Scale-out over MPI (issue 15), through `mpirun --oversubscribe -np N
+// holoray`: on loopback, N ranks write byte for byte the files of one
+// process; frame ranges run apart give the same folder; a killed rank or a
+// SIGTERM on mpirun loses at most the frames in flight and --resume
+// completes the same folder; errors are printed once and name the file.
+#include <signal.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "test_util.hpp"
+
+namespace holoray {
+namespace {
+
+using test::TempDir;
+namespace fs = std::filesystem;
+
+// Containers run tests as root, which mpirun refuses unless told.
+struct MpiEnvironment {
+  MpiEnvironment() {
+    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  }
+};
+const MpiEnvironment mpi_environment;
+
+std::vector<std::string> mpirun(int ranks, const std::vector<std::string>& args) {
+  std::vector<std::string> a{MPIEXEC, "--oversubscribe", "--bind-to", "none", "-np", std::to_string(ranks), HOLORAY_CLI};
+  a.insert(a.end(), args.begin(), args.end());
+  return a;
+}
+
+std::vector<std::string> one_process(const std::vector<std::string>& args) {
+  std::vector<std::string> a{HOLORAY_CLI};
+  a.insert(a.end(), args.begin(), args.end());
+  return a;
+}
+
+int run(const std::vector<std::string>& argv, const std::string& log) { return test::wait_exit(test::spawn(argv, log)); }
+
+const char* kScene =
+    "v\nfrom 0 -10 2\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"
+    "l 5 -6 10\nl -5 -6 8\nf 0.9 0.3 0.2 1 0 0 0 0\ns 0 0 0 1\nf 0.8 0.8 0.8 0.4 0.5 20 0 0\n"
+    "s 1.5 0.5 0.3 0.6\ns -1.4 0.8 -0.2 0.7\np 4\n-4 -4 -1\n4 -4 -1\n4 4 -1\n-4 4 -1\n";
+
+// `frames` frames of a camera move at lenses x 8 px.
+void write_shot(const TempDir& dir, int frames, int lenses) {
+  test::write_text(dir.file("scene.nff"), kScene);
+  test::write_text(dir.file("shot.toml"),
+                   "frames = " + std::to_string(frames) + "\n[array]\nlenses = " + std::to_string(lenses) +
+                       "\npixels_per_lens = 8\n[camera]\n"
+                       "[[camera.key]]\nframe = 0\nfrom = [0, -10, 2]\nat = [0, 0, 0]\nup = [0, 0, 1]\n"
+                       "[[camera.key]]\nframe = " + std::to_string(frames - 1) +
+                       "\nfrom = [1, -10, 2]\nat = [0.5, 0, 0]\nup = [0, 0, 1]\n[[object]]\nscene = \"scene.nff\"\n");
+}
+
+std::vector<std::string> animate(const TempDir& dir, const std::string& out, const std::string& method,
+                                 std::vector<std::string> extra = {}) {
+  std::vector<std::string> a{"animate", dir.file("shot.toml"), "-o", out, "--method", method, "--keyframe-interval", "4",
+                             "--threads", "1", "-q"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+// Done when: a 24-frame shot with reprojection, three ranks against one
+// process; the paper's forward reprojection and the reverse one.
+TEST(MpiAnimate, ThreeRanksWriteTheFolderOfOneProcess) {
+  TempDir dir;
+  write_shot(dir, 24, 32);
+  for (const std::string method : {"reproject", "reverse"}) {
+    const std::string one = dir.file("one_" + method), three = dir.file("three_" + method);
+    ASSERT_EQ(run(one_process(animate(dir, one, method)), dir.file("log1")), 0) << test::read_bytes(dir.file("log1"));
+    ASSERT_EQ(run(mpirun(3, animate(dir, three, method)), dir.file("log3")), 0) << test::read_bytes(dir.file("log3"));
+    EXPECT_EQ(test::frame_count(three), 24u);
+    EXPECT_EQ(test::folder_bytes(three), test::folder_bytes(one)) << method;
+  }
+}
+
+// Done when: ranges 0:7, 8:15 and 16:23 in three separate runs (the middle
+// one itself over two ranks) give the folder of one run.
+TEST(MpiAnimate, FrameRangesRunApartGiveTheFolderOfOneRun) {
+  TempDir dir;
+  write_shot(dir, 24, 32);
+  ASSERT_EQ(run(one_process(animate(dir, dir.file("whole"), "reproject")), dir.file("log")), 0);
+  ASSERT_EQ(run(one_process(animate(dir, dir.file("parts"), "reproject", {"--frames", "0:7"})), dir.file("log")), 0);
+  ASSERT_EQ(run(mpirun(2, animate(dir, dir.file("parts"), "reproject", {"--frames", "8:15"})), dir.file("log")), 0)
+      << test::read_bytes(dir.file("log"));
+  EXPECT_EQ(test::frame_count(dir.file("parts")), 16u);
+  ASSERT_EQ(run(one_process(animate(dir, dir.file("parts"), "reproject", {"--frames", "16:23"})), dir.file("log")), 0);
+  EXPECT_EQ(test::folder_bytes(dir.file("parts")), test::folder_bytes(dir.file("whole")));
+}
+
+// Done when: a still over three ranks, square, hex and lenticular, colour
+// and every AOV, byte for byte one process's files.
+TEST(MpiRender, ThreeRanksWriteTheStillOfOneProcess) {
+  TempDir dir;
+  test::write_text(dir.file("scene.nff"), kScene);
+  for (const std::string grid : {"square", "hex", "lenticular"}) {
+    auto args = [&](const std::string& out) {
+      return std::vector<std::string>{"render", dir.file("scene.nff"), "-o", out, "--grid", grid, "--lenses", "30",
+                                      "--pixels-per-lens", "9", "--aov", "albedo,depth,normal,id", "--threads", "1", "-q"};
+    };
+    ASSERT_EQ(run(one_process(args(dir.file("one.exr"))), dir.file("log")), 0) << test::read_bytes(dir.file("log"));
+    ASSERT_EQ(run(mpirun(3, args(dir.file("three.exr"))), dir.file("log")), 0) << test::read_bytes(dir.file("log"));
+    for (const std::string aov : {"", ".albedo", ".depth", ".normal", ".id"})
+      EXPECT_EQ(test::read_bytes(dir.file("three" + aov + ".exr")), test::read_bytes(dir.file("one" + aov + ".exr")))
+          << grid << aov;
+  }
+}
+
+// The ranks mpirun started (its children), for the fault tests.
+std::vector<pid_t> ranks_of(pid_t mpirun_pid) {
+  const auto r = test::run_shell("pgrep -P " + std::to_string(mpirun_pid));
+  std::vector<pid_t> pids;
+  size_t at = 0;
+  while (at < r.output.size()) {
+    const size_t end = r.output.find('\n', at);
+    const std::string line = r.output.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    if (!line.empty()) pids.push_back(static_cast<pid_t>(std::stol(line)));
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return pids;
+}
+
+bool alive(pid_t pid) { return ::kill(pid, 0) == 0; }
+
+struct Fault {
+  const char* name;
+  bool kill_one_rank;  // SIGKILL one rank; else SIGTERM to mpirun
+};
+
+class MpiFault : public ::testing::TestWithParam<Fault> {};
+
+// Done when: one rank killed mid-run (or SIGTERM on mpirun) leaves only
+// complete frames, no rank left running, and --resume over three ranks
+// completes the folder of one uninterrupted process.
+TEST_P(MpiFault, LosesOnlyFramesInFlightAndResumeCompletesTheSameFolder) {
+  TempDir dir;
+  write_shot(dir, 60, 96);  // long enough to outlast mpirun's delay in passing SIGTERM on (about 1 s)
+  const std::string out = dir.file("cut");
+  ASSERT_EQ(run(one_process(animate(dir, dir.file("whole"), "reverse")), dir.file("log")), 0);
+  const pid_t pid = test::spawn(mpirun(3, animate(dir, out, "reverse")), dir.file("log_cut"));
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (test::frame_count(out) < 6 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  const std::vector<pid_t> ranks = ranks_of(pid);
+  ASSERT_EQ(ranks.size(), 3u) << "mpirun's children";
+  if (GetParam().kill_one_rank) ::kill(ranks.back(), SIGKILL);
+  else ::kill(pid, SIGTERM);
+  const int status = test::wait_exit(pid);
+  EXPECT_NE(status, 0) << test::read_bytes(dir.file("log_cut"));
+  ASSERT_LT(test::frame_count(out), 60u) << "the run ended before the fault; the test needs a longer shot";
+  for (int i = 0; i < 500 && (alive(ranks[0]) || alive(ranks[1]) || alive(ranks[2])); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (pid_t r : ranks) EXPECT_FALSE(alive(r)) << "rank " << r << " outlived mpirun";
+  // Every frame there is whole: each equals the uninterrupted run's.
+  const auto whole = test::folder_bytes(dir.file("whole"));
+  for (const auto& [name, bytes] : test::folder_bytes(out))
+    if (name.starts_with("frame_")) EXPECT_EQ(bytes, whole.at(name)) << name;
+  ASSERT_EQ(run(mpirun(3, animate(dir, out, "reverse", {"--resume"})), dir.file("log_resume")), 0)
+      << test::read_bytes(dir.file("log_resume"));
+  EXPECT_EQ(test::folder_bytes(out), whole);
+}
+
+INSTANTIATE_TEST_SUITE_P(Faults, MpiFault,
+                         ::testing::Values(Fault{"sigkill_one_rank", true}, Fault{"sigterm_mpirun", false}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// A setup error is the same on every rank: printed once, not three times.
+TEST(MpiErrors, ASetupErrorIsPrintedOnceAndAWriteErrorNamesTheFile) {
+  TempDir dir;
+  write_shot(dir, 24, 16);
+  ASSERT_EQ(run(mpirun(3, {"render", dir.file("missing.nff"), "-o", dir.file("a.png")}), dir.file("log")), 1);
+  const std::string log = test::read_bytes(dir.file("log"));
+  const std::string message = "holoray: error: cannot read '" + dir.file("missing.nff") + "'";
+  ASSERT_NE(log.find(message), std::string::npos) << log;
+  EXPECT_EQ(log.find(message, log.find(message) + 1), std::string::npos) << "printed more than once:\n" << log;
+  // A frame's name taken by a folder: the rank that writes it stops the run.
+  fs::create_directories(dir.file("out/frame_0013.png/x"));
+  EXPECT_NE(run(mpirun(3, animate(dir, dir.file("out"), "reproject")), dir.file("log")), 0);
+  const std::string write_log = test::read_bytes(dir.file("log"));
+  EXPECT_NE(write_log.find("holoray: error: cannot write '" + dir.file("out/frame_0013.png") + "': Is a directory (rank "),
+            std::string::npos)
+      << write_log;
+}
+
+}  // namespace
+}  // namespace holoray
