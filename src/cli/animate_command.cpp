@@ -323,8 +323,11 @@ int run_animate(const AnimateCommandOptions& o) {
 
     std::vector<FrameReport> reports;
     int written = 0;
+    double write_seconds = 0;  // encoding and writing the frames (not in FrameReport::seconds)
     render_sequence(shot, so, [&](int f, const ImageBuffer& colour, const FrameReport& r) {
+      const auto t_write = std::chrono::steady_clock::now();
       write_image(frame_path(o.output, f, frames, ext), colour, so.encoding);
+      write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_write).count();
       ++written;
       reports.push_back(r);
       if (o.quiet) return;
@@ -347,6 +350,7 @@ int run_animate(const AnimateCommandOptions& o) {
     const int64_t written_all = world.sum(int64_t{written});
     const RunSummary s = summarise(reports);
     const double frame_seconds_all = world.sum(s.accelerated_seconds);
+    const double write_seconds_all = world.sum(write_seconds);
     const int64_t interrupted_ranks = world.sum(int64_t{interrupt.requested() ? 1 : 0});
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
     if (interrupted_ranks > 0) {
@@ -387,8 +391,9 @@ int run_animate(const AnimateCommandOptions& o) {
                  o.resume ? fmt::format(" ({} already there)", in_range - written_all) : "");
       if (world.distributed())
         fmt::print("ranks      {} ranks, {:.3f} s wall; {} groups dealt, {} started apart from their rank's previous group "
-                   "(a keyframe traced twice each), {} steals, {} bytes of requests\n",
-                   world.size(), wall_s, deal.groups_dealt, deal.unchained_starts, deal.steals, deal.request_bytes);
+                   "(a keyframe traced twice each), {} steals, {} bytes of requests; {:.3f} s writing frames (all ranks)\n",
+                   world.size(), wall_s, deal.groups_dealt, deal.unchained_starts, deal.steals, deal.request_bytes,
+                   write_seconds_all);
       fmt::print("time       {:.3f} s{}\n", frame_seconds_all,
                  so.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
                                             s.saved_percent(), s.mean_psnr)
