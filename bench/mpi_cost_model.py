@@ -8,8 +8,8 @@ Model (one rank per core, frame groups dealt by rank 0, cluster/group_scheduler.
   W: the shot's frame seconds on one core (sum over every frame); F frames,
   w: seconds to encode and write one frame (PNG);
   k: a keyframe's seconds on one core; e(R): keyframes traced twice, one at
-  each cut between ranks' runs, 2 (R - 1) (the first runs and about one steal
-  per rank at the end, as measured); g: the dearest group (a keyframe and the
+  each cut between ranks' runs, taken as 2 (R - 1): R - 1 between the first
+  runs and up to one steal per rank at the end (1 to 2 measured at R = 2); g: the dearest group (a keyframe and the
   frames to the next), below which no number of ranks goes; setup: launch,
   scene reading and BVH build per rank (whole command minus render phase).
 """
@@ -122,6 +122,9 @@ except (OSError, ValueError):
     frame_bytes = 0
 any_m = next(iter(models.values()))
 point_image = 36 * 512 * 512
+print(f"On one machine, one process with all its threads stays the faster choice: {cores} ranks of one thread are "
+      f"within the mpirun launch ({nothing_mpi - nothing_plain:.2f} s, the do-nothing difference) of it. MPI pays across machines.")
+print()
 print("What limits scaling, measured:")
 print()
 print(f"- **Groups.** A group (a keyframe and the frames up to the next) never splits: 120 frames at K = 8 are "
@@ -131,8 +134,9 @@ print(f"- **Keyframes traced twice.** Each cut between two ranks' runs traces on
       f"Sending it instead would move a point image of at least 36 bytes per pixel ({point_image / 2**20:.1f} MiB at "
       f"512x512) and make the receiver wait on the sender; tracing twice keeps ranks independent, so a killed rank "
       f"loses only its own frames.")
-print(f"- **Rank 0.** It renders like the others and answers one request per group: "
-      f"{any_m['groups']} groups x 24 bytes per shot; at milliseconds per answer it would serve thousands of ranks.")
+print(f"- **Rank 0.** It renders like the others and answers one 24-byte request per group ({any_m['groups']} per "
+      f"shot here) from a helper thread that polls every 0.2 ms: not where the time goes at groups of tenths of a "
+      f"second; a shot of tiny groups on hundreds of ranks would make it one.")
 print(f"- **Setup.** Every rank reads the shot and builds its BVH ({any_m['setup']:.2f} s here, "
       f"launch included): the floor under any run.")
 if frame_bytes:
