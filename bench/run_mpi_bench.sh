@@ -43,6 +43,12 @@ for round in $(seq 1 "$rounds"); do
     echo "round $round $name done"
   done
 done
+# Sending a keyframe instead of tracing it twice: the receiver's wait while
+# the sender renders 0.3 s (a group) without calling MPI, over shared memory
+# (one node) and over TCP (between nodes), best of 3.
+mpicc -O2 bench/mpi_keyframe_transfer.c -o /tmp/holoray_mpi_keyframe_transfer
+"${mpirun[@]}" -np 2 /tmp/holoray_mpi_keyframe_transfer 0.3 3 > "$logs/transfer_shm_ms.txt"
+"${mpirun[@]}" --mca btl self,tcp -np 2 /tmp/holoray_mpi_keyframe_transfer 0.3 3 > "$logs/transfer_tcp_ms.txt"
 du -sb /tmp/holoray_mpi_bench | cut -f1 > "$logs/frame_bytes_last_shot.txt"
 python3 bench/mpi_cost_model.py "$logs" "$cores" > bench/mpi_results.md
 cat bench/mpi_results.md
