@@ -1,6 +1,7 @@
 // Image output: the 8-bit rule, round trips, atomic writes and AOV names.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -74,3 +75,49 @@ TEST(ImageIo, AovPathSitsBesideTheImage) {
   EXPECT_EQ(aov_path("out/eia.png", "depth", "exr"), "out/eia.depth.exr");
   EXPECT_EQ(aov_path("eia.png", "albedo", "png"), "eia.albedo.png");
 }
+
+namespace holoray {
+namespace {
+
+// A giant EIA is written band by band as it arrives (mpirun render): the
+// file is byte for byte the one written whole, PNG and EXR, and it appears
+// only once every row is in.
+TEST(ImageWriter, BandsGiveTheBytesOfTheWholeImageAndNoFileBeforeTheLastRow) {
+  test::TempDir dir;
+  ImageBuffer img(37, 29, 3);
+  for (size_t k = 0; k < img.data.size(); ++k) img.data[k] = static_cast<float>((k * 7919) % 1000) / 999.0f;
+  for (const std::string ext : {"png", "exr"}) {
+    const std::string whole = dir.file("whole." + ext), banded = dir.file("banded." + ext);
+    write_image(whole, img, Encoding::srgb);
+    {
+      ImageWriter w(banded, img.width, img.height, 3, Encoding::srgb);
+      int y = 0;
+      for (int rows : {5, 1, 13, 10}) {
+        ImageBuffer band(img.width, rows, 3);
+        std::copy_n(img.at(0, y), band.data.size(), band.data.begin());
+        w.write_rows(band);
+        y += rows;
+        EXPECT_FALSE(std::filesystem::exists(banded)) << "appeared before the last row";
+      }
+      w.finish();
+    }
+    // EXR headers carry the time of writing; both were written within the second.
+    EXPECT_EQ(test::read_bytes(banded).size(), test::read_bytes(whole).size()) << ext;
+    if (ext == "png") EXPECT_EQ(test::read_bytes(banded), test::read_bytes(whole));
+    const ImageBuffer back = read_image(banded);
+    EXPECT_EQ(back.data, read_image(whole).data) << ext;
+  }
+  // Too many rows, or finishing early: refused; nothing left behind.
+  {
+    ImageWriter w(dir.file("short.png"), 4, 4, 3);
+    EXPECT_THROW(w.write_rows(ImageBuffer(4, 5, 3)), std::logic_error);
+    w.write_rows(ImageBuffer(4, 2, 3));
+    EXPECT_THROW(w.finish(), std::logic_error);
+  }
+  for (const auto& e : std::filesystem::directory_iterator(dir.path))
+    EXPECT_TRUE(e.path().filename().string().starts_with("whole.") || e.path().filename().string().starts_with("banded."))
+        << "left behind: " << e.path();
+}
+
+}  // namespace
+}  // namespace holoray

@@ -37,6 +37,35 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// The colour file and its AOV files (aov_path: albedo beside it in its
+// format, depth, normal and id as EXR), written band by band, top to bottom:
+// whole in one process, as the bands arrive under mpirun.
+class FrameFiles {
+ public:
+  FrameFiles(const std::string& output, int width, int height, const AovSet& aovs, Encoding encoding) {
+    const std::string ext = std::filesystem::path(output).extension().string().substr(1);
+    const FrameBuffers shape = allocate_frame(width, 1, aovs);  // each plane's channels
+    auto add = [&](ImageBuffer FrameBuffers::*plane, const std::string& path, Encoding enc) {
+      files_.emplace_back(plane, std::make_unique<ImageWriter>(path, width, height, (shape.*plane).channels, enc));
+    };
+    add(&FrameBuffers::colour, output, encoding);
+    if (aovs.albedo) add(&FrameBuffers::albedo, aov_path(output, "albedo", ext), encoding);
+    if (aovs.depth) add(&FrameBuffers::depth, aov_path(output, "depth", "exr"), Encoding::linear);
+    if (aovs.normal) add(&FrameBuffers::normal, aov_path(output, "normal", "exr"), Encoding::linear);
+    if (aovs.id) add(&FrameBuffers::id, aov_path(output, "id", "exr"), Encoding::linear);
+  }
+  /// The next rows of every file.
+  void write(const FrameBuffers& rows) {
+    for (auto& [plane, writer] : files_) writer->write_rows(rows.*plane);
+  }
+  void finish() {
+    for (auto& [plane, writer] : files_) writer->finish();
+  }
+
+ private:
+  std::vector<std::pair<ImageBuffer FrameBuffers::*, std::unique_ptr<ImageWriter>>> files_;
+};
+
 ArraySettings resolve_settings(const RenderCommandOptions& o) {
   ArraySettings s;
   s.grid = parse_grid(o.grid);
@@ -227,12 +256,26 @@ int run_render(const RenderCommandOptions& o) {
     const int64_t pixels = static_cast<int64_t>(width) * height;
     // Refuse before allocating: buffers plus the 8-bit or float copy made on
     // output (and a panel's samples, three per pixel with subpixels).
+    // Under mpirun a rank holds only its own bands, rank 0 one band more
+    // (cluster/band_exchange.hpp), each copied once as it is written.
     const int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : glass ? 3 * pixels : 0;
-    const uint64_t need = frame_bytes(pixels, aovs) + static_cast<uint64_t>(pixels) * 12 + frame_bytes(samples, aovs);
+    int64_t held = pixels, copied = pixels;
+    if (array && world.distributed()) {
+      int64_t own = 0, largest = 0;
+      for (const RowBand& b : row_bands(height, array->desc().pixels_per_lens, world.size())) {
+        largest = std::max<int64_t>(largest, b.y1 - b.y0);
+        if (b.rank == world.rank()) own += b.y1 - b.y0;
+      }
+      held = (own + (world.rank() == 0 ? largest : 0)) * width;
+      copied = largest * width;
+    }
+    const uint64_t need = frame_bytes(held, aovs) + static_cast<uint64_t>(copied) * 12 + frame_bytes(samples, aovs);
     const uint64_t have = physical_memory_bytes();
     if (have && need > have / 10 * 8)
-      throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers, more than 80% of this machine's {:.2f} GiB",
-                                          width, height, need / 1073741824.0, have / 1073741824.0));
+      throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers{}, more than 80% of this machine's {:.2f} GiB",
+                                          width, height, need / 1073741824.0,
+                                          held < pixels ? fmt::format(" on rank {} of {}", world.rank(), world.size()) : "",
+                                          have / 1073741824.0));
 
     const auto t_build = Clock::now();
     RenderScene scene(desc);
@@ -267,10 +310,13 @@ int run_render(const RenderCommandOptions& o) {
     else if (quilt) fb = render_quilt(scene, *quilt, ropt, stats);
     else if (panel) fb = render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ropt, stats);
     else if (!world.distributed()) fb = render_frame(scene, *array, ropt, stats);
-    double gather_s = 0, band_bytes = 0;
+    // A quilt's name tells Looking Glass tools its layout.
+    const std::string output = quilt ? quilt_file_name(o.output, quilt->desc()) : o.output;
+    double gather_s = 0, band_bytes = 0, write_s = 0;
     if (array && world.distributed()) {
       // Bands of whole lens rows, dealt round robin (cluster/row_bands.hpp);
-      // each rank traces its own, rank 0 gathers them and writes the file.
+      // each rank traces its own, rank 0 writes them to the files in order
+      // as they arrive (the gather time includes those writes).
       const auto t_trace = Clock::now();
       const std::vector<RowBand> bands = row_bands(height, array->desc().pixels_per_lens, world.size());
       std::vector<FrameBuffers> mine;
@@ -282,7 +328,11 @@ int run_render(const RenderCommandOptions& o) {
         stats.rays += band_stats.rays;
       }
       const auto t_gather = Clock::now();
-      fb = cluster::gather_bands(world, bands, mine, width, height, aovs, band_bytes);
+      std::optional<FrameFiles> files;
+      if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding);
+      cluster::stream_bands(world, bands, mine, width, aovs, [&](const RowBand&, const FrameBuffers& b) { files->write(b); },
+                            band_bytes);
+      if (files) files->finish();
       gather_s = seconds_since(t_gather);
       stats.trace_seconds = seconds_since(t_trace);
       for (uint64_t* n : {&stats.rays.eye, &stats.rays.shadow, &stats.rays.reflected, &stats.rays.refracted,
@@ -290,19 +340,15 @@ int run_render(const RenderCommandOptions& o) {
         *n = static_cast<uint64_t>(world.sum(static_cast<int64_t>(*n)));
       band_bytes = world.sum(band_bytes);
       if (world.rank() != 0) return 0;
+      if (tty) std::fprintf(stderr, "\r             \r");
+    } else {
+      if (tty) std::fprintf(stderr, "\r             \r");
+      const auto t_write = Clock::now();
+      FrameFiles files(output, width, height, aovs, encoding);
+      files.write(fb);
+      files.finish();
+      write_s = seconds_since(t_write);
     }
-    if (tty) std::fprintf(stderr, "\r             \r");
-
-    const auto t_write = Clock::now();
-    // A quilt's name tells Looking Glass tools its layout.
-    const std::string output = quilt ? quilt_file_name(o.output, quilt->desc()) : o.output;
-    const std::string ext = std::filesystem::path(output).extension().string().substr(1);
-    write_image(output, fb.colour, encoding);
-    if (aovs.albedo) write_image(aov_path(output, "albedo", ext), fb.albedo, encoding);
-    if (aovs.depth) write_image(aov_path(output, "depth", "exr"), fb.depth);
-    if (aovs.normal) write_image(aov_path(output, "normal", "exr"), fb.normal);
-    if (aovs.id) write_image(aov_path(output, "id", "exr"), fb.id);
-    const double write_s = seconds_since(t_write);
 
     if (!o.quiet) {
       const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
@@ -347,7 +393,8 @@ int run_render(const RenderCommandOptions& o) {
       fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
                  r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);
       if (cache) fmt::print("{}", cache_summary(*cache, r, o.cache));
-      fmt::print("wrote      {} ({:.3f} s)\n", output, write_s);
+      fmt::print("wrote      {} ({:.3f} s{})\n", output, world.distributed() ? gather_s : write_s,
+                 world.distributed() ? ", gathering the bands" : "");
     }
     return 0;
   } catch (const ParseError& e) {

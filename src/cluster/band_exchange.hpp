@@ -1,9 +1,10 @@
-// holoray/cluster: the bands of a still rendered over MPI ranks, brought to
-// rank 0 (issue 15, giant stills). Rank 0 holds the whole image: the limit
-// is the EIA (colour and AOVs, 4-byte floats) in rank 0's memory, the other
-// ranks hold only their own bands.
+// holoray/cluster: the bands of a still rendered over MPI ranks, streamed to
+// rank 0 in order (issue 15, giant stills), which writes them to the file as
+// they come (image_io's ImageWriter). No rank holds the whole image: each
+// holds its own bands (1/N of it), rank 0 one band more.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "cluster/mpi_world.hpp"
@@ -13,11 +14,13 @@
 namespace holoray::cluster {
 
 /// Collective. `mine[k]` are the buffers of this rank's k-th band of
-/// `bands` (bands where rank == world.rank(), in order). On rank 0, returns
-/// the whole width x height frame with every band in place (its own copied,
-/// the others received); elsewhere sends its bands and returns empty
-/// buffers. Bytes sent over MPI are added to `bytes`.
-FrameBuffers gather_bands(const World& world, const std::vector<RowBand>& bands, std::vector<FrameBuffers>& mine,
-                          int width, int height, const AovSet& aovs, double& bytes);
+/// `bands` (bands where rank == world.rank(), in order). On rank 0, calls
+/// `sink(band, buffers)` for every band in order, top to bottom (its own from
+/// `mine`, the others as they are received, one at a time, so rank 0 holds
+/// its own bands and one more, never the whole image); elsewhere sends its
+/// bands. Bytes sent over MPI are added to `bytes`.
+void stream_bands(const World& world, const std::vector<RowBand>& bands, const std::vector<FrameBuffers>& mine,
+                  int width, const AovSet& aovs, const std::function<void(const RowBand&, const FrameBuffers&)>& sink,
+                  double& bytes);
 
 }  // namespace holoray::cluster

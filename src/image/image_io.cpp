@@ -53,20 +53,43 @@ std::string aov_path(const std::string& path, const std::string& aov, const std:
   return (p.parent_path() / fmt::format("{}.{}.{}", p.stem().string(), aov, ext)).string();
 }
 
-void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding) {
+struct ImageWriter::Open {
+  std::string path;
+  fs::path tmp, dest;
+  std::unique_ptr<OIIO::ImageOutput> out;
+  int width = 0, height = 0, channels = 0, next_row = 0;
+  bool png = false;
+  Encoding encoding = Encoding::linear;
+
+  [[noreturn]] void fail(const std::string& why) {
+    std::string reason = why;
+    if (reason.empty()) reason = std::strerror(errno);
+    // The user never named the temporary file: speak of the one they did.
+    for (size_t at; (at = reason.find(tmp.string())) != std::string::npos;) reason.replace(at, tmp.string().size(), path);
+    out.reset();
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
+  }
+};
+
+ImageWriter::ImageWriter(const std::string& path, int width, int height, int channels, Encoding encoding)
+    : open_(std::make_unique<Open>()) {
+  Open& o = *open_;
+  o.path = path;
   const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".exr")
     throw std::runtime_error(fmt::format("cannot write '{}': unsupported extension '{}' (use .png or .exr)", path, ext));
-  const fs::path dest(path);
-  const fs::path dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
+  o.dest = fs::path(path);
+  const fs::path dir = o.dest.parent_path().empty() ? fs::path(".") : o.dest.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw std::runtime_error(fmt::format("cannot write '{}': folder '{}' does not exist", path, dir.string()));
   // Same folder, same extension (OpenImageIO picks the format by it), hidden name.
-  const fs::path tmp = dir / fmt::format(".{}.tmp{}{}", dest.stem().string(), static_cast<long>(::getpid()), ext);
-
-  const bool png = ext == ".png";
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-  if (png) {
+  o.tmp = dir / fmt::format(".{}.tmp{}{}", o.dest.stem().string(), static_cast<long>(::getpid()), ext);
+  o.width = width, o.height = height, o.channels = channels, o.encoding = encoding;
+  o.png = ext == ".png";
+  OIIO::ImageSpec spec(width, height, channels, o.png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  if (o.png) {
     spec.attribute("oiio:ColorSpace", encoding == Encoding::srgb ? "sRGB" : "Linear");
     // zlib level 1 and no row filter: an EIA's rows are hundreds of small
     // elemental images, which the PNG filters do not predict. Measured on
@@ -76,34 +99,53 @@ void write_image(const std::string& path, const ImageBuffer& image, Encoding enc
     spec.attribute("png:compressionLevel", 1);
     spec.attribute("png:filter", 0x08);  // PNG_FILTER_NONE
   }
-  if (!png) spec.attribute("compression", "zip");
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  if (!out) throw std::runtime_error(fmt::format("cannot write '{}': {}", path, OIIO::geterror()));
-  bool ok = out->open(tmp.string(), spec);
-  if (ok) {
-    if (png) {
-      std::vector<uint8_t> bytes(image.data.size());
-      for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = encode_8bit(image.data[k], encoding);
-      ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-    } else {
-      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.data.data());
-    }
-    ok = out->close() && ok;
+  if (!o.png) spec.attribute("compression", "zip");
+  o.out = OIIO::ImageOutput::create(o.tmp.string());
+  if (!o.out) throw std::runtime_error(fmt::format("cannot write '{}': {}", path, OIIO::geterror()));
+  if (!o.out->open(o.tmp.string(), spec)) o.fail(o.out->geterror());
+}
+
+ImageWriter::~ImageWriter() {
+  if (!open_) return;
+  open_->out.reset();
+  std::error_code ec;
+  fs::remove(open_->tmp, ec);
+}
+
+void ImageWriter::write_rows(const ImageBuffer& rows) {
+  Open& o = *open_;
+  if (rows.width != o.width || rows.channels != o.channels || o.next_row + rows.height > o.height)
+    throw std::logic_error(fmt::format("'{}': rows of {}x{}x{} after row {} do not fit a {}x{}x{} image", o.path, rows.width,
+                                       rows.height, rows.channels, o.next_row, o.width, o.height, o.channels));
+  const int y0 = o.next_row, y1 = o.next_row + rows.height;
+  bool ok;
+  if (o.png) {
+    std::vector<uint8_t> bytes(rows.data.size());
+    for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = encode_8bit(rows.data[k], o.encoding);
+    ok = o.out->write_scanlines(y0, y1, 0, OIIO::TypeDesc::UINT8, bytes.data());
+  } else {
+    ok = o.out->write_scanlines(y0, y1, 0, OIIO::TypeDesc::FLOAT, rows.data.data());
   }
-  if (!ok) {
-    std::string reason = out->geterror();
-    if (reason.empty()) reason = std::strerror(errno);
-    // The user never named the temporary file: speak of the one they did.
-    for (size_t at; (at = reason.find(tmp.string())) != std::string::npos;) reason.replace(at, tmp.string().size(), path);
-    fs::remove(tmp, ec);
-    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
-  }
-  fs::rename(tmp, dest, ec);
-  if (ec) {
-    const std::string reason = ec.message();  // before remove() reuses ec
-    fs::remove(tmp, ec);
-    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, reason));
-  }
+  if (!ok) o.fail(o.out->geterror());
+  o.next_row = y1;
+}
+
+void ImageWriter::finish() {
+  Open& o = *open_;
+  if (o.next_row != o.height)
+    throw std::logic_error(fmt::format("'{}': {} of {} rows written", o.path, o.next_row, o.height));
+  if (!o.out->close()) o.fail(o.out->geterror());
+  o.out.reset();
+  std::error_code ec;
+  fs::rename(o.tmp, o.dest, ec);
+  if (ec) o.fail(ec.message());
+  open_.reset();
+}
+
+void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding) {
+  ImageWriter writer(path, image.width, image.height, image.channels, encoding);
+  writer.write_rows(image);
+  writer.finish();
 }
 
 void write_animation(const std::string& path, const std::vector<ImageBuffer>& frames, int fps, Encoding encoding) {

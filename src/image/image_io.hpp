@@ -3,6 +3,7 @@
 // place, so a failed or interrupted write never leaves a partial file.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,28 @@ uint8_t encode_8bit(float v, Encoding encoding);
 /// std::runtime_error naming the path and reason (unknown extension, folder
 /// missing or not writable, disk full); the destination is then untouched.
 void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding = Encoding::linear);
+
+/// An image file written band by band, top to bottom, as write_image writes
+/// it whole (same format, encoding and bytes): a giant EIA gathered from MPI
+/// ranks is written while it arrives, never held whole. The file appears
+/// under its name only when finish() succeeds; until then it is a temporary
+/// that the destructor removes. Throws as write_image, naming `path`;
+/// std::logic_error for rows that do not fit or a finish() before the last row.
+class ImageWriter {
+ public:
+  ImageWriter(const std::string& path, int width, int height, int channels, Encoding encoding = Encoding::linear);
+  ~ImageWriter();
+  ImageWriter(const ImageWriter&) = delete;
+  ImageWriter& operator=(const ImageWriter&) = delete;
+  /// The next rows.height rows (rows.width and rows.channels the image's).
+  void write_rows(const ImageBuffer& rows);
+  /// Closes the file and gives it its name.
+  void finish();
+
+ private:
+  struct Open;
+  std::unique_ptr<Open> open_;  // null once finished
+};
 
 /// Writes `frames` (all the same size, RGB) as an animated GIF looping
 /// forever at `fps` frames per second, through a temporary name as
