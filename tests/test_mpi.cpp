@@ -197,6 +197,16 @@ TEST(MpiErrors, ASetupErrorIsPrintedOnceAndAWriteErrorNamesTheFile) {
   const std::string message = "holoray: error: cannot read '" + dir.file("missing.nff") + "'";
   ASSERT_NE(log.find(message), std::string::npos) << log;
   EXPECT_EQ(log.find(message, log.find(message) + 1), std::string::npos) << "printed more than once:\n" << log;
+  // A still too large for this machine: each rank would hold its own bands
+  // (rank 0 one more), so the refusal counts rank 0's share, not the whole.
+  ASSERT_EQ(run(mpirun(4, {"render", dir.file("scene.nff"), "-o", dir.file("big.png"), "--lenses", "200000",
+                           "--pixels-per-lens", "10"}),
+                dir.file("log")),
+            1);
+  const std::string big = test::read_bytes(dir.file("log"));
+  EXPECT_NE(big.find("holoray: error: a 2000000x2000000 image needs 16763.81 GiB of buffers on rank 0 of 4, more than 80% of"),
+            std::string::npos)
+      << big;
   // A frame's name taken by a folder: the rank that writes it stops the run.
   fs::create_directories(dir.file("out/frame_0013.png/x"));
   EXPECT_NE(run(mpirun(3, animate(dir, dir.file("out"), "reproject")), dir.file("log")), 0);
