@@ -118,14 +118,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
 
 int run_animate(const AnimateCommandOptions& o) {
   const cluster::World& world = cluster::world();
-  // Under mpirun: a setup error (the same on every rank) is printed once and
-  // every rank returns 1; an error while rendering stops every rank.
-  bool rendering = false;
-  auto fail = [&](const std::string& message) {
-    if (rendering && world.distributed()) world.abort(message);
-    world.agree(false, message);
-    return 1;
-  };
+  bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
     SequenceOptions so;
     const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
@@ -421,9 +414,9 @@ int run_animate(const AnimateCommandOptions& o) {
     }
     return 0;
   } catch (const ParseError& e) {
-    return fail(e.what());
+    return world.fail(e.what(), rendering);
   } catch (const std::exception& e) {
-    return fail(fmt::format("holoray: error: {}", e.what()));
+    return world.fail(fmt::format("holoray: error: {}", e.what()), rendering);
   }
 }
 

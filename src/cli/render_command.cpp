@@ -134,13 +134,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
 
 int run_render(const RenderCommandOptions& o) {
   const cluster::World& world = cluster::world();
-  // As in run_animate: setup errors once, errors while rendering stop every rank.
-  bool rendering = false;
-  auto fail = [&](const std::string& message) {
-    if (rendering && world.distributed()) world.abort(message);
-    world.agree(false, message);
-    return 1;
-  };
+  bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
     // Everything the user typed is checked before the scene is read.
     if (!is_supported_output(o.output))
@@ -398,9 +392,9 @@ int run_render(const RenderCommandOptions& o) {
     }
     return 0;
   } catch (const ParseError& e) {
-    return fail(e.what());
+    return world.fail(e.what(), rendering);
   } catch (const std::exception& e) {
-    return fail(fmt::format("holoray: error: {}", e.what()));
+    return world.fail(fmt::format("holoray: error: {}", e.what()), rendering);
   }
 }
 

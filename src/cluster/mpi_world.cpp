@@ -60,6 +60,12 @@ bool World::agree(bool ok, [[maybe_unused]] const std::string& message) const {
   return first_failing == size_;
 }
 
+int World::fail(const std::string& message, bool started) const {
+  if (started && distributed()) abort(message);
+  agree(false, message);
+  return 1;
+}
+
 double World::sum(double value) const {
 #ifdef HOLORAY_WITH_MPI
   if (initialised_) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);

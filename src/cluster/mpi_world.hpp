@@ -33,6 +33,11 @@ class World {
   /// setup (bad option, unreadable scene, ...), the lowest failing rank
   /// prints `message` and every rank returns 1: one message, not N.
   bool agree(bool ok, const std::string& message) const;
+  /// A command's error, reported once and its exit status (1) returned:
+  /// before the work has `started`, through agree() (every rank returns 1,
+  /// the message printed once); after, through abort() (the other ranks may
+  /// be mid-frame: every rank stops).
+  int fail(const std::string& message, bool started) const;
   /// Collective sums over the ranks, returned on every rank.
   double sum(double value) const;
   int64_t sum(int64_t value) const;
