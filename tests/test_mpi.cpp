@@ -86,6 +86,35 @@ TEST(MpiAnimate, ThreeRanksWriteTheFolderOfOneProcess) {
   }
 }
 
+// The per-frame table of a report (the paper's Table 1) without its two
+// timing columns, which differ from run to run.
+std::vector<std::string> quality_rows(const std::string& report) {
+  std::vector<std::string> rows;
+  std::istringstream in(test::read_bytes(report));
+  bool table = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.starts_with("## Per frame")) table = true;
+    if (!table || !line.starts_with("| ") || line.starts_with("| frame")) continue;
+    for (int cut = 0; cut < 3; ++cut) line = line.substr(0, line.find_last_of('|'));
+    rows.push_back(line);
+  }
+  return rows;
+}
+
+// --report under mpirun: every rank's frames, gathered on rank 0 in frame
+// order, with the quality and pixel counts of one process's report.
+TEST(MpiAnimate, ReportHoldsEveryFrameInOrderAsOneProcessMeasuresThem) {
+  TempDir dir;
+  write_shot(dir, 24, 32);
+  ASSERT_EQ(run(one_process(animate(dir, dir.file("one"), "reverse", {"--report", dir.file("one.md")})), dir.file("log")), 0);
+  ASSERT_EQ(run(mpirun(3, animate(dir, dir.file("three"), "reverse", {"--report", dir.file("three.md")})), dir.file("log")), 0)
+      << test::read_bytes(dir.file("log"));
+  const auto one = quality_rows(dir.file("one.md")), three = quality_rows(dir.file("three.md"));
+  ASSERT_EQ(one.size(), 24u);
+  EXPECT_EQ(three, one);
+  EXPECT_NE(test::read_bytes(dir.file("three.md")).find("- command: `mpirun -np 3 holoray animate"), std::string::npos);
+}
+
 // Done when: ranges 0:7, 8:15 and 16:23 in three separate runs (the middle
 // one itself over two ranks) give the folder of one run.
 TEST(MpiAnimate, FrameRangesRunApartGiveTheFolderOfOneRun) {

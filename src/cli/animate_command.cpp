@@ -6,6 +6,8 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <charconv>
+#include <cstring>
+#include <type_traits>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -252,8 +254,6 @@ int run_animate(const AnimateCommandOptions& o) {
       if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
     }
-    if (world.distributed() && !o.report.empty())
-      throw std::invalid_argument("--report: traces every frame in full for its tables; run it as one process, not under mpirun");
     // Rank 0 alone, before any rank starts (agree() below waits for all).
     if (o.resume && world.rank() == 0) remove_stale_temporaries(o.output, range_first, range_last);
     // Frames outside the range count as done: never written, and their
@@ -341,8 +341,18 @@ int run_animate(const AnimateCommandOptions& o) {
     const cluster::DealStats deal = dealer ? dealer->finish() : cluster::DealStats{};
     // Totals over the ranks (collective: every rank has finished writing).
     const int64_t written_all = world.sum(int64_t{written});
+    // Every rank's frame reports on rank 0, in frame order (for the summary
+    // and --report). FrameReport is plain data: its bytes travel as they are.
+    static_assert(std::is_trivially_copyable_v<FrameReport>);
+    if (world.distributed()) {
+      std::vector<unsigned char> bytes(reports.size() * sizeof(FrameReport));
+      if (!reports.empty()) std::memcpy(bytes.data(), reports.data(), bytes.size());
+      bytes = world.gather(bytes);
+      reports.resize(bytes.size() / sizeof(FrameReport));
+      if (!reports.empty()) std::memcpy(reports.data(), bytes.data(), bytes.size());
+      std::sort(reports.begin(), reports.end(), [](const FrameReport& a, const FrameReport& b) { return a.frame < b.frame; });
+    }
     const RunSummary s = summarise(reports);
-    const double frame_seconds_all = world.sum(s.accelerated_seconds);
     const double write_seconds_all = world.sum(write_seconds);
     const int64_t interrupted_ranks = world.sum(int64_t{interrupt.requested() ? 1 : 0});
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
@@ -387,14 +397,15 @@ int run_animate(const AnimateCommandOptions& o) {
                    "(a keyframe traced twice each), {} steals, {} bytes of requests; {:.3f} s writing frames (all ranks)\n",
                    world.size(), wall_s, deal.groups_dealt, deal.unchained_starts, deal.steals, deal.request_bytes,
                    write_seconds_all);
-      fmt::print("time       {:.3f} s{}\n", frame_seconds_all,
+      fmt::print("time       {:.3f} s{}\n", s.accelerated_seconds,
                  so.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
                                             s.saved_percent(), s.mean_psnr)
                               : "");
     }
     if (!o.report.empty()) {
-      std::string cmdline =
-          fmt::format("holoray animate {} -o {} --method {} --cache {}", o.shot, o.output, method, o.cache.cache);
+      std::string cmdline = fmt::format("{}holoray animate {} -o {} --method {} --cache {}",
+                                        world.distributed() ? fmt::format("mpirun -np {} ", world.size()) : "", o.shot,
+                                        o.output, method, o.cache.cache);
       if (so.method == Method::reproject)
         cmdline += fmt::format(" {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}", key_args, reuse, o.fill,
                                o.rebuild_above, o.reach, o.no_leak_check ? " --no-leak-check" : "");
@@ -407,8 +418,12 @@ int run_animate(const AnimateCommandOptions& o) {
                                        fmt::format("- EIA: {}x{} px, {} grid, {}x{} lenses x {} px, {}", cam.width(),
                                                    cam.height(), to_string(cam.desc().grid), cam.lens_count_x(),
                                                    cam.lens_count_y(), cam.desc().pixels_per_lens, to_string(cam.desc().mode)),
-                                       fmt::format("- machine: {}, {} threads", machine_description(),
-                                                   o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency()))},
+                                       fmt::format("- machine: {}, {} threads{}", machine_description(),
+                                                   o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency()),
+                                                   world.distributed()
+                                                       ? fmt::format(" per rank, {} ranks (seconds are each frame's own, "
+                                                                     "on the rank that made it)", world.size())
+                                                       : "")},
                                       reports));
       if (!o.quiet) fmt::print("report     {}\n", o.report);
     }

@@ -80,6 +80,26 @@ int64_t World::sum(int64_t value) const {
   return value;
 }
 
+std::vector<unsigned char> World::gather(const std::vector<unsigned char>& bytes) const {
+#ifdef HOLORAY_WITH_MPI
+  if (initialised_) {
+    const int mine = static_cast<int>(bytes.size());
+    std::vector<int> counts(rank_ == 0 ? size_ : 0), offsets(rank_ == 0 ? size_ : 0);
+    MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::vector<unsigned char> all;
+    if (rank_ == 0) {
+      long long total = 0;
+      for (int r = 0; r < size_; ++r) offsets[r] = static_cast<int>(total), total += counts[r];
+      all.resize(static_cast<size_t>(total));
+    }
+    MPI_Gatherv(bytes.data(), mine, MPI_UNSIGNED_CHAR, all.data(), counts.data(), offsets.data(), MPI_UNSIGNED_CHAR, 0,
+                MPI_COMM_WORLD);
+    return all;
+  }
+#endif
+  return bytes;
+}
+
 void World::barrier() const {
 #ifdef HOLORAY_WITH_MPI
   if (initialised_) MPI_Barrier(MPI_COMM_WORLD);

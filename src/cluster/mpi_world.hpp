@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace holoray::cluster {
 
@@ -41,6 +42,9 @@ class World {
   /// Collective sums over the ranks, returned on every rank.
   double sum(double value) const;
   int64_t sum(int64_t value) const;
+  /// Collective: every rank's `bytes`, concatenated in rank order, on rank
+  /// 0 (empty elsewhere).
+  std::vector<unsigned char> gather(const std::vector<unsigned char>& bytes) const;
   /// Collective: waits for every rank.
   void barrier() const;
   /// Prints `message` (with the rank when distributed) and ends every rank
