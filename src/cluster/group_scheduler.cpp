@@ -64,6 +64,9 @@ std::optional<size_t> GroupScheduler::next(int worker, double seconds) {
       if (&w != &me && w.next < w.end && left > most) most = left, victim = &w;
     }
     if (!victim) return std::nullopt;
+    // Groups without work at the back of the run are never dealt: drop
+    // them, so that the part taken starts and ends with work.
+    while (weights_[victim->end - 1] == 0) --victim->end;
     // The last group of a run goes whole: its owner is busy with another.
     size_t cut = victim->next;
     if (victim->end - victim->next > 1) {
