@@ -157,6 +157,29 @@ TEST(MpiRender, ThreeRanksWriteTheStillOfOneProcess) {
   }
 }
 
+// The shipped Slurm scripts (examples/cluster/), run outside Slurm as a
+// batch would run them: the MPI one with mpirun's default ranks (this
+// machine's cores), the job array's tasks one after another; each gives the
+// folder of one process.
+TEST(ClusterExamples, SlurmScriptsGiveTheFolderOfOneProcess) {
+  TempDir dir;
+  write_shot(dir, 24, 16);
+  ASSERT_EQ(run(one_process({"animate", dir.file("shot.toml"), "-o", dir.file("one"), "-q"}), dir.file("log")), 0);
+  const std::string bin_dir = fs::path(HOLORAY_CLI).parent_path().string();
+  const std::string env = "PATH=" + bin_dir + ":$PATH ";
+  const std::string examples = test::source_dir() + "/examples/cluster/";
+  const auto mpi = test::run_shell(env + "bash " + examples + "animate_mpi.sbatch " + dir.file("shot.toml") + " " +
+                                   dir.file("mpi") + " > /dev/null");
+  ASSERT_EQ(mpi.status, 0) << mpi.output;
+  EXPECT_EQ(test::folder_bytes(dir.file("mpi")), test::folder_bytes(dir.file("one")));
+  for (int task = 0; task < 3; ++task) {
+    const auto r = test::run_shell(env + "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash " + examples +
+                                   "frames_array.sbatch " + dir.file("shot.toml") + " " + dir.file("array") + " 8 > /dev/null");
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  EXPECT_EQ(test::folder_bytes(dir.file("array")), test::folder_bytes(dir.file("one")));
+}
+
 // The ranks mpirun started (its children), for the fault tests.
 std::vector<pid_t> ranks_of(pid_t mpirun_pid) {
   const auto r = test::run_shell("pgrep -P " + std::to_string(mpirun_pid));
