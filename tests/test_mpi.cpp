@@ -180,6 +180,41 @@ TEST(ClusterExamples, SlurmScriptsGiveTheFolderOfOneProcess) {
   EXPECT_EQ(test::folder_bytes(dir.file("array")), test::folder_bytes(dir.file("one")));
 }
 
+// Every other camera splits the same way, in bands of 32 rows: a pinhole
+// view, a quilt and a slanted-lenticular panel with RGB subpixels.
+TEST(MpiRender, ViewsQuiltsAndPanelsOverThreeRanksAreOneProcessesPixels) {
+  TempDir dir;
+  test::write_text(dir.file("scene.nff"), kScene);
+  test::write_text(dir.file("panel.toml"),
+                   "name = \"small slanted lenticular\"\n[panel]\nresolution = [200, 150]\npixel_pitch_mm = 0.0897\n"
+                   "subpixels = \"rgb\"\n[lens]\ngrid = \"lenticular\"\npitch_mm = 0.398158\nslant_deg = 9.4623\n"
+                   "focal_length_mm = 1.2\n");
+  const std::vector<std::vector<std::string>> cases{{"--camera", "pinhole", "--resolution", "90x70", "--aov", "depth"},
+                                                     {"--quilt", "3x2", "--resolution", "40x30"},
+                                                     {"--display", dir.file("panel.toml")}};
+  for (const auto& c : cases) {
+    for (const std::string who : {"one", "three"}) {
+      fs::create_directories(dir.file(who));
+      std::vector<std::string> args{"render", dir.file("scene.nff"), "-o", dir.file(who + "/out.png"), "--threads", "1", "-q"};
+      args.insert(args.end(), c.begin(), c.end());
+      ASSERT_EQ(run(who == "one" ? one_process(args) : mpirun(3, args), dir.file("log")), 0)
+          << c[0] << "\n" << test::read_bytes(dir.file("log"));
+    }
+    // Every file (a quilt's name carries its layout; the pinhole's depth AOV).
+    const auto one = test::folder_bytes(dir.file("one")), three = test::folder_bytes(dir.file("three"));
+    ASSERT_EQ(three.size(), one.size()) << c[0];
+    for (const auto& [name, bytes] : one) {
+      const ImageBuffer a = read_image(dir.file("one/" + name)), b = read_image(dir.file("three/" + name));
+      EXPECT_GT(a.width, 0) << name;
+      EXPECT_TRUE(a.data.size() == b.data.size() &&
+                  std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0)
+          << c[0] << " " << name;
+    }
+    fs::remove_all(dir.file("one"));
+    fs::remove_all(dir.file("three"));
+  }
+}
+
 // The ranks mpirun started (its children), for the fault tests.
 std::vector<pid_t> ranks_of(pid_t mpirun_pid) {
   const auto r = test::run_shell("pgrep -P " + std::to_string(mpirun_pid));

@@ -238,9 +238,6 @@ int run_render(const RenderCommandOptions& o) {
     } else {
       array.emplace(place_array(settings, desc.viewpoint));
     }
-    if (world.distributed() && !array)
-      throw std::invalid_argument("under mpirun, render splits an EIA into bands of lens rows; pinhole views, quilts and "
-                                  "native panel images render as one process");
     if ((panel || glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
       throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
     if (!array && cache_enabled(o.cache))
@@ -252,16 +249,20 @@ int run_render(const RenderCommandOptions& o) {
     // output (and a panel's samples, three per pixel with subpixels).
     // Under mpirun a rank holds only its own bands, rank 0 one band more
     // (cluster/band_exchange.hpp), each copied once as it is written.
-    const int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : glass ? 3 * pixels : 0;
+    // Bands are whole lens rows of an EIA, else rows of 32 (the line
+    // renderers' tile); the image never depends on them.
+    const int band_rows = array ? array->desc().pixels_per_lens : 32;
+    int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : glass ? 3 * pixels : 0;
     int64_t held = pixels, copied = pixels;
-    if (array && world.distributed()) {
+    if (world.distributed()) {
       int64_t own = 0, largest = 0;
-      for (const RowBand& b : row_bands(height, array->desc().pixels_per_lens, world.size())) {
+      for (const RowBand& b : row_bands(height, band_rows, world.size())) {
         largest = std::max<int64_t>(largest, b.y1 - b.y0);
         if (b.rank == world.rank()) own += b.y1 - b.y0;
       }
       held = (own + (world.rank() == 0 ? largest : 0)) * width;
       copied = largest * width;
+      samples = samples / height * (held / width);
     }
     const uint64_t need = frame_bytes(held, aovs) + static_cast<uint64_t>(copied) * 12 + frame_bytes(samples, aovs);
     const uint64_t have = physical_memory_bytes();
@@ -299,26 +300,31 @@ int run_render(const RenderCommandOptions& o) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    if (glass) fb = render_looking_glass(scene, *glass, ropt, stats);
-    else if (view) fb = render_view(scene, *view, ropt, stats);
-    else if (quilt) fb = render_quilt(scene, *quilt, ropt, stats);
-    else if (panel) fb = render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ropt, stats);
-    else if (!world.distributed()) fb = render_frame(scene, *array, ropt, stats);
+    // The whole image, or one band of its rows, through whichever camera this is.
+    auto render_rows = [&](std::optional<std::array<int, 2>> rows, RenderStats& st) {
+      RenderOptions ro = ropt;
+      ro.rows = rows;
+      if (glass) return render_looking_glass(scene, *glass, ro, st);
+      if (view) return render_view(scene, *view, ro, st);
+      if (quilt) return render_quilt(scene, *quilt, ro, st);
+      if (panel) return render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ro, st);
+      return render_frame(scene, *array, ro, st);
+    };
+    if (!world.distributed()) fb = render_rows(std::nullopt, stats);
     // A quilt's name tells Looking Glass tools its layout.
     const std::string output = quilt ? quilt_file_name(o.output, quilt->desc()) : o.output;
     double gather_s = 0, band_bytes = 0, write_s = 0;
-    if (array && world.distributed()) {
-      // Bands of whole lens rows, dealt round robin (cluster/row_bands.hpp);
-      // each rank traces its own, rank 0 writes them to the files in order
-      // as they arrive (the gather time includes those writes).
+    if (world.distributed()) {
+      // Bands of rows dealt round robin (cluster/row_bands.hpp); each rank
+      // traces its own, rank 0 writes them to the files in order as they
+      // arrive (the gather time includes those writes).
       const auto t_trace = Clock::now();
-      const std::vector<RowBand> bands = row_bands(height, array->desc().pixels_per_lens, world.size());
+      const std::vector<RowBand> bands = row_bands(height, band_rows, world.size());
       std::vector<FrameBuffers> mine;
       RenderStats band_stats;
       for (const RowBand& b : bands) {
         if (b.rank != world.rank()) continue;
-        ropt.rows = std::array<int, 2>{b.y0, b.y1};
-        mine.push_back(render_frame(scene, *array, ropt, band_stats));
+        mine.push_back(render_rows(std::array<int, 2>{b.y0, b.y1}, band_stats));
         stats.rays += band_stats.rays;
       }
       const auto t_gather = Clock::now();
@@ -380,7 +386,7 @@ int run_render(const RenderCommandOptions& o) {
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
       fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", stats.trace_seconds, o.spp,
                  o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), array ? o.style : "packet",
-                 world.distributed() ? fmt::format(" per rank; {} ranks, bands of lens rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
+                 world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
                                                    world.size(), gather_s, band_bytes / 1048576.0)
                                      : "");
       const RayCounts& r = stats.rays;

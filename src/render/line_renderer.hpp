@@ -34,9 +34,13 @@ FrameBuffers render_lines(const RenderScene& scene, const Cam& camera, const Ren
                           MakeRay make_ray) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));
-  const int W = camera.width(), H = camera.height();
-  FrameBuffers fb = allocate_frame(W, H, opt.aovs);
-  const int tiles_x = (W + kLineTile - 1) / kLineTile, tiles_y = (H + kLineTile - 1) / kLineTile;
+  // Rows [top, H) of the image, or RenderOptions::rows: row 0 of the
+  // buffers is image row `top`.
+  const int W = camera.width(), top = opt.rows ? (*opt.rows)[0] : 0, H = opt.rows ? (*opt.rows)[1] : camera.height();
+  if (top < 0 || H > camera.height() || top >= H)
+    throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the image", top, H, camera.height()));
+  FrameBuffers fb = allocate_frame(W, H - top, opt.aovs);
+  const int tiles_x = (W + kLineTile - 1) / kLineTile, tiles_y = (H - top + kLineTile - 1) / kLineTile;
   const int tiles = tiles_x * tiles_y;
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles));
   std::atomic<int> tiles_done{0};
@@ -45,7 +49,7 @@ FrameBuffers render_lines(const RenderScene& scene, const Cam& camera, const Ren
   parallel_for_n(tiles, opt.threads, [&](int tile) {
     RayCounts counts;
     EyePacket eye;
-    const int x0 = tile % tiles_x * kLineTile, y0 = tile / tiles_x * kLineTile;
+    const int x0 = tile % tiles_x * kLineTile, y0 = top + tile / tiles_x * kLineTile;
     for (int by = y0; by < std::min(y0 + kLineTile, H); by += kLineBlock)
       for (int bx = x0; bx < std::min(x0 + kLineTile, W); bx += kLineBlock) {
         int pi[kPacketSize], pj[kPacketSize], n = 0;
@@ -78,7 +82,7 @@ FrameBuffers render_lines(const RenderScene& scene, const Cam& camera, const Ren
           }
         }
         for (int l = 0; l < n; ++l)
-          store_pixel(fb, opt.aovs, pi[l], pj[l], sum[l] * (1.0 / opt.spp), first_hit[l] ? &first_surface[l] : nullptr,
+          store_pixel(fb, opt.aovs, pi[l], pj[l] - top, sum[l] * (1.0 / opt.spp), first_hit[l] ? &first_surface[l] : nullptr,
                       first_t[l], toward[l]);
       }
     tile_counts[static_cast<size_t>(tile)] = counts;

@@ -42,10 +42,10 @@ struct RenderOptions {
   bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
   TileOrder tile_order = TileOrder::row_major;  ///< never changes the result (tests prove it)
   TraceStyle style = TraceStyle::packet;        ///< the fastest measured (bench/results.md)
-  /// Render only pixel rows [rows[0], rows[1]) of the EIA, a band (`mpirun
-  /// holoray render` gives each rank bands of whole lens rows): the buffers
-  /// hold just those rows, row 0 being EIA row rows[0]. Pixels are computed
-  /// as in the whole EIA, bit for bit. Empty: every row.
+  /// Render only pixel rows [rows[0], rows[1]) of the image, a band (`mpirun
+  /// holoray render` gives each rank bands of rows; every renderer takes
+  /// it): the buffers hold just those rows, row 0 being image row rows[0].
+  /// Pixels are computed as in the whole image, bit for bit. Empty: every row.
   std::optional<std::array<int, 2>> rows;
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
