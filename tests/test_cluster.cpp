@@ -11,6 +11,8 @@
 
 #include "cluster/group_scheduler.hpp"
 #include "cluster/row_bands.hpp"
+#include "camera/pinhole.hpp"
+#include "render/view_renderer.hpp"
 #include "scene/nff_reader.hpp"
 #include "shot/shot_reader.hpp"
 #include "temporal/sequence.hpp"
@@ -149,8 +151,8 @@ const char* kScene =
     "s 1.5 0.5 0.3 0.6\ns -1.4 0.8 -0.2 0.7\np 4\n-4 -4 -1\n4 -4 -1\n4 4 -1\n-4 4 -1\n";
 
 // A band of rows holds bit for bit the same pixels, AOVs included, as
-// those rows of the whole EIA.
-TEST(RenderBands, ABandIsTheSameRowsOfTheWholeEia) {
+// those rows of the whole image: an EIA and a pinhole view.
+TEST(RenderBands, ABandIsTheSameRowsOfTheWholeImage) {
   const SceneDesc desc = parse_nff(kScene, "bands.nff");
   RenderScene scene(desc);
   const LensArray camera(test::camera_at(desc, {0, 0, 0}, 20, 8));
@@ -173,6 +175,21 @@ TEST(RenderBands, ABandIsTheSameRowsOfTheWholeEia) {
   }
   ro.rows = std::array<int, 2>{100, 200};
   EXPECT_THROW(render_frame(scene, camera, ro, stats), std::invalid_argument);
+  // The line renderers (pinhole view, quilt, panels) take bands the same way.
+  const PinholeCamera view(view_of(*desc.viewpoint, 70, 90));
+  ro.rows.reset();
+  ro.aovs = {false, true, false, false};
+  const FrameBuffers view_whole = render_view(scene, view, ro, stats);
+  for (const auto& [y0, y1] : {std::pair{0, 32}, std::pair{32, 90}, std::pair{17, 18}}) {
+    ro.rows = std::array<int, 2>{y0, y1};
+    const FrameBuffers band = render_view(scene, view, ro, stats);
+    for (const auto& [a, b] : {std::pair{&view_whole.colour, &band.colour}, std::pair{&view_whole.depth, &band.depth}}) {
+      ASSERT_EQ(b->data.size(), static_cast<size_t>(a->width) * a->channels * (y1 - y0));
+      EXPECT_EQ(std::memcmp(a->at(0, y0), b->data.data(), b->data.size() * sizeof(float)), 0) << "view rows " << y0 << " to " << y1;
+    }
+  }
+  ro.rows = std::array<int, 2>{80, 91};
+  EXPECT_THROW(render_view(scene, view, ro, stats), std::invalid_argument);
 }
 
 // Groups dealt in any order, each worker tracing the first keyframe of a
