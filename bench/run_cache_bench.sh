@@ -6,15 +6,11 @@
 # bench/cache_results.md. Needs ../shared beside the checkout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=build/holoray
-ROUNDS=${ROUNDS:-3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+source bench/lib.sh
 {
   echo "# Shadow cache on stills (\`bash bench/run_cache_bench.sh\`)"
   echo
-  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); 2048x2048 EIA, 128x128 lenses x 16 px, cells of one lens pitch; $ROUNDS rounds alternated, medians of the trace time."
+  echo "Machine: $(machine); 2048x2048 EIA, 128x128 lenses x 16 px, cells of one lens pitch; $ROUNDS rounds alternated, medians of the trace time."
   echo
   echo "| scene | off s | on s | speed-up | PSNR dB | queries by cells | traced | sample rays | cache MiB |"
   echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"

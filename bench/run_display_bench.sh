@@ -9,12 +9,7 @@
 # ../shared is beside the checkout. Writes bench/display_results.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=build/holoray
-ROUNDS=${ROUNDS:-3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-now() { date +%s.%N; }
+source bench/lib.sh
 sed 's/^subpixels = "rgb".*/subpixels = "none"/' examples/displays/lenticular_4k.toml > "$tmp/whole.toml"
 scenes=(examples/primitives.nff)
 [ -f ../shared/scenes/nff/teapot_s6.nff ] && scenes+=(../shared/scenes/nff/teapot_s6.nff)
@@ -23,15 +18,12 @@ declare -A args=(
   [whole]="--display $tmp/whole.toml"
   [panel]="--display examples/displays/lenticular_4k.toml"
 )
-for r in $(seq "$ROUNDS"); do
-  t0=$(now); "$bin" --help > /dev/null; t1=$(now)
-  awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >> "$tmp/nothing"
-done
+nothing=$(nothing_median)
 {
   echo "# Native panel images against today's EIA (\`bash bench/run_display_bench.sh\`)"
   echo
-  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(date -u +%Y-%m-%d); $ROUNDS rounds alternated, medians."
-  echo "Do-nothing baseline (\`holoray --help\`, whole process): $(printf %.3f "$(median < "$tmp/nothing")") s."
+  echo "Machine: $(machine); $(date -u +%Y-%m-%d); $ROUNDS rounds alternated, medians."
+  echo "Do-nothing baseline (\`holoray --help\`, whole process): $nothing s."
   echo
   echo "| scene | image (3840x2160) | lines | trace s | whole process s | trace / EIA |"
   echo "|---|---|---:|---:|---:|---:|"
@@ -45,7 +37,7 @@ for scene in "${scenes[@]}"; do
       "$bin" render "$scene" ${args[$k]} -o "$tmp/$k.png" > "$tmp/$k.log"
       t1=$(now)
       awk '/^trace/ {print $2}' "$tmp/$k.log" >> "$tmp/$n.$k.trace"
-      awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >> "$tmp/$n.$k.wall"
+      elapsed "$t0" "$t1" >> "$tmp/$n.$k.wall"
     done
   done
   eia=$(median < "$tmp/$n.eia.trace")

@@ -9,23 +9,15 @@
 # Writes bench/quilt_results.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=build/holoray
-ROUNDS=${ROUNDS:-3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-now() { date +%s.%N; }
+source bench/lib.sh
 scenes=(examples/primitives.nff)
 [ -f ../shared/scenes/nff/teapot_s6.nff ] && scenes+=(../shared/scenes/nff/teapot_s6.nff)
-for r in $(seq "$ROUNDS"); do
-  t0=$(now); "$bin" --help > /dev/null; t1=$(now)
-  awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >> "$tmp/nothing"
-done
+nothing=$(nothing_median)
 {
   echo "# Quilts in one call against view by view (\`bash bench/run_quilt_bench.sh\`)"
   echo
-  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(date -u +%Y-%m-%d); $ROUNDS rounds alternated, medians of the wall time."
-  echo "Do-nothing baseline (\`holoray --help\`, whole process): $(printf %.3f "$(median < "$tmp/nothing")") s."
+  echo "Machine: $(machine); $(date -u +%Y-%m-%d); $ROUNDS rounds alternated, medians of the wall time."
+  echo "Do-nothing baseline (\`holoray --help\`, whole process): $nothing s."
   echo
   echo "| scene | quilt 8x6 of 420x560, one call s | the 48 views one by one s | one call / one by one |"
   echo "|---|---:|---:|---:|"
@@ -38,8 +30,8 @@ for scene in "${scenes[@]}"; do
     t1=$(now)
     for k in $(seq 0 47); do "$bin" render "$scene" --quilt 8x6 --quilt-view "$k" -o "$tmp/v$k.png" -q; done
     t2=$(now)
-    awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >> "$tmp/$n.quilt"
-    awk -v a="$t1" -v b="$t2" 'BEGIN {print b - a}' >> "$tmp/$n.views"
+    elapsed "$t0" "$t1" >> "$tmp/$n.quilt"
+    elapsed "$t1" "$t2" >> "$tmp/$n.views"
   done
   # The views tiled as the quilt lays them out (view 0 bottom left) equal the quilt.
   for k in $(seq 0 47); do

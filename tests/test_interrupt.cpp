@@ -82,10 +82,7 @@ TEST_P(AnimateInterrupted, LeavesOnlyCompleteFramesAndResumesToTheSameFiles) {
     return a;
   };
   auto run_to_end = [&](const std::vector<std::string>& args) {
-    const pid_t pid = spawn_cli(args, dir.file("log_end.txt"));
-    int st = 0;
-    waitpid(pid, &st, 0);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return test::wait_exit(spawn_cli(args, dir.file("log_end.txt")));
   };
   ASSERT_EQ(run_to_end(with_output(dir.file("whole"))), 0) << test::read_bytes(dir.file("log_end.txt"));
   const auto whole = folder_bytes(dir.file("whole"));
@@ -132,10 +129,7 @@ TEST(AnimateInterruptedWithVideo, LeavesNoVideoAndTheResumedRunWritesTheSameOne)
     return a;
   };
   auto run_to_end = [&](const std::vector<std::string>& a) {
-    const pid_t pid = spawn_cli(a, dir.file("log_end.txt"));
-    int st = 0;
-    waitpid(pid, &st, 0);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return test::wait_exit(spawn_cli(a, dir.file("log_end.txt")));
   };
   ASSERT_EQ(run_to_end(args(dir.file("whole"), dir.file("whole.mkv"), false)), 0) << test::read_bytes(dir.file("log_end.txt"));
   fs::create_directories(dir.file("videos"));
@@ -145,8 +139,7 @@ TEST(AnimateInterruptedWithVideo, LeavesNoVideoAndTheResumedRunWritesTheSameOne)
   while (frame_count(dir.file("cut")) < 3 && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ::kill(pid, SIGINT);
-  int st = 0;
-  waitpid(pid, &st, 0);
+  test::wait_exit(pid);
   ASSERT_LT(frame_count(dir.file("cut")), 60u) << "the run ended before the signal; the test needs a longer shot";
   EXPECT_TRUE(fs::is_empty(dir.file("videos"))) << "an interrupted run left a video file";
   ASSERT_EQ(run_to_end(args(dir.file("cut"), dir.file("videos/cut.mkv"), true)), 0) << test::read_bytes(dir.file("log_end.txt"));
@@ -165,18 +158,13 @@ TEST(AnimateFrames, RangesRunApartGiveTheFolderOfOneRun) {
     if (!range.empty()) a.insert(a.end(), {"--frames", range});
     return a;
   };
-  auto wait = [&](pid_t pid) {
-    int st = 0;
-    waitpid(pid, &st, 0);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  };
-  ASSERT_EQ(wait(spawn_cli(args(dir.file("whole"), ""), dir.file("log_whole.txt"))), 0) << test::read_bytes(dir.file("log_whole.txt"));
+  ASSERT_EQ(test::wait_exit(spawn_cli(args(dir.file("whole"), ""), dir.file("log_whole.txt"))), 0) << test::read_bytes(dir.file("log_whole.txt"));
   const pid_t a = spawn_cli(args(dir.file("parts"), "0:21"), dir.file("log_a.txt"));
   const pid_t b = spawn_cli(args(dir.file("parts"), "22:45"), dir.file("log_b.txt"));
-  ASSERT_EQ(wait(a), 0) << test::read_bytes(dir.file("log_a.txt"));
-  ASSERT_EQ(wait(b), 0) << test::read_bytes(dir.file("log_b.txt"));
+  ASSERT_EQ(test::wait_exit(a), 0) << test::read_bytes(dir.file("log_a.txt"));
+  ASSERT_EQ(test::wait_exit(b), 0) << test::read_bytes(dir.file("log_b.txt"));
   EXPECT_EQ(frame_count(dir.file("parts")), 46u);
-  ASSERT_EQ(wait(spawn_cli(args(dir.file("parts"), "46:59"), dir.file("log_c.txt"))), 0) << test::read_bytes(dir.file("log_c.txt"));
+  ASSERT_EQ(test::wait_exit(spawn_cli(args(dir.file("parts"), "46:59"), dir.file("log_c.txt"))), 0) << test::read_bytes(dir.file("log_c.txt"));
   EXPECT_EQ(folder_bytes(dir.file("parts")), folder_bytes(dir.file("whole")));
   const auto r = test::run_cli("animate " + dir.file("shot.toml") + " -o " + dir.file("bad") + " --frames 50:60 -q");
   EXPECT_EQ(r.status, 1);

@@ -118,8 +118,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   return cmd;
 }
 
-int run_animate(const AnimateCommandOptions& o) {
-  const cluster::World& world = cluster::world();
+int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
     SequenceOptions so;

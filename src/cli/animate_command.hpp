@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/cache_options.hpp"
+#include "cluster/mpi_world.hpp"
 
 namespace holoray::cli {
 
@@ -30,7 +31,8 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& opts);
 
 /// Returns the exit status (0 success, 1 failure). Frames are written as
 /// DIR/frame_NNNN.EXT, each to a temporary name then renamed; with --video,
-/// the video is encoded from the finished frames once all are there.
-int run_animate(const AnimateCommandOptions& opts);
+/// the video is encoded from the finished frames once all are there. Under
+/// mpirun (`world` distributed) the ranks are dealt groups of frames.
+int run_animate(const AnimateCommandOptions& opts, const cluster::World& world);
 
 }  // namespace holoray::cli

@@ -15,7 +15,6 @@
 int main(int argc, char** argv) {
   // Under mpirun (and built with MPI): this process's rank; else one of one.
   const holoray::cluster::World world(argc, argv);
-  holoray::cluster::set_world(&world);
   CLI::App app{"holoray: integral image (elemental image array) renderer"};
   app.require_subcommand(1);
   holoray::cli::RenderCommandOptions render_opts;
@@ -56,9 +55,9 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  if (render->parsed()) return holoray::cli::run_render(render_opts);
+  if (render->parsed()) return holoray::cli::run_render(render_opts, world);
   if (sub->parsed()) return holoray::cli::run_subaperture(sub_opts);
-  if (animate->parsed()) return holoray::cli::run_animate(animate_opts);
+  if (animate->parsed()) return holoray::cli::run_animate(animate_opts, world);
   if (compare->parsed()) return holoray::cli::run_compare(compare_opts);
   if (simulate->parsed()) return holoray::cli::run_simulate(simulate_opts);
   if (views->parsed()) return holoray::cli::run_views(views_opts);

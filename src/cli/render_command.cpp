@@ -132,8 +132,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   return cmd;
 }
 
-int run_render(const RenderCommandOptions& o) {
-  const cluster::World& world = cluster::world();
+int run_render(const RenderCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
     // Everything the user typed is checked before the scene is read.
@@ -251,12 +250,14 @@ int run_render(const RenderCommandOptions& o) {
     // (cluster/band_exchange.hpp), each copied once as it is written.
     // Bands are whole lens rows of an EIA, else rows of 32 (the line
     // renderers' tile); the image never depends on them.
-    const int band_rows = array ? array->desc().pixels_per_lens : 32;
+    const std::vector<RowBand> bands =
+        world.distributed() ? row_bands(height, array ? array->desc().pixels_per_lens : 32, world.size())
+                            : std::vector<RowBand>{};
     int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : glass ? 3 * pixels : 0;
     int64_t held = pixels, copied = pixels;
     if (world.distributed()) {
       int64_t own = 0, largest = 0;
-      for (const RowBand& b : row_bands(height, band_rows, world.size())) {
+      for (const RowBand& b : bands) {
         largest = std::max<int64_t>(largest, b.y1 - b.y0);
         if (b.rank == world.rank()) own += b.y1 - b.y0;
       }
@@ -319,7 +320,6 @@ int run_render(const RenderCommandOptions& o) {
       // traces its own, rank 0 writes them to the files in order as they
       // arrive (the gather time includes those writes).
       const auto t_trace = Clock::now();
-      const std::vector<RowBand> bands = row_bands(height, band_rows, world.size());
       std::vector<FrameBuffers> mine;
       RenderStats band_stats;
       for (const RowBand& b : bands) {

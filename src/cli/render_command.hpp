@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/cache_options.hpp"
+#include "cluster/mpi_world.hpp"
 
 namespace holoray::cli {
 
@@ -30,7 +31,8 @@ struct RenderCommandOptions {
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& opts);
 
 /// Runs it; returns the process exit status (0 success, 1 failure). Errors
-/// go to stderr as one message; nothing is written on failure.
-int run_render(const RenderCommandOptions& opts);
+/// go to stderr as one message; nothing is written on failure. Under mpirun
+/// (`world` distributed) the ranks split the image in bands of rows.
+int run_render(const RenderCommandOptions& opts, const cluster::World& world);
 
 }  // namespace holoray::cli

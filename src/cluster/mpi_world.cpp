@@ -1,7 +1,9 @@
 #include "cluster/mpi_world.hpp"
 
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 
 #ifdef HOLORAY_WITH_MPI
 #include <mpi.h>
@@ -9,18 +11,16 @@
 
 namespace holoray::cluster {
 
-namespace {
-const World* g_world = nullptr;
-
-#ifdef HOLORAY_WITH_MPI
-// Started by a launcher: OpenMPI, MPICH/Hydra and Slurm set these.
-bool launched_by_mpirun() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
-    if (std::getenv(name)) return true;
-  return false;
+std::optional<int> launcher_world_size() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    const char* v = std::getenv(name);
+    if (!v) continue;
+    int n = 0;
+    const std::string_view s(v);
+    if (std::from_chars(s.data(), s.data() + s.size(), n).ec == std::errc() && n >= 1) return n;
+  }
+  return std::nullopt;
 }
-#endif
-}  // namespace
 
 bool built_with_mpi() {
 #ifdef HOLORAY_WITH_MPI
@@ -32,7 +32,7 @@ bool built_with_mpi() {
 
 World::World([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
 #ifdef HOLORAY_WITH_MPI
-  if (!launched_by_mpirun()) return;
+  if (!launcher_world_size()) return;
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
   initialised_ = true;
@@ -115,12 +115,5 @@ void World::abort(const std::string& message, int status) const {
 #endif
   std::exit(status);
 }
-
-const World& world() {
-  static const World one;
-  return g_world ? *g_world : one;
-}
-
-void set_world(const World* w) { g_world = w; }
 
 }  // namespace holoray::cluster

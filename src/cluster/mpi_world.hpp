@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,11 @@ namespace holoray::cluster {
 
 /// True when this holoray was built with MPI.
 bool built_with_mpi();
+
+/// The number of processes a launcher started this one among, read from the
+/// launchers' environment (OpenMPI's OMPI_COMM_WORLD_SIZE, MPICH's and
+/// Slurm's PMI_SIZE); std::nullopt when not launched by one.
+std::optional<int> launcher_world_size();
 
 /// The ranks of the launch. MPI is initialised (MPI_THREAD_SERIALIZED: rank
 /// 0 answers the others from a helper thread while its main thread renders,
@@ -56,9 +62,5 @@ class World {
   int rank_ = 0, size_ = 1;
   bool initialised_ = false;
 };
-
-/// The World of this process, set by main(); a one-rank World when none.
-const World& world();
-void set_world(const World* w);
 
 }  // namespace holoray::cluster

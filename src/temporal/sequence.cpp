@@ -40,6 +40,13 @@ Traced trace_frame(ShotFrames& shot, int frame, bool keep_points, int threads) {
   return t;
 }
 
+// The groups this worker renders: SequenceOptions::next_group's, else all
+// `count` of them in order.
+std::function<std::optional<size_t>()> group_source(const SequenceOptions& opt, size_t count) {
+  if (opt.next_group) return opt.next_group;
+  return [count, g = size_t{0}]() mutable { return g < count ? std::optional(g++) : std::nullopt; };
+}
+
 }  // namespace
 
 std::vector<int> keyframes(int frames, int interval) {
@@ -111,8 +118,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     throw std::invalid_argument("pinhole and display frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
     // One group per frame (frame_groups).
-    size_t in_order = 0;
-    while (const auto g = opt.next_group ? opt.next_group() : in_order < size_t(frames) ? std::optional(in_order++) : std::nullopt) {
+    auto next_group = group_source(opt, static_cast<size_t>(frames));
+    while (const auto g = next_group()) {
       const int f = static_cast<int>(*g);
       if (done(f)) continue;
       if (stop()) return;
@@ -169,8 +176,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   };
 
   if (keys.size() == 1) {  // a one-frame shot: one group, its only keyframe
-    size_t once = 0;
-    while (const auto g = opt.next_group ? opt.next_group() : once < 1 ? std::optional(once++) : std::nullopt) {
+    auto next_group = group_source(opt, 1);
+    while (next_group()) {
       if (done(0) || stop()) continue;
       auto [image, report] = trace_key(0);
       emit(0, image->colour, report);
@@ -183,8 +190,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   std::unique_ptr<PointImage> prev;
   FrameReport prev_report;
   const size_t groups = keys.size() - 1;
-  size_t in_order = 0;
-  while (const auto g = opt.next_group ? opt.next_group() : in_order < groups ? std::optional(in_order++) : std::nullopt) {
+  auto next_group = group_source(opt, groups);
+  while (const auto g = next_group()) {
     const size_t k = *g;
     const int f0 = keys[k], f1 = keys[k + 1];
     const bool last = k + 1 == groups;
