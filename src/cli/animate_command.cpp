@@ -6,17 +6,17 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <charconv>
-#include <cstring>
-#include <type_traits>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <thread>
+#include <type_traits>
 
 #include "cli/interrupt.hpp"
 #include "cluster/group_dealer.hpp"
@@ -314,13 +314,11 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const auto run_start = std::chrono::steady_clock::now();
 
     std::vector<FrameReport> reports;
-    int written = 0;
     double write_seconds = 0;  // encoding and writing the frames (not in FrameReport::seconds)
     render_sequence(shot, so, [&](int f, const ImageBuffer& colour, const FrameReport& r) {
       const auto t_write = std::chrono::steady_clock::now();
       write_image(frame_path(o.output, f, frames, ext), colour, so.encoding);
       write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_write).count();
-      ++written;
       reports.push_back(r);
       if (o.quiet) return;
       if (r.keyframe) {
@@ -338,10 +336,9 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     });
 
     const cluster::DealStats deal = dealer ? dealer->finish() : cluster::DealStats{};
-    // Totals over the ranks (collective: every rank has finished writing).
-    const int64_t written_all = world.sum(int64_t{written});
-    // Every rank's frame reports on rank 0, in frame order (for the summary
-    // and --report). FrameReport is plain data: its bytes travel as they are.
+    // Every rank's frame reports (one per frame written) on rank 0, in frame
+    // order, for the totals and --report (collective: every rank has finished
+    // writing). FrameReport is plain data: its bytes travel as they are.
     static_assert(std::is_trivially_copyable_v<FrameReport>);
     if (world.distributed()) {
       std::vector<unsigned char> bytes(reports.size() * sizeof(FrameReport));
@@ -352,6 +349,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       std::sort(reports.begin(), reports.end(), [](const FrameReport& a, const FrameReport& b) { return a.frame < b.frame; });
     }
     const RunSummary s = summarise(reports);
+    const int64_t written_all = static_cast<int64_t>(reports.size());  // on rank 0
     const double write_seconds_all = world.sum(write_seconds);
     const int64_t interrupted_ranks = world.sum(int64_t{interrupt.requested() ? 1 : 0});
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
