@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
+  libembree-dev libtbb-dev libpng-dev libopenexr-dev libjpeg-dev libgif-dev libstb-dev  # images (PNG, EXR, JPEG, GIF; PPM, Targa, BMP)
+  openimageio-tools         # the tests' independent image decoder and docs/make_images.sh
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev             # meshes: OBJ, PLY, STL, glTF, 3DS, COLLADA, AC3D
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev  # animate --video: FFV1 and H.264

@@ -91,8 +91,11 @@ TEST(Views, GridTilesAreTheSubapertureViewsAndTheSweepRunsLeftToRightAndBack) {
   // Written as an animated GIF: six frames, read back.
   test::TempDir dir;
   write_animation(dir.file("s.gif"), sweep, 10);
-  const auto info = test::run_shell("oiiotool --info " + dir.file("s.gif"));
-  if (info.status == 0) EXPECT_NE(info.output.find("6 subimages"), std::string::npos) << info.output;
+  const auto info = test::run_shell("oiiotool --info -v " + dir.file("s.gif"));
+  EXPECT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("6 subimages"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("gif:LoopCount: 0"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("FramesPerSecond: 100/10"), std::string::npos) << info.output;
 }
 
 }  // namespace

@@ -157,8 +157,8 @@ TEST(TachyonReader, UnsupportedConstructsAreRefusedWhereTheyAre) {
             "...), found 'cone'");
   EXPECT_EQ(error_of(scene_text("texdef m ambient 0 diffuse 1 specular 0 opacity 1 color 1 1 1 texfunc 9 "
                                 "no_such_image.ppm center 0 0 0 rotate 0 0 0 scale 1 1 1 uaxis 1 0 0 vaxis 0 1 0\n"))
-                .substr(0, 70),
-            "t.dat:4:73: error: cannot read the image map 'no_such_image.ppm': Coul");
+                .substr(0, 79),
+            "t.dat:4:73: error: cannot read the image map 'no_such_image.ppm': no such file");
   EXPECT_EQ(error_of("resolution 8 8"), "t.dat:1:1: error: expected 'BEGIN_SCENE', found 'resolution'");
 }
 

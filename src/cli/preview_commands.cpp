@@ -26,7 +26,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateCommandOptions& o) {
 
 CLI::App* add_views_command(CLI::App& app, ViewsCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("views", "An EIA's sub-aperture views: all as one grid (.png, .exr), or a parallax sweep across the horizontal ones (.gif)");
-  cmd->add_option("eia", o.input, "Elemental image array (any image OpenImageIO reads)")->required();
+  cmd->add_option("eia", o.input, "Elemental image array (PNG, EXR, JPEG, PPM, Targa, BMP)")->required();
   cmd->add_option("-o,--output", o.output, "views.png or views.exr (grid: view (u, v) at tile column u, row v), or views.gif (sweep)")->required();
   cmd->add_option("--grid", o.grid, "Lens grid of the EIA: square, hex or lenticular")->capture_default_str();
   cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();

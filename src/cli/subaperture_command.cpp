@@ -12,7 +12,7 @@ namespace holoray::cli {
 
 CLI::App* add_subaperture_command(CLI::App& app, SubapertureCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("subaperture", "Extract a sub-aperture view (pixel u,v of every elemental image)");
-  cmd->add_option("eia", o.input, "Elemental image array (any image OpenImageIO reads)")->required();
+  cmd->add_option("eia", o.input, "Elemental image array (PNG, EXR, JPEG, PPM, Targa, BMP)")->required();
   cmd->add_option("-o,--output", o.output, "Output image (.png or .exr)")->required();
   cmd->add_option("--grid", o.grid, "Lens grid of the EIA: square, hex or lenticular")->capture_default_str();
   cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();

@@ -1,9 +1,13 @@
-// holoray/image: reading and writing images through OpenImageIO. Every write
+// holoray/image: reading and writing images. PNG through libpng, OpenEXR
+// through OpenEXR, animated GIF through giflib; read also JPEG (libjpeg-turbo)
+// and PPM/PGM, Targa, BMP, Radiance HDR (stb_image). Every write
 // goes to a temporary name in the destination folder and is renamed into
 // place, so a failed or interrupted write never leaves a partial file.
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -54,8 +58,37 @@ class ImageWriter {
 void write_animation(const std::string& path, const std::vector<ImageBuffer>& frames, int fps,
                      Encoding encoding = Encoding::linear);
 
-/// Reads any image OpenImageIO can; values as stored (8-bit scaled to 0..1,
-/// no decoding of sRGB). Throws std::runtime_error naming the path.
+/// The largest image read_image reads, in pixels; larger headers are
+/// refused before anything is allocated.
+inline constexpr int64_t kMaxImagePixels = int64_t{1} << 30;
+
+/// What read_image and read_image_header throw: what() names the file,
+/// reason() is the cause alone, for callers that name the file their way.
+class ImageReadError : public std::runtime_error {
+ public:
+  ImageReadError(const std::string& path, const std::string& reason);
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string reason_;
+};
+
+/// What an image file's header says, read without its pixels.
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+  std::string format;  ///< "png", "openexr", "jpeg", "pnm", "targa", "bmp", "hdr"
+};
+
+/// The header of any image read_image reads; the format is found by the
+/// file's signature (by the extension only for Targa, which has none).
+/// Throws ImageReadError.
+ImageHeader read_image_header(const std::string& path);
+
+/// Reads PNG (8/16-bit, palettes expanded), OpenEXR (float; R, G, B, A first),
+/// JPEG, binary PPM/PGM, Targa, BMP and Radiance HDR. Values as stored:
+/// integer codes times 1/max (no decoding of sRGB, alpha not premultiplied),
+/// rows from the top. Throws ImageReadError (missing, unknown format,
+/// corrupt, more than kMaxImagePixels).
 ImageBuffer read_image(const std::string& path);
 
 /// The extension of `path`, dot included, in lower case ("a/B.PNG" -> ".png").

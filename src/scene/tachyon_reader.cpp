@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
@@ -14,6 +13,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "image/image_io.hpp"
 #include "scene/file_text.hpp"
 #include "scene/tokenizer.hpp"
 
@@ -481,30 +481,37 @@ class TachyonParser {
     if (file.text.starts_with("::")) return stand_in_image(file);
     const std::string path = locate(file);
     if (auto it = images_.find(path); it != images_.end()) return it->second;
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, OIIO::geterror()));
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width < 1 || spec.height < 1 || int64_t{spec.width} * spec.height > limits_.max_image_pixels)
+    ImageHeader header;
+    try {
+      header = read_image_header(path);
+    } catch (const ImageReadError& e) {
+      tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, e.reason()));
+    }
+    if (header.width < 1 || header.height < 1 || int64_t{header.width} * header.height > limits_.max_image_pixels)
       tok().fail(file.loc, fmt::format("expected an image map of at most {} pixels, found {}x{} in '{}'",
-                                       limits_.max_image_pixels, spec.width, spec.height, path));
+                                       limits_.max_image_pixels, header.width, header.height, path));
+    ImageBuffer raw;
+    try {
+      raw = read_image(path);
+    } catch (const ImageReadError& e) {
+      tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, e.reason()));
+    }
     ImageMap img;
     img.path = path;
-    img.width = spec.width, img.height = spec.height;
-    // Channels past the third (alpha) are dropped; a grey image fills all three.
-    const int nch = spec.nchannels;
-    std::vector<unsigned char> raw(size_t(spec.width) * spec.height * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, raw.data()))
-      tok().fail(file.loc, fmt::format("cannot read the image map '{}': {}", path, in->geterror()));
+    img.width = raw.width, img.height = raw.height;
     // Tachyon keeps rows in the order the file stores them and maps v = 0 to
     // the first: the top row of a PPM or PNG, the bottom row of a Targa
-    // (stored bottom-up). OpenImageIO hands every format over top-down.
-    const bool bottom_up = std::string_view(in->format_name()) == "targa";
-    img.rgb.resize(size_t(spec.width) * spec.height * 3);
-    for (int y = 0; y < spec.height; ++y)
-      for (int x = 0; x < spec.width; ++x)
+    // (stored bottom-up). read_image hands every format over top-down.
+    // Channels past the third (alpha) are dropped; a grey image fills all
+    // three; values become 8-bit codes rounded to nearest.
+    const bool bottom_up = header.format == "targa";
+    const int nch = raw.channels;
+    img.rgb.resize(size_t(raw.width) * raw.height * 3);
+    for (int y = 0; y < raw.height; ++y)
+      for (int x = 0; x < raw.width; ++x)
         for (int c = 0; c < 3; ++c)
-          img.rgb[(size_t(bottom_up ? spec.height - 1 - y : y) * spec.width + x) * 3 + c] =
-              raw[(size_t(y) * spec.width + x) * nch + std::min(c, nch - 1)];
+          img.rgb[(size_t(bottom_up ? raw.height - 1 - y : y) * raw.width + x) * 3 + c] =
+              static_cast<unsigned char>(std::clamp(raw.at(x, y)[std::min(c, nch - 1)] * 255.0f + 0.5f, 0.0f, 255.0f));
     scene_.images.push_back(std::move(img));
     const int id = static_cast<int>(scene_.images.size()) - 1;
     images_[path] = id;

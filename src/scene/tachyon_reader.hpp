@@ -7,7 +7,7 @@
 // file is parsed into a SceneDesc whose materials all follow Tachyon's
 // shading (ShadingModel::tachyon) and whose viewpoint is the Tachyon camera
 // (mirrored: Tachyon's screen is left-handed). Image maps named by `texfunc 9`
-// are read here, through OpenImageIO, relative to the scene file's folder
+// are read here (image/image_io.hpp: PPM, Targa, PNG, JPEG, ...), relative to the scene file's folder
 // (then the working folder, where Tachyon looks).
 //
 // A construct holoray does not support yet (volumes, landscapes, inline

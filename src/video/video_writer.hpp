@@ -1,5 +1,5 @@
 // holoray/video: sequences as video files through FFmpeg's libraries
-// (libavcodec, libavformat; issue 14, item 3). The container and codec
+// (libavcodec, libavformat), loaded on the first video only (video_encoder.hpp). The container and codec
 // follow the extension:
 //   .mkv  FFV1, lossless RGB (8-bit B, G, R, 0 words): decoded frames equal
 //         the 8-bit frames given, bit for bit;
@@ -27,6 +27,9 @@ bool is_lossless_video(const std::string& path);
 /// "FFV1 (lossless)" or "H.264, CRF n", for messages.
 std::string video_codec_name(const std::string& path, const VideoOptions& options);
 
+class VideoEncoder;
+
+/// A video written frame by frame; the file appears under its name on finish().
 class VideoWriter {
  public:
   /// Opens `path`'s temporary file for width x height frames. Throws
@@ -46,8 +49,7 @@ class VideoWriter {
   int frames() const { return frames_; }
 
  private:
-  struct State;
-  std::unique_ptr<State> s_;
+  std::unique_ptr<VideoEncoder> encoder_;
   std::string path_, tmp_;
   int width_, height_, frames_ = 0;
   bool finished_ = false;

@@ -1,0 +1,202 @@
+// PNG through libpng. libpng reports errors by longjmp; every call that can
+// fail sits alone in a small function that sets the jump point, so no C++
+// object is ever jumped over.
+#include <png.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "image/formats.hpp"
+
+namespace holoray::formats {
+
+namespace {
+
+// libpng's messages land here; the longjmp follows in png_error's caller.
+struct Messages {
+  char text[256] = {};
+};
+
+void on_error(png_structp png, png_const_charp message) {
+  auto* m = static_cast<Messages*>(png_get_error_ptr(png));
+  std::snprintf(m->text, sizeof m->text, "%s", message);
+  png_longjmp(png, 1);
+}
+
+void on_warning(png_structp, png_const_charp) {}
+
+struct File {
+  std::FILE* f = nullptr;
+  File(const std::string& path, const char* mode) : f(std::fopen(path.c_str(), mode)) {
+    if (!f) throw std::runtime_error(std::strerror(errno));
+  }
+  ~File() {
+    if (f) std::fclose(f);
+  }
+  // fclose's own failure (disk full on the last block) is a write error.
+  void close() {
+    const int rc = std::fclose(f);
+    f = nullptr;
+    if (rc != 0) throw std::runtime_error(std::strerror(errno));
+  }
+};
+
+// A zlib level and a row filter for an elemental image array. Measured on
+// 2048x2048 EIAs of the four SPD stills and 120-frame shots
+// (bench/png_results.md): see write_setup.
+constexpr int kZlibLevel = 1;
+constexpr int kFilters = PNG_FILTER_NONE;
+
+bool write_setup(png_structp png, png_infop info, std::FILE* f, int w, int h, int color_type, bool srgb) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_init_io(png, f);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, color_type, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // The codes' meaning, so viewers show them as intended: sRGB, or linear.
+  if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  else png_set_gAMA_fixed(png, info, PNG_FP_1);
+  png_set_compression_level(png, kZlibLevel);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, kFilters);
+  png_write_info(png, info);
+  return true;
+}
+
+bool write_row(png_structp png, png_const_bytep row) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_write_row(png, row);
+  return true;
+}
+
+bool write_end(png_structp png, png_infop info) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_write_end(png, info);
+  return true;
+}
+
+class PngOutput final : public ScanlineOutput {
+ public:
+  PngOutput(const std::string& path, int w, int h, int channels, Encoding encoding)
+      : file_(path, "wb"), width_(w), channels_(channels), encoding_(encoding) {
+    static constexpr int kType[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                     PNG_COLOR_TYPE_RGB_ALPHA};
+    if (channels < 1 || channels > 4) throw std::runtime_error("PNG holds 1 to 4 channels");
+    png_ = png_create_write_struct(PNG_LIBPNG_VER_STRING, &messages_, on_error, on_warning);
+    if (!png_) throw std::runtime_error("out of memory");
+    info_ = png_create_info_struct(png_);
+    if (!info_ || !write_setup(png_, info_, file_.f, w, h, kType[channels], encoding == Encoding::srgb)) fail();
+    row_.resize(size_t(w) * channels);
+  }
+  ~PngOutput() override { png_destroy_write_struct(&png_, &info_); }
+
+  void write_rows(const float* values, int count) override {
+    const size_t n = row_.size();
+    for (int y = 0; y < count; ++y) {
+      for (size_t k = 0; k < n; ++k) row_[k] = encode_8bit(values[size_t(y) * n + k], encoding_);
+      if (!write_row(png_, row_.data())) fail();
+    }
+  }
+
+  void close() override {
+    if (!write_end(png_, info_)) fail();
+    file_.close();
+  }
+
+ private:
+  [[noreturn]] void fail() {
+    // A write error inside libpng is errno's (disk full, ...); say that.
+    throw std::runtime_error(errno ? std::string(std::strerror(errno)) : std::string(messages_.text));
+  }
+  File file_;
+  Messages messages_;
+  png_structp png_ = nullptr;
+  png_infop info_ = nullptr;
+  int width_, channels_;
+  Encoding encoding_;
+  std::vector<uint8_t> row_;
+};
+
+// Reading: the header first (for size limits), then the rows.
+struct Reader {
+  File file;
+  Messages messages;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  explicit Reader(const std::string& path) : file(path, "rb") {
+    png_byte sig[8] = {};
+    if (std::fread(sig, 1, 8, file.f) != 8 || png_sig_cmp(sig, 0, 8)) throw std::runtime_error("not a PNG file");
+    png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &messages, on_error, on_warning);
+    if (!png) throw std::runtime_error("out of memory");
+    info = png_create_info_struct(png);
+    if (!info) throw std::runtime_error("out of memory");
+  }
+  ~Reader() { png_destroy_read_struct(&png, &info, nullptr); }
+  [[noreturn]] void fail() const { throw std::runtime_error(messages.text[0] ? messages.text : "corrupt PNG"); }
+};
+
+// Expands palettes and low bit depths to 8 bits, tRNS to alpha; 16-bit stays
+// 16-bit (big-endian as stored). Returns the channels after expansion.
+bool read_setup(png_structp png, png_infop info, std::FILE* f, int* channels) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_init_io(png, f);
+  png_set_sig_bytes(png, 8);
+  png_set_user_limits(png, 0x7fffffff, 0x7fffffff);
+  png_read_info(png, info);
+  png_set_expand(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  *channels = png_get_channels(png, info);
+  return true;
+}
+
+bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_read_image(png, rows);
+  png_read_end(png, info);
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding) {
+  errno = 0;
+  return std::make_unique<PngOutput>(file, width, height, channels, encoding);
+}
+
+Header png_header(const std::string& file) {
+  Reader r(file);
+  int channels = 0;
+  if (!read_setup(r.png, r.info, r.file.f, &channels)) r.fail();
+  return {static_cast<int>(png_get_image_width(r.png, r.info)), static_cast<int>(png_get_image_height(r.png, r.info)),
+          channels, "png"};
+}
+
+ImageBuffer read_png(const std::string& file) {
+  Reader r(file);
+  int channels = 0;
+  if (!read_setup(r.png, r.info, r.file.f, &channels)) r.fail();
+  const int w = static_cast<int>(png_get_image_width(r.png, r.info));
+  const int h = static_cast<int>(png_get_image_height(r.png, r.info));
+  const bool wide = png_get_bit_depth(r.png, r.info) == 16;
+  const size_t row_bytes = png_get_rowbytes(r.png, r.info);
+  std::vector<png_byte> bytes(row_bytes * size_t(h));
+  std::vector<png_bytep> rows(static_cast<size_t>(h));
+  for (int y = 0; y < h; ++y) rows[size_t(y)] = bytes.data() + row_bytes * size_t(y);
+  if (!read_rows(r.png, r.info, rows.data())) r.fail();
+  // Codes times the reciprocal, as OpenImageIO converts: images read before
+  // and after the change hold the same floats.
+  ImageBuffer img(w, h, channels);
+  const size_t n = img.data.size();
+  if (wide)
+    for (size_t k = 0; k < n; ++k) img.data[k] = static_cast<float>((bytes[2 * k] << 8) | bytes[2 * k + 1]) * (1.0f / 65535.0f);
+  else
+    for (size_t k = 0; k < n; ++k) img.data[k] = static_cast<float>(bytes[k]) * (1.0f / 255.0f);
+  return img;
+}
+
+}  // namespace holoray::formats
