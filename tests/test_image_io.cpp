@@ -32,6 +32,26 @@ TEST(Encode8Bit, SrgbUsesTheStandardTransferFunction) {
   EXPECT_EQ(encode_8bit(0.002f, Encoding::srgb), 7);   // linear segment: 12.92 * 0.002 * 255 = 6.59
 }
 
+TEST(Encode8Bit, ManyAtOnceGiveTheCodesOfOneAtATime) {
+  std::vector<float> v = {NAN, -NAN, INFINITY, -INFINITY, -0.0f, 0.0f, 1.0f, 2.0f, -1e-30f, 1e30f};
+  for (int c = 0; c <= 256; ++c)  // around every half code, where the rounding turns
+    for (int ulps = -3; ulps <= 3; ++ulps) {
+      float x = (static_cast<float>(c) - 0.5f) / 255.0f;
+      for (int u = 0; u < std::abs(ulps); ++u) x = std::nextafter(x, ulps < 0 ? -1.0f : 2.0f);
+      v.push_back(x);
+    }
+  uint32_t state = 12345;
+  for (int k = 0; k < 300000; ++k) {  // random values in and around 0..1, enough to run on several threads
+    state = state * 1664525u + 1013904223u;
+    v.push_back(static_cast<float>(state >> 8) / static_cast<float>(1 << 24) * 1.2f - 0.1f);
+  }
+  for (Encoding e : {Encoding::linear, Encoding::srgb}) {
+    std::vector<uint8_t> codes(v.size());
+    encode_8bit(v.data(), v.size(), codes.data(), e);
+    for (size_t k = 0; k < v.size(); ++k) ASSERT_EQ(codes[k], encode_8bit(v[k], e)) << v[k];
+  }
+}
+
 TEST(ImageIo, PngRoundTripGivesTheCodesBack) {
   test::TempDir dir;
   ImageBuffer img(7, 5, 3);

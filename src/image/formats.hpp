@@ -31,10 +31,20 @@ class ScanlineOutput {
   virtual void close() = 0;
 };
 
+/// How a PNG's rows are compressed: the zlib level (0..9) and strategy
+/// (zlib's Z_* constants) and the row filters (libpng's PNG_FILTER_* bits).
+struct PngCompression {
+  int level, strategy, filters;
+};
+
+/// The one write_image uses, chosen by measurement (png_format.cpp says
+/// which measurement; bench/png_encode.cpp repeats it).
+PngCompression default_png_compression();
+
 /// 8-bit PNG (channels 1..4: grey, grey+alpha, RGB, RGBA), codes from
-/// encode_8bit; tagged gAMA 1.0 (linear) or sRGB. zlib level and filter in
-/// png_format.cpp, chosen by measurement.
-std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding);
+/// encode_8bit; tagged gAMA 1.0 (linear) or sRGB.
+std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding,
+                                         PngCompression compression = default_png_compression());
 
 /// 32-bit float OpenEXR, ZIP compression (16 scanlines a block), channels
 /// named as OpenImageIO names them (1: Y; 2..4: R, G, B, A; then channelN),

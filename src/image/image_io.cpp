@@ -3,6 +3,8 @@
 #include "image/formats.hpp"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -43,6 +45,34 @@ uint8_t encode_8bit(float v, Encoding encoding) {
   const float e = encoding == Encoding::srgb ? srgb_oetf(std::clamp(v, 0.0f, 1.0f)) : v;
   const double code = std::floor(255.0 * static_cast<double>(e) + 0.5);
   return static_cast<uint8_t>(std::clamp(code, 0.0, 255.0));
+}
+
+namespace {
+
+void encode_linear(const float* v, size_t n, uint8_t* out) {
+  for (size_t k = 0; k < n; ++k) {
+    double x = 255.0 * static_cast<double>(v[k]) + 0.5;  // exact: a float times 255 fits a double's mantissa
+    x = x > 0.0 ? x : 0.0;                              // NaN too
+    x = x < 255.0 ? x : 255.0;
+    out[k] = static_cast<uint8_t>(static_cast<int>(x));  // truncation of a non-negative value: the floor
+  }
+}
+
+}  // namespace
+
+void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding) {
+  auto run = [&](size_t begin, size_t end) {
+    if (encoding == Encoding::linear) encode_linear(values + begin, end - begin, codes + begin);
+    else
+      for (size_t k = begin; k < end; ++k) codes[k] = encode_8bit(values[k], encoding);
+  };
+#ifdef HOLORAY_STD_THREADS
+  run(0, count);  // the ThreadSanitizer build sees no oneTBB
+#else
+  constexpr size_t kChunk = size_t{1} << 16;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kChunk),
+                    [&](const tbb::blocked_range<size_t>& r) { run(r.begin(), r.end()); });
+#endif
 }
 
 bool is_supported_output(const std::string& path) {
@@ -158,7 +188,7 @@ void write_animation(const std::string& path, const std::vector<ImageBuffer>& fr
       throw std::runtime_error(fmt::format("cannot write '{}': frame {} is {}x{}x{}, frame 0 {}x{}x3", path, f, img.width,
                                            img.height, img.channels, frames[0].width, frames[0].height));
     std::vector<uint8_t>& bytes = codes.emplace_back(img.data.size());
-    for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = encode_8bit(img.data[k], encoding);
+    encode_8bit(img.data.data(), img.data.size(), bytes.data(), encoding);
   }
   const fs::path tmp = temporary_for(path, ".gif");
   std::error_code ec;

@@ -23,6 +23,11 @@ enum class Encoding { linear, srgb };
 /// function (IEC 61966-2-1). NaN gives 0.
 uint8_t encode_8bit(float v, Encoding encoding);
 
+/// encode_8bit of `count` values, the same codes; the linear case runs as
+/// vector code (255 v + 1/2 is exact in double, so truncation after
+/// clamping is the floor) and large runs on every core.
+void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding);
+
 /// Writes `image` to `path`; the format follows the extension: `.png` (8-bit,
 /// encoded as above) or `.exr` (32-bit float, linear). Throws
 /// std::runtime_error naming the path and reason (unknown extension, folder

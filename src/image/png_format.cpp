@@ -47,13 +47,8 @@ struct File {
   }
 };
 
-// A zlib level and a row filter for an elemental image array. Measured on
-// 2048x2048 EIAs of the four SPD stills and 120-frame shots
-// (bench/png_results.md): see write_setup.
-constexpr int kZlibLevel = 1;
-constexpr int kFilters = PNG_FILTER_NONE;
-
-bool write_setup(png_structp png, png_infop info, std::FILE* f, int w, int h, int color_type, bool srgb) {
+bool write_setup(png_structp png, png_infop info, std::FILE* f, int w, int h, int color_type, bool srgb,
+                 PngCompression compression) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_init_io(png, f);
   png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, color_type, PNG_INTERLACE_NONE,
@@ -61,8 +56,9 @@ bool write_setup(png_structp png, png_infop info, std::FILE* f, int w, int h, in
   // The codes' meaning, so viewers show them as intended: sRGB, or linear.
   if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   else png_set_gAMA_fixed(png, info, PNG_FP_1);
-  png_set_compression_level(png, kZlibLevel);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, kFilters);
+  png_set_compression_level(png, compression.level);
+  png_set_compression_strategy(png, compression.strategy);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, compression.filters);
   png_write_info(png, info);
   return true;
 }
@@ -81,7 +77,7 @@ bool write_end(png_structp png, png_infop info) {
 
 class PngOutput final : public ScanlineOutput {
  public:
-  PngOutput(const std::string& path, int w, int h, int channels, Encoding encoding)
+  PngOutput(const std::string& path, int w, int h, int channels, Encoding encoding, PngCompression compression)
       : file_(path, "wb"), width_(w), channels_(channels), encoding_(encoding) {
     static constexpr int kType[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                      PNG_COLOR_TYPE_RGB_ALPHA};
@@ -89,17 +85,16 @@ class PngOutput final : public ScanlineOutput {
     png_ = png_create_write_struct(PNG_LIBPNG_VER_STRING, &messages_, on_error, on_warning);
     if (!png_) throw std::runtime_error("out of memory");
     info_ = png_create_info_struct(png_);
-    if (!info_ || !write_setup(png_, info_, file_.f, w, h, kType[channels], encoding == Encoding::srgb)) fail();
-    row_.resize(size_t(w) * channels);
+    if (!info_ || !write_setup(png_, info_, file_.f, w, h, kType[channels], encoding == Encoding::srgb, compression)) fail();
   }
   ~PngOutput() override { png_destroy_write_struct(&png_, &info_); }
 
   void write_rows(const float* values, int count) override {
-    const size_t n = row_.size();
-    for (int y = 0; y < count; ++y) {
-      for (size_t k = 0; k < n; ++k) row_[k] = encode_8bit(values[size_t(y) * n + k], encoding_);
-      if (!write_row(png_, row_.data())) fail();
-    }
+    const size_t n = size_t(width_) * size_t(channels_);
+    codes_.resize(n * size_t(count));
+    encode_8bit(values, codes_.size(), codes_.data(), encoding_);
+    for (int y = 0; y < count; ++y)
+      if (!write_row(png_, codes_.data() + n * size_t(y))) fail();
   }
 
   void close() override {
@@ -118,7 +113,7 @@ class PngOutput final : public ScanlineOutput {
   png_infop info_ = nullptr;
   int width_, channels_;
   Encoding encoding_;
-  std::vector<uint8_t> row_;
+  std::vector<uint8_t> codes_;  // the band being written, as 8-bit codes
 };
 
 // Reading: the header first (for size limits), then the rows.
@@ -163,9 +158,16 @@ bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
 
 }  // namespace
 
-std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding) {
+PngCompression default_png_compression() {
+  // zlib level 1, default strategy, no row filter: an EIA's rows are
+  // hundreds of small elemental images, which the PNG filters predict badly.
+  return {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE};
+}
+
+std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding,
+                                         PngCompression compression) {
   errno = 0;
-  return std::make_unique<PngOutput>(file, width, height, channels, encoding);
+  return std::make_unique<PngOutput>(file, width, height, channels, encoding, compression);
 }
 
 Header png_header(const std::string& file) {
