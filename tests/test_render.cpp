@@ -240,7 +240,7 @@ TEST(RenderStyles, EveryStyleGivesTheSameImageAndRayCounts) {
         opt.style = TraceStyle::horizontal;
         RenderStats ref_stats;
         const FrameBuffers ref = render_frame(scene, cam, opt, ref_stats);
-        for (const TraceStyle style : {TraceStyle::vertical, TraceStyle::packet}) {
+        for (const TraceStyle style : {TraceStyle::vertical, TraceStyle::packet, TraceStyle::subaperture}) {
           opt.style = style;
           RenderStats stats;
           const FrameBuffers other = render_frame(scene, cam, opt, stats);

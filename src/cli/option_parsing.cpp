@@ -65,11 +65,13 @@ Encoding parse_encoding(const std::string& text) {
   throw std::invalid_argument(fmt::format("--encoding: expected linear or srgb, got '{}'", text));
 }
 
-TraceStyle parse_style(const std::string& text) {
+std::optional<TraceStyle> parse_style(const std::string& text) {
+  if (text == "auto") return std::nullopt;
   if (text == "packet") return TraceStyle::packet;
+  if (text == "subaperture") return TraceStyle::subaperture;
   if (text == "horizontal") return TraceStyle::horizontal;
   if (text == "vertical") return TraceStyle::vertical;
-  throw std::invalid_argument(fmt::format("--style: expected packet, horizontal or vertical, got '{}'", text));
+  throw std::invalid_argument(fmt::format("--style: expected auto, subaperture, packet, horizontal or vertical, got '{}'", text));
 }
 
 AovSet parse_aovs(const std::string& text) {

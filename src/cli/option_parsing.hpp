@@ -6,6 +6,7 @@
 
 #include <initializer_list>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -28,8 +29,9 @@ Vec3 parse_vec3(const std::string& option, const std::string& text);
 Grid parse_grid(const std::string& text);
 /// "linear" or "srgb" (--encoding).
 Encoding parse_encoding(const std::string& text);
-/// "packet", "horizontal" or "vertical" (--style).
-TraceStyle parse_style(const std::string& text);
+/// "auto" (nullopt: preferred_style decides), "subaperture", "packet",
+/// "horizontal" or "vertical" (--style).
+std::optional<TraceStyle> parse_style(const std::string& text);
 /// Comma-separated subset of albedo,depth,normal,id.
 AovSet parse_aovs(const std::string& text);
 

@@ -124,7 +124,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; default: the scene's Tachyon raydepth, else 5, the SPD's)");
-  cmd->add_option("--style", o.style, "Pixel-tracing style: packet (16-ray packets per lens), horizontal or vertical (single rays, paper §6)")->capture_default_str();
+  cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
   add_cache_options(*cmd, o.cache);
@@ -147,7 +147,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
-    const TraceStyle style = parse_style(o.style);
+    const std::optional<TraceStyle> style = parse_style(o.style);
     if (o.max_depth != 0 && (o.max_depth < 1 || o.max_depth > kDepthCap))
       throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
     const ArraySettings settings = resolve_settings(o);
@@ -289,7 +289,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.spp = o.spp;
     ropt.threads = o.threads;
     ropt.aovs = aovs;
-    ropt.style = style;
+    ropt.style = style ? *style : array ? preferred_style(array->desc()) : TraceStyle::packet;
     if (tty)
       ropt.progress = [&](double f) {
         std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -385,7 +385,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       }
       fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
       fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), array ? o.style : "packet",
+                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), to_string(ropt.style),
                  world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
                                                    world.size(), gather_s, band_bytes / 1048576.0)
                                      : "");

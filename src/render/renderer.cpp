@@ -28,6 +28,21 @@ uint32_t hash32(uint32_t x) {
 
 }  // namespace
 
+const char* to_string(TraceStyle style) {
+  switch (style) {
+    case TraceStyle::packet: return "packet";
+    case TraceStyle::subaperture: return "subaperture";
+    case TraceStyle::horizontal: return "horizontal";
+    case TraceStyle::vertical: return "vertical";
+  }
+  return "?";
+}
+
+TraceStyle preferred_style(const LensArrayDesc& desc) {
+  const double width = desc.lenses_x * desc.pitch;
+  return width > 4.0 * desc.gap * desc.pixels_per_lens ? TraceStyle::subaperture : TraceStyle::packet;
+}
+
 void sample_offset(int i, int j, int k, double& u, double& v) {
   if (k == 0) {
     u = v = 0.5;
@@ -242,7 +257,10 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
   const auto start = std::chrono::steady_clock::now();
-  const ElementalTiles tiles(camera, opt.tile_order, y0, y1);
+  // Sub-aperture packets take one pixel of each of 4x4 lenses: tiles of at
+  // least 4x4 lenses keep them full.
+  const bool subaperture = opt.style == TraceStyle::subaperture;
+  const ElementalTiles tiles(camera, opt.tile_order, y0, y1, subaperture ? 4 : 1);
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
   const int P = camera.desc().pixels_per_lens;
@@ -260,9 +278,10 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
       store_pixel(fb, opt.aovs, i, j - y0, c, ph.status == PrimaryHit::kHit ? &sp : nullptr, ph.t, toward);
     };
     const TileRect r = tiles.rect(tile);
+    if (subaperture) render_block(scene, camera, r, opt.style, opt.spp, want_surface, counts, store);
     // Tiles are P-aligned, so each P x P block is one elemental image
     // (square grid), a piece of one lenticule's strip, or close to one hex lens.
-    for (int by = r.y0; by < r.y1; by += P)
+    for (int by = r.y0; by < r.y1 && !subaperture; by += P)
       for (int bx = r.x0; bx < r.x1; bx += P) {
         const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
         render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);

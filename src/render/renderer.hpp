@@ -30,10 +30,23 @@ struct AovSet {
 /// How the pixels of one elemental image are traced (issue 4, paper §6).
 /// The image never depends on it (RenderStyles tests); only the speed does.
 enum class TraceStyle {
-  packet,      ///< 16-ray packets of 4x4 pixels of one lens (rtcIntersect16, coherent); shadow rays as packets
+  packet,       ///< 16-ray packets of 4x4 pixels of one lens (rtcIntersect16, coherent); shadow rays as packets
+  subaperture,  ///< 16-ray packets of one pixel (u, v) of 4x4 neighbouring lenses: parallel rays (square grid) from a
+                ///< patch of the lens plane, whose hits and shadow rays stay together (a sub-aperture view's pixels)
   horizontal,  ///< single rays, row by row inside each elemental image (paper §6.1)
   vertical,    ///< single rays, column by column inside each elemental image (paper §6.2)
 };
+
+/// "packet", "subaperture", "horizontal" or "vertical".
+const char* to_string(TraceStyle style);
+
+/// The faster packet style for an array. A packet of 4x4 pixels of one lens
+/// spreads by 4 pixel angles (pitch / (gap P) each), one of 4x4 lenses by
+/// 4 pitches: at a depth D the sub-aperture packet is the tighter when
+/// D > gap P. Measured on the four SPD scenes (bench/results.md), it pays
+/// once the array is wider than 4 gap P (about: scene content lies a
+/// quarter of the array's width from it): sub-aperture then, else packet.
+TraceStyle preferred_style(const LensArrayDesc& desc);
 
 struct RenderOptions {
   int spp = 1;      ///< samples per pixel; sample 0 is the pixel centre (the reference)
@@ -41,7 +54,7 @@ struct RenderOptions {
   AovSet aovs;
   bool primary_hits = false;  ///< fill FrameBuffers::primary (temporal reprojection keyframes)
   TileOrder tile_order = TileOrder::row_major;  ///< never changes the result (tests prove it)
-  TraceStyle style = TraceStyle::packet;        ///< the fastest measured (bench/results.md)
+  TraceStyle style = TraceStyle::packet;        ///< preferred_style(desc) is the faster of the packet styles
   /// Render only pixel rows [rows[0], rows[1]) of the image, a band (`mpirun
   /// holoray render` gives each rank bands of rows; every renderer takes
   /// it): the buffers hold just those rows, row 0 being image row rows[0].
@@ -94,7 +107,9 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
                    SurfacePoint surface[] = nullptr, ShadeParts parts[] = nullptr);
 
 /// Renders the pixels of `block` (at most P x P: one elemental image, or a
-/// P x P piece of a lenticule's strip or hex lens) in `style`, calling
+/// P x P piece of a lenticule's strip or hex lens; for the sub-aperture
+/// style a P-aligned block of whole lenses, ideally 4 or more across) in
+/// `style`, calling
 /// store(i, j, colour, primary, surface) once per pixel; `surface` is filled
 /// only when want_surface and primary.status is kHit. The one place where the
 /// styles differ (paper §6), shared by render_frame and the benchmarks.
@@ -116,20 +131,17 @@ void render_block(const RenderScene& scene, const LensArray& camera, const TileR
       for (int i = block.x0; i < block.x1; ++i)
         for (int j = block.y0; j < block.y1; ++j) single(i, j);
       return;
-    case TraceStyle::packet: {
-      thread_local std::vector<PixelXY> px;
-      px.resize(static_cast<size_t>(block.x1 - block.x0) * (block.y1 - block.y0));
-      const int n = packet_order(block, px.data());
-      for (int start = 0; start < n; start += kPacketSize) {
-        const int m = std::min(kPacketSize, n - start);
-        Vec3 c[kPacketSize];
-        PrimaryHit ph[kPacketSize];
-        SurfacePoint sp[kPacketSize];
-        render_packet(scene, camera, px.data() + start, m, spp, counts, c, ph, want_surface ? sp : nullptr);
-        for (int l = 0; l < m; ++l) store(px[start + l].i, px[start + l].j, c[l], ph[l], sp[l]);
-      }
+    case TraceStyle::packet:
+    case TraceStyle::subaperture:
+      for_each_packet_of(block, camera.desc().pixels_per_lens, style == TraceStyle::subaperture,
+                         [&](const PixelXY* px, int m) {
+                           Vec3 c[kPacketSize];
+                           PrimaryHit ph[kPacketSize];
+                           SurfacePoint sp[kPacketSize];
+                           render_packet(scene, camera, px, m, spp, counts, c, ph, want_surface ? sp : nullptr);
+                           for (int l = 0; l < m; ++l) store(px[l].i, px[l].j, c[l], ph[l], sp[l]);
+                         });
       return;
-    }
   }
 }
 

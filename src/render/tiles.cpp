@@ -16,10 +16,10 @@
 
 namespace holoray {
 
-ElementalTiles::ElementalTiles(const LensArray& camera, TileOrder order, int y0, int y1)
+ElementalTiles::ElementalTiles(const LensArray& camera, TileOrder order, int y0, int y1, int min_lenses)
     : width_(camera.width()), height_((y1 < 0 ? camera.height() : y1) - y0), y0_(y0), order_(order) {
   const int P = camera.desc().pixels_per_lens;
-  const int lenses_per_tile = std::max(1, static_cast<int>(std::lround(64.0 / P)));
+  const int lenses_per_tile = std::max(min_lenses, static_cast<int>(std::lround(64.0 / P)));
   tile_w_ = tile_h_ = P * lenses_per_tile;
   tiles_x_ = (width_ + tile_w_ - 1) / tile_w_;
   tiles_y_ = (height_ + tile_h_ - 1) / tile_h_;

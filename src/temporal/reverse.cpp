@@ -314,25 +314,19 @@ ReprojectedFrame blank_frame(const LensArray& camera) {
   return out;
 }
 
-// The packets of full tracing (render_block's, TraceStyle::packet), tile
-// by tile on `threads` workers: per tile, `tile(counts, each_packet)` where
-// each_packet(fn) calls fn(px, n) for the tile's packets in order. Returns
-// the rays of all tiles.
+// The packets of full tracing (render_frame's, in the array's preferred
+// style), tile by tile on `threads` workers: per tile, `tile(counts,
+// each_packet)` where each_packet(fn) calls fn(px, n) for the tile's packets
+// in order. Returns the rays of all tiles.
 template <class Tile>
 RayCounts for_each_packet(const LensArray& camera, int threads, Tile&& tile) {
   const int P = camera.desc().pixels_per_lens;
-  const ElementalTiles tiles(camera);
+  const bool subaperture = preferred_style(camera.desc()) == TraceStyle::subaperture;
+  const ElementalTiles tiles(camera, TileOrder::row_major, 0, -1, subaperture ? 4 : 1);
   std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
   for_each_tile(tiles, threads, [&](int t) {
     const TileRect r = tiles.rect(t);
-    std::vector<PixelXY> px(static_cast<size_t>(P) * P);
-    auto each_packet = [&](auto&& fn) {
-      for (int by = r.y0; by < r.y1; by += P)
-        for (int bx = r.x0; bx < r.x1; bx += P) {
-          const int m = packet_order({bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)}, px.data());
-          for (int start = 0; start < m; start += kPacketSize) fn(px.data() + start, std::min(kPacketSize, m - start));
-        }
-    };
+    auto each_packet = [&](auto&& fn) { for_each_packet_of(r, P, subaperture, fn); };
     tile(tile_rays[static_cast<size_t>(t)], each_packet);
   });
   RayCounts total;

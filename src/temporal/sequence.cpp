@@ -34,6 +34,7 @@ Traced trace_frame(ShotFrames& shot, int frame, bool keep_points, int threads) {
   ro.threads = threads;
   ro.primary_hits = keep_points;
   Traced t{LensArray(shot.camera(frame)), {}, {}, 0};
+  ro.style = preferred_style(t.camera.desc());  // as the keyframes of reuse are traced
   const auto start = Clock::now();
   t.buffers = render_frame(shot.scene(), t.camera, ro, t.stats);
   t.seconds = seconds_since(start);

@@ -1,0 +1,142 @@
+#!/usr/bin/env bash
+# Where holoray's time goes, against the commit before a change and against
+# Tachyon, all in one run (writes bench/speed_results.md):
+#   1. start-up: `holoray --help` and a 4x4-lens render against `true`;
+#   2. the four SPD scenes as 2048x2048 EIAs (128x128 lenses x 16 px) against
+#      `tachyon SCENE.nff -res 2048 2048 -raydepth 5 -aasamples 0`, both
+#      reading the same NFF file, whole commands, runs alternated, medians;
+#   3. the images of the two holoray builds compared (four SPD scenes and
+#      Tachyon's Room), PSNR over float EXRs (inf: identical);
+#   4. the cycle shares of each SPD render (perf record: Embree, holoray,
+#      the dynamic loader, the kernel, libc, zlib, the rest);
+#   5. the packet styles by array: trace seconds of `--style packet` and
+#      `--style subaperture` at three lens pitches, and what `auto` picks.
+# The baseline is built from BASE (a commit; default: the commit before
+# the image-library change) into a scratch folder, or taken from BASE_BIN.
+# Needs ../shared, tachyon and perf (linux-perf).
+# Usage: bash bench/run_speed_bench.sh   (ROUNDS=3, BASE=<commit>, BASE_BIN=<binary>)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source bench/lib.sh
+shared=${HOLORAY_SHARED:-../shared}
+[[ -d $shared/scenes/nff ]] || { echo "run_speed_bench.sh: needs $shared/scenes" >&2; exit 1; }
+for tool in tachyon perf python3; do
+  command -v "$tool" >/dev/null || { echo "run_speed_bench.sh: '$tool' is missing" >&2; exit 1; }
+done
+base_commit=${BASE:-e5b5ca3}
+if [[ -z ${BASE_BIN:-} ]]; then
+  git worktree add -f --detach "$tmp/base" "$base_commit" >/dev/null 2>&1
+  cmake -S "$tmp/base" -B "$tmp/base/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOLORAY_TESTS=OFF -DHOLORAY_BENCH=OFF >/dev/null
+  cmake --build "$tmp/base/build" --target holoray-cli >/dev/null
+  BASE_BIN=$tmp/base/build/holoray
+  trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1; rm -rf "$tmp"' EXIT
+fi
+python3 - "$bin" "$BASE_BIN" "$base_commit" "$shared" "$tmp" "$ROUNDS" "$(machine)" "$(git rev-parse --short HEAD)" \
+  > "$tmp/speed_results.md" <<'PY'
+import os, re, statistics, subprocess, sys, time
+new, base, base_commit, shared, tmp, rounds, machine, head = sys.argv[1:9]
+rounds = int(rounds)
+nff = f"{shared}/scenes/nff"
+scenes = ("teapot_s6", "gears_s4", "balls_s4", "tree_s11")
+eia = ["--lenses", "128x128", "--pixels-per-lens", "16"]
+
+def wall(cmd, cwd=None):
+    t0 = time.perf_counter()
+    r = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    t = time.perf_counter() - t0
+    if r.returncode != 0:
+        sys.exit(f"failed: {' '.join(cmd)}\n{r.stdout}")
+    return t, r.stdout
+
+def medians(cmds, n):
+    """Runs the commands alternated n times; the median wall time of each."""
+    times = [[] for _ in cmds]
+    for _ in range(n):
+        for k, c in enumerate(cmds):
+            times[k].append(wall(c)[0])
+    return [statistics.median(t) for t in times]
+
+print(f"# Speed: holoray {head} against {base_commit} and Tachyon\n")
+print(f"`bash bench/run_speed_bench.sh` on {machine}; every figure from this one run.\n")
+
+# 1. start-up
+small = ["render", "examples/primitives.nff", "--lenses", "4x4", "-o", f"{tmp}/small.png", "-q"]
+t_true, t_help, t_bhelp, t_small, t_bsmall = medians(
+    [["true"], [new, "--help"], [base, "--help"], [new] + small, [base] + small], 10)
+print("## Start-up (median of 10 runs, ms)\n")
+print("| command | this build | baseline | baseline / this |\n|---|---:|---:|---:|")
+print(f"| `holoray --help` | {t_help*1e3:.1f} | {t_bhelp*1e3:.1f} | {t_bhelp/t_help:.1f}x |")
+print(f"| `holoray render examples/primitives.nff --lenses 4x4` | {t_small*1e3:.1f} | {t_bsmall*1e3:.1f} | {t_bsmall/t_small:.1f}x |")
+print(f"| `true` (do-nothing baseline) | {t_true*1e3:.1f} | | |\n")
+
+# 2. against Tachyon
+print(f"## 2048x2048 against Tachyon (whole commands, 2 threads, alternated, median of {rounds} s)\n")
+print("| scene | holoray | baseline holoray | tachyon | Tachyon / holoray | Tachyon / baseline | this / baseline speed-up | trace s | Mrays/s | baseline Mrays/s |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+for s in scenes:
+    f = f"{nff}/{s}.nff"
+    h, b, t = medians([[new, "render", f] + eia + ["-o", f"{tmp}/n.png", "-q"],
+                       [base, "render", f] + eia + ["-o", f"{tmp}/b.png", "-q"],
+                       ["tachyon", f, "-res", "2048", "2048", "-raydepth", "5", "-aasamples", "0", "-o", f"{tmp}/t.tga"]], rounds)
+    out = wall([new, "render", f] + eia + ["-o", f"{tmp}/n.png"])[1]
+    bout = wall([base, "render", f] + eia + ["-o", f"{tmp}/b.png"])[1]
+    tr = float(re.search(r"trace\s+([\d.]+) s", out).group(1))
+    mr = float(re.search(r"([\d.]+) Mrays/s", out).group(1))
+    bmr = float(re.search(r"([\d.]+) Mrays/s", bout).group(1))
+    print(f"| {s} | {h:.3f} | {b:.3f} | {t:.3f} | {t/h:.2f}x | {t/b:.2f}x | {b/h:.2f}x | {tr:.3f} | {mr:.1f} | {bmr:.1f} |")
+print()
+
+# 3. same images
+print("## Images of this build against the baseline (PSNR dB over float EXR; inf: identical)\n")
+print("| scene | PSNR |\n|---|---:|")
+room = f"{shared}/scenes/tachyon/room.dat"
+for s, f, extra in [(s, f"{nff}/{s}.nff", eia) for s in scenes] + [("room (Tachyon)", room, [])]:
+    wall([new, "render", f] + extra + ["-o", f"{tmp}/n.exr", "-q"])
+    wall([base, "render", f] + extra + ["-o", f"{tmp}/b.exr", "-q"])
+    cmp = wall([new, "compare", f"{tmp}/b.exr", f"{tmp}/n.exr"])[1]
+    print(f"| {s} | {cmp.strip().splitlines()[-1].split()[-1]} |")
+print()
+
+# 4. cycle shares
+def shares(binary, f):
+    data = f"{tmp}/perf.data"
+    subprocess.run(["perf", "record", "-q", "-F", "2000", "-o", data, binary, "render", f] + eia + ["-o", f"{tmp}/p.png", "-q"],
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    rep = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "dso", "--stdio"],
+                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout
+    got = {"embree": 0.0, "holoray": 0.0, "loader": 0.0, "kernel": 0.0, "libc": 0.0, "zlib": 0.0, "other": 0.0}
+    for line in rep.splitlines():
+        m = re.match(r"\s+([\d.]+)%\s+(\S+)", line)
+        if not m:
+            continue
+        pct, dso = float(m.group(1)), m.group(2)
+        key = ("embree" if "embree" in dso else "holoray" if dso == "holoray" else "loader" if dso.startswith("ld-linux")
+               else "kernel" if "kernel" in dso else "libc" if dso.startswith("libc.") else "zlib" if dso.startswith("libz") else "other")
+        got[key] += pct
+    return got
+print("## Cycle shares of the whole `holoray render` (perf record, % of samples)\n")
+print("| scene | build | Embree | holoray | loader | kernel | libc | zlib | other |\n|---|---|---:|---:|---:|---:|---:|---:|---:|")
+for s in scenes:
+    for name, binary in (("this", new), ("baseline", base)):
+        g = shares(binary, f"{nff}/{s}.nff")
+        print(f"| {s} | {name} | " + " | ".join(f"{g[k]:.1f}" for k in ("embree", "holoray", "loader", "kernel", "libc", "zlib", "other")) + " |")
+print()
+
+# 5. packet styles by array
+print(f"## Packet styles by lens pitch (trace s, median of {rounds}; 2048x2048 EIAs, lens field of view 20 deg)\n")
+print("| scene | lenses x px | packet | subaperture | subaperture speed-up | auto picks |\n|---|---|---:|---:|---:|---|")
+def trace_s(cmd):
+    return float(re.search(r"trace\s+([\d.]+) s", wall(cmd)[1]).group(1))
+for s in scenes:
+    for lenses, p in (("128x128", "16"), ("256x256", "8"), ("512x512", "4")):
+        cmd = [new, "render", f"{nff}/{s}.nff", "--lenses", lenses, "--pixels-per-lens", p, "-o", f"{tmp}/s.png"]
+        runs = {st: [] for st in ("packet", "subaperture")}
+        for _ in range(rounds):
+            for st in runs:
+                runs[st].append(trace_s(cmd + ["--style", st]))
+        pk, sa = (statistics.median(runs[st]) for st in ("packet", "subaperture"))
+        picked = re.search(r"(\w+) style", wall(cmd)[1]).group(1)
+        print(f"| {s} | {lenses} x {p} | {pk:.3f} | {sa:.3f} | {pk/sa:.2f}x | {picked} |")
+PY
+cp "$tmp/speed_results.md" bench/speed_results.md
+cat bench/speed_results.md
