@@ -14,6 +14,7 @@ packages=(
   nlohmann-json3-dev        # Looking Glass calibration files (JSON)
   libopenmpi-dev openmpi-bin  # mpirun -np N holoray animate|render (optional in CMake; installed so the README's commands build it)
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
+  hyperfine                 # bench/run_startup_deps.sh: start-up per library
   tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray and tachyon the pinhole tests' references
   tachyon-doc               # bench/run_tachyon_compare.sh: Tachyon's manual and example scenes
 )
