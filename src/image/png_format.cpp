@@ -91,6 +91,11 @@ class PngOutput final : public ScanlineOutput {
 
   void write_rows(const float* values, int count) override {
     const size_t n = size_t(width_) * size_t(channels_);
+    if (codes_.capacity() < n * size_t(count)) {
+      codes_ = std::vector<uint8_t>();
+      codes_.reserve(n * size_t(count));
+      advise_huge_pages(codes_.data(), n * size_t(count));
+    }
     codes_.resize(n * size_t(count));
     encode_8bit(values, codes_.size(), codes_.data(), encoding_);
     for (int y = 0; y < count; ++y)
