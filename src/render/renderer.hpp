@@ -106,10 +106,10 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
                    SurfacePoint surface[] = nullptr, ShadeParts parts[] = nullptr);
 
-/// Renders the pixels of `block` (at most P x P: one elemental image, or a
-/// P x P piece of a lenticule's strip or hex lens; for the sub-aperture
-/// style a P-aligned block of whole lenses, ideally 4 or more across) in
-/// `style`, calling
+/// Renders the pixels of `block` (single-ray styles: at most P x P, one
+/// elemental image, or a P x P piece of a lenticule's strip or hex lens; the
+/// packet styles: any P-aligned block, for sub-aperture packets ideally 4 or
+/// more lenses across) in `style`, calling
 /// store(i, j, colour, primary, surface) once per pixel; `surface` is filled
 /// only when want_surface and primary.status is kHit. The one place where the
 /// styles differ (paper §6), shared by render_frame and the benchmarks.
@@ -132,16 +132,18 @@ void render_block(const RenderScene& scene, const LensArray& camera, const TileR
         for (int j = block.y0; j < block.y1; ++j) single(i, j);
       return;
     case TraceStyle::packet:
-    case TraceStyle::subaperture:
+    case TraceStyle::subaperture: {
+      // Once per block, not per packet: the arrays' members have initialisers.
+      Vec3 c[kPacketSize];
+      PrimaryHit ph[kPacketSize];
+      SurfacePoint sp[kPacketSize];
       for_each_packet_of(block, camera.desc().pixels_per_lens, style == TraceStyle::subaperture,
                          [&](const PixelXY* px, int m) {
-                           Vec3 c[kPacketSize];
-                           PrimaryHit ph[kPacketSize];
-                           SurfacePoint sp[kPacketSize];
                            render_packet(scene, camera, px, m, spp, counts, c, ph, want_surface ? sp : nullptr);
                            for (int l = 0; l < m; ++l) store(px[l].i, px[l].j, c[l], ph[l], sp[l]);
                          });
       return;
+    }
   }
 }
 
