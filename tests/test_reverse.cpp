@@ -1,10 +1,12 @@
 // Reverse reprojection (temporal/reverse.hpp, issue 12): exact visibility,
 // the mapping of a hit back into a keyframe (camera and object motion), what
 // is reused, and what is refused.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include "camera/placement.hpp"
 #include "image/metrics.hpp"
@@ -243,11 +245,16 @@ TEST(ReverseReprojection, AHoldIsItsKeyframeExactlyAndTracesNothing) {
 // none of whose lines can reach the ball (where it is or where the keyframe
 // saw it) are copied from the keyframe without a ray, and the frame equals
 // the one built with every pixel through the lookups.
+// Per-lens packets (32x32 lenses x 8 px) and sub-aperture packets, which
+// span 16 lenses (64x64 x 4 px, where the array prefers them).
 TEST(ReverseReprojection, LockedOffShotCopiesTheElementalImagesNoMovingObjectReaches) {
   const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
   const SceneDesc ball = parse_nff("f 0.9 0.2 0.2 1 0 0 0 1\ns 0 0 0 0.15\n", "ball.nff");
+  for (const auto& [lenses, ppl, style] : {std::tuple{32, 8, TraceStyle::packet}, std::tuple{64, 4, TraceStyle::subaperture}}) {
+  SCOPED_TRACE(fmt::format("{} lenses x {} px", lenses, ppl));
   RenderScene scene({{&desc, false}, {&ball, true}});
-  const LensArrayDesc cam = camera_at(desc, {});
+  const LensArrayDesc cam = camera_at(desc, {}, lenses, ppl);
+  ASSERT_EQ(preferred_style(cam), style);
   // At the array's left edge, in front of it (seen by a few lenses there).
   const Frame& f = cam.frame;
   const Vec3 left = f.to_world_point({-0.4 * cam.lenses_x * cam.pitch, 0, 1.5});
@@ -264,6 +271,7 @@ TEST(ReverseReprojection, LockedOffShotCopiesTheElementalImagesNoMovingObjectRea
   EXPECT_GT(fast.rays.eye, 0u);                   // the lenses that see the ball trace
   EXPECT_LT(fast.rays.eye, slow.rays.eye / 2);    // most are copied
   EXPECT_NE(fast.object, key.object);             // and the ball moved in the image
+  }
 }
 
 TEST(ReverseReprojection, RefusesKeyframesItCannotUse) {

@@ -96,8 +96,9 @@ struct RenderStats {
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary = nullptr, SurfacePoint* surface = nullptr);
 
-/// render_pixel() for up to kPacketSize pixels px[k] (k < n) of one lens,
-/// traced as packets (TraceStyle::packet): colours[k], and primary[k] /
+/// render_pixel() for up to kPacketSize pixels px[k] (k < n), any pixels
+/// (4x4 of one lens, or one of each of 4x4 lenses), traced as packets:
+/// colours[k], and primary[k] /
 /// surface[k] when given. Same result as render_pixel() per pixel whenever
 /// Embree's packet and single-ray kernels agree. With `parts` (spp must be
 /// 1), parts[k] gets what the rays of lane k's shading found (ShadeParts;
@@ -187,13 +188,12 @@ std::optional<PrimaryRay> primary_ray_along(const PixelLine& line, const Bounds3
                                             RecordingMode mode);
 /// primary_ray() for pixels px[0..n), n <= kPacketSize, at sample k
 /// (sample_offset): ok[l] false where it would give nullopt, else out[l],
-/// bit for bit the same. The packet path: pixels of one lens share its
-/// centre (LensArray::lines). Throws std::invalid_argument for n > kPacketSize.
+/// bit for bit the same. The packet path: consecutive pixels of one lens
+/// share its centre (LensArray::lines). Throws std::invalid_argument for n > kPacketSize.
 void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin, const PixelXY px[], int n, int k,
                   PrimaryRay out[], bool ok[]);
 
-/// The eye rays of up to kPacketSize pixels px[l] (l < n) of one lens at
-/// sample k, traced as one packet: the first half of render_packet, for
+/// The eye rays of up to kPacketSize pixels px[l] (l < n) at sample k, traced as one packet: the first half of render_packet, for
 /// callers that schedule the shading themselves (reverse reprojection
 /// gathers the lanes left to shade from several packets into full ones,
 /// because a packet's shadow rays cost about as much with 3 lanes as with 16).

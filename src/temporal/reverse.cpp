@@ -388,14 +388,20 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
     SurfacePoint sps[kPacketSize];
     LensIndex last_lens{-1, -1};
     bool last_unchanged = false;
-    each_packet([&](const PixelXY* px, int k) {
-      if (same) {  // a packet lies in one elemental image (square grid)
-        const LensIndex lens = camera.lens_of_pixel(px[0].i, px[0].j);
-        if (!(lens == last_lens)) last_lens = lens, last_unchanged = lookup.lens_unchanged(camera, lens);
-        if (last_unchanged) {
-          for (int l = 0; l < k; ++l) take_pixel(out, *same, static_cast<size_t>(px[l].j) * W + px[l].i);
-          return;
+    each_packet([&](const PixelXY* all, int n) {
+      const PixelXY* px = all;
+      int k = n;
+      PixelXY kept[kPacketSize];
+      if (same) {  // lens by lens: a sub-aperture packet spans 16 of them
+        k = 0;
+        for (int l = 0; l < n; ++l) {
+          const LensIndex lens = camera.lens_of_pixel(all[l].i, all[l].j);
+          if (!(lens == last_lens)) last_lens = lens, last_unchanged = lookup.lens_unchanged(camera, lens);
+          if (last_unchanged) take_pixel(out, *same, static_cast<size_t>(all[l].j) * W + all[l].i);
+          else kept[k++] = all[l];
         }
+        if (k == 0) return;
+        px = kept;
       }
       bool ok[kPacketSize];
       primary_rays(camera, scene.bounds(), scene.epsilon(), px, k, 0, primary, ok);
