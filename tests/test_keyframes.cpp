@@ -91,5 +91,23 @@ TEST(AnimateCli, AutoKeyframesRenderEveryFrameAndSayWhereTheKeyframesWent) {
     EXPECT_TRUE(std::filesystem::exists(dir.file(fmt::format("out/frame_{:04}.png", f)))) << f;
 }
 
+// A shot where nothing moves: the frames between keyframes are copies of a
+// keyframe, and the run says so instead of reporting reuse and tracing.
+TEST(AnimateCli, FramesOfAStillShotAreReportedAsCopiesOfTheirKeyframe) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.nff"), kScene);
+  test::write_text(dir.file("shot.toml"), "frames = 5\n[array]\nlenses = 8\npixels_per_lens = 4\n[camera]\n" + key(0, 0) +
+                                              "[[object]]\nscene = \"s.nff\"\n");
+  const auto r = test::run_cli("animate " + dir.file("shot.toml") + " -o " + dir.file("out") + " --report " +
+                               dir.file("r.md"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (int f = 1; f < 4; ++f)
+    EXPECT_NE(r.output.find(fmt::format("frame {:>5}  copied ", f)), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("keyframe 0 (same camera, nothing moved), PSNR inf dB"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("% traced"), std::string::npos) << r.output;
+  const std::string report = test::read_bytes(dir.file("r.md"));
+  EXPECT_NE(report.find("| 1 | copy of key 0 |"), std::string::npos) << report;
+}
+
 }  // namespace
 }  // namespace holoray

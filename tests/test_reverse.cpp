@@ -226,7 +226,10 @@ TEST(ReverseReprojection, AHoldIsItsKeyframeExactlyAndTracesNothing) {
     EXPECT_EQ(hold.colour.data, key.colour.data);
     EXPECT_EQ(hold.object, key.object);
     EXPECT_EQ(hold.rays.total(), 0u);
-    EXPECT_EQ(hold.count(PixelStatus::reprojected), hits_of(key));
+    // A copy of the keyframe: every pixel taken from it, the background too.
+    EXPECT_EQ(hold.copied_from, 0);
+    EXPECT_EQ(hold.count(PixelStatus::reprojected), hold.status.size());
+    EXPECT_GT(hold.status.size(), hits_of(key));
 
     const ReprojectedFrame nudged =
         reverse_reproject(scene, LensArray(camera_at(desc, {1e-9, 0, 0})), 1, &key, nullptr, ReverseOptions{reuse});

@@ -323,6 +323,9 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       if (o.quiet) return;
       if (r.keyframe) {
         fmt::print("{}frame {:>5}  traced       {:.3f} s\n", rank_tag, f, r.seconds);
+      } else if (r.copied_from >= 0) {
+        fmt::print("{}frame {:>5}  copied       {:.3f} s  keyframe {} (same camera, nothing moved){}\n", rank_tag, f,
+                   r.seconds, r.copied_from, r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr_all()) : "");
       } else {
         const double px = static_cast<double>(r.pixels);
         fmt::print("{}frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", rank_tag, f,

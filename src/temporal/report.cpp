@@ -90,7 +90,11 @@ std::string markdown_report(const std::string& title, const std::vector<std::str
                                                        db(f.difference->psnr_all()))
                                          : "- | - | - | - | -";
     md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.4f} | {:.4f} |\n", f.frame,
-                      f.keyframe ? "key" : (f.rebuilt ? "reprojected, rebuilt" : "reprojected"), mse,
+                      f.keyframe             ? std::string("key")
+                      : f.copied_from >= 0 ? fmt::format("copy of key {}", f.copied_from)
+                      : f.rebuilt            ? std::string("reprojected, rebuilt")
+                                             : std::string("reprojected"),
+                      mse,
                       f.hold ? db(f.hold->psnr_all()) : "-", f.reprojected, f.missed, f.leaks, f.rejected, f.traced,
                       f.interpolated, f.seconds, f.reference_seconds);
   }

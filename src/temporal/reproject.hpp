@@ -86,6 +86,9 @@ struct ReprojectedFrame {
   std::vector<uint8_t> received;      ///< W*H: 1 where at least one point landed
   std::vector<int32_t> object;        ///< W*H: object id shown (reprojected or traced); -1 background or unknown
   RayCounts rays;                     ///< rays spent shading (geometry reuse) and filling
+  /// The keyframe this frame is a copy of (the same camera, nothing moved:
+  /// every pixel taken from it, none traced); -1 otherwise.
+  int copied_from = -1;
   /// Wall-clock seconds per stage: splat, merge, leaks, check (+ shade), fill.
   struct Seconds {
     double splat = 0, merge = 0, leaks = 0, check = 0, fill = 0;

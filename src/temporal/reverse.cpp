@@ -492,6 +492,9 @@ const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, 
 ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
   ReprojectedFrame out = blank_frame(camera);
   for (size_t p = 0; p < key.object.size(); ++p) take_pixel(out, key, p);
+  // The background too is the keyframe's: nothing in this frame was traced.
+  std::fill(out.status.begin(), out.status.end(), PixelStatus::reprojected);
+  out.copied_from = key.frame;
   return out;
 }
 

@@ -225,6 +225,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       r.leaks = static_cast<int64_t>(rf.count(PixelStatus::leak));
       r.rejected = static_cast<int64_t>(rf.count(PixelStatus::rejected));
       r.reprojected = static_cast<int64_t>(rf.count(PixelStatus::reprojected));
+      r.copied_from = rf.copied_from;
       Fill fill = opt.fill;
       const int64_t holes = r.missed + r.leaks + r.rejected;
       if (fill == Fill::interpolate && static_cast<double>(holes) > opt.max_interpolated_share * r.pixels) {

@@ -90,6 +90,7 @@ struct FrameReport {
   /// the same reference; reprojected frames only.
   std::optional<ImageDifference> hold;
   bool rebuilt = false;  ///< its holes were traced, not interpolated (max_interpolated_share)
+  int copied_from = -1;  ///< a copy of this keyframe (ReprojectedFrame::copied_from); -1 otherwise
 };
 
 /// The keyframes of a shot of `frames` frames at interval K: 0, K, 2K, ... and the last.
