@@ -85,7 +85,10 @@ class PngOutput final : public ScanlineOutput {
     png_ = png_create_write_struct(PNG_LIBPNG_VER_STRING, &messages_, on_error, on_warning);
     if (!png_) throw std::runtime_error("out of memory");
     info_ = png_create_info_struct(png_);
-    if (!info_ || !write_setup(png_, info_, file_.f, w, h, kType[channels], encoding == Encoding::srgb, compression)) fail();
+    if (!info_ || !write_setup(png_, info_, file_.f, w, h, kType[channels], encoding == Encoding::srgb, compression)) {
+      png_destroy_write_struct(&png_, &info_);  // the destructor does not run for a constructor that throws
+      fail();
+    }
   }
   ~PngOutput() override { png_destroy_write_struct(&png_, &info_); }
 
