@@ -68,7 +68,7 @@ ImageBuffer read_exr(const std::string& file);  ///< first part; R, G, B, A firs
 Header jpeg_header(const std::string& file);
 ImageBuffer read_jpeg(const std::string& file);  ///< grey or RGB, libjpeg's default (accurate integer) decoding
 Header stb_header(const std::string& file, const std::string& format);
-ImageBuffer read_stb(const std::string& file);  ///< PNM (binary), Targa, BMP, Radiance HDR, rows from the top
+ImageBuffer read_stb(const std::string& file, const std::string& format);  ///< PNM (binary), Targa, BMP, Radiance HDR, rows from the top
 
 /// An animated GIF looping forever, one local palette per frame (giflib's
 /// median-cut quantizer), frame delay round(100 / fps) hundredths.

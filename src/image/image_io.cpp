@@ -258,7 +258,7 @@ ImageBuffer read_image(const std::string& path) {
     if (h.format == "png") return formats::read_png(path);
     if (h.format == "openexr") return formats::read_exr(path);
     if (h.format == "jpeg") return formats::read_jpeg(path);
-    return formats::read_stb(path);
+    return formats::read_stb(path, h.format);
   } catch (const std::runtime_error& e) {
     throw ImageReadError(path, e.what());
   }

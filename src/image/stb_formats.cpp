@@ -32,32 +32,21 @@ Header stb_header(const std::string& file, const std::string& format) {
   return {w, h, c, format};
 }
 
-ImageBuffer read_stb(const std::string& file) {
+ImageBuffer read_stb(const std::string& file, const std::string& format) {
   int w = 0, h = 0, c = 0;
-  if (!stbi_info(file.c_str(), &w, &h, &c)) throw std::runtime_error(reason());
-  if (detect(file) == "hdr") {
-    const Pixels px{stbi_loadf(file.c_str(), &w, &h, &c, 0)};
+  // stb_image's pixels as floats: HDR as stored, codes times the reciprocal
+  // of the largest, as OpenImageIO converts.
+  auto take = [&](void* pixels, auto tag, float scale) {
+    const Pixels px{pixels};
     if (!px.p) throw std::runtime_error(reason());
     ImageBuffer img(w, h, c);
-    const auto* v = static_cast<const float*>(px.p);
-    std::copy(v, v + img.data.size(), img.data.begin());
+    const auto* v = static_cast<const decltype(tag)*>(px.p);
+    for (size_t k = 0; k < img.data.size(); ++k) img.data[k] = static_cast<float>(v[k]) * scale;
     return img;
-  }
-  // Codes times the reciprocal of the largest, as OpenImageIO converts.
-  if (stbi_is_16_bit(file.c_str())) {
-    const Pixels px{stbi_load_16(file.c_str(), &w, &h, &c, 0)};
-    if (!px.p) throw std::runtime_error(reason());
-    ImageBuffer img(w, h, c);
-    const auto* v = static_cast<const stbi_us*>(px.p);
-    for (size_t k = 0; k < img.data.size(); ++k) img.data[k] = static_cast<float>(v[k]) * (1.0f / 65535.0f);
-    return img;
-  }
-  const Pixels px{stbi_load(file.c_str(), &w, &h, &c, 0)};
-  if (!px.p) throw std::runtime_error(reason());
-  ImageBuffer img(w, h, c);
-  const auto* v = static_cast<const stbi_uc*>(px.p);
-  for (size_t k = 0; k < img.data.size(); ++k) img.data[k] = static_cast<float>(v[k]) * (1.0f / 255.0f);
-  return img;
+  };
+  if (format == "hdr") return take(stbi_loadf(file.c_str(), &w, &h, &c, 0), float{}, 1.0f);
+  if (stbi_is_16_bit(file.c_str())) return take(stbi_load_16(file.c_str(), &w, &h, &c, 0), stbi_us{}, 1.0f / 65535.0f);
+  return take(stbi_load(file.c_str(), &w, &h, &c, 0), stbi_uc{}, 1.0f / 255.0f);
 }
 
 }  // namespace holoray::formats

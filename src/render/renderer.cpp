@@ -263,7 +263,7 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
   // Sub-aperture packets take one pixel of each of 4x4 lenses: tiles of at
   // least 4x4 lenses keep them full.
   const bool subaperture = opt.style == TraceStyle::subaperture;
-  const ElementalTiles tiles(camera, opt.tile_order, y0, y1, subaperture ? 4 : 1);
+  const ElementalTiles tiles(camera, opt.tile_order, y0, y1, subaperture ? kSubapertureLenses : 1);
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
   const int P = camera.desc().pixels_per_lens;
@@ -286,12 +286,14 @@ FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, con
     // P-aligned, so each P x P block is one elemental image (square grid), a
     // piece of one lenticule's strip, or close to one hex lens.
     const bool packets = opt.style == TraceStyle::packet || subaperture;
-    if (packets) render_block(scene, camera, r, opt.style, opt.spp, want_surface, counts, store);
-    for (int by = r.y0; by < r.y1 && !packets; by += P)
-      for (int bx = r.x0; bx < r.x1; bx += P) {
-        const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
-        render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);
-      }
+    if (packets)
+      render_block(scene, camera, r, opt.style, opt.spp, want_surface, counts, store);
+    else
+      for (int by = r.y0; by < r.y1; by += P)
+        for (int bx = r.x0; bx < r.x1; bx += P) {
+          const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
+          render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);
+        }
     tile_counts[static_cast<size_t>(tile)] = counts;
     const int done = ++tiles_done;
     if (opt.progress) opt.progress(static_cast<double>(done) / tiles.count());

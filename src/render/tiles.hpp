@@ -55,6 +55,9 @@ struct PixelXY {
 /// px (room for the block's area) and returns the count.
 int packet_order(const TileRect& block, PixelXY px[]);
 
+/// Lenses across (and down) a sub-aperture packet: 4x4 lenses, 16 rays.
+inline constexpr int kSubapertureLenses = 4;
+
 /// The 16-ray packets of a P-aligned tile, in order: fn(px, n) with n <= 16
 /// pixels. Sub-aperture packets (`subaperture`) take one pixel (u, v) of
 /// each of 4x4 neighbouring lenses, whose lines are parallel on a square
@@ -72,14 +75,15 @@ void for_each_packet_of(const TileRect& r, int P, bool subaperture, Fn&& fn) {
       }
     return;
   }
-  for (int gy = r.y0; gy < r.y1; gy += 4 * P)
-    for (int gx = r.x0; gx < r.x1; gx += 4 * P)
+  constexpr int L = kSubapertureLenses;
+  for (int gy = r.y0; gy < r.y1; gy += L * P)
+    for (int gx = r.x0; gx < r.x1; gx += L * P)
       for (int dv = 0; dv < P; ++dv)
         for (int du = 0; du < P; ++du) {
           PixelXY px[16];
           int m = 0;
-          for (int ly = 0; ly < 4; ++ly)
-            for (int lx = 0; lx < 4; ++lx) {
+          for (int ly = 0; ly < L; ++ly)
+            for (int lx = 0; lx < L; ++lx) {
               const int i = gx + lx * P + du, j = gy + ly * P + dv;
               if (i < r.x1 && j < r.y1) px[m++] = {i, j};
             }

@@ -322,7 +322,7 @@ template <class Tile>
 RayCounts for_each_packet(const LensArray& camera, int threads, Tile&& tile) {
   const int P = camera.desc().pixels_per_lens;
   const bool subaperture = preferred_style(camera.desc()) == TraceStyle::subaperture;
-  const ElementalTiles tiles(camera, TileOrder::row_major, 0, -1, subaperture ? 4 : 1);
+  const ElementalTiles tiles(camera, TileOrder::row_major, 0, -1, subaperture ? kSubapertureLenses : 1);
   std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
   for_each_tile(tiles, threads, [&](int t) {
     const TileRect r = tiles.rect(t);
