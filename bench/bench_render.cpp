@@ -49,6 +49,8 @@ struct Fixture {
 // for every hit on a mirror (ks > 0), its mirror ray.
 struct KindRays {
   std::vector<RayPacket> shadow;
+  std::vector<int> shadow_light;  // the light each shadow packet goes to
+  std::vector<RayPacket> shadow_sorted;  // the same rays regrouped: sorted_shadow_packets()
   std::vector<Ray> mirror;
   int64_t shadow_rays = 0;
 };
@@ -193,6 +195,7 @@ KindRays& kind_rays(const std::string& name, int lenses) {
       }
       if (cast == 0) continue;
       k.shadow.push_back(shadow);
+      k.shadow_light.push_back(static_cast<int>(&light - scene.lights().data()));
       k.shadow_rays += cast;
     }
   }
@@ -317,6 +320,70 @@ void BM_ShadowRays(benchmark::State& state, const std::string& name, int lenses)
   state.counters["rays"] = benchmark::Counter(static_cast<double>(k.shadow_rays * state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// The frame's shadow rays regrouped into packets of one light whose origins
+// are neighbours: sorted by light, then by the Morton code of the origin
+// (10 bits per axis over the scene bounds). The ceiling of what a renderer
+// that queues a whole frame's shadow rays before tracing them could gain
+// (the renderer traces each eye packet's shadow rays right away).
+const std::vector<RayPacket>& sorted_shadow_packets(const std::string& name, int lenses) {
+  KindRays& k = kind_rays(name, lenses);
+  if (!k.shadow_sorted.empty()) return k.shadow_sorted;
+  const Bounds3 b = fixture(name, lenses).scene->bounds();
+  auto morton = [&](const Vec3& p) {
+    auto cell = [](double v, double lo, double hi) {
+      return static_cast<uint64_t>(std::clamp((v - lo) / (hi - lo), 0.0, 1.0) * 1023);
+    };
+    const uint64_t x = cell(p.x, b.lo.x, b.hi.x), y = cell(p.y, b.lo.y, b.hi.y), z = cell(p.z, b.lo.z, b.hi.z);
+    uint64_t m = 0;
+    for (int i = 0; i < 10; ++i) m |= (x >> i & 1) << (3 * i) | (y >> i & 1) << (3 * i + 1) | (z >> i & 1) << (3 * i + 2);
+    return m;
+  };
+  struct Keyed {
+    uint64_t key;
+    Ray ray;
+  };
+  std::vector<Keyed> all;
+  all.reserve(static_cast<size_t>(k.shadow_rays));
+  for (size_t p = 0; p < k.shadow.size(); ++p)
+    for (int l = 0; l < kPacketSize; ++l)
+      if (k.shadow[p].active[l])
+        all.push_back({static_cast<uint64_t>(k.shadow_light[p]) << 32 | morton(k.shadow[p].rays[l].org), k.shadow[p].rays[l]});
+  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& c) { return a.key < c.key; });
+  RayPacket cur;
+  int n = 0;
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (n == kPacketSize || (n > 0 && all[i].key >> 32 != all[i - 1].key >> 32)) {
+      k.shadow_sorted.push_back(cur);
+      cur = RayPacket{};
+      n = 0;
+    }
+    cur.rays[n] = all[i].ray;
+    cur.active[n++] = true;
+  }
+  if (n > 0) k.shadow_sorted.push_back(cur);
+  return k.shadow_sorted;
+}
+
+// The same shadow rays as BM_ShadowRays, in sorted_shadow_packets' packets
+// (the sort itself not timed).
+void BM_ShadowRaysSorted(benchmark::State& state, const std::string& name, int lenses) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  const std::vector<RayPacket>& packets = sorted_shadow_packets(name, lenses);
+  const int64_t rays = kind_rays(name, lenses).shadow_rays;
+  const AccelScene& accel = fixture(name, lenses).scene->accel();
+  const int64_t n = static_cast<int64_t>(packets.size());
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 256), [&](const tbb::blocked_range<int64_t>& r) {
+      bool blocked[kPacketSize];
+      for (int64_t p = r.begin(); p != r.end(); ++p) {
+        accel.occluded(packets[static_cast<size_t>(p)], blocked);
+        benchmark::DoNotOptimize(blocked);
+      }
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(rays * state.iterations()), benchmark::Counter::kIsRate);
+}
+
 // Mirror rays alone, as the renderer traces them: one by one, incoherent,
 // each hit refined in double (AccelScene::intersect).
 void BM_MirrorRays(benchmark::State& state, const std::string& name, int lenses) {
@@ -386,6 +453,7 @@ const int registered = [] {
       const std::string kind = "Kind" + std::to_string(lenses * kPixelsPerLens) + "_";
       reg(kind + "eye", BM_IntegralPrimary, TraceStyle::packet, lenses)->Iterations(3)->Repetitions(3);
       reg(kind + "shadow", BM_ShadowRays, lenses)->Iterations(3)->Repetitions(3);
+      reg(kind + "shadow_sorted", BM_ShadowRaysSorted, lenses)->Iterations(3)->Repetitions(3);
       reg(kind + "mirror", BM_MirrorRays, lenses)->Iterations(3)->Repetitions(3);
     }
     reg("EmbreeRaw", BM_EmbreeRaw)->Iterations(3)->Repetitions(3);

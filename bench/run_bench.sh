@@ -93,10 +93,12 @@ for s in scenes:
 print("\n### Mrays/s by ray kind and EIA size (16 px per lens), Google Benchmark medians\n")
 print("Each kind traced alone, as the renderer traces it: eye rays in the packet style (generation, clipping, "
       "trace, refinement); the shadow rays of the eye rays' hits, 16-ray packets toward one light "
-      "(rtcOccluded16); the mirror rays of the hits on mirrors, one by one, incoherent, refined. The share of "
-      "each kind is that of a whole Whitted frame at that size (`holoray render`, all depths).\n")
-print("| scene | EIA | eye | shadow | mirror | frame rays: eye | shadow | reflected + refracted |")
-print("|---|---|---:|---:|---:|---:|---:|---:|")
+      "(rtcOccluded16); the same shadow rays regrouped over the whole frame into packets of one light with "
+      "neighbouring origins (sorted by Morton code; the sort not timed: the ceiling of queuing a frame's shadow "
+      "rays before tracing them); the mirror rays of the hits on mirrors, one by one, incoherent, refined. "
+      "The share of each kind is that of a whole Whitted frame at that size (`holoray render`, all depths).\n")
+print("| scene | EIA | eye | shadow | shadow, sorted | mirror | frame rays: eye | shadow | reflected + refracted |")
+print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
 for s in scenes:
     nff = os.path.abspath(f"{shared}/scenes/nff/{s}.nff")
     for lenses in (32, 64, 128):
@@ -107,7 +109,8 @@ for s in scenes:
         eye, shadow, refl, refr = (int(x) for x in m.groups())
         total = eye + shadow + refl + refr
         mirror = f"{rate(f'Kind{w}_mirror', s):.1f}" if (f"Kind{w}_mirror", s) in med else "(no mirrors)"
-        print(f"| {s} | {w}x{w} | {rate(f'Kind{w}_eye', s):.1f} | {rate(f'Kind{w}_shadow', s):.1f} | {mirror} | "
+        print(f"| {s} | {w}x{w} | {rate(f'Kind{w}_eye', s):.1f} | {rate(f'Kind{w}_shadow', s):.1f} | "
+              f"{rate(f'Kind{w}_shadow_sorted', s):.1f} | {mirror} | "
               f"{100 * eye / total:.0f}% | {100 * shadow / total:.0f}% | {100 * (refl + refr) / total:.0f}% |")
 
 print(f"\n### Full tracing by EIA size, 16 px per lens, {threads} threads (render s, median of {repeats})\n")
