@@ -107,6 +107,10 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
   cmd->add_option("--display", o.display, "Display file (docs/display-files.md): each frame as that display's native panel image, placed by the frame's viewpoint and traced in full (as render --display)");
+  CLI::Option* lg = cmd->add_option("--looking-glass", o.looking_glass, "A Looking Glass's calibration file (visual.json): each frame as its native panel image, centred on the frame's viewpoint and traced in full (as render --looking-glass)");
+  lg->excludes("--display");
+  cmd->add_option("--views", o.looking_glass_views, "With --looking-glass: the views N of the quilt the native frames are the continuous version of")
+      ->check(CLI::Range(1, 4096))->needs(lg)->capture_default_str();
   cmd->add_option("--frames", o.frames, "Render only frames A:B (inclusive, from 0; or one frame N) and the keyframes they need, as a render farm's task does: ranges covering the shot, run apart (even at once, into one folder), give the folder of one run");
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
   cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete");
@@ -123,8 +127,11 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   try {
     SequenceOptions so;
     const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
-    const bool panel = !o.display.empty();
-    if (panel && pinhole) throw std::invalid_argument("--display: renders the panel through its lenses; it goes without --camera pinhole");
+    const bool glass = !o.looking_glass.empty();
+    const bool panel = !o.display.empty() || glass;
+    const char* panel_flag = glass ? "--looking-glass" : "--display";
+    if (panel && pinhole)
+      throw std::invalid_argument(fmt::format("{}: renders the panel's own views; it goes without --camera pinhole", panel_flag));
     const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
     so.method = pick<Method>("--method", method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
     if (pinhole && so.method != Method::full)
@@ -138,10 +145,14 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       so.pinhole = std::array<int, 2>{0, 0};  // the scene's, filled in once the shot is read
     }
     if (panel && so.method != Method::full)
-      throw std::invalid_argument("--display: goes with --method full (reuse works on elemental images)");
+      throw std::invalid_argument(fmt::format("{}: goes with --method full (reuse works on elemental images)", panel_flag));
     if (panel && (!o.report.empty() || cache_enabled(o.cache)))
-      throw std::invalid_argument("--display: goes without --report and --cache (native panels are traced in full, without the cache)");
-    if (panel) so.display = read_display_file(o.display);
+      throw std::invalid_argument(fmt::format("{}: goes without --report and --cache (native panels are traced in full, without the cache)", panel_flag));
+    if (!o.display.empty()) so.display = read_display_file(o.display);
+    if (glass) {
+      so.looking_glass = read_looking_glass(o.looking_glass);
+      so.looking_glass_views = o.looking_glass_views;
+    }
     if (pinhole && !o.report.empty())
       throw std::invalid_argument("--report: goes with the integral camera (pinhole previews are traced in full)");
     if (pinhole && cache_enabled(o.cache))
@@ -229,14 +240,15 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     {
       // Two point images, two z-buffers and the frame (a panel: its samples,
       // three per pixel, and the packed frame): refuse before the first trace.
-      const uint64_t panel_pixels = so.display ? uint64_t(so.display->width) * so.display->height : 0;
-      const uint64_t need = so.display ? panel_pixels * (3 * 12 + 2 * 12)
-                                       : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
+      const int panel_w = so.display ? so.display->width : so.looking_glass ? so.looking_glass->width : 0;
+      const int panel_h = so.display ? so.display->height : so.looking_glass ? so.looking_glass->height : 0;
+      const uint64_t panel_pixels = uint64_t(panel_w) * panel_h;
+      const uint64_t need = panel ? panel_pixels * (3 * 12 + 2 * 12)
+                                  : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
       const uint64_t have = physical_memory_bytes();
       if (have && need > have / 10 * 8)
         throw std::length_error(fmt::format("{}x{} frames need {:.2f} GiB while animating, more than 80% of this machine's {:.2f} GiB",
-                                            so.display ? so.display->width : first.width(),
-                                            so.display ? so.display->height : first.height(), need / 1073741824.0,
+                                            panel ? panel_w : first.width(), panel ? panel_h : first.height(), need / 1073741824.0,
                                             have / 1073741824.0));
     }
     std::error_code ec;
@@ -293,6 +305,9 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
                  shot.shot().objects.size());
       if (so.display)
         fmt::print("panel      {}x{} px from {}, each frame's viewpoint\n", so.display->width, so.display->height, o.display);
+      else if (so.looking_glass)
+        fmt::print("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
+                   so.looking_glass->width, so.looking_glass->height, o.looking_glass, so.looking_glass_views);
       else if (so.pinhole)
         fmt::print("view       {}x{} px, pinhole, each frame's viewpoint\n", (*so.pinhole)[0], (*so.pinhole)[1]);
       else

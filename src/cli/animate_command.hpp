@@ -7,6 +7,7 @@
 
 #include "cli/cache_options.hpp"
 #include "cluster/mpi_world.hpp"
+#include "display/looking_glass.hpp"
 
 namespace holoray::cli {
 
@@ -16,6 +17,8 @@ struct AnimateCommandOptions {
   std::string format = "png", encoding = "linear", report;
   std::string frames;                   ///< --frames A:B (inclusive) or N: only those frames
   std::string display;                  ///< --display FILE: native panel frames, traced in full
+  std::string looking_glass;            ///< --looking-glass CAL.json: Looking Glass native frames, traced in full
+  int looking_glass_views = kDefaultLookingGlassViews;  ///< --views N
   std::string video;                    ///< --video PATH (.mkv FFV1 lossless, .mp4 H.264)
   int crf = -1;                         ///< --crf N (H.264; -1: 18)
   std::string keyframe_interval = "8";  ///< K, or "auto" (keyframe_schedule.hpp)

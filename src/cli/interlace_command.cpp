@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <regex>
 
@@ -19,6 +20,7 @@ CLI::App* add_interlace_command(CLI::App& app, InterlaceCommandOptions& o) {
   cmd->add_option("-o,--output", o.output, "Native panel image (.png or .exr)")->required();
   cmd->add_option("--quilt", o.quilt, "Columns x rows of the quilt (default: read from the file's _qsCxR name)");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb (the quilt's values are passed on as they are)")->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return cmd;
 }
 
@@ -44,7 +46,15 @@ int run_interlace(const InterlaceCommandOptions& o) {
                                               q.columns, q.rows));
     q.view_width = quilt.width / q.columns, q.view_height = quilt.height / q.rows;
     q.view_cone_deg = cal.view_cone_deg;
-    write_image(o.output, interlace_quilt(quilt, q, cal), encoding);
+    const auto start = std::chrono::steady_clock::now();
+    const ImageBuffer panel = interlace_quilt(quilt, q, cal);
+    write_image(o.output, panel, encoding);
+    if (!o.quiet) {
+      fmt::print("panel      {}x{} px, Looking Glass ({}), from a {}x{} quilt of {}x{} views\n", cal.width, cal.height,
+                 o.calibration, q.columns, q.rows, q.view_width, q.view_height);
+      fmt::print("wrote      {} ({:.3f} s)\n", o.output,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "holoray: error: {}\n", e.what());

@@ -9,6 +9,7 @@ namespace holoray::cli {
 
 struct InterlaceCommandOptions {
   std::string input, output, calibration, quilt, encoding = "linear";
+  bool quiet = false;
 };
 
 CLI::App* add_interlace_command(CLI::App& app, InterlaceCommandOptions& opts);

@@ -118,6 +118,8 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   for (CLI::Option* a : array_options) lg->excludes(a);
   lg->excludes(display);
   lg->excludes(quilt);
+  cmd->add_option("--views", o.looking_glass_views, "With --looking-glass: the views N of the quilt the native image is the continuous version of (a subpixel whose view value x has x N = k shows quilt view k)")
+      ->check(CLI::Range(1, 4096))->needs(lg)->capture_default_str();
   cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)");
   cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer");
   cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
@@ -210,7 +212,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     if (calibration) {
       if (!desc.viewpoint)
         throw std::invalid_argument(fmt::format("--looking-glass: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));
-      glass.emplace(*calibration, view_of(*desc.viewpoint, calibration->width, calibration->height));
+      glass.emplace(*calibration, view_of(*desc.viewpoint, calibration->width, calibration->height), o.looking_glass_views);
     } else if (quilt_desc) {
       if (!desc.viewpoint)
         throw std::invalid_argument(fmt::format("--quilt: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));

@@ -7,6 +7,7 @@
 
 #include "cli/cache_options.hpp"
 #include "cluster/mpi_world.hpp"
+#include "display/looking_glass.hpp"
 
 namespace holoray::cli {
 
@@ -23,6 +24,7 @@ struct RenderCommandOptions {
   double view_cone = 40;  ///< --view-cone DEG
   int quilt_view = -1;  ///< --quilt-view K: only view K, as a plain image
   std::string looking_glass;  ///< --looking-glass CAL.json: a Looking Glass's native panel
+  int looking_glass_views = kDefaultLookingGlassViews;  ///< --views N: the quilt it is the continuous version of
   CacheCommandOptions cache;
   bool quiet = false;
 };

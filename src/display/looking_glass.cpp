@@ -58,25 +58,81 @@ LookingGlassCalibration parse_looking_glass(std::string_view text, const std::st
   if (!(c.view_cone_deg > 0 && c.view_cone_deg < 180))
     throw std::runtime_error(fmt::format("{}: expected 'viewCone' from 0 to 180 degrees, found {} degrees", source, c.view_cone_deg));
   c.width = static_cast<int>(w), c.height = static_cast<int>(h);
+  if (const auto it = j.find("subpixelCells"); it != j.end()) {
+    if (!it->is_array())
+      throw std::runtime_error(fmt::format("{}: expected 'subpixelCells' to be an array of cells, found {}", source, it->dump()));
+    if (it->size() > kMaxSubpixelCells)
+      throw std::runtime_error(fmt::format("{}: expected at most {} 'subpixelCells' (the device shader holds {} floats), found {}",
+                                           source, kMaxSubpixelCells, 6 * kMaxSubpixelCells, it->size()));
+    for (size_t k = 0; k < it->size(); ++k) {
+      const nlohmann::json& cell = (*it)[k];
+      const std::string where = fmt::format("{} (subpixelCells[{}])", source, k);
+      if (!cell.is_object()) throw std::runtime_error(fmt::format("{}: expected an object of offsets, found {}", where, cell.dump()));
+      SubpixelCell sc;
+      const char* names[3][2] = {{"ROffsetX", "ROffsetY"}, {"GOffsetX", "GOffsetY"}, {"BOffsetX", "BOffsetY"}};
+      for (int s = 0; s < 3; ++s) sc.dx[s] = field(cell, names[s][0], where), sc.dy[s] = field(cell, names[s][1], where);
+      c.cells.push_back(sc);
+    }
+  }
+  const double pattern = field(j, "CellPatternMode", source, 1.0);
+  if (!(pattern >= 0 && pattern <= 4 && pattern == std::floor(pattern)))
+    throw std::runtime_error(fmt::format("{}: expected 'CellPatternMode' to be 0, 1, 2, 3 or 4, found {}", source, pattern));
+  c.cell_pattern = static_cast<int>(pattern);
   return c;
 }
 
 LookingGlassCalibration read_looking_glass(const std::string& path) { return parse_looking_glass(read_text_file(path), path); }
 
-double looking_glass_view(const LookingGlassCalibration& c, int i, int j, int s) {
-  const double W = c.width, H = c.height;
-  double u = (i + 0.5) / W, v = (H - j - 0.5) / H;
-  if (c.flip_x) u = 1 - u;
-  if (c.flip_y) v = 1 - v;
-  const int sub = c.flip_subp ? 2 - s : s;
-  const double lenticules = c.pitch * (W / c.dpi) * std::cos(std::atan(1 / c.slope));
-  const double a = (u + sub / (3 * W) + v * H / (W * c.slope)) * lenticules - c.center;
-  double f = a - std::floor(a);
-  if (c.inv_view) f = 1 - f;
-  return f >= 1 ? 0 : f;  // 1 - 0 wraps to the same place as 0
+int looking_glass_cell(const LookingGlassCalibration& c, int i, int j) {
+  if (c.cells.empty()) return 0;
+  // The shader's int(u W) and int(v H) at the pixel's centre: the column
+  // and the row counted from the bottom.
+  const int x = i, y = c.height - 1 - j;
+  int cell = 0;
+  switch (c.cell_pattern) {
+    case 0: cell = 0; break;
+    case 1: cell = (y % 2 == 0) == (x % 2 == 0) ? 0 : 1; break;  // checkerboard AB / BA
+    case 2: cell = x % 2; break;
+    case 3: cell = (y + (x % 2) * 2) % 4; break;
+    case 4: cell = y % 2; break;
+  }
+  return cell % static_cast<int>(c.cells.size());
 }
 
-LookingGlassCamera::LookingGlassCamera(const LookingGlassCalibration& c, const PinholeDesc& centre) : c_(c), centre_(centre) {
+double looking_glass_view(const LookingGlassCalibration& c, int i, int j, int s) {
+  const double W = c.width, H = c.height;
+  const double u = (i + 0.5) / W, v = (H - j - 0.5) / H;
+  const double flip = c.flip_x ? -1 : 1;
+  const double tilt = H / (W * c.slope) * flip;
+  const double lenticules = c.pitch * W / c.dpi * std::cos(std::atan(1 / c.slope));
+  double a;
+  if (c.cells.empty()) {
+    a = u + s * (flip / (3 * W)) + v * tilt;
+  } else {
+    const SubpixelCell& cell = c.cells[static_cast<size_t>(looking_glass_cell(c, i, j))];
+    a = (u + cell.dx[s] / W) + (v + cell.dy[s] / H) * tilt;
+  }
+  a = a * lenticules - c.center;
+  return std::clamp(1 - (a - std::floor(a)), 0.00001, 0.999999);
+}
+
+ViewBlend looking_glass_blend(double x, int views) {
+  // OldViewFiltering: the view index of x and of x + 1/N (GetViewsColors'
+  // int()), and the weight fract(x N); index N is read from a quilt texture
+  // that repeats: view 0.
+  const double n = views;
+  ViewBlend b;
+  b.first = static_cast<int>(x * n);
+  b.second = static_cast<int>((x + 1 / n) * n);
+  if (b.second >= views) b.second = 0;
+  b.first = std::min(b.first, views - 1);
+  b.w = x * n - std::floor(x * n);
+  return b;
+}
+
+LookingGlassCamera::LookingGlassCamera(const LookingGlassCalibration& c, const PinholeDesc& centre, int views)
+    : c_(c), centre_(centre), views_(views) {
+  if (views < 1) throw std::invalid_argument(fmt::format("a Looking Glass quilt has at least 1 view, got {}", views));
   centre_.width = c.width, centre_.height = c.height;
   PinholeCamera check(centre_);  // validates the centre view
   (void)check;
@@ -90,7 +146,9 @@ PixelLine LookingGlassCamera::line(int c, int j, double u, double v) const {
   // PinholeCamera(sheared_view(centre, phi)).line(i, j, u, v), with the
   // centre view's frame computed once instead of per subpixel.
   const int i = c / 3, s = c % 3;
-  const double t = std::tan((looking_glass_view(c_, i, j, s) - 0.5) * c_.view_cone_deg * kPi / 180);
+  const double index = looking_glass_view(c_, i, j, s) * views_;  // continuous quilt view index
+  const double along = views_ == 1 ? 0.5 : index / (views_ - 1);
+  const double t = std::tan((along - 0.5) * c_.view_cone_deg * kPi / 180);
   const double x = (i + u + (centre_.sample_u - 0.5) - 0.5 * c_.width) * pixel_ + (centre_.shift_x - t);
   const double y = (0.5 * c_.height - (j + v + (centre_.sample_v - 0.5))) * pixel_;
   return {centre_.from + frame_.x * (distance_ * t), normalize(frame_.to_world_dir({x, y, -1}))};
@@ -106,29 +164,42 @@ ImageBuffer interlace_quilt(const ImageBuffer& quilt, const QuiltDesc& q, const 
                                             quilt.width, quilt.height, quilt.channels, q.columns, q.rows, q.view_width,
                                             q.view_height, q.columns * q.view_width, q.rows * q.view_height));
   const int n = q.columns * q.rows;
-  ImageBuffer out(c.width, c.height, 3);
-  // Channel ch of view k at (x, y) in view pixels, bilinear, clamped to the view.
-  auto sample = [&](int k, double x, double y, int ch) {
-    const int x0 = (k % q.columns) * q.view_width, y0 = (q.rows - 1 - k / q.columns) * q.view_height;
-    x = std::clamp(x, 0.0, q.view_width - 1.0), y = std::clamp(y, 0.0, q.view_height - 1.0);
-    const int ix = static_cast<int>(x), iy = static_cast<int>(y);
-    const int ix1 = std::min(ix + 1, q.view_width - 1), iy1 = std::min(iy + 1, q.view_height - 1);
-    const double fx = x - ix, fy = y - iy;
-    auto at = [&](int a, int b) { return double(quilt.at(x0 + a, y0 + b)[ch]); };
-    const double top = at(ix, iy) + fx * (at(ix1, iy) - at(ix, iy));
-    const double bottom = at(ix, iy1) + fx * (at(ix1, iy1) - at(ix, iy1));
-    return top + fy * (bottom - top);
+  const int qw = quilt.width, qh = quilt.height;
+  // The shader's texture(u_texture, quilt_uv): bilinear between texel
+  // centres, the texture repeating (GL's default wrap); (s, t) from the
+  // bottom-left corner, the image's rows from the top.
+  auto texture = [&](double s, double t, int ch) {
+    const double x = s * qw - 0.5, y = t * qh - 0.5;
+    const double x0 = std::floor(x), y0 = std::floor(y);
+    const double fx = x - x0, fy = y - y0;
+    auto wrap = [](double k, int size) { return static_cast<int>(k - size * std::floor(k / size)); };
+    const int xa = wrap(x0, qw), xb = wrap(x0 + 1, qw);
+    const int ya = qh - 1 - wrap(y0, qh), yb = qh - 1 - wrap(y0 + 1, qh);
+    auto at = [&](int a, int b) { return double(quilt.at(a, b)[ch]); };
+    const double lo = at(xa, ya) + fx * (at(xb, ya) - at(xa, ya));
+    const double hi = at(xa, yb) + fx * (at(xb, yb) - at(xa, yb));
+    return lo + fy * (hi - lo);
   };
+  // GetQuiltCoordinates: view k's tile, with the shader's column count
+  // less 0.00001 ("on some platforms this is required"), which shifts the
+  // reads of upper rows by a hundred-thousandth of a tile.
+  const double tx = q.columns - 0.00001;
+  auto sample = [&](int k, double u, double v, int ch) {
+    const double view = std::clamp(static_cast<double>(k), 0.0, static_cast<double>(n));
+    const double row = std::floor(view / tx), column = view - tx * row;
+    return texture((column + u) / tx, (row + v) / q.rows, ch);
+  };
+  ImageBuffer out(c.width, c.height, 3);
   for (int j = 0; j < c.height; ++j)
     for (int i = 0; i < c.width; ++i) {
-      // The pixel's centre in view pixels (a view spans the whole panel).
-      const double x = (i + 0.5) * q.view_width / c.width - 0.5, y = (j + 0.5) * q.view_height / c.height - 0.5;
+      const double u = (i + 0.5) / c.width, v = (c.height - j - 0.5) / c.height;
       for (int ch = 0; ch < 3; ++ch) {
-        const double view = n == 1 ? 0 : looking_glass_view(c, i, j, ch) * (n - 1);
-        const int k0 = std::min(static_cast<int>(view), n - 1), k1 = std::min(k0 + 1, n - 1);
-        const double t = view - k0;
-        const double a = sample(k0, x, y, ch);
-        out.at(i, j)[ch] = static_cast<float>(t == 0 ? a : a + t * (sample(k1, x, y, ch) - a));
+        const ViewBlend b = looking_glass_blend(looking_glass_view(c, i, j, ch), n);
+        // After the last view the shader reads tile N, which the repeating
+        // texture turns into view 0 (read a hair to the side).
+        const int second = b.first == n - 1 ? n : b.second;
+        const double first = sample(b.first, u, v, ch), next = sample(second, u, v, ch);
+        out.at(i, j)[ch] = static_cast<float>(first * (1 - b.w) + next * b.w);  // GLSL mix()
       }
     }
   return out;

@@ -115,7 +115,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     return r;
   };
 
-  if ((opt.pinhole || opt.display) && opt.method != Method::full)
+  const bool panel_frames = opt.pinhole || opt.display || opt.looking_glass;
+  if (panel_frames && opt.method != Method::full)
     throw std::invalid_argument("pinhole and display frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
     // One group per frame (frame_groups).
@@ -124,8 +125,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
       const int f = static_cast<int>(*g);
       if (done(f)) continue;
       if (stop()) return;
-      if (opt.pinhole || opt.display) {
-        // A view of the frame's viewpoint: a pinhole preview, or a display's
+      if (panel_frames) {
+        // A view of the frame's viewpoint: a pinhole preview, a Looking Glass, or a display's
         // panel (through the integral camera when it is an ordinary EIA, as
         // `render --display` does).
         shot.seek(f);
@@ -136,6 +137,11 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         RenderStats stats;
         const auto start = Clock::now();
         const FrameBuffers b = [&] {
+          if (opt.looking_glass) {
+            const LookingGlassCalibration& c = *opt.looking_glass;
+            return render_looking_glass(shot.scene(), LookingGlassCamera(c, view_of(vp, c.width, c.height), opt.looking_glass_views),
+                                        ro, stats);
+          }
           if (!opt.display) return render_view(shot.scene(), PinholeCamera(view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1])), ro, stats);
           if (const auto eia = as_lens_array(*opt.display, vp)) return render_frame(shot.scene(), LensArray(*eia), ro, stats);
           return render_display(shot.scene(), DisplayCamera(place_display(*opt.display, vp)),

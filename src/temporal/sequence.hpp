@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "display/display_desc.hpp"
+#include "display/looking_glass.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "shot/shot_frames.hpp"
@@ -55,6 +56,11 @@ struct SequenceOptions {
   /// image (display/display_file.hpp), placed by the frame's viewpoint
   /// (ShotFrames::viewpoint) as `render --display` places it.
   std::optional<DisplayDesc> display;
+  /// Method::full only: render each frame as this Looking Glass's native
+  /// panel image centred on the frame's viewpoint, the continuous version of
+  /// a quilt of `looking_glass_views` views (as `render --looking-glass`).
+  std::optional<LookingGlassCalibration> looking_glass;
+  int looking_glass_views = kDefaultLookingGlassViews;
   /// Shadow cache (reuse/shadow_cache.hpp) for traced frames, filling and
   /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
   /// it lives across frames while nothing moves. The reference frames
