@@ -101,11 +101,7 @@ TEST(DisplayFile, ImpossibleValuesAreRefusedWithTheValueAndItsUnit) {
 
 // A scene with a viewpoint, for placement and rendering.
 SceneDesc small_scene() {
-  return parse_nff(
-      "v\nfrom 0 -8 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"
-      "l 4 -5 8\nf 0.9 0.3 0.2 1 0 0 0 0\ns 0 0 0 1\nf 0.2 0.8 0.3 1 0 0 0 0\ns 1.5 1 0.5 0.6\n"
-      "f 0.8 0.8 0.8 1 0 0 0 0\np 4\n-4 -4 -1\n4 -4 -1\n4 4 -1\n-4 4 -1\n",
-      "s.nff");
+  return parse_nff(test::kSmallViewpointScene, "s.nff");
 }
 
 // The contract's camera for a whole-pixel display: the integral camera's

@@ -28,6 +28,13 @@ inline std::string shared_dir() { return HOLORAY_SHARED_DIR; }
 inline std::string source_dir() { return HOLORAY_SOURCE_DIR; }
 inline bool have_shared_scenes() { return std::filesystem::is_directory(shared_dir() + "/scenes/nff"); }
 
+/// Two spheres on a floor under one light, with a viewpoint (NFF text), for
+/// placing and rendering the display cameras.
+inline constexpr const char* kSmallViewpointScene =
+    "v\nfrom 0 -8 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 64 64\n"
+    "l 4 -5 8\nf 0.9 0.3 0.2 1 0 0 0 0\ns 0 0 0 1\nf 0.2 0.8 0.3 1 0 0 0 0\ns 1.5 1 0.5 0.6\n"
+    "f 0.8 0.8 0.8 1 0 0 0 0\np 4\n-4 -4 -1\n4 -4 -1\n4 4 -1\n-4 4 -1\n";
+
 /// The array a scene's NFF viewpoint places (lenses x lenses, ppl pixels
 /// per lens), with the viewpoint and its look-at point moved by `shift` (world).
 inline LensArrayDesc camera_at(const SceneDesc& desc, const Vec3& shift, int lenses = 32, int ppl = 8) {
