@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "render/tiles.hpp"  // parallel_for_n: rows on all cores
 #include "scene/file_text.hpp"
 
 namespace holoray {
@@ -190,7 +191,7 @@ ImageBuffer interlace_quilt(const ImageBuffer& quilt, const QuiltDesc& q, const 
     return texture((column + u) / tx, (row + v) / q.rows, ch);
   };
   ImageBuffer out(c.width, c.height, 3);
-  for (int j = 0; j < c.height; ++j)
+  parallel_for_n(c.height, 0, [&](int j) {
     for (int i = 0; i < c.width; ++i) {
       const double u = (i + 0.5) / c.width, v = (c.height - j - 0.5) / c.height;
       for (int ch = 0; ch < 3; ++ch) {
@@ -202,6 +203,7 @@ ImageBuffer interlace_quilt(const ImageBuffer& quilt, const QuiltDesc& q, const 
         out.at(i, j)[ch] = static_cast<float>(first * (1 - b.w) + next * b.w);  // GLSL mix()
       }
     }
+  });
   return out;
 }
 
