@@ -131,7 +131,8 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const bool panel = !o.display.empty() || glass;
     const char* panel_flag = glass ? "--looking-glass" : "--display";
     if (panel && pinhole)
-      throw std::invalid_argument(fmt::format("{}: renders the panel's own views; it goes without --camera pinhole", panel_flag));
+      throw std::invalid_argument(glass ? "--looking-glass: renders the panel's own views; it goes without --camera pinhole"
+                                        : "--display: renders the panel through its lenses; it goes without --camera pinhole");
     const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
     so.method = pick<Method>("--method", method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
     if (pinhole && so.method != Method::full)
