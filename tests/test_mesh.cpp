@@ -123,11 +123,33 @@ TEST(MeshImport, DefaultViewShowsTheWholeMesh) {
     }
 }
 
-TEST(MeshImport, TexturesAreReportedNotSilentlyDropped) {
+TEST(MeshImport, MissingTextureIsNamedInAWarningAndShownAsAChecker) {
+  test::TempDir dir;
+  test::write_text(dir.file("m.mtl"), "newmtl wood\nKd 0.6 0.4 0.2\nmap_Kd wood.png\n");
+  test::write_text(dir.file("m.obj"),
+                   "mtllib m.mtl\nusemtl wood\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+  const SceneDesc d = read_mesh_file(dir.file("m.obj"));
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_EQ(d.warnings[0], dir.file("m.obj") +
+                               ": warning: material 'wood': cannot read texture 'wood.png' (no such file): a checker "
+                               "shows where it goes");
+  const Material& m = d.materials.at(static_cast<size_t>(d.objects.at(0).material));
+  ASSERT_GE(m.texture, 0);
+  const ImageMap& img = d.images.at(static_cast<size_t>(d.textures.at(static_cast<size_t>(m.texture)).image));
+  EXPECT_EQ(img.width, 8);
+  EXPECT_EQ(img.rgb[0], 255);  // magenta
+  EXPECT_EQ(img.rgb[1], 0);
+  EXPECT_EQ(img.rgb[3], 40);  // dark grey beside it
+}
+
+TEST(MeshImport, TexturedMaterialOnAMeshWithoutTextureCoordinatesIsNamed) {
   test::TempDir dir;
   const SceneDesc d = triangle_with(dir, "newmtl wood\nKd 0.6 0.4 0.2\nmap_Kd wood.png\n");
-  ASSERT_EQ(d.warnings.size(), 1u);
-  EXPECT_EQ(d.warnings[0], dir.file("m.obj") + ": warning: material 'wood': texture 'wood.png' not applied yet (its flat diffuse colour is used)");
+  ASSERT_EQ(d.warnings.size(), 2u);
+  EXPECT_EQ(d.warnings[1], dir.file("m.obj") +
+                               ": warning: mesh 'defaultobject': its material's texture reads texture coordinate set "
+                               "0, which the mesh does not have (it has 0): the texture is not applied");
+  EXPECT_TRUE(std::get<TriangleMeshDesc>(d.objects.at(0).shape).uvs.empty());
 }
 
 // A glTF with a camera node and a KHR_lights_punctual point light (both

@@ -261,6 +261,17 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
       continue;
     }
     for (uint32_t k : t) tris.indices.push_back(base + k);
+    if (!mesh.uvs.empty()) {
+      tri_uv_.resize(tri_object_.size(), -1);
+      tri_uv_.push_back(static_cast<int32_t>(tri_uvs_.size()));
+      TriangleUv tu;
+      for (int c = 0; c < 3; ++c)
+        tu.uv[c] = {static_cast<float>(mesh.uvs[t[c]][0]), static_cast<float>(mesh.uvs[t[c]][1])};
+      const double uv_area = std::fabs((mesh.uvs[t[1]][0] - mesh.uvs[t[0]][0]) * (mesh.uvs[t[2]][1] - mesh.uvs[t[0]][1]) -
+                                       (mesh.uvs[t[2]][0] - mesh.uvs[t[0]][0]) * (mesh.uvs[t[1]][1] - mesh.uvs[t[0]][1]));
+      tu.uv_per_world = static_cast<float>(std::sqrt(uv_area / length(n)));  // |Newell normal| = twice the area, as uv_area
+      tri_uvs_.push_back(tu);
+    }
     if (!mesh.colours.empty()) {
       tri_colour_.resize(tri_object_.size(), -1);
       tri_colour_.push_back(static_cast<int32_t>(tri_colours_.size()));
@@ -349,7 +360,27 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   sp.v = static_cast<float>(hit.v);
   sp.object = static_cast<int>(obj);
   sp.material = &materials_[object_material_[obj]];
+  sp.colour = sp.material->colour;
+  if (sp.material->texture >= 0 && sp.material->model == ShadingModel::nff && hit.kind == PrimKind::triangle)
+    sp.colour = textured_colour(sp, hit.u, hit.v, hit.t * length(ray.dir));
   return sp;
+}
+
+Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, double distance) const {
+  const Material& m = *sp.material;
+  const TextureDesc& tex = textures_[static_cast<size_t>(m.texture)];
+  const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
+  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return m.colour;
+  const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
+  const double w0 = 1 - u - v;
+  const double tu_u = tu.uv[0][0] * w0 + tu.uv[1][0] * u + tu.uv[2][0] * v;
+  const double tu_v = tu.uv[0][1] * w0 + tu.uv[1][1] * u + tu.uv[2][1] * v;
+  const MipMap& mip = mips_[static_cast<size_t>(tex.image)];
+  // The footprint in level-0 texels: world width x texture units per world unit x texels per unit.
+  const double world = footprint_base_ + footprint_spread_ * distance;
+  const double texels = world * tu.uv_per_world * std::sqrt(double(mip.width()) * mip.height());
+  const double level = texels > 1 ? std::log2(texels) : 0.0;
+  return mul(m.colour, mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb)));
 }
 
 }  // namespace holoray

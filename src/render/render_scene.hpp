@@ -41,6 +41,12 @@ struct SurfacePoint {
   Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
   int object = -1;  ///< object id: index in file order, files numbered one after another
   const Material* material = nullptr;
+  /// The surface colour C of NFF's formula (and the albedo AOV): the
+  /// material's colour, times its image texture at the hit's texture
+  /// coordinates for a textured mesh material (RenderScene::surface).
+  /// Tachyon materials: their constant colour (their texfuncs are looked up
+  /// by the shading, at the path's optical distance).
+  Vec3 colour;
   // The primitive hit and its barycentrics (Hit's), for the surface cells of
   // reuse/. Kept small: every hit carries them, cache or not.
   uint32_t group = 0, prim = 0;
@@ -112,6 +118,14 @@ class RenderScene {
   const std::optional<FogDesc>& fog() const { return fog_; }
   /// Geometry bounds (world); empty for a scene with no geometry.
   const Bounds3& bounds() const { return accel_->bounds(); }
+  /// The width (world units) of the patch a pixel sees at distance d along
+  /// its eye ray: base + spread * d. It chooses a mesh texture's MIP level
+  /// (footprint in texels, MipMap::sample_uv). A pinhole pixel: base 0,
+  /// spread its angle; an EIA pixel: its angle through the lens (pixel
+  /// pitch / gap), far wider. Default 0, 0: the finest level everywhere.
+  /// Secondary rays use the distance from their own origin (sharper than
+  /// their true footprint).
+  void set_pixel_footprint(double base, double spread) { footprint_base_ = base, footprint_spread_ = spread; }
   /// Offset for spawning secondary rays, relative to the scene's coordinate scale.
   double epsilon() const { return epsilon_; }
   /// Polygons with no area (all vertices collinear or repeated), skipped.
@@ -139,6 +153,17 @@ class RenderScene {
   // vertex-coloured mesh is added (shorter: the rest have none).
   std::vector<int32_t> tri_colour_;
   std::vector<std::array<Vec3, 3>> tri_colours_;
+  // Per triangle, an index into tri_uvs_ or -1; sized only once a mesh with
+  // texture coordinates is added.
+  struct TriangleUv {
+    std::array<std::array<float, 2>, 3> uv;
+    float uv_per_world = 0;  // sqrt(uv area / world area): texture units per world unit across it
+  };
+  std::vector<int32_t> tri_uv_;
+  std::vector<TriangleUv> tri_uvs_;
+  double footprint_base_ = 0, footprint_spread_ = 0;
+  /// SurfacePoint::colour of a hit at `distance` along its ray.
+  Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
   std::vector<PointLight> lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased

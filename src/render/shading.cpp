@@ -22,6 +22,7 @@ namespace {
 // What every term of the shading formula needs about one hit.
 struct HitFrame {
   const Material* m;
+  Vec3 colour;  // the surface colour C: the material's, times its texture (SurfacePoint::colour)
   Vec3 view;   // toward the viewer
   Vec3 ng;     // geometric normal turned to the viewer's side
   Vec3 ns;     // shading normal turned likewise
@@ -32,6 +33,7 @@ struct HitFrame {
 HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
   HitFrame f;
   f.m = sp.material;
+  f.colour = sp.colour;
   f.view = -ray.dir;
   // Both normals turned to the side the ray came from (two-sided surfaces, nff-notes §10.2).
   f.front = dot(sp.ng, f.view) >= 0;
@@ -62,7 +64,7 @@ Vec3 light_contribution(const HitFrame& f, const PointLight& light, const Ray& s
   const Vec3& to_light = shadow.dir;
   const double n_dot_l = dot(f.ns, to_light);
   const Material& m = *f.m;
-  Vec3 term = m.colour * (m.kd * n_dot_l);
+  Vec3 term = f.colour * (m.kd * n_dot_l);
   if (m.ks > 0) {
     const double r_dot_v = dot(reflect(-to_light, f.ns), f.view);
     if (r_dot_v > 0) term += Vec3{1, 1, 1} * (m.ks * std::pow(r_dot_v, m.shine));
@@ -345,7 +347,7 @@ void shade_tachyon(const RenderScene& scene, const RayPacket& rays, const bool t
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   if (sp.material->model == ShadingModel::tachyon) return shade_tachyon(scene, ray, sp, depth, counts);
   const HitFrame f = frame_of(scene, ray, sp);
-  Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
+  Vec3 colour = mul(scene.ambient(), f.colour) * f.m->kd;
   const bool cached = scene.shadow_cache() != nullptr;
   const CellRef cell = cached ? cell_of(scene, sp) : CellRef::none();
   const auto& lights = scene.lights();
@@ -447,7 +449,7 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
 Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
                  RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
-  Vec3 colour = mul(scene.ambient(), f.m->colour) * f.m->kd;
+  Vec3 colour = mul(scene.ambient(), f.colour) * f.m->kd;
   const auto& lights = scene.lights();
   for (size_t l = 0; l < lights.size() && l < kMaxPartLights; ++l) {
     const bool traced = trace >> l & 1u;
@@ -492,7 +494,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
   for (int k = 0; k < kPacketSize; ++k) {
     if (!hit[k]) continue;
     f[k] = frame_of(scene, rays.rays[k], sps[k]);
-    colours[k] = mul(scene.ambient(), f[k].m->colour) * f[k].m->kd;
+    colours[k] = mul(scene.ambient(), f[k].colour) * f[k].m->kd;
     if (cached) cells[k] = cell_of(scene, sps[k]);
   }
   // The shadow rays of one packet toward one light share their end point:

@@ -1,6 +1,7 @@
 #include "render/textures.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -176,6 +177,68 @@ Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base,
     }
   }
   return base;
+}
+
+namespace {
+
+// Texel index i of an axis of n texels under a wrap mode (glTF 2.0 §5.26).
+int wrap_index(int i, int n, TextureWrap mode) {
+  switch (mode) {
+    case TextureWrap::clamp: return std::clamp(i, 0, n - 1);
+    case TextureWrap::mirror: {
+      const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+      return m < n ? m : 2 * n - 1 - m;
+    }
+    case TextureWrap::repeat: break;
+  }
+  return ((i % n) + n) % n;
+}
+
+std::array<float, 256> make_table(bool srgb) {
+  std::array<float, 256> t{};
+  for (int c = 0; c < 256; ++c) {
+    const double e = c / 255.0;
+    t[static_cast<size_t>(c)] =
+        static_cast<float>(!srgb ? e : e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4));
+  }
+  return t;
+}
+
+}  // namespace
+
+const float* decode_table(bool srgb) {
+  static const std::array<float, 256> linear = make_table(false), decoded = make_table(true);
+  return srgb ? decoded.data() : linear.data();
+}
+
+Vec3 MipMap::sample_uv(double u, double v, double level, TextureWrap wrap_u, TextureWrap wrap_v, bool nearest,
+                       const float decode[256]) const {
+  if (!std::isfinite(u) || !std::isfinite(v)) return {};
+  // Far outside [0, 1] the float texel position loses its fraction: keep
+  // u and v near the unit square (their period under repeat and mirror is 2).
+  auto fold = [](double x, TextureWrap w) { return w == TextureWrap::clamp ? std::clamp(x, -1.0, 2.0) : x - 2 * std::floor(x / 2); };
+  u = fold(u, wrap_u);
+  v = fold(v, wrap_v);
+  auto one_level = [&](int li, bool pick_nearest) {
+    const Level& l = levels_[static_cast<size_t>(li)];
+    auto texel = [&](int x, int y) {
+      const unsigned char* p = &l.rgb[(size_t(wrap_index(y, l.height, wrap_v)) * l.width + wrap_index(x, l.width, wrap_u)) * 3];
+      return Vec3{decode[p[0]], decode[p[1]], decode[p[2]]};
+    };
+    const double x = u * l.width, y = v * l.height;
+    if (pick_nearest) return texel(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
+    const double fx = x - 0.5 - std::floor(x - 0.5), fy = y - 0.5 - std::floor(y - 0.5);
+    const int x0 = static_cast<int>(std::floor(x - 0.5)), y0 = static_cast<int>(std::floor(y - 0.5));
+    return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
+           (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+  };
+  const double top = levels() - 1;
+  const double lv = std::isfinite(level) ? std::clamp(level, 0.0, top) : 0.0;
+  if (lv <= 0) return one_level(0, nearest);
+  const int l0 = static_cast<int>(std::floor(lv));
+  const double f = lv - l0;
+  if (l0 >= top || f == 0) return one_level(l0, false);
+  return one_level(l0, false) * (1 - f) + one_level(l0 + 1, false) * f;
 }
 
 }  // namespace holoray

@@ -24,6 +24,16 @@ class MipMap {
   /// sample(), trilinear within it (a flat image is its slice 0).
   Vec3 sample_volume(double u, double v, double w, double d) const;
   int levels() const { return static_cast<int>(levels_.size()); }
+  int width() const { return levels_.front().width; }
+  int height() const { return levels_.front().height; }
+  /// A mesh's image texture (TextureDesc::uv_image) at (u, v), v up from
+  /// row 0, each axis wrapped by its mode: bilinear within a level (nearest
+  /// texel when `nearest` and magnified), linear between the two levels
+  /// around `level` (0 the finest; log2 of the footprint in level-0 texels,
+  /// clamped to the levels there are). Texel codes pass through `decode`
+  /// (256 linear values) before any filtering. Linear RGB.
+  Vec3 sample_uv(double u, double v, double level, TextureWrap wrap_u, TextureWrap wrap_v, bool nearest,
+                 const float decode[256]) const;
 
  private:
   struct Level {
@@ -35,6 +45,9 @@ class MipMap {
   Vec3 blend_levels(double d, Lookup lookup) const;
   std::vector<Level> levels_;
 };
+
+/// The 256 linear values of 8-bit codes: sRGB-decoded (IEC 61966-2-1) or code / 255.
+const float* decode_table(bool srgb);
 
 /// The colour of `tex` at `p_world` seen at `optic_dist` (world units along
 /// the ray path from the eye; it sets an image map's MIP level), for a

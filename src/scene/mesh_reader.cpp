@@ -1,5 +1,6 @@
 #include "scene/mesh_reader.hpp"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -18,6 +19,9 @@
 #include <string_view>
 #include <unordered_map>
 
+#include <unistd.h>
+
+#include "image/image_io.hpp"
 #include "scene/file_text.hpp"
 #include "scene/tachyon_reader.hpp"
 #include "scene/nff_reader.hpp"
@@ -86,7 +90,8 @@ class MeshReader {
       // STL: each with its own grey): holoray's default, as NFF's, so the
       // same mesh looks the same from every format.
       const aiString name = m.GetName();  // by value: keep it while comparing
-      if (name.length == 0 || std::string_view(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) {
+      // A glTF material may have no name and still be the file's own.
+      if ((name.length == 0 && !gltf_) || std::string_view(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) {
         out_.materials.push_back(mat);
         continue;
       }
@@ -109,16 +114,145 @@ class MeshReader {
       mat.shine = std::fmax(0.0, shininess);
       mat.transmittance = std::clamp(1.0 - opacity, 0.0, 1.0);
       mat.ior = ior > 0 ? ior : 1;
-      for (const aiTextureType t : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR})
+      // glTF's base colour factor is the diffuse colour above (assimp sets
+      // both); the texture multiplies it (glTF 2.0 §3.9.2; MTL: Kd x map_Kd).
+      for (const aiTextureType t : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})
         if (m.GetTextureCount(t) > 0) {
-          aiString path;
-          m.GetTexture(t, 0, &path);
-          warn(fmt::format("material '{}': texture '{}' not applied yet (its flat diffuse colour is used)",
-                           m.GetName().C_Str(), path.C_Str()));
+          mat.texture = read_base_colour_map(m, t);
           break;
         }
       out_.materials.push_back(mat);
     }
+  }
+
+  // The material's base colour map as a uv_image texture (its index in
+  // out_.textures); the texture coordinate set it reads is kept per material.
+  int read_base_colour_map(const aiMaterial& m, aiTextureType type) {
+    aiString path;
+    unsigned uv_set = 0;
+    aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+    m.GetTexture(type, 0, &path, nullptr, &uv_set, nullptr, nullptr, modes);
+    m.Get(AI_MATKEY_UVWSRC(type, 0), uv_set);
+    TextureDesc tex;
+    tex.kind = TextureDesc::Kind::uv_image;
+    auto wrap = [](aiTextureMapMode mode) {
+      return mode == aiTextureMapMode_Clamp ? TextureWrap::clamp
+             : mode == aiTextureMapMode_Mirror ? TextureWrap::mirror
+                                               : TextureWrap::repeat;
+    };
+    tex.wrap_u = wrap(modes[0]);
+    tex.wrap_v = wrap(modes[1]);
+    int mag = 0;
+    if (m.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag) == AI_SUCCESS) tex.nearest = mag == 9728;  // GL NEAREST
+    tex.image = image_of(m.GetName().C_Str(), path.C_Str(), tex.srgb);
+    uv_set_.resize(out_.materials.size() + 1, -1);
+    uv_set_.back() = static_cast<int>(uv_set);
+    out_.textures.push_back(tex);
+    return static_cast<int>(out_.textures.size()) - 1;
+  }
+
+  // The image `path` names (embedded in the file, or beside it) as an
+  // ImageMap, read once per path; an image that cannot be read is named in a
+  // warning and replaced by a magenta checker, never black. `srgb` becomes
+  // false for float images (OpenEXR, HDR), whose values are linear.
+  int image_of(const std::string& material, const std::string& path, bool& srgb) {
+    if (const auto it = image_index_.find(path); it != image_index_.end()) {
+      srgb = image_srgb_[static_cast<size_t>(it->second)];
+      return it->second;
+    }
+    ImageMap img;
+    img.path = path;
+    try {
+      ImageBuffer raw;
+      std::string format;
+      if (const aiTexture* e = s_.GetEmbeddedTexture(path.c_str())) {
+        raw = read_embedded(*e, format);
+      } else {
+        const std::filesystem::path file = std::filesystem::path(out_.source).parent_path() / path;
+        format = read_image_header(file.string()).format;
+        raw = read_image(file.string());
+      }
+      srgb = format != "openexr" && format != "hdr";
+      to_image_map(raw, img);
+    } catch (const std::exception& e) {
+      const auto* read_error = dynamic_cast<const ImageReadError*>(&e);
+      warn(fmt::format("material '{}': cannot read texture '{}' ({}): a checker shows where it goes", material, path,
+                       read_error ? read_error->reason() : std::string(e.what())));
+      checker(img);
+      srgb = true;
+    }
+    out_.images.push_back(std::move(img));
+    const int index = static_cast<int>(out_.images.size()) - 1;
+    image_index_[path] = index;
+    image_srgb_.push_back(srgb);
+    return index;
+  }
+
+  // An embedded image: raw texels (assimp's BGRA), or a compressed file
+  // (PNG, JPEG) read through the same readers as files on disk, from a
+  // temporary copy (the readers take paths).
+  static ImageBuffer read_embedded(const aiTexture& t, std::string& format) {
+    if (t.mHeight > 0) {
+      if (int64_t{t.mWidth} * t.mHeight > kMaxImagePixels)
+        throw std::runtime_error(fmt::format("{}x{} texels (at most {})", t.mWidth, t.mHeight, kMaxImagePixels));
+      ImageBuffer raw(static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 3);
+      for (unsigned y = 0; y < t.mHeight; ++y)
+        for (unsigned x = 0; x < t.mWidth; ++x) {
+          const aiTexel& c = t.pcData[y * t.mWidth + x];
+          float* o = raw.at(static_cast<int>(x), static_cast<int>(y));
+          o[0] = c.r / 255.0f, o[1] = c.g / 255.0f, o[2] = c.b / 255.0f;
+        }
+      format = "raw";
+      return raw;
+    }
+    const std::filesystem::path tmp =
+        std::filesystem::temp_directory_path() /
+        fmt::format("holoray-texture-{}-{}.{}", ::getpid(), static_cast<const void*>(&t), t.achFormatHint[0] ? t.achFormatHint : "img");
+    {
+      std::ofstream out(tmp, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(t.pcData), static_cast<std::streamsize>(t.mWidth));
+      if (!out) throw std::runtime_error("cannot copy the embedded image to a temporary file");
+    }
+    struct Remove {
+      std::filesystem::path p;
+      ~Remove() {
+        std::error_code ec;
+        std::filesystem::remove(p, ec);
+      }
+    } remove{tmp};
+    try {
+      format = read_image_header(tmp.string()).format;
+      return read_image(tmp.string());
+    } catch (const ImageReadError& e) {
+      throw std::runtime_error(e.reason());
+    }
+  }
+
+  // 8-bit RGB codes, row 0 at the bottom (v up, as the texture coordinates).
+  static void to_image_map(const ImageBuffer& raw, ImageMap& img) {
+    const ImageBuffer rgb = as_rgb(raw);
+    img.width = rgb.width;
+    img.height = rgb.height;
+    img.rgb.resize(size_t(img.width) * img.height * 3);
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const float* p = rgb.at(x, img.height - 1 - y);
+        for (int c = 0; c < 3; ++c)
+          img.rgb[(size_t(y) * img.width + x) * 3 + c] =
+              static_cast<unsigned char>(std::lround(std::clamp(p[c], 0.0f, 1.0f) * 255.0f));
+      }
+  }
+
+  // 8x8 squares of magenta and dark grey: a missing texture stands out.
+  static void checker(ImageMap& img) {
+    img.width = img.height = 8;
+    img.rgb.resize(8 * 8 * 3);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const bool on = (x + y) % 2 == 0;
+        unsigned char* p = &img.rgb[(size_t(y) * 8 + x) * 3];
+        p[0] = on ? 255 : 40, p[1] = on ? 0 : 40, p[2] = on ? 255 : 40;
+      }
   }
 
   void count(const aiNode* node, long& triangles) const {
@@ -234,10 +368,32 @@ class MeshReader {
         bounds_.extend(&target == &out_ ? m.vertices[face.mIndices[c]] : to_vec(world * mesh.mVertices[face.mIndices[c]]));
     }
     if (m.triangles.empty()) return;
+    // The texture coordinates the mesh's material reads, if it has a map.
+    const int uv_set = mesh.mMaterialIndex < uv_set_.size() ? uv_set_[mesh.mMaterialIndex] : -1;
+    if (uv_set >= 0) {
+      if (uv_set < AI_MAX_NUMBER_OF_TEXTURECOORDS && mesh.HasTextureCoords(static_cast<unsigned>(uv_set))) {
+        m.uvs.reserve(mesh.mNumVertices);
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+          const aiVector3D& t = mesh.mTextureCoords[uv_set][v];
+          if (!std::isfinite(t.x) || !std::isfinite(t.y))
+            throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}' has a texture coordinate that is not finite",
+                                                 out_.source, mesh.mName.C_Str()));
+          m.uvs.push_back({t.x, t.y});
+        }
+      } else {
+        warn(fmt::format("mesh '{}': its material's texture reads texture coordinate set {}, which the mesh does not "
+                         "have (it has {}): the texture is not applied",
+                         mesh.mName.C_Str(), uv_set, mesh.GetNumUVChannels()));
+      }
+    }
     ObjectDesc obj;
     obj.shape = std::move(m);
     obj.material = mesh.mMaterialIndex < out_.materials.size() ? static_cast<int>(mesh.mMaterialIndex) : -1;
-    if (&target != &out_ && target.materials.empty()) target.materials = out_.materials;
+    if (&target != &out_ && target.materials.empty()) {
+      target.materials = out_.materials;
+      target.textures = out_.textures;
+      target.images = out_.images;
+    }
     target.objects.push_back(std::move(obj));
   }
 
@@ -310,16 +466,14 @@ class MeshReader {
   bool gltf_;  // the file went through assimp's glTF 2 importer (read_camera)
   MeshAnimation* animation_;  // null: nodes at rest
   std::unordered_map<std::string, int> track_of_;  // node name -> animation_->tracks index
+  std::vector<int> uv_set_;                         // per material: the texture coordinate set its map reads, -1: none
+  std::unordered_map<std::string, int> image_index_;  // texture path -> out_.images index
+  std::vector<bool> image_srgb_;                      // per out_.images entry
   SceneDesc out_;
   Bounds3 bounds_;
   std::unordered_map<std::string, aiMatrix4x4> global_;
 };
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 // A PLY header declares its element counts and assimp's reader trusts them:
 // one declaring 10^12 vertices keeps it busy for hours. Every element takes

@@ -71,7 +71,10 @@ struct Material {
   double ambient = 0;        ///< tachyon: `ambient`, times the texture colour
   double phong = 0;          ///< tachyon: highlight weight (`phong plastic|metal W`)
   bool phong_metal = false;  ///< tachyon: the highlight takes the surface colour, not the light's
-  int texture = -1;          ///< tachyon: index into SceneDesc::textures; -1: constant `colour`
+  /// Index into SceneDesc::textures; -1: constant `colour`. Tachyon: its
+  /// texfunc. NFF-model (mesh) materials: a uv_image whose linear texel
+  /// multiplies `colour` (glTF base colour factor x texture, MTL Kd x map_Kd).
+  int texture = -1;
   bool emitter = false;      ///< tachyon: a light's sphere, seen in `colour`, unshaded
   SourceLoc loc;
 };
@@ -84,8 +87,13 @@ struct ImageMap {
   std::vector<unsigned char> rgb;  ///< width*height*depth*3, x fastest, then y, then z
 };
 
+/// How a UV-mapped image repeats outside [0, 1] (glTF sampler wrapS /
+/// wrapT, glTF 2.0 §5.26; OBJ/MTL maps repeat).
+enum class TextureWrap { repeat, clamp, mirror };
+
 /// Tachyon `texfunc` (tachyon-notes §3): a colour that varies over the
-/// surface, evaluated at the world-space hit point.
+/// surface, evaluated at the world-space hit point; or (uv_image) a mesh
+/// file's image texture, looked up at the hit's texture coordinates.
 struct TextureDesc {
   enum class Kind {
     checker3d = 1,
@@ -94,11 +102,16 @@ struct TextureDesc {
     cylindrical_image = 7,
     spherical_image = 8,
     planar_image = 9,
-    volume_image = 10
+    volume_image = 10,
+    uv_image = 100,  ///< a mesh's base colour map (glTF baseColorTexture, MTL map_Kd): not a Tachyon texfunc
   };
   Kind kind = Kind::checker3d;
   Vec3 centre, rotate, scale{1, 1, 1}, uaxis{1, 0, 0}, vaxis{0, 1, 0}, waxis{0, 0, 1};
   int image = -1;  ///< index into SceneDesc::images (image maps)
+  // uv_image only: the sampler and the texel encoding.
+  TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;
+  bool nearest = false;  ///< magnification filter NEAREST (glTF); else linear
+  bool srgb = true;      ///< texel codes are sRGB-encoded (glTF base colour, MTL map_Kd), decoded to linear
   SourceLoc loc;
 };
 
@@ -134,6 +147,10 @@ struct TriangleMeshDesc {
   /// colour, interpolated over each triangle, in place of the material's.
   std::vector<Vec3> colours;
   std::vector<std::array<uint32_t, 3>> triangles;  ///< counter-clockwise seen from the front
+  /// One per vertex, or empty: the texture coordinates (u, v) the material's
+  /// uv_image reads, v up from the image's bottom row (assimp's and OBJ's
+  /// convention; glTF's v down is flipped by assimp's importer).
+  std::vector<std::array<double, 2>> uvs;
 };
 
 /// Tachyon `plane`: infinite. Built as a square centred on `point`, a

@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+"""Writes the small glTF scenes that Blender renders as holoray's oracle
+(render_albedo.py) and that tests/test_textures.cpp renders with holoray.
+
+Standard library only. Each scene carries its own camera (square image, so
+that Blender's sensor fit cannot differ from the file's yfov).
+
+    python3 tests/data/blender/make_scenes.py   # rewrites the .gltf/.png here
+"""
+import base64
+import json
+import math
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def write_png(path, width, height, rgb):
+    """8-bit RGB PNG, rows from the top; rgb is a list of (r, g, b) codes."""
+    raw = bytearray()
+    for y in range(height):
+        raw.append(0)
+        for x in range(width):
+            raw.extend(rgb[y * width + x])
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n")
+        f.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)))
+        f.write(chunk(b"IDAT", zlib.compress(bytes(raw), 9)))
+        f.write(chunk(b"IEND", b""))
+
+
+def orientation_texture(size=32):
+    """Red grows with u (left to right), green with v (bottom to top of the
+    image as glTF's v runs top to bottom: green grows downward in the file),
+    and a blue square in the image's top-left corner (u, v near 0): a flip or
+    a transposition of either axis changes the picture."""
+    rgb = []
+    for y in range(size):
+        for x in range(size):
+            r = int(255 * (x + 0.5) / size)
+            g = int(255 * (y + 0.5) / size)
+            b = 255 if (x < size // 4 and y < size // 4) else 40
+            rgb.append((r, g, b))
+    return rgb
+
+
+def cube(half):
+    """24 vertices (4 per face) with outward normals and each face's UVs
+    covering the whole image, 36 indices counter-clockwise from outside."""
+    faces = [  # normal, u axis, v axis (v axis points down the image: glTF)
+        ((1, 0, 0), (0, 0, -1), (0, -1, 0)),
+        ((-1, 0, 0), (0, 0, 1), (0, -1, 0)),
+        ((0, 1, 0), (1, 0, 0), (0, 0, 1)),
+        ((0, -1, 0), (1, 0, 0), (0, 0, -1)),
+        ((0, 0, 1), (1, 0, 0), (0, -1, 0)),
+        ((0, 0, -1), (-1, 0, 0), (0, -1, 0)),
+    ]
+    pos, nrm, uv, idx = [], [], [], []
+    for n, a, b in faces:
+        base = len(pos)
+        for (su, sv) in ((0, 0), (1, 0), (1, 1), (0, 1)):
+            p = [half * (n[i] + (2 * su - 1) * a[i] + (2 * sv - 1) * b[i]) for i in range(3)]
+            pos.append(p)
+            nrm.append(list(n))
+            uv.append([su, sv])
+        # (u, v) = (0,0),(1,0),(1,1): counter-clockwise seen from outside when a x b = -n.
+        cross = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+        if sum(cross[i] * n[i] for i in range(3)) < 0:
+            idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+        else:
+            idx += [base, base + 2, base + 1, base, base + 3, base + 2]
+    return pos, nrm, uv, idx
+
+
+def look_at_quaternion(eye, target):
+    """Rotation (x, y, z, w) turning glTF's camera (looking down -z, up +y)
+    toward target, with world +y as up."""
+    f = [target[i] - eye[i] for i in range(3)]
+    fl = math.sqrt(sum(c * c for c in f))
+    f = [c / fl for c in f]
+    z = [-c for c in f]
+    up = [0, 1, 0]
+    x = [up[1] * z[2] - up[2] * z[1], up[2] * z[0] - up[0] * z[2], up[0] * z[1] - up[1] * z[0]]
+    xl = math.sqrt(sum(c * c for c in x))
+    x = [c / xl for c in x]
+    y = [z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]]
+    m = [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]]
+    tr = m[0][0] + m[1][1] + m[2][2]
+    if tr > 0:
+        s = math.sqrt(tr + 1) * 2
+        return [(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, s / 4]
+    i = max(range(3), key=lambda k: m[k][k])
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = math.sqrt(1 + m[i][i] - m[j][j] - m[k][k]) * 2
+    q = [0, 0, 0, 0]
+    q[i] = s / 4
+    q[j] = (m[j][i] + m[i][j]) / s
+    q[k] = (m[k][i] + m[i][k]) / s
+    q[3] = (m[k][j] - m[j][k]) / s
+    return q
+
+
+def textured_box(name, wrap_s=10497, wrap_t=10497, uv_scale=1.0):
+    pos, nrm, uv, idx = cube(1.0)
+    uv = [[u * uv_scale, v * uv_scale] for u, v in uv]
+    blob = bytearray()
+    views, accessors = [], []
+
+    def add(data, fmt, count, kind, target, minmax=None):
+        while len(blob) % 4:
+            blob.append(0)
+        off = len(blob)
+        blob.extend(data)
+        views.append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
+        acc = {"bufferView": len(views) - 1, "componentType": fmt, "count": count, "type": kind}
+        if minmax:
+            acc["min"], acc["max"] = minmax
+        accessors.append(acc)
+        return len(accessors) - 1
+
+    flat = lambda rows: [c for r in rows for c in r]
+    a_pos = add(struct.pack("<%df" % (3 * len(pos)), *flat(pos)), 5126, len(pos), "VEC3", 34962,
+                ([min(p[i] for p in pos) for i in range(3)], [max(p[i] for p in pos) for i in range(3)]))
+    a_nrm = add(struct.pack("<%df" % (3 * len(nrm)), *flat(nrm)), 5126, len(nrm), "VEC3", 34962)
+    a_uv = add(struct.pack("<%df" % (2 * len(uv)), *flat(uv)), 5126, len(uv), "VEC2", 34962)
+    a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
+    write_png(os.path.join(HERE, name + ".png"), 32, 32, orientation_texture(32))
+    eye = [2.6, 2.1, 3.4]
+    gltf = {
+        "asset": {"version": "2.0", "generator": "holoray tests/data/blender/make_scenes.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [
+            {"mesh": 0, "rotation": [0.0, 0.2588190451, 0.0, 0.9659258263]},
+            {"camera": 0, "translation": eye, "rotation": look_at_quaternion(eye, [0, 0, 0])},
+        ],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "aspectRatio": 1.0, "znear": 0.1}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": a_pos, "NORMAL": a_nrm, "TEXCOORD_0": a_uv},
+                                    "indices": a_idx, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "baseColorFactor": [1, 1, 1, 1],
+                                                "metallicFactor": 0.0, "roughnessFactor": 1.0}}],
+        "textures": [{"sampler": 0, "source": 0}],
+        "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": wrap_s, "wrapT": wrap_t}],
+        "images": [{"uri": name + ".png"}],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
+if __name__ == "__main__":
+    textured_box("textured_box")
+    # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
+    textured_box("wrapped_box", wrap_s=10497, wrap_t=33648, uv_scale=2.0)
