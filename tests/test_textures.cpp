@@ -6,11 +6,16 @@
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "camera/pinhole.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
+#include "render/render_scene.hpp"
 #include "render/textures.hpp"
+#include "render/view_renderer.hpp"
+#include "scene/mesh_reader.hpp"
 #include "test_util.hpp"
 
 namespace holoray {
@@ -97,6 +102,113 @@ TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box"));
+
+// The same scene with its image beside the file, in a data URI and in a
+// GLB's binary chunk (tests/data/blender/make_scenes.py): the same pixels.
+TEST(MeshTextures, EmbeddedImagesRenderAsTheFileBesideTheScene) {
+  const std::string data = std::string(HOLORAY_SOURCE_DIR) + "/tests/data/blender/";
+  test::TempDir dir;
+  std::vector<ImageBuffer> albedo;
+  for (const char* file : {"textured_box.gltf", "textured_box_datauri.gltf", "textured_box.glb"}) {
+    SCOPED_TRACE(file);
+    const auto r = test::run_cli(fmt::format("render {}{} --camera pinhole --resolution 64x64 --aov albedo -o {}", data,
+                                             file, dir.file("o.exr")));
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    albedo.push_back(read_image(dir.file("o.albedo.exr")));
+  }
+  EXPECT_EQ(albedo[0].data, albedo[1].data);
+  EXPECT_EQ(albedo[0].data, albedo[2].data);
+  // And the texture is there: the albedo is not one flat colour.
+  EXPECT_NE(*std::min_element(albedo[0].data.begin(), albedo[0].data.end()),
+            *std::max_element(albedo[0].data.begin(), albedo[0].data.end()));
+}
+
+TEST(MeshTextures, MaterialsSharingAnImageReadItOnceAndKeepTheirFactors) {
+  test::TempDir dir;
+  test::write_text(dir.file("m.mtl"), "newmtl plain\nmap_Kd t.ppm\nnewmtl tinted\nKd 0.5 0.25 1\nmap_Kd t.ppm\n");
+  test::write_text(dir.file("t.ppm"), "P6\n1 1\n255\nabc");
+  test::write_text(dir.file("m.obj"), "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                      "usemtl plain\nf 1/1 2/2 3/3\nusemtl tinted\nf 1/1 3/3 2/2\n");
+  const SceneDesc d = read_mesh_file(dir.file("m.obj"));
+  ASSERT_EQ(d.objects.size(), 2u);
+  const Material& plain = d.materials.at(static_cast<size_t>(d.objects[0].material));
+  const Material& tinted = d.materials.at(static_cast<size_t>(d.objects[1].material));
+  // assimp's OBJ reader gives every material a Kd (0.6 when the file has
+  // none), so only the written one can be checked here.
+  EXPECT_EQ(tinted.colour.y, 0.25);
+  EXPECT_GE(plain.texture, 0);
+  EXPECT_GE(tinted.texture, 0);
+  // One image read once for both materials.
+  EXPECT_EQ(d.images.size(), 1u);
+}
+
+// A quad filling a pinhole view, textured with a one-texel black and white
+// checker of 192x192: 64 pixels across, 3 texels each, every pixel centre on
+// a texel centre. With no footprint each pixel reads its one texel (0 or 1);
+// with a footprint of a pixel's angle, its MIP level (log2 3) averages them:
+// the albedo is the checker's mean light, 0.5 (not the mean code's 0.21).
+TEST(MeshTextures, ThePixelFootprintChoosesTheMipLevel) {
+  SceneDesc d;
+  d.source = "quad";
+  ImageMap img;
+  img.width = img.height = 192;
+  img.srgb = true;
+  for (int y = 0; y < 192; ++y)
+    for (int x = 0; x < 192; ++x) {
+      const unsigned char c = (x + y) % 2 ? 255 : 0;
+      img.rgb.insert(img.rgb.end(), {c, c, c});
+    }
+  d.images.push_back(img);
+  TextureDesc tex;
+  tex.kind = TextureDesc::Kind::uv_image;
+  tex.image = 0;
+  d.textures.push_back(tex);
+  Material m;
+  m.colour = {1, 1, 1};
+  m.texture = 0;
+  d.materials.push_back(m);
+  TriangleMeshDesc quad;
+  quad.vertices = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+  ObjectDesc obj;
+  obj.shape = quad;
+  obj.material = 0;
+  d.objects.push_back(obj);
+  d.lights.push_back(Light{{0, 0, 5}});
+  // 64 pixels over the quad's 2 units.
+  const double distance = 5, fov = 2 * std::atan(1 / distance);
+  PinholeDesc pd;
+  pd.from = {0, 0, distance};
+  pd.at = {0, 0, 0};
+  pd.fov_deg = fov * 180 / 3.14159265358979;
+  pd.width = pd.height = 64;
+  const PinholeCamera cam(pd);
+  RenderOptions opt;
+  opt.aovs.albedo = true;
+  auto spread_of_albedo = [&](double footprint_spread, double& mean) {
+    RenderScene scene(d);
+    scene.set_pixel_footprint(0, footprint_spread);
+    RenderStats stats;
+    const ImageBuffer a = render_view(scene, cam, opt, stats).albedo;
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int j = 8; j < 56; ++j)
+      for (int i = 8; i < 56; ++i) {
+        const double v = a.at(i, j)[0];
+        sum += v, sum2 += v * v, ++n;
+      }
+    mean = sum / n;
+    return std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+  };
+  double sharp_mean, blurred_mean;
+  const double sharp = spread_of_albedo(0, sharp_mean);
+  const double blurred = spread_of_albedo(2 * std::tan(fov / 2) / 64, blurred_mean);
+  EXPECT_GT(sharp, 0.3) << "the finest level: single texels, 0 or 1";
+  EXPECT_LT(blurred, 0.05) << "levels 1 and 2: 2x2 and 4x4 texels averaged";
+  EXPECT_NEAR(blurred_mean, 0.5, 0.03);
+}
 
 }  // namespace
 }  // namespace holoray

@@ -1,5 +1,7 @@
 #include "render/textures.hpp"
 
+#include "image/image_io.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -61,12 +63,23 @@ MipMap::MipMap(const ImageMap& image) {
             return int{a.rgb[(size_t(std::min(yy, a.height - 1)) * a.width + std::min(xx, a.width - 1)) * 3 + c]};
           };
           int v;
-          if (a.width > 1 && a.height > 1)
+          if (image.srgb) {
+            // A mesh texture's codes are sRGB: average the light they stand
+            // for (a black and white checker is 0.5 linear, code 188).
+            const float* lin = decode_table(true);
+            const int n = (a.width > 1 ? 2 : 1) * (a.height > 1 ? 2 : 1);
+            float sum = 0;
+            for (int dy = 0; dy < (a.height > 1 ? 2 : 1); ++dy)
+              for (int dx = 0; dx < (a.width > 1 ? 2 : 1); ++dx)
+                sum += lin[at(a.width > 1 ? 2 * x + dx : 0, a.height > 1 ? 2 * y + dy : 0)];
+            v = encode_8bit(sum / static_cast<float>(n), Encoding::srgb);
+          } else if (a.width > 1 && a.height > 1) {
             v = (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1)) >> 2;
-          else if (a.width == 1)
+          } else if (a.width == 1) {
             v = (at(0, 2 * y) + at(0, 2 * y + 1)) >> 1;
-          else
+          } else {
             v = (at(2 * x, 0) + at(2 * x + 1, 0)) >> 1;
+          }
           b.rgb[(size_t(y) * b.width + x) * 3 + c] = static_cast<unsigned char>(v);
         }
     levels_.push_back(std::move(b));

@@ -12,6 +12,8 @@
 namespace holoray {
 
 /// An image map's MIP levels; level 0 is the image, row 0 at the bottom.
+/// Each level halves the last by 2x2 means: of the codes (Tachyon's), or of
+/// the decoded light for an sRGB image (ImageMap::srgb, mesh textures).
 /// A volume image (depth > 1) keeps its one level: Tachyon's decimation is
 /// two-dimensional, so CreateMIPMap clamps volumes to a single level.
 class MipMap {

@@ -95,9 +95,14 @@ class MeshReader {
         out_.materials.push_back(mat);
         continue;
       }
-      aiColor3D diffuse(0.8f, 0.8f, 0.8f);
-      m.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
-      mat.colour = to_vec(diffuse);
+      // Without a diffuse colour of its own, a textured material is its
+      // texture (factor 1: glTF 1's diffuse texture, an MTL map_Kd with no
+      // Kd); an untextured one is holoray's grey. assimp may write the
+      // colour even when the key is absent: only a success counts.
+      const bool textured = m.GetTextureCount(aiTextureType_BASE_COLOR) > 0 || m.GetTextureCount(aiTextureType_DIFFUSE) > 0;
+      aiColor3D diffuse;
+      mat.colour = textured ? Vec3{1, 1, 1} : Vec3{0.8, 0.8, 0.8};
+      if (m.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS) mat.colour = to_vec(diffuse);
       mat.kd = 1;
       float reflectivity = 0, shininess = 0, opacity = 1, ior = 1, metallic = -1, roughness = 1;
       m.Get(AI_MATKEY_REFLECTIVITY, reflectivity);
@@ -168,18 +173,24 @@ class MeshReader {
       if (const aiTexture* e = s_.GetEmbeddedTexture(path.c_str())) {
         raw = read_embedded(*e, format);
       } else {
-        const std::filesystem::path file = std::filesystem::path(out_.source).parent_path() / path;
+        std::filesystem::path file = std::filesystem::path(out_.source).parent_path() / path;
+        // Files written on Windows name their images with backslashes (".\\wood.jpg").
+        std::string slashed = path;
+        std::replace(slashed.begin(), slashed.end(), '\\', '/');
+        if (!std::filesystem::exists(file) && slashed != path)
+          file = std::filesystem::path(out_.source).parent_path() / slashed;
         format = read_image_header(file.string()).format;
         raw = read_image(file.string());
       }
       srgb = format != "openexr" && format != "hdr";
       to_image_map(raw, img);
+      img.srgb = srgb;
     } catch (const std::exception& e) {
       const auto* read_error = dynamic_cast<const ImageReadError*>(&e);
       warn(fmt::format("material '{}': cannot read texture '{}' ({}): a checker shows where it goes", material, path,
                        read_error ? read_error->reason() : std::string(e.what())));
       checker(img);
-      srgb = true;
+      srgb = img.srgb = true;
     }
     out_.images.push_back(std::move(img));
     const int index = static_cast<int>(out_.images.size()) - 1;

@@ -85,6 +85,10 @@ struct ImageMap {
   int width = 0, height = 0;
   int depth = 1;  ///< slices of a volume image (Tachyon `IMAGEDEF ... RESOLUTION x y z`)
   std::vector<unsigned char> rgb;  ///< width*height*depth*3, x fastest, then y, then z
+  /// The codes are sRGB-encoded (a mesh's colour texture): its MIP levels
+  /// average the light the codes stand for. Tachyon's image maps (false)
+  /// average the codes, as Tachyon does.
+  bool srgb = false;
 };
 
 /// How a UV-mapped image repeats outside [0, 1] (glTF sampler wrapS /

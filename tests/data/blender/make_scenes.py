@@ -156,9 +156,37 @@ def textured_box(name, wrap_s=10497, wrap_t=10497, uv_scale=1.0):
     }
     with open(os.path.join(HERE, name + ".gltf"), "w") as f:
         json.dump(gltf, f, indent=1)
+    return gltf, bytes(blob)
+
+
+def embedded_copies(name, gltf, blob):
+    """The same scene with its image inside: a data URI (NAME_datauri.gltf)
+    and a GLB whose binary chunk holds the geometry and the image
+    (NAME.glb). holoray must render all three alike."""
+    with open(os.path.join(HERE, name + ".png"), "rb") as f:
+        png = f.read()
+    inline = json.loads(json.dumps(gltf))
+    inline["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode()}]
+    with open(os.path.join(HERE, name + "_datauri.gltf"), "w") as f:
+        json.dump(inline, f, indent=1)
+    glb = json.loads(json.dumps(gltf))
+    data = bytearray(blob)
+    while len(data) % 4:
+        data.append(0)
+    glb["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": len(png)})
+    data.extend(png)
+    while len(data) % 4:
+        data.append(0)
+    glb["images"] = [{"bufferView": len(glb["bufferViews"]) - 1, "mimeType": "image/png"}]
+    glb["buffers"] = [{"byteLength": len(data)}]
+    text = json.dumps(glb).encode()
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<I4s", len(text), b"JSON") + text + struct.pack("<I4s", len(data), b"BIN\0") + bytes(data)
+    with open(os.path.join(HERE, name + ".glb"), "wb") as f:
+        f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
 
 
 if __name__ == "__main__":
-    textured_box("textured_box")
+    embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
     textured_box("wrapped_box", wrap_s=10497, wrap_t=33648, uv_scale=2.0)
