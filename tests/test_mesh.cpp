@@ -152,6 +152,27 @@ TEST(MeshImport, TexturedMaterialOnAMeshWithoutTextureCoordinatesIsNamed) {
   EXPECT_TRUE(std::get<TriangleMeshDesc>(d.objects.at(0).shape).uvs.empty());
 }
 
+// glTF materials need no name: an unnamed one keeps its base colour, and a
+// primitive without a material takes holoray's grey (assimp's stand-in for
+// it is unnamed too, and last).
+TEST(MeshImport, UnnamedGltfMaterialKeepsItsColourAndNoMaterialIsTheDefaultGrey) {
+  test::TempDir dir;
+  test::write_text(dir.file("u.gltf"), R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}, {"attributes": {"POSITION": 0}}]}],
+ "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}}],
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAAAAAAAAgD8AAAAA"}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]}]})");
+  const SceneDesc d = read_mesh_file(dir.file("u.gltf"));
+  ASSERT_EQ(d.objects.size(), 2u);
+  const Material& red = d.materials.at(static_cast<size_t>(d.objects[0].material));
+  const Material& none = d.materials.at(static_cast<size_t>(d.objects[1].material));
+  EXPECT_EQ(red.colour.x, 1);
+  EXPECT_EQ(red.colour.y, 0);
+  EXPECT_DOUBLE_EQ(none.colour.x, 0.8);
+  EXPECT_DOUBLE_EQ(none.colour.y, 0.8);
+}
+
 // A glTF with a camera node and a KHR_lights_punctual point light (both
 // placed by their nodes' translations): the view and the light come from
 // the file, not from the defaults.

@@ -90,8 +90,10 @@ class MeshReader {
       // STL: each with its own grey): holoray's default, as NFF's, so the
       // same mesh looks the same from every format.
       const aiString name = m.GetName();  // by value: keep it while comparing
-      // A glTF material may have no name and still be the file's own.
-      if ((name.length == 0 && !gltf_) || std::string_view(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) {
+      // A glTF material may have no name and still be the file's own:
+      // assimp's glTF importers append their stand-in, unnamed, last.
+      const bool unnamed_stand_in = name.length == 0 && (!gltf_ || k + 1 == s_.mNumMaterials);
+      if (unnamed_stand_in || std::string_view(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) {
         out_.materials.push_back(mat);
         continue;
       }
