@@ -84,7 +84,8 @@ TEST(MeshTextures, CoarseLevelsAverageTheImage) {
 
 // holoray's pinhole albedo AOV of each glTF scene against Blender's DiffCol
 // pass (tests/data/blender/render_albedo.py): the texture's orientation,
-// wrap modes (wrapped_box: u repeats, v mirrors), sRGB decoding and factor.
+// wrap modes (wrapped_box: u repeats, v mirrors), KHR_texture_transform
+// (transform_box: offset, rotation, non-uniform scale), sRGB decoding.
 class BlenderAlbedo : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
@@ -101,7 +102,7 @@ TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
   EXPECT_GE(psnr, 30) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box"));
+INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box"));
 
 // The same scene with its image beside the file, in a data URI and in a
 // GLB's binary chunk (tests/data/blender/make_scenes.py): the same pixels.

@@ -367,20 +367,24 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
 }
 
 Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, double distance) const {
-  const Material& m = *sp.material;
-  const TextureDesc& tex = textures_[static_cast<size_t>(m.texture)];
+  const Material& mat = *sp.material;
+  const TextureDesc& tex = textures_[static_cast<size_t>(mat.texture)];
   const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
-  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return m.colour;
+  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return mat.colour;
   const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
   const double w0 = 1 - u - v;
-  const double tu_u = tu.uv[0][0] * w0 + tu.uv[1][0] * u + tu.uv[2][0] * v;
-  const double tu_v = tu.uv[0][1] * w0 + tu.uv[1][1] * u + tu.uv[2][1] * v;
+  const double iu = tu.uv[0][0] * w0 + tu.uv[1][0] * u + tu.uv[2][0] * v;
+  const double iv = tu.uv[0][1] * w0 + tu.uv[1][1] * u + tu.uv[2][1] * v;
+  const auto& m = tex.uv_transform;
+  const double tu_u = m[0] * iu + m[1] * iv + m[2], tu_v = m[3] * iu + m[4] * iv + m[5];
   const MipMap& mip = mips_[static_cast<size_t>(tex.image)];
-  // The footprint in level-0 texels: world width x texture units per world unit x texels per unit.
+  // The footprint in level-0 texels: world width x texture units per world
+  // unit (the transform scales them by the root of its determinant) x texels per unit.
   const double world = footprint_base_ + footprint_spread_ * distance;
-  const double texels = world * tu.uv_per_world * std::sqrt(double(mip.width()) * mip.height());
+  const double texels = world * tu.uv_per_world * std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3])) *
+                        std::sqrt(double(mip.width()) * mip.height());
   const double level = texels > 1 ? std::log2(texels) : 0.0;
-  return mul(m.colour, mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb)));
+  return mul(mat.colour, mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb)));
 }
 
 }  // namespace holoray

@@ -151,11 +151,30 @@ class MeshReader {
     tex.wrap_v = wrap(modes[1]);
     int mag = 0;
     if (m.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag) == AI_SUCCESS) tex.nearest = mag == 9728;  // GL NEAREST
+    aiUVTransform t;
+    if (gltf_ && m.Get(AI_MATKEY_UVTRANSFORM(type, 0), t) == AI_SUCCESS) tex.uv_transform = gltf_uv_transform(t);
     tex.image = image_of(m.GetName().C_Str(), path.C_Str(), tex.srgb);
     uv_set_.resize(out_.materials.size() + 1, -1);
     uv_set_.back() = static_cast<int>(uv_set);
     out_.textures.push_back(tex);
     return static_cast<int>(out_.textures.size()) - 1;
+  }
+
+  // KHR_texture_transform (offset o, rotation r, scale s) as the glTF 2.0
+  // extension defines it, in glTF's texture space (v down): uv' = T(o) R(r)
+  // S(s) uv, R = [[cos r, sin r], [-sin r, cos r]]. assimp's glTF 2
+  // importer hands over an aiUVTransform made from them for its own v-up
+  // space (rotation -r, translation moved to rotate about the centre);
+  // undoing that gives o back exactly, and the result is written for
+  // holoray's v-up coordinates: v_gltf = 1 - v.
+  static std::array<double, 6> gltf_uv_transform(const aiUVTransform& t) {
+    const double r = -t.mRotation, sx = t.mScaling.x, sy = t.mScaling.y;
+    const double c = std::cos(r), s = std::sin(r);
+    const double ox = t.mTranslation.x - 0.5 * sx * (-c + s + 1);
+    const double oy = 0.5 * sy * (s + c - 1) + 1 - sy - t.mTranslation.y;
+    const double m00 = c * sx, m01 = s * sy, m10 = -s * sx, m11 = c * sy;  // R S
+    // u' = m00 u + m01 (1 - v) + ox;  v' = 1 - (m10 u + m11 (1 - v) + oy)
+    return {m00, -m01, m01 + ox, -m10, m11, 1 - m11 - oy};
   }
 
   // The image `path` names (embedded in the file, or beside it) as an

@@ -116,6 +116,10 @@ struct TextureDesc {
   TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;
   bool nearest = false;  ///< magnification filter NEAREST (glTF); else linear
   bool srgb = true;      ///< texel codes are sRGB-encoded (glTF base colour, MTL map_Kd), decoded to linear
+  /// Where a hit's (u, v) reads the image (both v up, TriangleMeshDesc::uvs):
+  /// u' = m[0] u + m[1] v + m[2], v' = m[3] u + m[4] v + m[5] (glTF
+  /// KHR_texture_transform; the identity otherwise).
+  std::array<double, 6> uv_transform{1, 0, 0, 0, 1, 0};
   SourceLoc loc;
 };
 

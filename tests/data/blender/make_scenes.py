@@ -107,7 +107,7 @@ def look_at_quaternion(eye, target):
     return q
 
 
-def textured_box(name, wrap_s=10497, wrap_t=10497, uv_scale=1.0):
+def textured_box(name, wrap_s=10497, wrap_t=10497, uv_scale=1.0, transform=None):
     pos, nrm, uv, idx = cube(1.0)
     uv = [[u * uv_scale, v * uv_scale] for u, v in uv]
     blob = bytearray()
@@ -154,6 +154,10 @@ def textured_box(name, wrap_s=10497, wrap_t=10497, uv_scale=1.0):
         "bufferViews": views,
         "accessors": accessors,
     }
+    if transform:
+        gltf["extensionsUsed"] = ["KHR_texture_transform"]
+        gltf["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+            "KHR_texture_transform": transform}
     with open(os.path.join(HERE, name + ".gltf"), "w") as f:
         json.dump(gltf, f, indent=1)
     return gltf, bytes(blob)
@@ -190,3 +194,5 @@ if __name__ == "__main__":
     embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
     textured_box("wrapped_box", wrap_s=10497, wrap_t=33648, uv_scale=2.0)
+    # KHR_texture_transform: offset, rotation and a non-uniform scale, repeated.
+    textured_box("transform_box", transform={"offset": [0.2, 0.1], "rotation": 0.4, "scale": [1.5, 0.8]})
