@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "camera/pinhole.hpp"
 #include "image/image_io.hpp"
@@ -85,7 +86,8 @@ TEST(MeshTextures, CoarseLevelsAverageTheImage) {
 // holoray's pinhole albedo AOV of each glTF scene against Blender's DiffCol
 // pass (tests/data/blender/render_albedo.py): the texture's orientation,
 // wrap modes (wrapped_box: u repeats, v mirrors), KHR_texture_transform
-// (transform_box: offset, rotation, non-uniform scale), sRGB decoding.
+// (transform_box: offset, rotation, non-uniform scale), alphaMode MASK
+// (masked_leaf: a disc cut from a quad by its RGBA image), sRGB decoding.
 class BlenderAlbedo : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
@@ -102,7 +104,7 @@ TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
   EXPECT_GE(psnr, 30) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box"));
+INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box", "masked_leaf"));
 
 // The same scene with its image beside the file, in a data URI and in a
 // GLB's binary chunk (tests/data/blender/make_scenes.py): the same pixels.
@@ -209,6 +211,59 @@ TEST(MeshTextures, ThePixelFootprintChoosesTheMipLevel) {
   EXPECT_GT(sharp, 0.3) << "the finest level: single texels, 0 or 1";
   EXPECT_LT(blurred, 0.05) << "levels 1 and 2: 2x2 and 4x4 texels averaged";
   EXPECT_NEAR(blurred_mean, 0.5, 0.03);
+}
+
+// A floor under a light, and between them (out of the view) an alpha-masked
+// square: with alpha 0 it is cut away for eye and shadow rays alike, so the
+// floor's pixels are those of the scene without it, bit for bit; with alpha
+// 1 it shadows the floor.
+TEST(MeshTextures, AlphaMaskCutsTheSurfaceForShadowRaysToo) {
+  auto scene_with = [](std::optional<double> mask_alpha) {
+    SceneDesc d;
+    d.source = "mask";
+    d.materials.push_back(Material{});
+    TriangleMeshDesc floor;
+    floor.vertices = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
+    floor.triangles = {{0, 1, 2}, {0, 2, 3}};
+    ObjectDesc f;
+    f.shape = floor;
+    f.material = 0;
+    d.objects.push_back(f);
+    if (mask_alpha) {
+      Material m;
+      m.alpha_mask = true;
+      m.alpha = *mask_alpha;
+      d.materials.push_back(m);
+      TriangleMeshDesc leaf = floor;
+      for (Vec3& v : leaf.vertices) v.z = 3;
+      ObjectDesc o;
+      o.shape = leaf;
+      o.material = 1;
+      d.objects.push_back(o);
+    }
+    d.lights.push_back(Light{{0, 0, 6}});
+    return d;
+  };
+  PinholeDesc pd;
+  pd.from = {0, -4, 0.6};
+  pd.at = {0, 0, 0};
+  pd.up = {0, 0, 1};
+  pd.fov_deg = 30;
+  pd.width = pd.height = 32;
+  const PinholeCamera cam(pd);
+  auto render = [&](const SceneDesc& d) {
+    RenderScene scene(d);
+    RenderStats stats;
+    return render_view(scene, cam, RenderOptions{}, stats).colour;
+  };
+  const ImageBuffer bare = render(scene_with(std::nullopt));
+  const ImageBuffer cut = render(scene_with(0.0));
+  const ImageBuffer solid = render(scene_with(1.0));
+  EXPECT_EQ(cut.data, bare.data);
+  EXPECT_NE(solid.data, bare.data) << "the square, not cut, shadows the floor";
+  double lit = 0, shadowed = 0;
+  for (size_t k = 0; k < bare.data.size(); ++k) lit += bare.data[k], shadowed += solid.data[k];
+  EXPECT_LT(shadowed, 0.75 * lit);  // ambient light stays: half or so
 }
 
 }  // namespace

@@ -140,11 +140,29 @@ GeometryGroup single_group(TriangleData triangles, std::vector<Sphere> spheres, 
   return g;
 }
 
+// Embree's filter for a group with cut-away triangles: a candidate hit the
+// cutout removes is invalid, and the traversal goes on past it.
+template <class Ref>
+void cutout_filter(const RTCFilterFunctionNArguments* a) {
+  const auto* ref = static_cast<const Ref*>(a->geometryUserPtr);
+  for (unsigned i = 0; i < a->N; ++i) {
+    if (a->valid[i] != -1) continue;
+    const unsigned prim = RTCHitN_primID(a->hit, a->N, i);
+    if (ref->cutout->cut(ref->group, prim, RTCHitN_u(a->hit, a->N, i), RTCHitN_v(a->hit, a->N, i))) a->valid[i] = 0;
+  }
+}
+
+template <class Ref>
 void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, std::vector<PreparedCone>& cones,
-                     unsigned id_base) {
+                     unsigned id_base, const Ref* cutout) {
   TriangleData& tri = geo.triangles;
   if (!tri.indices.empty()) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (cutout && cutout->cutout) {
+      rtcSetGeometryUserData(g, const_cast<Ref*>(cutout));
+      rtcSetGeometryIntersectFilterFunction(g, cutout_filter<Ref>);
+      rtcSetGeometryOccludedFilterFunction(g, cutout_filter<Ref>);
+    }
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, tri.positions.data(), 0, 3 * sizeof(float),
                                tri.positions.size() / 3);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tri.indices.data(), 0, 3 * sizeof(uint32_t),
@@ -229,13 +247,14 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
     g.object_bounds = geometry_bounds(g.geo);
     g.cones.reserve(g.geo.cones.size());
     for (const Cone& c : g.geo.cones) g.cones.push_back(prepare_cone(c));
+    g.cutout_ref = {g.geo.cutout, static_cast<uint32_t>(gi)};
     const unsigned base = 3 * static_cast<unsigned>(gi);
     if (!g.geo.movable) {
-      attach_geometry(m.device, m.scene, g.geo, g.cones, base);
+      attach_geometry(m.device, m.scene, g.geo, g.cones, base, &g.cutout_ref);
       continue;
     }
     RTCScene child = new_scene();
-    attach_geometry(m.device, child, g.geo, g.cones, 0);
+    attach_geometry(m.device, child, g.geo, g.cones, 0, &g.cutout_ref);
     rtcCommitScene(child);
     m.children[gi] = child;
     RTCGeometry inst = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);

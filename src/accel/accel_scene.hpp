@@ -24,12 +24,26 @@ struct TriangleData {
   std::vector<uint32_t> indices;   ///< 3 per triangle
 };
 
+/// Says whether a triangle is cut away at barycentrics (u, v): an
+/// alpha-masked texture (glTF alphaMode MASK). The BVH then ignores that hit
+/// for every ray, eye and shadow alike (Embree filter functions). Called from
+/// the traversal on any thread: thread-safe, cheap, no exceptions.
+class TriangleCutout {
+ public:
+  virtual ~TriangleCutout() = default;
+  /// `prim`: the triangle within its group; (u, v): weights of its vertices 1 and 2.
+  virtual bool cut(uint32_t group, uint32_t prim, float u, float v) const = 0;
+};
+
 /// The geometry of one scene file, in its own (object) space.
 struct GeometryGroup {
   TriangleData triangles;
   std::vector<Sphere> spheres;
   std::vector<Cone> cones;
   bool movable = false;  ///< instanced: set_transforms may move it
+  /// Asked about every candidate triangle hit when set (not owned; must
+  /// outlive the AccelScene); null: every triangle is solid.
+  const TriangleCutout* cutout = nullptr;
 };
 
 /// A ray segment o + t*d, t in (tnear, tfar), world frame; d need not be unit.
@@ -146,6 +160,10 @@ class AccelScene {
  private:
   struct Group {
     GeometryGroup geo;
+    struct CutoutRef {
+      const TriangleCutout* cutout = nullptr;
+      uint32_t group = 0;
+    } cutout_ref;  // Embree's user data for the triangles' filter functions
     std::vector<PreparedCone> cones;  // geo.cones prepared: what Embree's callbacks and refine() test
     Bounds3 object_bounds;
     Affine to_world, to_object;

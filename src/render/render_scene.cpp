@@ -234,6 +234,16 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       }
     }
   }
+  // Groups with alpha-masked materials get the cutout (Embree filters their triangles' hits).
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const uint32_t first = group_base_[gi][0];
+    const uint32_t last = gi + 1 < group_base_.size() ? group_base_[gi + 1][0] : static_cast<uint32_t>(tri_object_.size());
+    for (uint32_t t = first; t < last; ++t)
+      if (materials_[object_material_[tri_object_[t]]].alpha_mask) {
+        groups[gi].cutout = &cutout_;
+        break;
+      }
+  }
   accel_ = std::make_unique<AccelScene>(std::move(groups));
   update_epsilon();
 }
@@ -372,11 +382,9 @@ Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, do
   const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
   if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return mat.colour;
   const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
-  const double w0 = 1 - u - v;
-  const double iu = tu.uv[0][0] * w0 + tu.uv[1][0] * u + tu.uv[2][0] * v;
-  const double iv = tu.uv[0][1] * w0 + tu.uv[1][1] * u + tu.uv[2][1] * v;
   const auto& m = tex.uv_transform;
-  const double tu_u = m[0] * iu + m[1] * iv + m[2], tu_v = m[3] * iu + m[4] * iv + m[5];
+  double tu_u, tu_v;
+  texture_uv(tex, t, u, v, tu_u, tu_v);
   const MipMap& mip = mips_[static_cast<size_t>(tex.image)];
   // The footprint in level-0 texels: world width x texture units per world
   // unit (the transform scales them by the root of its determinant) x texels per unit.
@@ -385,6 +393,32 @@ Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, do
                         std::sqrt(double(mip.width()) * mip.height());
   const double level = texels > 1 ? std::log2(texels) : 0.0;
   return mul(mat.colour, mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb)));
+}
+
+bool RenderScene::texture_uv(const TextureDesc& tex, size_t t, double u, double v, double& tu_u, double& tu_v) const {
+  if (t >= tri_uv_.size() || tri_uv_[t] < 0) return false;
+  const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
+  const double w0 = 1 - u - v;
+  const double iu = tu.uv[0][0] * w0 + tu.uv[1][0] * u + tu.uv[2][0] * v;
+  const double iv = tu.uv[0][1] * w0 + tu.uv[1][1] * u + tu.uv[2][1] * v;
+  const auto& m = tex.uv_transform;
+  tu_u = m[0] * iu + m[1] * iv + m[2];
+  tu_v = m[3] * iu + m[4] * iv + m[5];
+  return true;
+}
+
+bool RenderScene::AlphaCutout::cut(uint32_t group, uint32_t prim, float u, float v) const {
+  const size_t t = s_.group_base_[group][0] + size_t{prim};
+  const Material& mat = s_.materials_[s_.object_material_[s_.tri_object_[t]]];
+  if (!mat.alpha_mask) return false;
+  double alpha = mat.alpha;
+  if (mat.texture >= 0) {
+    const TextureDesc& tex = s_.textures_[static_cast<size_t>(mat.texture)];
+    double tu, tv;
+    if (tex.kind == TextureDesc::Kind::uv_image && tex.image >= 0 && s_.texture_uv(tex, t, u, v, tu, tv))
+      alpha *= s_.mips_[static_cast<size_t>(tex.image)].alpha_uv(tu, tv, tex.wrap_u, tex.wrap_v);
+  }
+  return alpha < mat.alpha_cutoff;
 }
 
 }  // namespace holoray

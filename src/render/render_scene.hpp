@@ -71,6 +71,9 @@ Bounds3 finite_bounds(const SceneDesc& desc, const std::optional<Vec3>& eye, boo
 
 class RenderScene {
  public:
+  // Embree keeps a pointer to the scene's alpha cutout (accel_scene.hpp): not movable.
+  RenderScene(RenderScene&&) = delete;
+  RenderScene& operator=(RenderScene&&) = delete;
   /// A still scene. Throws std::runtime_error if Embree fails.
   explicit RenderScene(const SceneDesc& desc);
   /// Several scene files in one world (object ids continue from file to file;
@@ -162,6 +165,19 @@ class RenderScene {
   std::vector<int32_t> tri_uv_;
   std::vector<TriangleUv> tri_uvs_;
   double footprint_base_ = 0, footprint_spread_ = 0;
+  /// Alpha-masked mesh materials (Material::alpha_mask) as Embree's cutout.
+  class AlphaCutout final : public TriangleCutout {
+   public:
+    explicit AlphaCutout(const RenderScene& s) : s_(s) {}
+    bool cut(uint32_t group, uint32_t prim, float u, float v) const override;
+
+   private:
+    const RenderScene& s_;
+  };
+  AlphaCutout cutout_{*this};
+  /// The texture coordinates a hit's image reads (TextureDesc::uv_transform
+  /// applied); false when the triangle has none.
+  bool texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
   /// SurfacePoint::colour of a hit at `distance` along its ray.
   Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
   std::vector<PointLight> lights_;

@@ -47,7 +47,7 @@ double wrap(double u) {
 }
 }  // namespace
 
-MipMap::MipMap(const ImageMap& image) {
+MipMap::MipMap(const ImageMap& image) : alpha_(image.alpha) {
   levels_.push_back({image.width, image.height, image.depth, image.rgb});
   const int count = image.depth > 1 ? 1 : std::max(bit_count(image.width), bit_count(image.height));
   while (static_cast<int>(levels_.size()) < count) {
@@ -222,6 +222,20 @@ std::array<float, 256> make_table(bool srgb) {
 const float* decode_table(bool srgb) {
   static const std::array<float, 256> linear = make_table(false), decoded = make_table(true);
   return srgb ? decoded.data() : linear.data();
+}
+
+double MipMap::alpha_uv(double u, double v, TextureWrap wrap_u, TextureWrap wrap_v) const {
+  const Level& l = levels_.front();
+  if (alpha_.size() != size_t(l.width) * l.height) return 1;
+  if (!std::isfinite(u) || !std::isfinite(v)) return 0;
+  auto fold = [](double x, TextureWrap w) { return w == TextureWrap::clamp ? std::clamp(x, -1.0, 2.0) : x - 2 * std::floor(x / 2); };
+  const double x = fold(u, wrap_u) * l.width - 0.5, y = fold(v, wrap_v) * l.height - 0.5;
+  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+  const double fx = x - x0, fy = y - y0;
+  auto a = [&](int xx, int yy) {
+    return alpha_[size_t(wrap_index(yy, l.height, wrap_v)) * l.width + wrap_index(xx, l.width, wrap_u)] / 255.0;
+  };
+  return (a(x0, y0) * (1 - fx) + a(x0 + 1, y0) * fx) * (1 - fy) + (a(x0, y0 + 1) * (1 - fx) + a(x0 + 1, y0 + 1) * fx) * fy;
 }
 
 Vec3 MipMap::sample_uv(double u, double v, double level, TextureWrap wrap_u, TextureWrap wrap_v, bool nearest,

@@ -36,6 +36,9 @@ class MipMap {
   /// (256 linear values) before any filtering. Linear RGB.
   Vec3 sample_uv(double u, double v, double level, TextureWrap wrap_u, TextureWrap wrap_v, bool nearest,
                  const float decode[256]) const;
+  /// The image's alpha at (u, v), bilinear on level 0 with sample_uv's
+  /// wrapping, in [0, 1]; 1 for an image without alpha.
+  double alpha_uv(double u, double v, TextureWrap wrap_u, TextureWrap wrap_v) const;
 
  private:
   struct Level {
@@ -46,6 +49,7 @@ class MipMap {
   template <class Lookup>
   Vec3 blend_levels(double d, Lookup lookup) const;
   std::vector<Level> levels_;
+  std::vector<unsigned char> alpha_;  // level 0's alpha codes, or empty
 };
 
 /// The 256 linear values of 8-bit codes: sRGB-decoded (IEC 61966-2-1) or code / 255.

@@ -120,6 +120,21 @@ class MeshReader {
       mat.ks = std::clamp(static_cast<double>(reflectivity), 0.0, 1.0);
       mat.shine = std::fmax(0.0, shininess);
       mat.transmittance = std::clamp(1.0 - opacity, 0.0, 1.0);
+      // glTF's alphaMode (§3.9.4): OPAQUE ignores alpha, MASK cuts the
+      // surface away where alpha < alphaCutoff, BLEND lets 1 - alpha through
+      // (here: NFF's transmittance, from the factor's alpha only).
+      aiString alpha_mode;
+      if (gltf_ && m.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS) {
+        const std::string_view mode = alpha_mode.C_Str();
+        if (mode != "BLEND") mat.transmittance = 0;
+        if (mode == "MASK") {
+          mat.alpha_mask = true;
+          mat.alpha = std::clamp(static_cast<double>(opacity), 0.0, 1.0);
+          float cutoff = 0.5f;
+          m.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff);
+          mat.alpha_cutoff = cutoff;
+        }
+      }
       mat.ior = ior > 0 ? ior : 1;
       // glTF's base colour factor is the diffuse colour above (assimp sets
       // both); the texture multiplies it (glTF 2.0 §3.9.2; MTL: Kd x map_Kd).
@@ -227,12 +242,12 @@ class MeshReader {
     if (t.mHeight > 0) {
       if (int64_t{t.mWidth} * t.mHeight > kMaxImagePixels)
         throw std::runtime_error(fmt::format("{}x{} texels (at most {})", t.mWidth, t.mHeight, kMaxImagePixels));
-      ImageBuffer raw(static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 3);
+      ImageBuffer raw(static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 4);
       for (unsigned y = 0; y < t.mHeight; ++y)
         for (unsigned x = 0; x < t.mWidth; ++x) {
           const aiTexel& c = t.pcData[y * t.mWidth + x];
           float* o = raw.at(static_cast<int>(x), static_cast<int>(y));
-          o[0] = c.r / 255.0f, o[1] = c.g / 255.0f, o[2] = c.b / 255.0f;
+          o[0] = c.r / 255.0f, o[1] = c.g / 255.0f, o[2] = c.b / 255.0f, o[3] = c.a / 255.0f;
         }
       format = "raw";
       return raw;
@@ -266,6 +281,14 @@ class MeshReader {
     img.width = rgb.width;
     img.height = rgb.height;
     img.rgb.resize(size_t(img.width) * img.height * 3);
+    // Alpha: the last channel of grey+alpha and RGBA images.
+    if (raw.channels == 2 || raw.channels == 4) {
+      img.alpha.resize(size_t(img.width) * img.height);
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+          img.alpha[size_t(y) * img.width + x] = static_cast<unsigned char>(
+              std::lround(std::clamp(raw.at(x, img.height - 1 - y)[raw.channels - 1], 0.0f, 1.0f) * 255.0f));
+    }
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
         const float* p = rgb.at(x, img.height - 1 - y);

@@ -76,6 +76,10 @@ struct Material {
   /// multiplies `colour` (glTF base colour factor x texture, MTL Kd x map_Kd).
   int texture = -1;
   bool emitter = false;      ///< tachyon: a light's sphere, seen in `colour`, unshaded
+  /// glTF alphaMode MASK: where alpha (`alpha` times the texture's alpha)
+  /// is below `alpha_cutoff` the surface is not there, for every ray.
+  bool alpha_mask = false;
+  double alpha = 1, alpha_cutoff = 0.5;
   SourceLoc loc;
 };
 
@@ -89,6 +93,9 @@ struct ImageMap {
   /// average the light the codes stand for. Tachyon's image maps (false)
   /// average the codes, as Tachyon does.
   bool srgb = false;
+  /// width*height alpha codes (linear coverage), or empty: opaque. Read only
+  /// by alpha-masked materials.
+  std::vector<unsigned char> alpha;
 };
 
 /// How a UV-mapped image repeats outside [0, 1] (glTF sampler wrapS /

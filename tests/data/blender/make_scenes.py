@@ -18,7 +18,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def write_png(path, width, height, rgb):
-    """8-bit RGB PNG, rows from the top; rgb is a list of (r, g, b) codes."""
+    """8-bit RGB (or RGBA, with 4-tuples) PNG, rows from the top; rgb is a
+    list of (r, g, b[, a]) codes."""
+    channels = len(rgb[0])
     raw = bytearray()
     for y in range(height):
         raw.append(0)
@@ -31,7 +33,7 @@ def write_png(path, width, height, rgb):
 
     with open(path, "wb") as f:
         f.write(b"\x89PNG\r\n\x1a\n")
-        f.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)))
+        f.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6 if channels == 4 else 2, 0, 0, 0)))
         f.write(chunk(b"IDAT", zlib.compress(bytes(raw), 9)))
         f.write(chunk(b"IEND", b""))
 
@@ -190,9 +192,63 @@ def embedded_copies(name, gltf, blob):
         f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
 
 
+def masked_leaf(name):
+    """The textured box behind a quad whose RGBA image is a green disc
+    (alpha 255) on transparent ground (alpha 0), alphaMode MASK: the box is
+    seen around the disc, and the disc casts a round shadow."""
+    gltf, blob = textured_box(name)
+    size = 32
+    leaf = []
+    for y in range(size):
+        for x in range(size):
+            inside = (x + 0.5 - size / 2) ** 2 + (y + 0.5 - size / 2) ** 2 < (size * 0.4) ** 2
+            leaf.append((60, 160, 40, 255 if inside else 0))
+    write_png(os.path.join(HERE, name + "_leaf.png"), size, size, leaf)
+    blob = bytearray(blob)
+    while len(blob) % 4:
+        blob.append(0)
+    quad = [(-0.45, -0.45, 0), (0.45, -0.45, 0), (0.45, 0.45, 0), (-0.45, 0.45, 0)]
+    uv = [(0, 1), (1, 1), (1, 0), (0, 0)]
+    nrm = [(0, 0, 1)] * 4
+    idx = [0, 1, 2, 0, 2, 3]
+
+    def add(data, fmt, count, kind, target, minmax=None):
+        while len(blob) % 4:
+            blob.append(0)
+        off = len(blob)
+        blob.extend(data)
+        gltf["bufferViews"].append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
+        acc = {"bufferView": len(gltf["bufferViews"]) - 1, "componentType": fmt, "count": count, "type": kind}
+        if minmax:
+            acc["min"], acc["max"] = minmax
+        gltf["accessors"].append(acc)
+        return len(gltf["accessors"]) - 1
+
+    flat = lambda rows: [c for r in rows for c in r]
+    a_pos = add(struct.pack("<12f", *flat(quad)), 5126, 4, "VEC3", 34962, ([-0.45, -0.45, 0], [0.45, 0.45, 0]))
+    a_nrm = add(struct.pack("<12f", *flat(nrm)), 5126, 4, "VEC3", 34962)
+    a_uv = add(struct.pack("<8f", *flat(uv)), 5126, 4, "VEC2", 34962)
+    a_idx = add(struct.pack("<6H", *idx), 5123, 6, "SCALAR", 34963)
+    gltf["meshes"].append({"primitives": [{"attributes": {"POSITION": a_pos, "NORMAL": a_nrm, "TEXCOORD_0": a_uv},
+                                           "indices": a_idx, "material": 1}]})
+    gltf["materials"].append({"alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": True,
+                              "pbrMetallicRoughness": {"baseColorTexture": {"index": 1}, "metallicFactor": 0.0,
+                                                       "roughnessFactor": 1.0}})
+    gltf["textures"].append({"sampler": 0, "source": 1})
+    gltf["images"].append({"uri": name + "_leaf.png"})
+    # The leaf between the camera and the box.
+    gltf["nodes"].append({"mesh": 1, "translation": [1.3, 1.05, 1.7], "rotation": look_at_quaternion([0, 0, 0], [-2.6, -2.1, -3.4])})
+    gltf["scenes"][0]["nodes"].append(2)
+    gltf["buffers"][0] = {"byteLength": len(blob),
+                          "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
 if __name__ == "__main__":
     embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
     textured_box("wrapped_box", wrap_s=10497, wrap_t=33648, uv_scale=2.0)
     # KHR_texture_transform: offset, rotation and a non-uniform scale, repeated.
     textured_box("transform_box", transform={"offset": [0.2, 0.1], "rotation": 0.4, "scale": [1.5, 0.8]})
+    masked_leaf("masked_leaf")

@@ -19,7 +19,7 @@ numpy.bool = bool  # Debian's Blender 3.4 glTF importer still uses it
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SIZE = 128
-SCENES = ["textured_box", "wrapped_box", "transform_box"]
+SCENES = ["textured_box", "wrapped_box", "transform_box", "masked_leaf"]
 
 
 def render(name):
