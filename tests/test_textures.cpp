@@ -22,6 +22,10 @@
 namespace holoray {
 namespace {
 
+// A quad over [-1, 1]^2 at z = 0 (positions), its texture coordinates (u
+// right, v down as glTF has them) and two triangles, as one glTF buffer.
+constexpr const char* kQuadBuffer = "AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAAAAAAAgD8AAIA/AACAPwAAgD8AAAAAAAAAAAAAAAAAAAEAAgAAAAIAAwA=";
+
 // A width x 1 image whose texel x has red code codes[x] (green, blue 0).
 MipMap red_row(std::initializer_list<unsigned char> codes) {
   ImageMap img;
@@ -264,6 +268,50 @@ TEST(MeshTextures, AlphaMaskCutsTheSurfaceForShadowRaysToo) {
   double lit = 0, shadowed = 0;
   for (size_t k = 0; k < bare.data.size(); ++k) lit += bare.data[k], shadowed += solid.data[k];
   EXPECT_LT(shadowed, 0.75 * lit);  // ambient light stays: half or so
+}
+
+// Emission is added to the shaded colour as it stands: a black, unlit
+// quad (its light behind it) shows exactly its emissive factor, and with an
+// emissive texture that times the decoded texel. (Debian's assimp 5.2 does
+// not read KHR_materials_emissive_strength.)
+TEST(MeshTextures, EmissionAddsTheFactorTimesTheTexture) {
+  test::TempDir dir;
+  // A quad facing +z, seen from +z; the light below it. 2x1 texture: left
+  // texel sRGB 188 (0.5029 linear), right texel 255 (1).
+  auto gltf = [&](bool textured) {
+    return fmt::format(R"({{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0, 1, 2]}}],
+ "extensionsUsed": ["KHR_lights_punctual"],
+ "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "intensity": 1}}]}}}},
+ "nodes": [{{"mesh": 0}}, {{"camera": 0, "translation": [0, 0, 4]}}, {{"extensions": {{"KHR_lights_punctual": {{"light": 0}}}}, "translation": [0, 0, -3]}}],
+ "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.3, "aspectRatio": 1.0, "znear": 0.1}}}}],
+ "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "indices": 2, "material": 0}}]}}],
+ "materials": [{{"name": "glow", "emissiveFactor": [1, 0.5, 0.25], {}
+   "pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}}}}],
+ "textures": [{{"source": 0, "sampler": 0}}], "samplers": [{{"magFilter": 9728}}], "images": [{{"uri": "e.ppm"}}],
+ "buffers": [{{"byteLength": 92, "uri": "data:application/octet-stream;base64,{}"}}],
+ "bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 32}}, {{"buffer": 0, "byteOffset": 80, "byteLength": 12}}],
+ "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]}},
+   {{"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"}},
+   {{"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}}]}})",
+                       textured ? R"("emissiveTexture": {"index": 0},)" : "", kQuadBuffer);
+  };
+  test::write_text(dir.file("e.ppm"), std::string("P6\n2 1\n255\n") + "\xbc\xbc\xbc\xff\xff\xff");
+  for (const bool textured : {false, true}) {
+    SCOPED_TRACE(textured ? "textured" : "factor");
+    test::write_text(dir.file("q.gltf"), gltf(textured));
+    const auto r = test::run_cli(fmt::format("render {} --camera pinhole --resolution 16x16 -q -o {}", dir.file("q.gltf"),
+                                             dir.file("o.exr")));
+    ASSERT_EQ(r.status, 0) << r.output;
+    const ImageBuffer img = read_image(dir.file("o.exr"));
+    const float* left = img.at(4, 8);
+    const float* right = img.at(11, 8);
+    const double l = textured ? decode_table(true)[188] : 1.0;
+    EXPECT_NEAR(left[0], 1 * l, 1e-5);
+    EXPECT_NEAR(left[1], 0.5 * l, 1e-5);
+    EXPECT_NEAR(left[2], 0.25 * l, 1e-5);
+    EXPECT_NEAR(right[0], 1, 1e-5);
+    EXPECT_NEAR(right[2], 0.25, 1e-5);
+  }
 }
 
 }  // namespace

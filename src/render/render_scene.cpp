@@ -176,6 +176,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
     const auto image_base = static_cast<int>(mips_.size());
     for (Material m : desc.materials) {
       if (m.texture >= 0) m.texture += texture_base;
+      if (m.emission_texture >= 0) m.emission_texture += texture_base;
       has_tachyon_ |= m.model == ShadingModel::tachyon;
       has_tachyon_transparency_ |= m.model == ShadingModel::tachyon && m.transmittance > 0;
       materials_.push_back(m);
@@ -378,9 +379,24 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
 
 Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, double distance) const {
   const Material& mat = *sp.material;
-  const TextureDesc& tex = textures_[static_cast<size_t>(mat.texture)];
+  Vec3 texel;
+  if (!texel_at(mat.texture, sp, u, v, distance, texel)) return mat.colour;
+  return mul(mat.colour, texel);
+}
+
+Vec3 RenderScene::emission(const SurfacePoint& sp, double distance) const {
+  const Material& mat = *sp.material;
+  Vec3 texel;
+  if (mat.emission_texture < 0 || sp.kind != PrimKind::triangle ||
+      !texel_at(mat.emission_texture, sp, sp.u, sp.v, distance, texel))
+    return mat.emission;
+  return mul(mat.emission, texel);
+}
+
+bool RenderScene::texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const {
+  const TextureDesc& tex = textures_[static_cast<size_t>(texture)];
   const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
-  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return mat.colour;
+  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return false;
   const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
   const auto& m = tex.uv_transform;
   double tu_u, tu_v;
@@ -392,7 +408,8 @@ Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, do
   const double texels = world * tu.uv_per_world * std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3])) *
                         std::sqrt(double(mip.width()) * mip.height());
   const double level = texels > 1 ? std::log2(texels) : 0.0;
-  return mul(mat.colour, mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb)));
+  out = mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb));
+  return true;
 }
 
 bool RenderScene::texture_uv(const TextureDesc& tex, size_t t, double u, double v, double& tu_u, double& tu_v) const {

@@ -115,6 +115,9 @@ class RenderScene {
   /// Whether a Tachyon material lets light through (opacity < 1): then
   /// Tachyon's shadow rays are filtered through it instead of blocked.
   bool has_tachyon_transparency() const { return has_tachyon_transparency_; }
+  /// Light a mesh surface gives off at `sp`, seen from `distance` along
+  /// the ray (Material::emission times its texture); zero for most.
+  Vec3 emission(const SurfacePoint& sp, double distance) const;
   const Vec3& ambient() const { return ambient_; }      ///< Ia (nff-notes §4: 1/(2 sqrt(n)))
   const Vec3& background() const { return background_; }
   /// The first scene file's Tachyon fog, if any (applied by Tachyon shading).
@@ -180,6 +183,9 @@ class RenderScene {
   bool texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
   /// SurfacePoint::colour of a hit at `distance` along its ray.
   Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
+  /// Texture `texture` (a uv_image) at the hit's coordinates, its MIP level
+  /// from the footprint at `distance`; false when it cannot be read there.
+  bool texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const;
   std::vector<PointLight> lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased

@@ -43,6 +43,14 @@ HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& 
   return f;
 }
 
+// A mesh material's own light (Material::emission), added right after the
+// ambient term; most materials give off none and add nothing (NFF's and
+// Tachyon's scenes keep their bits).
+inline void add_emission(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, Vec3& colour) {
+  const Vec3& e = sp.material->emission;
+  if (e.x > 0 || e.y > 0 || e.z > 0) colour += scene.emission(sp, length(sp.position - ray.org));
+}
+
 // The shadow ray toward `light`; false when no shadow ray is cast (light on
 // the surface, or the normal faces away from it: nff-notes §10.10).
 bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
@@ -348,6 +356,7 @@ Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int
   if (sp.material->model == ShadingModel::tachyon) return shade_tachyon(scene, ray, sp, depth, counts);
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = mul(scene.ambient(), f.colour) * f.m->kd;
+  add_emission(scene, ray, sp, colour);
   const bool cached = scene.shadow_cache() != nullptr;
   const CellRef cell = cached ? cell_of(scene, sp) : CellRef::none();
   const auto& lights = scene.lights();
@@ -450,6 +459,7 @@ Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& s
                  RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = mul(scene.ambient(), f.colour) * f.m->kd;
+  add_emission(scene, ray, sp, colour);
   const auto& lights = scene.lights();
   for (size_t l = 0; l < lights.size() && l < kMaxPartLights; ++l) {
     const bool traced = trace >> l & 1u;
@@ -495,6 +505,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     if (!hit[k]) continue;
     f[k] = frame_of(scene, rays.rays[k], sps[k]);
     colours[k] = mul(scene.ambient(), f[k].colour) * f[k].m->kd;
+    add_emission(scene, rays.rays[k], sps[k], colours[k]);
     if (cached) cells[k] = cell_of(scene, sps[k]);
   }
   // The shadow rays of one packet toward one light share their end point:

@@ -143,8 +143,34 @@ class MeshReader {
           mat.texture = read_base_colour_map(m, t);
           break;
         }
+      read_emission(m, mat);
       out_.materials.push_back(mat);
     }
+  }
+
+  // Light the surface gives off (glTF emissiveFactor x emissiveTexture x
+  // KHR_materials_emissive_strength; MTL Ke), added to the shaded colour.
+  // The map must read the base colour map's coordinates: a mesh keeps one set.
+  void read_emission(const aiMaterial& m, Material& mat) {
+    aiColor3D e;
+    if (m.Get(AI_MATKEY_COLOR_EMISSIVE, e) != AI_SUCCESS) return;
+    float strength = 1;
+    m.Get(AI_MATKEY_EMISSIVE_INTENSITY, strength);
+    mat.emission = to_vec(e) * static_cast<double>(strength);
+    if (!is_finite(mat.emission)) mat.emission = {};
+    if (!(mat.emission.x > 0 || mat.emission.y > 0 || mat.emission.z > 0)) return;
+    if (m.GetTextureCount(aiTextureType_EMISSIVE) == 0) return;
+    const size_t k = out_.materials.size();
+    const int base_set = k < uv_set_.size() ? uv_set_[k] : -1;
+    const int texture = read_base_colour_map(m, aiTextureType_EMISSIVE);
+    if (base_set >= 0 && uv_set_[k] != base_set) {
+      warn(fmt::format("material '{}': its emissive texture reads texture coordinate set {} and its base colour texture "
+                       "set {}: the emissive texture is not applied (a mesh keeps one set)",
+                       m.GetName().C_Str(), uv_set_[k], base_set));
+      uv_set_[k] = base_set;
+      return;
+    }
+    mat.emission_texture = texture;
   }
 
   // The material's base colour map as a uv_image texture (its index in

@@ -80,6 +80,12 @@ struct Material {
   /// is below `alpha_cutoff` the surface is not there, for every ray.
   bool alpha_mask = false;
   double alpha = 1, alpha_cutoff = 0.5;
+  /// NFF-model (mesh) materials: light the surface gives off, added to
+  /// NFF's formula as it stands (glTF emissiveFactor x strength, MTL Ke),
+  /// times `emission_texture` (a uv_image, index into SceneDesc::textures;
+  /// -1: none) where given. Linear RGB.
+  Vec3 emission{0, 0, 0};
+  int emission_texture = -1;
   SourceLoc loc;
 };
 
