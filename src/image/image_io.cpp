@@ -249,8 +249,9 @@ ImageHeader read_image_header(const std::string& path) {
   }
 }
 
-ImageBuffer read_image(const std::string& path) {
+ImageBuffer read_image(const std::string& path, ImageHeader* header) {
   const ImageHeader h = read_image_header(path);
+  if (header) *header = h;
   if (h.width < 1 || h.height < 1 || h.channels < 1 || int64_t{h.width} * h.height > kMaxImagePixels)
     throw ImageReadError(path, fmt::format("{}x{} pixels, {} channels (at most {} pixels)", h.width, h.height, h.channels,
                                            kMaxImagePixels));

@@ -93,8 +93,9 @@ ImageHeader read_image_header(const std::string& path);
 /// JPEG, binary PPM/PGM, Targa, BMP and Radiance HDR. Values as stored:
 /// integer codes times 1/max (no decoding of sRGB, alpha not premultiplied),
 /// rows from the top. Throws ImageReadError (missing, unknown format,
-/// corrupt, more than kMaxImagePixels).
-ImageBuffer read_image(const std::string& path);
+/// corrupt, more than kMaxImagePixels). `header`, when given, gets what
+/// read_image_header says (the format, say), without reading it twice.
+ImageBuffer read_image(const std::string& path, ImageHeader* header = nullptr);
 
 /// The extension of `path`, dot included, in lower case ("a/B.PNG" -> ".png").
 std::string lower_extension(const std::string& path);

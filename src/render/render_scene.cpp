@@ -395,25 +395,25 @@ Vec3 RenderScene::emission(const SurfacePoint& sp, double distance) const {
 
 bool RenderScene::texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const {
   const TextureDesc& tex = textures_[static_cast<size_t>(texture)];
-  const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
-  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0 || t >= tri_uv_.size() || tri_uv_[t] < 0) return false;
-  const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
-  const auto& m = tex.uv_transform;
+  if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0) return false;
   double tu_u, tu_v;
-  texture_uv(tex, t, u, v, tu_u, tu_v);
+  const TriangleUv* tu = texture_uv(tex, group_base_[sp.group][0] + size_t{sp.prim}, u, v, tu_u, tu_v);
+  if (!tu) return false;
   const MipMap& mip = mips_[static_cast<size_t>(tex.image)];
   // The footprint in level-0 texels: world width x texture units per world
   // unit (the transform scales them by the root of its determinant) x texels per unit.
+  const auto& m = tex.uv_transform;
   const double world = footprint_base_ + footprint_spread_ * distance;
-  const double texels = world * tu.uv_per_world * std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3])) *
+  const double texels = world * tu->uv_per_world * std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3])) *
                         std::sqrt(double(mip.width()) * mip.height());
   const double level = texels > 1 ? std::log2(texels) : 0.0;
   out = mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb));
   return true;
 }
 
-bool RenderScene::texture_uv(const TextureDesc& tex, size_t t, double u, double v, double& tu_u, double& tu_v) const {
-  if (t >= tri_uv_.size() || tri_uv_[t] < 0) return false;
+const RenderScene::TriangleUv* RenderScene::texture_uv(const TextureDesc& tex, size_t t, double u, double v,
+                                                       double& tu_u, double& tu_v) const {
+  if (t >= tri_uv_.size() || tri_uv_[t] < 0) return nullptr;
   const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
   const double w0 = 1 - u - v;
   const double iu = tu.uv[0][0] * w0 + tu.uv[1][0] * u + tu.uv[2][0] * v;
@@ -421,7 +421,7 @@ bool RenderScene::texture_uv(const TextureDesc& tex, size_t t, double u, double 
   const auto& m = tex.uv_transform;
   tu_u = m[0] * iu + m[1] * iv + m[2];
   tu_v = m[3] * iu + m[4] * iv + m[5];
-  return true;
+  return &tu;
 }
 
 bool RenderScene::AlphaCutout::cut(uint32_t group, uint32_t prim, float u, float v) const {

@@ -179,8 +179,8 @@ class RenderScene {
   };
   AlphaCutout cutout_{*this};
   /// The texture coordinates a hit's image reads (TextureDesc::uv_transform
-  /// applied); false when the triangle has none.
-  bool texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
+  /// applied), and the triangle's record; null when the triangle has none.
+  const TriangleUv* texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
   /// SurfacePoint::colour of a hit at `distance` along its ray.
   Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
   /// Texture `texture` (a uv_image) at the hit's coordinates, its MIP level

@@ -207,6 +207,24 @@ int wrap_index(int i, int n, TextureWrap mode) {
   return ((i % n) + n) % n;
 }
 
+// u or v kept near the unit square: far outside it the float texel position
+// loses its fraction (the period under repeat and mirror is 2).
+double fold(double x, TextureWrap w) {
+  return w == TextureWrap::clamp ? std::clamp(x, -1.0, 2.0) : x - 2 * std::floor(x / 2);
+}
+
+// Bilinear between the texel centres of a width x height grid at folded
+// (u, v); fetch(ix, iy) reads a texel by wrapped indices.
+template <class Fetch>
+auto bilinear(double u, double v, int width, int height, TextureWrap wrap_u, TextureWrap wrap_v, Fetch fetch) {
+  auto texel = [&](int x, int y) { return fetch(wrap_index(x, width, wrap_u), wrap_index(y, height, wrap_v)); };
+  const double x = u * width, y = v * height;
+  const double fx = x - 0.5 - std::floor(x - 0.5), fy = y - 0.5 - std::floor(y - 0.5);
+  const int x0 = static_cast<int>(std::floor(x - 0.5)), y0 = static_cast<int>(std::floor(y - 0.5));
+  return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
+         (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+}
+
 std::array<float, 256> make_table(bool srgb) {
   std::array<float, 256> t{};
   for (int c = 0; c < 256; ++c) {
@@ -228,36 +246,25 @@ double MipMap::alpha_uv(double u, double v, TextureWrap wrap_u, TextureWrap wrap
   const Level& l = levels_.front();
   if (alpha_.size() != size_t(l.width) * l.height) return 1;
   if (!std::isfinite(u) || !std::isfinite(v)) return 0;
-  auto fold = [](double x, TextureWrap w) { return w == TextureWrap::clamp ? std::clamp(x, -1.0, 2.0) : x - 2 * std::floor(x / 2); };
-  const double x = fold(u, wrap_u) * l.width - 0.5, y = fold(v, wrap_v) * l.height - 0.5;
-  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-  const double fx = x - x0, fy = y - y0;
-  auto a = [&](int xx, int yy) {
-    return alpha_[size_t(wrap_index(yy, l.height, wrap_v)) * l.width + wrap_index(xx, l.width, wrap_u)] / 255.0;
-  };
-  return (a(x0, y0) * (1 - fx) + a(x0 + 1, y0) * fx) * (1 - fy) + (a(x0, y0 + 1) * (1 - fx) + a(x0 + 1, y0 + 1) * fx) * fy;
+  return bilinear(fold(u, wrap_u), fold(v, wrap_v), l.width, l.height, wrap_u, wrap_v,
+                  [&](int x, int y) { return alpha_[size_t(y) * l.width + x] / 255.0; });
 }
 
 Vec3 MipMap::sample_uv(double u, double v, double level, TextureWrap wrap_u, TextureWrap wrap_v, bool nearest,
                        const float decode[256]) const {
   if (!std::isfinite(u) || !std::isfinite(v)) return {};
-  // Far outside [0, 1] the float texel position loses its fraction: keep
-  // u and v near the unit square (their period under repeat and mirror is 2).
-  auto fold = [](double x, TextureWrap w) { return w == TextureWrap::clamp ? std::clamp(x, -1.0, 2.0) : x - 2 * std::floor(x / 2); };
   u = fold(u, wrap_u);
   v = fold(v, wrap_v);
   auto one_level = [&](int li, bool pick_nearest) {
     const Level& l = levels_[static_cast<size_t>(li)];
     auto texel = [&](int x, int y) {
-      const unsigned char* p = &l.rgb[(size_t(wrap_index(y, l.height, wrap_v)) * l.width + wrap_index(x, l.width, wrap_u)) * 3];
+      const unsigned char* p = &l.rgb[(size_t(y) * l.width + x) * 3];
       return Vec3{decode[p[0]], decode[p[1]], decode[p[2]]};
     };
-    const double x = u * l.width, y = v * l.height;
-    if (pick_nearest) return texel(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
-    const double fx = x - 0.5 - std::floor(x - 0.5), fy = y - 0.5 - std::floor(y - 0.5);
-    const int x0 = static_cast<int>(std::floor(x - 0.5)), y0 = static_cast<int>(std::floor(y - 0.5));
-    return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
-           (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+    if (pick_nearest)
+      return texel(wrap_index(static_cast<int>(std::floor(u * l.width)), l.width, wrap_u),
+                   wrap_index(static_cast<int>(std::floor(v * l.height)), l.height, wrap_v));
+    return bilinear(u, v, l.width, l.height, wrap_u, wrap_v, texel);
   };
   const double top = levels() - 1;
   const double lv = std::isfinite(level) ? std::clamp(level, 0.0, top) : 0.0;

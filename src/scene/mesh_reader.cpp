@@ -138,20 +138,25 @@ class MeshReader {
       mat.ior = ior > 0 ? ior : 1;
       // glTF's base colour factor is the diffuse colour above (assimp sets
       // both); the texture multiplies it (glTF 2.0 §3.9.2; MTL: Kd x map_Kd).
+      int uv_set = -1;
       for (const aiTextureType t : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})
         if (m.GetTextureCount(t) > 0) {
-          mat.texture = read_base_colour_map(m, t);
+          const TextureMap map = read_map(m, t);
+          mat.texture = map.texture;
+          uv_set = map.uv_set;
           break;
         }
-      read_emission(m, mat);
+      read_emission(m, mat, uv_set);
+      uv_set_.resize(out_.materials.size(), -1);
+      uv_set_.push_back(uv_set);
       out_.materials.push_back(mat);
     }
   }
 
   // Light the surface gives off (glTF emissiveFactor x emissiveTexture x
   // KHR_materials_emissive_strength; MTL Ke), added to the shaded colour.
-  // The map must read the base colour map's coordinates: a mesh keeps one set.
-  void read_emission(const aiMaterial& m, Material& mat) {
+  // Its map must read the base colour map's coordinates: a mesh keeps one set.
+  void read_emission(const aiMaterial& m, Material& mat, int& uv_set) {
     aiColor3D e;
     if (m.Get(AI_MATKEY_COLOR_EMISSIVE, e) != AI_SUCCESS) return;
     float strength = 1;
@@ -160,22 +165,24 @@ class MeshReader {
     if (!is_finite(mat.emission)) mat.emission = {};
     if (!(mat.emission.x > 0 || mat.emission.y > 0 || mat.emission.z > 0)) return;
     if (m.GetTextureCount(aiTextureType_EMISSIVE) == 0) return;
-    const size_t k = out_.materials.size();
-    const int base_set = k < uv_set_.size() ? uv_set_[k] : -1;
-    const int texture = read_base_colour_map(m, aiTextureType_EMISSIVE);
-    if (base_set >= 0 && uv_set_[k] != base_set) {
+    const TextureMap map = read_map(m, aiTextureType_EMISSIVE);
+    if (uv_set >= 0 && map.uv_set != uv_set) {
       warn(fmt::format("material '{}': its emissive texture reads texture coordinate set {} and its base colour texture "
                        "set {}: the emissive texture is not applied (a mesh keeps one set)",
-                       m.GetName().C_Str(), uv_set_[k], base_set));
-      uv_set_[k] = base_set;
+                       m.GetName().C_Str(), map.uv_set, uv_set));
       return;
     }
-    mat.emission_texture = texture;
+    mat.emission_texture = map.texture;
+    uv_set = map.uv_set;
   }
 
-  // The material's base colour map as a uv_image texture (its index in
-  // out_.textures); the texture coordinate set it reads is kept per material.
-  int read_base_colour_map(const aiMaterial& m, aiTextureType type) {
+  // A material's image map as a uv_image texture: its index in
+  // out_.textures, and the texture coordinate set it reads.
+  struct TextureMap {
+    int texture;
+    int uv_set;
+  };
+  TextureMap read_map(const aiMaterial& m, aiTextureType type) {
     aiString path;
     unsigned uv_set = 0;
     aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
@@ -194,11 +201,10 @@ class MeshReader {
     if (m.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag) == AI_SUCCESS) tex.nearest = mag == 9728;  // GL NEAREST
     aiUVTransform t;
     if (gltf_ && m.Get(AI_MATKEY_UVTRANSFORM(type, 0), t) == AI_SUCCESS) tex.uv_transform = gltf_uv_transform(t);
-    tex.image = image_of(m.GetName().C_Str(), path.C_Str(), tex.srgb);
-    uv_set_.resize(out_.materials.size() + 1, -1);
-    uv_set_.back() = static_cast<int>(uv_set);
+    tex.image = image_of(m.GetName().C_Str(), path.C_Str());
+    tex.srgb = out_.images[static_cast<size_t>(tex.image)].srgb;
     out_.textures.push_back(tex);
-    return static_cast<int>(out_.textures.size()) - 1;
+    return {static_cast<int>(out_.textures.size()) - 1, static_cast<int>(uv_set)};
   }
 
   // KHR_texture_transform (offset o, rotation r, scale s) as the glTF 2.0
@@ -220,20 +226,17 @@ class MeshReader {
 
   // The image `path` names (embedded in the file, or beside it) as an
   // ImageMap, read once per path; an image that cannot be read is named in a
-  // warning and replaced by a magenta checker, never black. `srgb` becomes
-  // false for float images (OpenEXR, HDR), whose values are linear.
-  int image_of(const std::string& material, const std::string& path, bool& srgb) {
-    if (const auto it = image_index_.find(path); it != image_index_.end()) {
-      srgb = image_srgb_[static_cast<size_t>(it->second)];
-      return it->second;
-    }
+  // warning and replaced by a magenta checker, never black. Its codes are
+  // sRGB but for float images (OpenEXR, HDR), whose values are linear.
+  int image_of(const std::string& material, const std::string& path) {
+    if (const auto it = image_index_.find(path); it != image_index_.end()) return it->second;
     ImageMap img;
     img.path = path;
     try {
       ImageBuffer raw;
-      std::string format;
+      ImageHeader header;
       if (const aiTexture* e = s_.GetEmbeddedTexture(path.c_str())) {
-        raw = read_embedded(*e, format);
+        raw = read_embedded(*e, header);
       } else {
         std::filesystem::path file = std::filesystem::path(out_.source).parent_path() / path;
         // Files written on Windows name their images with backslashes (".\\wood.jpg").
@@ -241,30 +244,27 @@ class MeshReader {
         std::replace(slashed.begin(), slashed.end(), '\\', '/');
         if (!std::filesystem::exists(file) && slashed != path)
           file = std::filesystem::path(out_.source).parent_path() / slashed;
-        format = read_image_header(file.string()).format;
-        raw = read_image(file.string());
+        raw = read_image(file.string(), &header);
       }
-      srgb = format != "openexr" && format != "hdr";
       to_image_map(raw, img);
-      img.srgb = srgb;
+      img.srgb = header.format != "openexr" && header.format != "hdr";
     } catch (const std::exception& e) {
       const auto* read_error = dynamic_cast<const ImageReadError*>(&e);
       warn(fmt::format("material '{}': cannot read texture '{}' ({}): a checker shows where it goes", material, path,
                        read_error ? read_error->reason() : std::string(e.what())));
       checker(img);
-      srgb = img.srgb = true;
+      img.srgb = true;
     }
     out_.images.push_back(std::move(img));
     const int index = static_cast<int>(out_.images.size()) - 1;
     image_index_[path] = index;
-    image_srgb_.push_back(srgb);
     return index;
   }
 
   // An embedded image: raw texels (assimp's BGRA), or a compressed file
   // (PNG, JPEG) read through the same readers as files on disk, from a
   // temporary copy (the readers take paths).
-  static ImageBuffer read_embedded(const aiTexture& t, std::string& format) {
+  static ImageBuffer read_embedded(const aiTexture& t, ImageHeader& header) {
     if (t.mHeight > 0) {
       if (int64_t{t.mWidth} * t.mHeight > kMaxImagePixels)
         throw std::runtime_error(fmt::format("{}x{} texels (at most {})", t.mWidth, t.mHeight, kMaxImagePixels));
@@ -275,7 +275,7 @@ class MeshReader {
           float* o = raw.at(static_cast<int>(x), static_cast<int>(y));
           o[0] = c.r / 255.0f, o[1] = c.g / 255.0f, o[2] = c.b / 255.0f, o[3] = c.a / 255.0f;
         }
-      format = "raw";
+      header = {static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 4, "raw"};
       return raw;
     }
     const std::filesystem::path tmp =
@@ -294,33 +294,28 @@ class MeshReader {
       }
     } remove{tmp};
     try {
-      format = read_image_header(tmp.string()).format;
-      return read_image(tmp.string());
+      return read_image(tmp.string(), &header);
     } catch (const ImageReadError& e) {
       throw std::runtime_error(e.reason());
     }
   }
 
-  // 8-bit RGB codes, row 0 at the bottom (v up, as the texture coordinates).
+  // 8-bit RGB codes, row 0 at the bottom (v up, as the texture coordinates),
+  // and the alpha of grey+alpha and RGBA images (their last channel).
   static void to_image_map(const ImageBuffer& raw, ImageMap& img) {
     const ImageBuffer rgb = as_rgb(raw);
     img.width = rgb.width;
     img.height = rgb.height;
     img.rgb.resize(size_t(img.width) * img.height * 3);
-    // Alpha: the last channel of grey+alpha and RGBA images.
-    if (raw.channels == 2 || raw.channels == 4) {
-      img.alpha.resize(size_t(img.width) * img.height);
-      for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-          img.alpha[size_t(y) * img.width + x] = static_cast<unsigned char>(
-              std::lround(std::clamp(raw.at(x, img.height - 1 - y)[raw.channels - 1], 0.0f, 1.0f) * 255.0f));
-    }
+    const bool alpha = raw.channels == 2 || raw.channels == 4;
+    if (alpha) img.alpha.resize(size_t(img.width) * img.height);
+    auto code = [](float v) { return static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
+        const size_t at = size_t(y) * img.width + x;
         const float* p = rgb.at(x, img.height - 1 - y);
-        for (int c = 0; c < 3; ++c)
-          img.rgb[(size_t(y) * img.width + x) * 3 + c] =
-              static_cast<unsigned char>(std::lround(std::clamp(p[c], 0.0f, 1.0f) * 255.0f));
+        for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = code(p[c]);
+        if (alpha) img.alpha[at] = code(raw.at(x, img.height - 1 - y)[raw.channels - 1]);
       }
   }
 
@@ -547,9 +542,8 @@ class MeshReader {
   bool gltf_;  // the file went through assimp's glTF 2 importer (read_camera)
   MeshAnimation* animation_;  // null: nodes at rest
   std::unordered_map<std::string, int> track_of_;  // node name -> animation_->tracks index
-  std::vector<int> uv_set_;                         // per material: the texture coordinate set its map reads, -1: none
+  std::vector<int> uv_set_;                         // per material: the texture coordinate set its maps read, -1: none
   std::unordered_map<std::string, int> image_index_;  // texture path -> out_.images index
-  std::vector<bool> image_srgb_;                      // per out_.images entry
   SceneDesc out_;
   Bounds3 bounds_;
   std::unordered_map<std::string, aiMatrix4x4> global_;
