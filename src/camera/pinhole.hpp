@@ -13,6 +13,8 @@
 // offset (u, v) inside it in [0, 1), 0.5 = centre.
 #pragma once
 
+#include <cmath>
+
 #include "camera/camera.hpp"
 #include "math/vec.hpp"
 #include "scene/scene_desc.hpp"
@@ -42,6 +44,12 @@ struct PinholeDesc {
 
 /// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,
 /// mirrored), at `width` x `height` pixels.
+/// The angle (radians) one pixel of a pinhole view subtends at the centre:
+/// 2 tan(fov / 2) / height (RenderScene::set_pixel_footprint).
+inline double pixel_angle(const PinholeDesc& d) {
+  return 2 * std::tan(d.fov_deg * 3.14159265358979323846 / 360) / d.height;
+}
+
 inline PinholeDesc view_of(const Viewpoint& vp, int width, int height) {
   return PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, width, height, vp.mirrored};
 }

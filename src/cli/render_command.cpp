@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
-#include <numbers>
 #include <optional>
 
 #include "camera/placement.hpp"
@@ -280,13 +279,9 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     const auto t_build = Clock::now();
     RenderScene scene(desc);
     if (o.max_depth != 0) scene.set_max_depth(o.max_depth);
-    // Mesh textures take the MIP level of what one pixel sees: an EIA
-    // pixel, through its lens, an angle of pixel size / gap; a pinhole
-    // pixel its share of the field of view.
-    if (array)
-      scene.set_pixel_footprint(0, array->desc().pitch / array->desc().pixels_per_lens / array->desc().gap);
-    else if (view)
-      scene.set_pixel_footprint(0, 2 * std::tan(view->desc().fov_deg * std::numbers::pi / 360) / view->height());
+    // Mesh textures take the MIP level of what one pixel sees.
+    if (array) scene.set_pixel_footprint(0, pixel_angle(array->desc()));
+    else if (view) scene.set_pixel_footprint(0, pixel_angle(view->desc()));
     const std::unique_ptr<ShadowCache> cache = array ? make_cache(scene, array->desc().pitch, o.cache) : nullptr;
     scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);

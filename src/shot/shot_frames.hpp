@@ -41,6 +41,8 @@ class ShotFrames {
   void seek(int frame);
   /// Shadow cache for the frames that follow, or null (RenderScene::set_shadow_cache).
   void set_shadow_cache(ShadowCache* cache) { scene_->set_shadow_cache(cache); }
+  /// What one pixel sees, for mesh textures' MIP levels (RenderScene::set_pixel_footprint).
+  void set_pixel_footprint(double base, double spread) { scene_->set_pixel_footprint(base, spread); }
 
  private:
   struct Entry {

@@ -116,6 +116,8 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   };
 
   const bool panel_frames = opt.pinhole || opt.display || opt.looking_glass;
+  // EIA frames: every frame's array has the shot's pitch, gap and pixels.
+  if (!panel_frames) shot.set_pixel_footprint(0, pixel_angle(shot.camera(0)));
   if (panel_frames && opt.method != Method::full)
     throw std::invalid_argument("pinhole and display frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
@@ -142,8 +144,16 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
             return render_looking_glass(shot.scene(), LookingGlassCamera(c, view_of(vp, c.width, c.height), opt.looking_glass_views),
                                         ro, stats);
           }
-          if (!opt.display) return render_view(shot.scene(), PinholeCamera(view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1])), ro, stats);
-          if (const auto eia = as_lens_array(*opt.display, vp)) return render_frame(shot.scene(), LensArray(*eia), ro, stats);
+          // Mesh textures take the MIP level of what one pixel sees, as in `render`.
+          if (!opt.display) {
+            const PinholeDesc view = view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1]);
+            shot.set_pixel_footprint(0, pixel_angle(view));
+            return render_view(shot.scene(), PinholeCamera(view), ro, stats);
+          }
+          if (const auto eia = as_lens_array(*opt.display, vp)) {
+            shot.set_pixel_footprint(0, pixel_angle(*eia));
+            return render_frame(shot.scene(), LensArray(*eia), ro, stats);
+          }
           return render_display(shot.scene(), DisplayCamera(place_display(*opt.display, vp)),
                                 opt.display->subpixels != SubpixelOrder::bgr, ro, stats);
         }();
