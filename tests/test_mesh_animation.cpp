@@ -57,20 +57,6 @@ TEST(NodeTrack, SlerpTakesTheShorterArc) {
   EXPECT_NEAR(std::atan2(x.y, x.x) * 180 / kPi, 85, 1e-9);
 }
 
-std::string base64(const std::vector<uint8_t>& b) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < b.size(); i += 3) {
-    const uint32_t v = uint32_t{b[i]} << 16 | (i + 1 < b.size() ? uint32_t{b[i + 1]} << 8 : 0) |
-                       (i + 2 < b.size() ? uint32_t{b[i + 2]} : 0);
-    out += k[v >> 18 & 63];
-    out += k[v >> 12 & 63];
-    out += i + 1 < b.size() ? k[v >> 6 & 63] : '=';
-    out += i + 2 < b.size() ? k[v & 63] : '=';
-  }
-  return out;
-}
-
 // A glTF file assembled from float and index arrays (one buffer, one view
 // per accessor): its accessors, and the JSON around them.
 struct Gltf {
@@ -97,7 +83,7 @@ struct Gltf {
     return fmt::format(R"({{"asset": {{"version": "2.0"}}, {},
  "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{}"}}],
  "bufferViews": [{}], "accessors": [{}]}})",
-                       body, buffer.size(), base64(buffer), fmt::join(views, ", "), fmt::join(accessors, ", "));
+                       body, buffer.size(), test::base64(buffer), fmt::join(views, ", "), fmt::join(accessors, ", "));
   }
 };
 

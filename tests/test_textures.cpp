@@ -88,7 +88,7 @@ TEST(MeshTextures, CoarseLevelsAverageTheImage) {
 }
 
 // holoray's pinhole albedo AOV of each glTF scene against Blender's DiffCol
-// pass (tests/data/blender/render_albedo.py): the texture's orientation,
+// pass (tests/data/blender/render_oracle.py): the texture's orientation,
 // wrap modes (wrapped_box: u repeats, v mirrors), KHR_texture_transform
 // (transform_box: offset, rotation, non-uniform scale), alphaMode MASK
 // (masked_leaf: a disc cut from a quad by its RGBA image), sRGB decoding.
@@ -108,7 +108,7 @@ TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
   EXPECT_GE(psnr, 30) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box", "masked_leaf"));
+INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres"));
 
 // The same scene with its image beside the file, in a data URI and in a
 // GLB's binary chunk (tests/data/blender/make_scenes.py): the same pixels.

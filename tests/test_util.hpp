@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +27,21 @@ namespace holoray::test {
 
 inline std::string shared_dir() { return HOLORAY_SHARED_DIR; }
 inline std::string source_dir() { return HOLORAY_SOURCE_DIR; }
+
+/// Standard base64 (RFC 4648, padded) of `b`: glTF data URIs.
+inline std::string base64(const std::vector<uint8_t>& b) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < b.size(); i += 3) {
+    const uint32_t v = uint32_t{b[i]} << 16 | (i + 1 < b.size() ? uint32_t{b[i + 1]} << 8 : 0) |
+                       (i + 2 < b.size() ? uint32_t{b[i + 2]} : 0);
+    out += k[v >> 18 & 63];
+    out += k[v >> 12 & 63];
+    out += i + 1 < b.size() ? k[v >> 6 & 63] : '=';
+    out += i + 2 < b.size() ? k[v & 63] : '=';
+  }
+  return out;
+}
 inline bool have_shared_scenes() { return std::filesystem::is_directory(shared_dir() + "/scenes/nff"); }
 
 /// Two spheres on a floor under one light, with a viewpoint (NFF text), for

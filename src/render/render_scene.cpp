@@ -155,7 +155,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   size_t light_count = 0;
   for (const ScenePart& part : parts)
     for (const Light& l : part.desc->lights)
-      if (keep(l) && part.desc->shading == ShadingModel::nff) ++light_count;
+      if (keep(l) && part.desc->shading == ShadingModel::nff && !l.photometric) ++light_count;
   const double level = 1.0 / (2.0 * std::sqrt(static_cast<double>(std::max<size_t>(1, light_count))));
   ambient_ = Vec3{level, level, level};
   if (!parts.empty()) background_ = parts.front().desc->background;
@@ -186,11 +186,12 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       textures_.push_back(t);
     }
     for (const ImageMap& img : desc.images) mips_.emplace_back(img);
-    const double intensity = desc.shading == ShadingModel::nff ? level : 1.0;
     for (const Light& l : desc.lights)
-      if (keep(l))
+      if (keep(l)) {
+        const double intensity = desc.shading == ShadingModel::nff && !l.photometric ? level : 1.0;
         lights_.push_back({l.position, l.colour * intensity, l.kind, l.direction, l.kc, l.kl, l.kq, l.fall_start,
-                           l.fall_end});
+                           l.fall_end, l.smooth_cone, l.range});
+      }
     group_base_.push_back({static_cast<uint32_t>(tri_object_.size()), static_cast<uint32_t>(sphere_object_.size()),
                            static_cast<uint32_t>(cone_object_.size())});
     GeometryGroup& geo = groups.emplace_back();
@@ -372,7 +373,7 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   sp.object = static_cast<int>(obj);
   sp.material = &materials_[object_material_[obj]];
   sp.colour = sp.material->colour;
-  if (sp.material->texture >= 0 && sp.material->model == ShadingModel::nff && hit.kind == PrimKind::triangle)
+  if (sp.material->texture >= 0 && sp.material->model != ShadingModel::tachyon && hit.kind == PrimKind::triangle)
     sp.colour = textured_colour(sp, hit.u, hit.v, hit.t * length(ray.dir));
   return sp;
 }

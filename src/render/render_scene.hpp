@@ -22,9 +22,11 @@ namespace holoray {
 inline constexpr int kMaxRayDepth = 5;
 inline constexpr int kDepthCap = 16;
 
-/// A light ready for shading: position (world) and RGB intensity; the kind,
-/// attenuation and spot cone of Tachyon lights (scene_desc.hpp, Light), which
-/// only the Tachyon shading reads (NFF lights are points without falloff).
+/// A light ready for shading: position (world) and RGB intensity, the
+/// radiance a white Lambertian surface facing it shows at unit falloff
+/// (docs/lights.md); the kind, attenuation, spot cone and range of Tachyon
+/// and glTF lights (scene_desc.hpp, Light). NFF lights are points without
+/// falloff.
 struct PointLight {
   Vec3 position;
   Vec3 intensity;
@@ -32,6 +34,8 @@ struct PointLight {
   Vec3 direction{0, 0, -1};
   double kc = 1, kl = 0, kq = 0;
   double fall_start = 0, fall_end = 0;
+  bool smooth_cone = false;
+  double range = 0;
 };
 
 /// Where a ray met a surface, resolved for shading.
@@ -41,7 +45,8 @@ struct SurfacePoint {
   Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
   int object = -1;  ///< object id: index in file order, files numbered one after another
   const Material* material = nullptr;
-  /// The surface colour C of NFF's formula (and the albedo AOV): the
+  /// The surface colour C of NFF's formula (glTF's base colour; the albedo
+  /// AOV is albedo_of(), below): the
   /// material's colour, times its image texture at the hit's texture
   /// coordinates for a textured mesh material (RenderScene::surface).
   /// Tachyon materials: their constant colour (their texfuncs are looked up
@@ -53,6 +58,14 @@ struct SurfacePoint {
   PrimKind kind = PrimKind::triangle;
   float u = 0, v = 0;  ///< triangle barycentrics (a cell index needs no more)
 };
+
+/// The albedo AOV at a hit (linear RGB): the surface colour C; for a glTF
+/// material its diffuse part, C (1 - metallic) (Appendix B's c_diff at
+/// F = 0, what Blender's DiffCol pass holds; a metal's colour is specular).
+inline Vec3 albedo_of(const SurfacePoint& sp) {
+  if (sp.material->model == ShadingModel::gltf) return sp.colour * (1 - sp.material->metallic);
+  return sp.colour;
+}
 
 class ShadowCache;
 

@@ -93,7 +93,7 @@ void store_pixel(FrameBuffers& fb, const AovSet& aovs, int i, int j, const Vec3&
   };
   put(fb.colour.at(i, j), c);
   if (!sp) return;
-  if (aovs.albedo) put(fb.albedo.at(i, j), sp->colour);
+  if (aovs.albedo) put(fb.albedo.at(i, j), albedo_of(*sp));
   if (aovs.depth) *fb.depth.at(i, j) = static_cast<float>(t);
   if (aovs.normal) put(fb.normal.at(i, j), dot(sp->ns, toward_viewer) >= 0 ? sp->ns : -sp->ns);
   if (aovs.id) *fb.id.at(i, j) = static_cast<float>(sp->object);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/gltf_brdf.hpp"
 #include "reuse/shadow_cache.hpp"
 
 namespace holoray {
@@ -51,33 +52,86 @@ inline void add_emission(const RenderScene& scene, const Ray& ray, const Surface
   if (e.x > 0 || e.y > 0 || e.z > 0) colour += scene.emission(sp, length(sp.position - ray.org));
 }
 
-// The shadow ray toward `light`; false when no shadow ray is cast (light on
-// the surface, or the normal faces away from it: nff-notes §10.10).
+// How much of a light's intensity reaches a point at `dist` along
+// `to_light` (unit, toward the light): attenuation 1 / (kc + kl d + kq d^2),
+// KHR_lights_punctual's range window and the spot cone (Tachyon's linear
+// falloff in the angle, or glTF's smooth one). Exactly 1 for NFF's lights.
+double light_falloff(const PointLight& light, const Vec3& to_light, double dist) {
+  if (light.kind == LightKind::directional) return 1;
+  double a = 1;
+  if (light.kc != 1 || light.kl != 0 || light.kq != 0) a = 1 / (light.kc + (light.kl + light.kq * dist) * dist);
+  if (light.range > 0) {
+    const double x2 = (dist / light.range) * (dist / light.range);
+    const double w = std::clamp(1 - x2 * x2, 0.0, 1.0);
+    a *= w * w;
+  }
+  if (light.kind == LightKind::spot) {
+    const double cos_a = -dot(light.direction, to_light);
+    if (light.smooth_cone) {
+      const double cos_outer = std::cos(light.fall_end);
+      const double t = std::clamp((cos_a - cos_outer) / std::fmax(1e-3, std::cos(light.fall_start) - cos_outer), 0.0, 1.0);
+      a *= t * t;
+    } else {
+      const double angle = std::acos(std::clamp(cos_a, -1.0, 1.0));
+      if (angle > light.fall_end) a = 0;
+      else if (angle > light.fall_start) a *= 1 - (angle - light.fall_start) / (light.fall_end - light.fall_start);
+    }
+  }
+  return a;
+}
+
+// The shadow ray toward `light` and the light's falloff there; false when
+// no shadow ray is cast (light on the surface, the normal faces away from
+// it: nff-notes §10.10, or the falloff leaves nothing). A directional
+// light's ray is unbounded.
 bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
-                Ray& shadow) {
+                Ray& shadow, double& falloff) {
   const double eps = scene.epsilon();
+  if (light.kind == LightKind::directional) {
+    const Vec3 to_light = -light.direction;
+    if (dot(f.ns, to_light) <= 0) return false;
+    shadow = Ray{f.above, to_light, 0, INFINITY};
+    falloff = 1;
+    return true;
+  }
   Vec3 to_light = light.position - sp.position;
   const double dist = length(to_light);
   if (!(dist > eps)) return false;
   to_light = to_light / dist;
   if (dot(f.ns, to_light) <= 0) return false;
+  falloff = light_falloff(light, to_light, dist);
+  if (!(falloff > 0)) return false;
   shadow = Ray{f.above, to_light, 0, dist - eps};
   return true;
 }
 
-// The light's contribution through the unblocked `shadow` ray: diffuse and
-// highlight (nff-notes §10.10). Computed only for lights that are seen, so
-// a shadowed light costs no pow().
-Vec3 light_contribution(const HitFrame& f, const PointLight& light, const Ray& shadow) {
+GltfSurface gltf_surface(const HitFrame& f) {
+  return GltfSurface{f.colour, f.m->metallic, f.m->roughness, dielectric_f0(f.m->ior)};
+}
+
+// The light's contribution through the unblocked `shadow` ray. NFF's
+// materials: diffuse and highlight (nff-notes §10.10), computed only for
+// lights that are seen, so a shadowed light costs no pow(). glTF's: the
+// metallic-roughness BRDF (gltf_brdf.hpp) times the part of the surface
+// that is there (BLEND: alpha).
+Vec3 light_contribution(const HitFrame& f, const PointLight& light, const Ray& shadow, double falloff) {
   const Vec3& to_light = shadow.dir;
-  const double n_dot_l = dot(f.ns, to_light);
   const Material& m = *f.m;
+  if (m.model == ShadingModel::gltf)
+    return mul(light.intensity * (falloff * (1 - m.transmittance)), gltf_direct(gltf_surface(f), f.ns, f.view, to_light));
+  const double n_dot_l = dot(f.ns, to_light);
   Vec3 term = f.colour * (m.kd * n_dot_l);
   if (m.ks > 0) {
     const double r_dot_v = dot(reflect(-to_light, f.ns), f.view);
     if (r_dot_v > 0) term += Vec3{1, 1, 1} * (m.ks * std::pow(r_dot_v, m.shine));
   }
-  return mul(light.intensity, term);
+  return mul(light.intensity * falloff, term);
+}
+
+// NFF's ambient term Ia*Kd*C (nff-notes §4); glTF materials have none.
+Vec3 ambient_term(const RenderScene& scene, const HitFrame& f) {
+  if (f.m->model == ShadingModel::gltf) return {};
+  return mul(scene.ambient(), f.colour) * f.m->kd;
 }
 
 // What the shadow cache says of `shadow` (light number `light`, cast from
@@ -91,6 +145,8 @@ int cached_visibility(const RenderScene& scene, const HitFrame& f, const Surface
                       int light, const Ray& shadow, RayCounts& counts) {
   const ShadowCache* cache = scene.shadow_cache();
   if (cache == nullptr || cell.slot == CellRef::kNone || dot(f.ng, shadow.dir) <= 0) return -1;
+  // The cache's corners aim at a light's position: a directional light has none.
+  if (scene.lights()[static_cast<size_t>(light)].kind == LightKind::directional) return -1;
   switch (cache->visibility(sp, cell, light, counts)) {
     case LightVisibility::lit: ++counts.shadow_cached; return 1;
     case LightVisibility::shadowed: ++counts.shadow_cached; return 0;
@@ -108,10 +164,14 @@ CellRef cell_of(const RenderScene& scene, const SurfacePoint& sp) {
 // The secondary rays that leave a hit (nff-notes §10): the mirror ray when
 // Ks > 0, weighted Ks; the transmitted ray when T > 0, weighted T: refracted
 // by Snell's law, or on total internal reflection a second mirror ray.
+// glTF materials: the mirror ray below kMirrorRoughness, weighted by the
+// Fresnel mix (gltf_mirror_weight) times alpha; BLEND's 1 - alpha goes
+// straight through, unbent.
 struct SecondaryRays {
   bool mirror = false, transmit = false;
   bool transmit_reflects = false;  // total internal reflection: counted as a reflected ray
   Ray mirror_ray, transmit_ray;
+  Vec3 mirror_weight, transmit_weight;
 };
 
 SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
@@ -123,12 +183,27 @@ SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const Sur
     if (dot(r, f.ng) <= 0) r = reflect(ray.dir, f.ng);
     return Ray{f.above, normalize(r), 0, INFINITY};
   };
+  if (m.model == ShadingModel::gltf) {
+    if (m.roughness < kMirrorRoughness) {
+      s.mirror = true;
+      s.mirror_ray = mirror_ray();
+      s.mirror_weight = gltf_mirror_weight(gltf_surface(f), dot(f.ns, f.view)) * (1 - m.transmittance);
+    }
+    if (m.transmittance > 0) {
+      s.transmit = true;
+      s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), ray.dir, 0, INFINITY};
+      s.transmit_weight = Vec3{1, 1, 1} * m.transmittance;
+    }
+    return s;
+  }
   if (m.ks > 0) {
     s.mirror = true;
     s.mirror_ray = mirror_ray();
+    s.mirror_weight = Vec3{m.ks, m.ks, m.ks};
   }
   if (m.transmittance > 0) {
     s.transmit = true;
+    s.transmit_weight = Vec3{m.transmittance, m.transmittance, m.transmittance};
     // Entering when the ray meets the outward (winding) side.
     const double eta = f.front ? 1.0 / m.ior : m.ior;
     const double cos_i = dot(f.view, f.ns);
@@ -152,11 +227,11 @@ void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint&
   const SecondaryRays s = secondary_rays(scene, ray, sp, f);
   if (s.mirror) {
     ++counts.reflected;
-    colour += trace(scene, s.mirror_ray, depth + 1, counts) * f.m->ks;
+    colour += mul(trace(scene, s.mirror_ray, depth + 1, counts), s.mirror_weight);
   }
   if (s.transmit) {
     ++(s.transmit_reflects ? counts.reflected : counts.refracted);
-    colour += trace(scene, s.transmit_ray, depth + 1, counts) * f.m->transmittance;
+    colour += mul(trace(scene, s.transmit_ray, depth + 1, counts), s.transmit_weight);
   }
 }
 
@@ -355,20 +430,21 @@ void shade_tachyon(const RenderScene& scene, const RayPacket& rays, const bool t
 Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   if (sp.material->model == ShadingModel::tachyon) return shade_tachyon(scene, ray, sp, depth, counts);
   const HitFrame f = frame_of(scene, ray, sp);
-  Vec3 colour = mul(scene.ambient(), f.colour) * f.m->kd;
+  Vec3 colour = ambient_term(scene, f);
   add_emission(scene, ray, sp, colour);
   const bool cached = scene.shadow_cache() != nullptr;
   const CellRef cell = cached ? cell_of(scene, sp) : CellRef::none();
   const auto& lights = scene.lights();
   for (size_t l = 0; l < lights.size(); ++l) {
     Ray shadow;
-    if (!shadow_ray(scene, f, sp, lights[l], shadow)) continue;
+    double falloff;
+    if (!shadow_ray(scene, f, sp, lights[l], shadow, falloff)) continue;
     int seen = cached ? cached_visibility(scene, f, sp, cell, static_cast<int>(l), shadow, counts) : -1;
     if (seen < 0) {
       ++counts.shadow;
       seen = !scene.accel().occluded(shadow);
     }
-    if (seen) colour += light_contribution(f, lights[l], shadow);
+    if (seen) colour += light_contribution(f, lights[l], shadow, falloff);
   }
   add_secondary(scene, ray, sp, f, depth, counts, colour);
   return colour;
@@ -414,7 +490,7 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
   for (int k = 0; k < kPacketSize; ++k)
     if (hit[k]) s[k] = secondary_rays(scene, rays.rays[k], sps[k], f[k]);
   RayPacket next;
-  double weight[kPacketSize];
+  Vec3 weight[kPacketSize];
   auto flush = [&] {
     Vec3 mean;
     int n = 0;
@@ -427,20 +503,20 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
       if (next.active[k]) spread = std::fmin(spread, dot(next.rays[k].dir, mean));
     if (n < kMinCoherentLanes || spread < kMinCoherentCos) {
       for (int k = 0; k < kPacketSize; ++k)
-        if (next.active[k]) colours[k] += trace(scene, next.rays[k], depth + 1, counts) * weight[k];
+        if (next.active[k]) colours[k] += mul(trace(scene, next.rays[k], depth + 1, counts), weight[k]);
       return;
     }
     Vec3 seen[kPacketSize];
     trace_packet(scene, next, depth + 1, counts, seen);
     for (int k = 0; k < kPacketSize; ++k)
-      if (next.active[k]) colours[k] += seen[k] * weight[k];
+      if (next.active[k]) colours[k] += mul(seen[k], weight[k]);
   };
   for (int k = 0; k < kPacketSize; ++k) {
     next.active[k] = hit[k] && s[k].mirror;
     if (!next.active[k]) continue;
     ++counts.reflected;
     next.rays[k] = s[k].mirror_ray;
-    weight[k] = f[k].m->ks;
+    weight[k] = s[k].mirror_weight;
   }
   flush();
   for (int k = 0; k < kPacketSize; ++k) {
@@ -448,7 +524,7 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
     if (!next.active[k]) continue;
     ++(s[k].transmit_reflects ? counts.reflected : counts.refracted);
     next.rays[k] = s[k].transmit_ray;
-    weight[k] = f[k].m->transmittance;
+    weight[k] = s[k].transmit_weight;
   }
   flush();
 }
@@ -458,19 +534,20 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
 Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
                  RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
-  Vec3 colour = mul(scene.ambient(), f.colour) * f.m->kd;
+  Vec3 colour = ambient_term(scene, f);
   add_emission(scene, ray, sp, colour);
   const auto& lights = scene.lights();
   for (size_t l = 0; l < lights.size() && l < kMaxPartLights; ++l) {
     const bool traced = trace >> l & 1u;
     if (!traced && !(lit >> l & 1u)) continue;
     Ray shadow;
-    if (!shadow_ray(scene, f, sp, lights[l], shadow)) continue;
+    double falloff;
+    if (!shadow_ray(scene, f, sp, lights[l], shadow, falloff)) continue;
     if (traced) {
       ++counts.shadow;
       if (scene.accel().occluded(shadow)) continue;
     }
-    colour += light_contribution(f, lights[l], shadow);
+    colour += light_contribution(f, lights[l], shadow, falloff);
   }
   return colour;
 }
@@ -504,7 +581,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
   for (int k = 0; k < kPacketSize; ++k) {
     if (!hit[k]) continue;
     f[k] = frame_of(scene, rays.rays[k], sps[k]);
-    colours[k] = mul(scene.ambient(), f[k].colour) * f[k].m->kd;
+    colours[k] = ambient_term(scene, f[k]);
     add_emission(scene, rays.rays[k], sps[k], colours[k]);
     if (cached) cells[k] = cell_of(scene, sps[k]);
   }
@@ -512,11 +589,12 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
   // traced together as a packet.
   RayPacket shadows;
   bool blocked[kPacketSize];
+  double falloff[kPacketSize];
   const auto& lights = scene.lights();
   for (size_t l = 0; l < lights.size(); ++l) {
     int cast = 0;
     for (int k = 0; k < kPacketSize; ++k) {
-      shadows.active[k] = hit[k] && shadow_ray(scene, f[k], sps[k], lights[l], shadows.rays[k]);
+      shadows.active[k] = hit[k] && shadow_ray(scene, f[k], sps[k], lights[l], shadows.rays[k], falloff[k]);
       if (!shadows.active[k]) continue;
       if (!cached) {
         ++cast;
@@ -524,7 +602,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
       }
       const int seen = cached_visibility(scene, f[k], sps[k], cells[k], static_cast<int>(l), shadows.rays[k], counts);
       if (seen >= 0) {
-        if (seen) colours[k] += light_contribution(f[k], lights[l], shadows.rays[k]), mark_lit(k, l);
+        if (seen) colours[k] += light_contribution(f[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
         shadows.active[k] = false;
         continue;
       }
@@ -534,7 +612,8 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     counts.shadow += static_cast<uint64_t>(cast);
     scene.accel().occluded(shadows, blocked);
     for (int k = 0; k < kPacketSize; ++k)
-      if (shadows.active[k] && !blocked[k]) colours[k] += light_contribution(f[k], lights[l], shadows.rays[k]), mark_lit(k, l);
+      if (shadows.active[k] && !blocked[k])
+        colours[k] += light_contribution(f[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
   }
   if (!parts) {
     add_secondary(scene, rays, hit, sps, f, depth, counts, colours);

@@ -42,6 +42,12 @@ struct Xform {
   Vec3 norm(const aiVector3D& n) const { return normalize(to_vec(normal * n)); }
 };
 
+// docs/lights.md: a glTF light of 1 cd (point, spot) or 1 lx (directional)
+// lights a white Lambertian surface facing it from 1 m to the radiance
+// 1 / (683 pi) W/(m^2 sr): 683 lm/W at 555 nm, as Blender's importer reads
+// them (1 cd -> 4 pi / 683 W; 1 lx -> 1 / 683 W/m^2).
+constexpr double kGltfLightToRadiance = 1 / (683 * std::numbers::pi);
+
 Affine to_affine(const aiMatrix4x4& a) {
   Affine m;
   m.m = {a.a1, a.a2, a.a3, a.b1, a.b2, a.b3, a.c1, a.c2, a.c3};
@@ -110,14 +116,22 @@ class MeshReader {
       m.Get(AI_MATKEY_REFLECTIVITY, reflectivity);
       m.Get(AI_MATKEY_SHININESS, shininess);
       m.Get(AI_MATKEY_OPACITY, opacity);
-      m.Get(AI_MATKEY_REFRACTI, ior);
+      const bool has_ior = m.Get(AI_MATKEY_REFRACTI, ior) == AI_SUCCESS;
       if (m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS && metallic >= 0) {
-        // glTF metallic-roughness, approximated: a smooth metal mirrors.
         m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
-        reflectivity = std::fmax(reflectivity, metallic * (1 - roughness));
-        shininess = std::fmax(shininess, 2 / std::fmax(roughness * roughness, 1e-3f));
+        if (gltf_) {
+          // glTF 2.0's own model (Appendix B), shaded by render/gltf_brdf.hpp.
+          mat.model = ShadingModel::gltf;
+          mat.metallic = std::clamp(static_cast<double>(metallic), 0.0, 1.0);
+          mat.roughness = std::clamp(static_cast<double>(roughness), 0.0, 1.0);
+          if (!has_ior) ior = 1.5f;  // KHR_materials_ior's default
+        } else {
+          // Another format's metallic-roughness, approximated: a smooth metal mirrors.
+          reflectivity = std::fmax(reflectivity, metallic * (1 - roughness));
+          shininess = std::fmax(shininess, 2 / std::fmax(roughness * roughness, 1e-3f));
+        }
       }
-      mat.ks = std::clamp(static_cast<double>(reflectivity), 0.0, 1.0);
+      mat.ks = mat.model == ShadingModel::gltf ? 0.0 : std::clamp(static_cast<double>(reflectivity), 0.0, 1.0);
       mat.shine = std::fmax(0.0, shininess);
       mat.transmittance = std::clamp(1.0 - opacity, 0.0, 1.0);
       // glTF's alphaMode (§3.9.4): OPAQUE ignores alpha, MASK cuts the
@@ -478,18 +492,67 @@ class MeshReader {
     return it == global_.end() ? aiMatrix4x4() : it->second;
   }
 
+  // Point, spot and directional lights, placed by their nodes. glTF's
+  // (KHR_lights_punctual) keep their photometric meaning: candela for point
+  // and spot lights, lux for directional ones, falling off with the square
+  // of the distance, converted to the renderer's unit by docs/lights.md's
+  // rule (/ 683 lm/W, / pi). Other formats' lights are unitless, as NFF's.
   void read_lights() {
     for (unsigned k = 0; k < s_.mNumLights; ++k) {
       const aiLight& l = *s_.mLights[k];
-      if (l.mType != aiLightSource_POINT) {
-        warn(fmt::format("light '{}': only point lights are rendered yet", l.mName.C_Str()));
+      const aiMatrix4x4 m = global(l.mName);
+      Light light;
+      light.position = to_vec(m * l.mPosition);
+      light.colour = to_vec(l.mColorDiffuse);
+      switch (l.mType) {
+        case aiLightSource_POINT: light.kind = LightKind::point; break;
+        case aiLightSource_SPOT: light.kind = LightKind::spot; break;
+        case aiLightSource_DIRECTIONAL: light.kind = LightKind::directional; break;
+        default:
+          warn(fmt::format("light '{}': only point, spot and directional lights are rendered", l.mName.C_Str()));
+          continue;
+      }
+      if (light.kind != LightKind::point) {
+        const Vec3 d = to_vec(aiMatrix3x3(m) * l.mDirection);
+        if (!(length(d) > 0) || !is_finite(d)) {
+          warn(fmt::format("light '{}': its direction is zero or not finite; the light is dropped", l.mName.C_Str()));
+          continue;
+        }
+        light.direction = normalize(d);
+      }
+      if (!is_finite(light.position) || !is_finite(light.colour)) {
+        warn(fmt::format("light '{}': not finite; the light is dropped", l.mName.C_Str()));
         continue;
       }
-      Light light;
-      light.position = to_vec(global(l.mName) * l.mPosition);
-      light.colour = to_vec(l.mColorDiffuse);
+      if (gltf_) {
+        light.photometric = true;
+        light.colour = light.colour * kGltfLightToRadiance;
+        if (light.kind != LightKind::directional) light.kq = 1, light.kc = 0, light.kl = 0;
+        if (light.kind == LightKind::spot) {
+          // glTF's cone angles are measured from the axis.
+          light.fall_end = std::clamp(static_cast<double>(l.mAngleOuterCone), 0.0, std::numbers::pi / 2);
+          light.fall_start = std::clamp(static_cast<double>(l.mAngleInnerCone), 0.0, light.fall_end);
+          light.smooth_cone = true;
+        }
+        light.range = light_range(l.mName);
+      } else if (light.kind == LightKind::spot) {
+        // aiLight's cone angles are full angles; falloff linear in the angle between them.
+        light.fall_end = std::clamp(0.5 * l.mAngleOuterCone, 0.0, std::numbers::pi);
+        light.fall_start = std::clamp(0.5 * l.mAngleInnerCone, 0.0, light.fall_end);
+      }
       out_.lights.push_back(light);
     }
+  }
+
+  // KHR_lights_punctual's `range`, which assimp keeps on the light's node; 0: none.
+  double light_range(const aiString& name) const {
+    const aiNode* node = s_.mRootNode->FindNode(name);
+    if (node == nullptr || node->mMetaData == nullptr) return 0;
+    float f = 0;
+    double d = 0;
+    if (node->mMetaData->Get("PBR_LightRange", f)) d = f;
+    else if (!node->mMetaData->Get("PBR_LightRange", d)) return 0;
+    return d > 0 && std::isfinite(d) ? d : 0;
   }
 
   void read_camera() {

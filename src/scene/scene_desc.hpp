@@ -46,6 +46,17 @@ struct Light {
   Vec3 direction{0, 0, -1};           ///< directional: where the light travels; spot: the cone's axis (unit)
   double kc = 1, kl = 0, kq = 0;      ///< intensity / (kc + kl d + kq d^2), d in world units
   double fall_start = 0, fall_end = 0;  ///< spot: full intensity to fall_start, none past fall_end (radians off axis)
+  /// Spot falloff between fall_start and fall_end: false, linear in the
+  /// angle (Tachyon); true, KHR_lights_punctual's smooth one, the square of
+  /// (cos a - cos fall_end) / (cos fall_start - cos fall_end).
+  bool smooth_cone = false;
+  /// KHR_lights_punctual `range` (world units): the light fades to nothing
+  /// there by the extension's window, (1 - (d/range)^4)^2 clamped; 0: none.
+  double range = 0;
+  /// The colour is already the renderer's radiance unit (docs/lights.md):
+  /// a glTF light converted from candela or lux. NFF's 1/sqrt(lights)
+  /// scaling (nff-notes §4) is not applied to it.
+  bool photometric = false;
   /// Put there by a reader because the file has no light (mesh files): the
   /// build step keeps it only when no file of the scene has a light of its
   /// own, and keeps one such light at most.
@@ -54,9 +65,12 @@ struct Light {
 };
 
 /// Which shading formula a material follows: NFF's Whitted model
-/// (render/shading.hpp) or Tachyon's (tachyon-notes §3). A Tachyon scene's
-/// materials are all `tachyon`; the NFF and mesh readers make `nff` ones.
-enum class ShadingModel { nff, tachyon };
+/// (render/shading.hpp), Tachyon's (tachyon-notes §3) or glTF 2.0's
+/// metallic-roughness BRDF (the specification's Appendix B). A Tachyon
+/// scene's materials are all `tachyon`; the NFF reader and the mesh reader
+/// (for all but glTF 2.0 materials) make `nff` ones; glTF 2.0 materials are
+/// `gltf`.
+enum class ShadingModel { nff, tachyon, gltf };
 
 /// NFF `f` (nff-notes §5): colour, Kd, Ks (mirror weight and highlight weight),
 /// Phong exponent, transmittance T (weight of the refracted ray) and ior.
@@ -86,6 +100,10 @@ struct Material {
   /// -1: none) where given. Linear RGB.
   Vec3 emission{0, 0, 0};
   int emission_texture = -1;
+  /// glTF materials (model `gltf`): metallicFactor and roughnessFactor in
+  /// [0, 1]; `colour` is the base colour, `ior` the dielectric's index
+  /// (KHR_materials_ior; 1.5 by default, F0 = 0.04).
+  double metallic = 0, roughness = 1;
   SourceLoc loc;
 };
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the small glTF scenes that Blender renders as holoray's oracle
-(render_albedo.py) and that tests/test_textures.cpp renders with holoray.
+(render_oracle.py) and that tests/test_textures.cpp renders with holoray.
 
 Standard library only. Each scene carries its own camera (square image, so
 that Blender's sensor fit cannot differ from the file's yfov).
@@ -245,6 +245,106 @@ def masked_leaf(name):
         json.dump(gltf, f, indent=1)
 
 
+def uv_sphere(radius, centre, rings=24, segments=48):
+    """A UV sphere with smooth (outward) normals, counter-clockwise from outside."""
+    pos, nrm, idx = [], [], []
+    for i in range(rings + 1):
+        theta = math.pi * i / rings
+        for j in range(segments + 1):
+            phi = 2 * math.pi * j / segments
+            n = [math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi)]
+            nrm.append(n)
+            pos.append([centre[k] + radius * n[k] for k in range(3)])
+    row = segments + 1
+    for i in range(rings):
+        for j in range(segments):
+            a, b = i * row + j, i * row + j + 1
+            c, d = a + row, b + row
+            if i > 0:
+                idx += [a, c, b]
+            if i < rings - 1:
+                idx += [b, c, d]
+    return pos, nrm, idx
+
+
+def lit_spheres(name):
+    """A metal (gold) and a dielectric (blue, glossy) sphere on a rough grey
+    floor, under a sun and a warm spot (KHR_lights_punctual, photometric
+    units): the oracle for glTF's metallic-roughness BRDF and its lights.
+    The spheres stand inside the spot's inner cone, a narrow one: Blender's
+    importer turns the cone into a blend that is not glTF's falloff, and
+    Cycles dims a spot by the cosine of the angle off its axis."""
+    blob = bytearray()
+    views, accessors, meshes = [], [], []
+
+    def add(data, fmt, count, kind, target, minmax=None):
+        while len(blob) % 4:
+            blob.append(0)
+        off = len(blob)
+        blob.extend(data)
+        views.append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
+        acc = {"bufferView": len(views) - 1, "componentType": fmt, "count": count, "type": kind}
+        if minmax:
+            acc["min"], acc["max"] = minmax
+        accessors.append(acc)
+        return len(accessors) - 1
+
+    flat = lambda rows: [c for r in rows for c in r]
+
+    def mesh(pos, nrm, idx, material):
+        a_pos = add(struct.pack("<%df" % (3 * len(pos)), *flat(pos)), 5126, len(pos), "VEC3", 34962,
+                    ([min(p[i] for p in pos) for i in range(3)], [max(p[i] for p in pos) for i in range(3)]))
+        a_nrm = add(struct.pack("<%df" % (3 * len(nrm)), *flat(nrm)), 5126, len(nrm), "VEC3", 34962)
+        a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
+        meshes.append({"primitives": [{"attributes": {"POSITION": a_pos, "NORMAL": a_nrm}, "indices": a_idx,
+                                       "material": material}]})
+        return len(meshes) - 1
+
+    floor = mesh([[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4]], [[0, 1, 0]] * 4, [0, 2, 1, 0, 3, 2], 0)
+    gold = mesh(*uv_sphere(0.6, [-0.75, 0.6, 0]), 1)
+    blue = mesh(*uv_sphere(0.6, [0.75, 0.6, 0.2]), 2)
+    eye = [0.0, 2.2, 4.5]
+    sun_dir = [-0.4, -1.0, -0.5]
+    spot_at, spot_pos = [0.0, 0.3, 0.0], [4.0, 6.0, 4.0]
+    gltf = {
+        "asset": {"version": "2.0", "generator": "holoray tests/data/blender/make_scenes.py"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"name": "sun", "type": "directional", "color": [0.9, 0.95, 1.0], "intensity": 860.0},
+            {"name": "spot", "type": "spot", "color": [1.0, 0.85, 0.7], "intensity": 70000.0,
+             "spot": {"innerConeAngle": 0.22, "outerConeAngle": 0.3}},
+        ]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2, 3, 4, 5]}],
+        "nodes": [
+            {"mesh": floor},
+            {"mesh": gold},
+            {"mesh": blue},
+            {"camera": 0, "translation": eye, "rotation": look_at_quaternion(eye, [0, 0.5, 0])},
+            {"name": "sun", "rotation": look_at_quaternion([0, 0, 0], sun_dir),
+             "extensions": {"KHR_lights_punctual": {"light": 0}}},
+            {"name": "spot", "translation": spot_pos, "rotation": look_at_quaternion(spot_pos, spot_at),
+             "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        ],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}],
+        "meshes": meshes,
+        "materials": [
+            {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.6, 0.6, 1], "metallicFactor": 0.0,
+                                                       "roughnessFactor": 0.9}},
+            {"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [1.0, 0.71, 0.29, 1], "metallicFactor": 1.0,
+                                                      "roughnessFactor": 0.35}},
+            {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.3, 0.8, 1], "metallicFactor": 0.0,
+                                                      "roughnessFactor": 0.3}},
+        ],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
 if __name__ == "__main__":
     embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
@@ -252,3 +352,4 @@ if __name__ == "__main__":
     # KHR_texture_transform: offset, rotation and a non-uniform scale, repeated.
     textured_box("transform_box", transform={"offset": [0.2, 0.1], "rotation": 0.4, "scale": [1.5, 0.8]})
     masked_leaf("masked_leaf")
+    lit_spheres("lit_spheres")
