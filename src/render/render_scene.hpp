@@ -36,6 +36,9 @@ struct PointLight {
   double fall_start = 0, fall_end = 0;
   bool smooth_cone = false;
   double range = 0;
+  /// A point light whose intensity reaches every point whole (NFF's): the
+  /// shading skips the falloff.
+  bool unit_falloff = true;
 };
 
 /// Where a ray met a surface, resolved for shading.

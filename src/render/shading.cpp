@@ -56,7 +56,7 @@ inline void add_emission(const RenderScene& scene, const Ray& ray, const Surface
 // `to_light` (unit, toward the light): attenuation 1 / (kc + kl d + kq d^2),
 // KHR_lights_punctual's range window and the spot cone (Tachyon's linear
 // falloff in the angle, or glTF's smooth one). Exactly 1 for NFF's lights.
-double light_falloff(const PointLight& light, const Vec3& to_light, double dist) {
+[[gnu::noinline]] double light_falloff(const PointLight& light, const Vec3& to_light, double dist) {
   if (light.kind == LightKind::directional) return 1;
   double a = 1;
   if (light.kc != 1 || light.kl != 0 || light.kq != 0) a = 1 / (light.kc + (light.kl + light.kq * dist) * dist);
@@ -84,7 +84,7 @@ double light_falloff(const PointLight& light, const Vec3& to_light, double dist)
 // no shadow ray is cast (light on the surface, the normal faces away from
 // it: nff-notes §10.10, or the falloff leaves nothing). A directional
 // light's ray is unbounded.
-bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
+[[gnu::always_inline]] inline bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
                 Ray& shadow, double& falloff) {
   const double eps = scene.epsilon();
   if (light.kind == LightKind::directional) {
@@ -99,14 +99,24 @@ bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint&
   if (!(dist > eps)) return false;
   to_light = to_light / dist;
   if (dot(f.ns, to_light) <= 0) return false;
-  falloff = light_falloff(light, to_light, dist);
-  if (!(falloff > 0)) return false;
+  falloff = 1;
+  if (!light.unit_falloff) {
+    falloff = light_falloff(light, to_light, dist);
+    if (!(falloff > 0)) return false;
+  }
   shadow = Ray{f.above, to_light, 0, dist - eps};
   return true;
 }
 
 GltfSurface gltf_surface(const HitFrame& f) {
   return GltfSurface{f.colour, f.m->metallic, f.m->roughness, dielectric_f0(f.m->ior)};
+}
+
+// light_contribution() of a glTF material: kept out of line, so that NFF's
+// hot path stays as small as it was.
+[[gnu::noinline]] Vec3 gltf_contribution(const HitFrame& f, const PointLight& light, const Vec3& to_light,
+                                         double falloff) {
+  return mul(light.intensity * (falloff * (1 - f.m->transmittance)), gltf_direct(gltf_surface(f), f.ns, f.view, to_light));
 }
 
 // The light's contribution through the unblocked `shadow` ray. NFF's
@@ -117,8 +127,8 @@ GltfSurface gltf_surface(const HitFrame& f) {
 Vec3 light_contribution(const HitFrame& f, const PointLight& light, const Ray& shadow, double falloff) {
   const Vec3& to_light = shadow.dir;
   const Material& m = *f.m;
-  if (m.model == ShadingModel::gltf)
-    return mul(light.intensity * (falloff * (1 - m.transmittance)), gltf_direct(gltf_surface(f), f.ns, f.view, to_light));
+  if (m.model == ShadingModel::gltf) [[unlikely]]
+    return gltf_contribution(f, light, to_light, falloff);
   const double n_dot_l = dot(f.ns, to_light);
   Vec3 term = f.colour * (m.kd * n_dot_l);
   if (m.ks > 0) {
@@ -174,28 +184,38 @@ struct SecondaryRays {
   Vec3 mirror_weight, transmit_weight;
 };
 
-SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
+// The mirror ray off the hit (the true normal where the interpolated one
+// would send it into the surface).
+Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
+  Vec3 r = reflect(ray.dir, f.ns);
+  if (dot(r, f.ng) <= 0) r = reflect(ray.dir, f.ng);
+  return Ray{f.above, normalize(r), 0, INFINITY};
+}
+
+// secondary_rays() of a glTF material, out of line as gltf_contribution().
+[[gnu::noinline]] SecondaryRays gltf_secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp,
+                                                    const HitFrame& f) {
   SecondaryRays s;
   const Material& m = *f.m;
-  auto mirror_ray = [&] {
-    Vec3 r = reflect(ray.dir, f.ns);
-    // An interpolated normal can send the mirror ray into the surface; fall back to the true one.
-    if (dot(r, f.ng) <= 0) r = reflect(ray.dir, f.ng);
-    return Ray{f.above, normalize(r), 0, INFINITY};
-  };
-  if (m.model == ShadingModel::gltf) {
-    if (m.roughness < kMirrorRoughness) {
-      s.mirror = true;
-      s.mirror_ray = mirror_ray();
-      s.mirror_weight = gltf_mirror_weight(gltf_surface(f), dot(f.ns, f.view)) * (1 - m.transmittance);
-    }
-    if (m.transmittance > 0) {
-      s.transmit = true;
-      s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), ray.dir, 0, INFINITY};
-      s.transmit_weight = Vec3{1, 1, 1} * m.transmittance;
-    }
-    return s;
+  if (m.roughness < kMirrorRoughness) {
+    s.mirror = true;
+    s.mirror_ray = mirror_ray_of(ray, f);
+    s.mirror_weight = gltf_mirror_weight(gltf_surface(f), dot(f.ns, f.view)) * (1 - m.transmittance);
   }
+  if (m.transmittance > 0) {
+    s.transmit = true;
+    s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), ray.dir, 0, INFINITY};
+    s.transmit_weight = Vec3{1, 1, 1} * m.transmittance;
+  }
+  return s;
+}
+
+SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
+  const Material& m = *f.m;
+  if (m.model == ShadingModel::gltf) [[unlikely]]
+    return gltf_secondary_rays(scene, ray, sp, f);
+  SecondaryRays s;
+  auto mirror_ray = [&] { return mirror_ray_of(ray, f); };
   if (m.ks > 0) {
     s.mirror = true;
     s.mirror_ray = mirror_ray();
