@@ -8,6 +8,7 @@ that Blender's sensor fit cannot differ from the file's yfov).
     python3 tests/data/blender/make_scenes.py   # rewrites the .gltf/.png here
 """
 import base64
+import functools
 import json
 import math
 import os
@@ -15,6 +16,25 @@ import struct
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def flat(rows):
+    return [c for r in rows for c in r]
+
+
+def add_accessor(blob, views, accessors, data, fmt, count, kind, target, minmax=None):
+    """Appends `data` to the buffer `blob` (4-byte aligned) with a view and an
+    accessor of it; returns the accessor's index."""
+    while len(blob) % 4:
+        blob.append(0)
+    off = len(blob)
+    blob.extend(data)
+    views.append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
+    acc = {"bufferView": len(views) - 1, "componentType": fmt, "count": count, "type": kind}
+    if minmax:
+        acc["min"], acc["max"] = minmax
+    accessors.append(acc)
+    return len(accessors) - 1
 
 
 def write_png(path, width, height, rgb):
@@ -115,19 +135,7 @@ def textured_box(name, wrap_s=10497, wrap_t=10497, uv_scale=1.0, transform=None)
     blob = bytearray()
     views, accessors = [], []
 
-    def add(data, fmt, count, kind, target, minmax=None):
-        while len(blob) % 4:
-            blob.append(0)
-        off = len(blob)
-        blob.extend(data)
-        views.append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
-        acc = {"bufferView": len(views) - 1, "componentType": fmt, "count": count, "type": kind}
-        if minmax:
-            acc["min"], acc["max"] = minmax
-        accessors.append(acc)
-        return len(accessors) - 1
-
-    flat = lambda rows: [c for r in rows for c in r]
+    add = functools.partial(add_accessor, blob, views, accessors)
     a_pos = add(struct.pack("<%df" % (3 * len(pos)), *flat(pos)), 5126, len(pos), "VEC3", 34962,
                 ([min(p[i] for p in pos) for i in range(3)], [max(p[i] for p in pos) for i in range(3)]))
     a_nrm = add(struct.pack("<%df" % (3 * len(nrm)), *flat(nrm)), 5126, len(nrm), "VEC3", 34962)
@@ -212,19 +220,7 @@ def masked_leaf(name):
     nrm = [(0, 0, 1)] * 4
     idx = [0, 1, 2, 0, 2, 3]
 
-    def add(data, fmt, count, kind, target, minmax=None):
-        while len(blob) % 4:
-            blob.append(0)
-        off = len(blob)
-        blob.extend(data)
-        gltf["bufferViews"].append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
-        acc = {"bufferView": len(gltf["bufferViews"]) - 1, "componentType": fmt, "count": count, "type": kind}
-        if minmax:
-            acc["min"], acc["max"] = minmax
-        gltf["accessors"].append(acc)
-        return len(gltf["accessors"]) - 1
-
-    flat = lambda rows: [c for r in rows for c in r]
+    add = functools.partial(add_accessor, blob, gltf["bufferViews"], gltf["accessors"])
     a_pos = add(struct.pack("<12f", *flat(quad)), 5126, 4, "VEC3", 34962, ([-0.45, -0.45, 0], [0.45, 0.45, 0]))
     a_nrm = add(struct.pack("<12f", *flat(nrm)), 5126, 4, "VEC3", 34962)
     a_uv = add(struct.pack("<8f", *flat(uv)), 5126, 4, "VEC2", 34962)
@@ -277,19 +273,7 @@ def lit_spheres(name):
     blob = bytearray()
     views, accessors, meshes = [], [], []
 
-    def add(data, fmt, count, kind, target, minmax=None):
-        while len(blob) % 4:
-            blob.append(0)
-        off = len(blob)
-        blob.extend(data)
-        views.append({"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
-        acc = {"bufferView": len(views) - 1, "componentType": fmt, "count": count, "type": kind}
-        if minmax:
-            acc["min"], acc["max"] = minmax
-        accessors.append(acc)
-        return len(accessors) - 1
-
-    flat = lambda rows: [c for r in rows for c in r]
+    add = functools.partial(add_accessor, blob, views, accessors)
 
     def mesh(pos, nrm, idx, material):
         a_pos = add(struct.pack("<%df" % (3 * len(pos)), *flat(pos)), 5126, len(pos), "VEC3", 34962,
