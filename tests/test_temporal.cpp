@@ -57,6 +57,7 @@ Keyframe trace_key(const RenderScene& scene, const LensArrayDesc& desc, int fram
   RenderStats stats;
   FrameBuffers fb = render_frame(scene, LensArray(desc), ro, stats);
   PointImage pi{frame, LensArray(desc), fb.primary, fb.colour};
+  pi.record_groups(scene.accel());
   return {std::move(pi), std::move(fb)};
 }
 

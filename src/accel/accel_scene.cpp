@@ -163,6 +163,7 @@ void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, std::
       rtcSetGeometryIntersectFilterFunction(g, cutout_filter<Ref>);
       rtcSetGeometryOccludedFilterFunction(g, cutout_filter<Ref>);
     }
+    if (geo.deformable) rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, tri.positions.data(), 0, 3 * sizeof(float),
                                tri.positions.size() / 3);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tri.indices.data(), 0, 3 * sizeof(uint32_t),
@@ -227,11 +228,11 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
   m.device = rtcNewDevice(nullptr);
   if (!m.device) throw std::runtime_error(fmt::format("cannot create the Embree device (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   rtcSetDeviceErrorFunction(m.device, on_embree_error, &m.last_error);
-  auto new_scene = [&] {
+  auto new_scene = [&](bool dynamic = false) {
     RTCScene s = rtcNewScene(m.device);
     // Robust mode: watertight triangle edges (rays exactly on a shared edge
     // otherwise fall through; the plane-depth test hits this).
-    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(s, dynamic ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
     return s;
   };
@@ -244,6 +245,7 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     Group& g = groups_[gi];
     g.geo = std::move(groups[gi]);
+    g.geo.movable |= g.geo.deformable;
     g.object_bounds = geometry_bounds(g.geo);
     g.cones.reserve(g.geo.cones.size());
     for (const Cone& c : g.geo.cones) g.cones.push_back(prepare_cone(c));
@@ -253,7 +255,7 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
       attach_geometry(m.device, m.scene, g.geo, g.cones, base, &g.cutout_ref);
       continue;
     }
-    RTCScene child = new_scene();
+    RTCScene child = new_scene(g.geo.deformable);
     attach_geometry(m.device, child, g.geo, g.cones, 0, &g.cutout_ref);
     rtcCommitScene(child);
     m.children[gi] = child;
@@ -305,6 +307,31 @@ void AccelScene::set_transforms(const std::vector<Affine>& object_to_world) {
   }
   if (changed) rtcCommitScene(m.scene);
   m.check("moving the scene's objects");
+}
+
+void AccelScene::set_positions(uint32_t group, const std::vector<float>& positions, uint64_t pose) {
+  if (group >= groups_.size() || !groups_[group].geo.deformable)
+    throw std::invalid_argument(fmt::format("scene group {} was not built deformable", group));
+  Group& g = groups_[group];
+  TriangleData& tri = g.geo.triangles;
+  if (positions.size() != tri.positions.size())
+    throw std::invalid_argument(fmt::format("scene group {} has {} vertices, got {}", group, tri.positions.size() / 3,
+                                            positions.size() / 3));
+  Impl& m = *impl_;
+  std::copy(positions.begin(), positions.end(), tri.positions.begin());  // Embree shares this buffer
+  if (!tri.indices.empty()) {
+    RTCGeometry geom = rtcGetGeometry(m.children[group], static_cast<unsigned>(PrimKind::triangle));
+    rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geom);
+    rtcCommitScene(m.children[group]);
+    rtcCommitGeometry(m.instances[group]);
+    rtcCommitScene(m.scene);
+  }
+  g.object_bounds = geometry_bounds(g.geo);
+  g.pose = pose;
+  bounds_ = Bounds3{};
+  for (const Group& each : groups_) bounds_.extend(transformed(each.object_bounds, each.to_world));
+  m.check("deforming a mesh");
 }
 
 Bounds3 AccelScene::group_bounds(uint32_t group, const Affine& to_world) const {

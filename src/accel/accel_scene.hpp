@@ -41,6 +41,9 @@ struct GeometryGroup {
   std::vector<Sphere> spheres;
   std::vector<Cone> cones;
   bool movable = false;  ///< instanced: set_transforms may move it
+  /// Its triangles' vertices change between frames (a skinned mesh):
+  /// set_positions refits its BVH (Embree's refit build). Implies movable.
+  bool deformable = false;
   /// Asked about every candidate triangle hit when set (not owned; must
   /// outlive the AccelScene); null: every triangle is solid.
   const TriangleCutout* cutout = nullptr;
@@ -110,6 +113,16 @@ class AccelScene {
   /// is wrong, a transform is singular, or a static group is given anything
   /// but the identity.
   void set_transforms(const std::vector<Affine>& object_to_world);
+  /// New triangle vertices (object space, xyz per vertex, as many as it was
+  /// built with) for a deformable group, named by the caller's `pose` tag
+  /// (a frame; not 0, the pose it was built in); its BVH is refitted, not
+  /// rebuilt. Not thread-safe against queries. Throws
+  /// std::invalid_argument when the group is not deformable or the count
+  /// differs.
+  void set_positions(uint32_t group, const std::vector<float>& positions, uint64_t pose);
+  /// The tag of the group's current vertices (0: as built). Two frames
+  /// whose poses differ do not share its geometry: reuse treats it as moved.
+  uint64_t pose(uint32_t group) const { return groups_[group].pose; }
   const Affine& transform(uint32_t group) const { return groups_[group].to_world; }
   const Affine& inverse_transform(uint32_t group) const { return groups_[group].to_object; }
   size_t group_count() const { return groups_.size(); }
@@ -168,6 +181,7 @@ class AccelScene {
     Bounds3 object_bounds;
     Affine to_world, to_object;
     bool identity = true;
+    uint64_t pose = 0;
   };
   bool refine(const Group& g, const Ray& ray, bool strict, double t_guess, Hit& hit) const;
   /// Embree's hit record (ids, float normal and barycentrics, float t) into a

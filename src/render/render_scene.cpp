@@ -195,8 +195,10 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
       }
     group_base_.push_back({static_cast<uint32_t>(tri_object_.size()), static_cast<uint32_t>(sphere_object_.size()),
                            static_cast<uint32_t>(cone_object_.size())});
+    group_shading_.push_back(desc.shading);
     GeometryGroup& geo = groups.emplace_back();
-    geo.movable = part.movable;
+    geo.movable = part.movable || part.deformable;
+    geo.deformable = part.deformable;
     TriangleData& tris = geo.triangles;
     for (size_t oi = 0; oi < desc.objects.size(); ++oi) {
       const ObjectDesc& obj = desc.objects[oi];
@@ -253,6 +255,44 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
 
 void RenderScene::set_transforms(const std::vector<Affine>& object_to_world) {
   accel_->set_transforms(object_to_world);
+  update_epsilon();
+  if (shadow_cache_) shadow_cache_->sync();
+}
+
+void RenderScene::set_vertices(uint32_t part, const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals,
+                               uint64_t pose) {
+  const AccelScene& accel = *accel_;
+  if (part >= accel.group_count() || !accel.geometry(part).deformable)
+    throw std::invalid_argument(fmt::format("scene part {} was not built deformable", part));
+  const TriangleData& tris = accel.geometry(part).triangles;
+  if (vertices.size() * 3 != tris.positions.size() || (!normals.empty() && normals.size() != vertices.size()))
+    throw std::invalid_argument(fmt::format("scene part {} has {} vertices, got {} and {} normals", part,
+                                            tris.positions.size() / 3, vertices.size(), normals.size()));
+  std::vector<float> positions;
+  positions.reserve(3 * vertices.size());
+  for (const Vec3& v : vertices)
+    positions.insert(positions.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+  // The triangles as add_mesh() built them, in the group's order.
+  const uint32_t first = group_base_[part][0];
+  for (size_t k = 0; k < tris.indices.size() / 3; ++k) {
+    const size_t t = first + k;
+    const uint32_t* idx = &tris.indices[3 * k];
+    const std::array<Vec3, 3> corners{vertices[idx[0]], vertices[idx[1]], vertices[idx[2]]};
+    const Vec3 n = polygon_normal(corners);
+    if (!(length(n) > 0)) continue;  // collapsed this frame: Embree cannot hit it; keep the last normal
+    tri_normal_[t] = n;
+    if (tri_patch_[t] >= 0 && !normals.empty())
+      patch_normals_[static_cast<size_t>(tri_patch_[t])] = {
+          vertex_normal(normals[idx[0]], n, group_shading_[part]), vertex_normal(normals[idx[1]], n, group_shading_[part]),
+          vertex_normal(normals[idx[2]], n, group_shading_[part])};
+    if (t < tri_uv_.size() && tri_uv_[t] >= 0) {
+      TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
+      const double uv_area = std::fabs((tu.uv[1][0] - tu.uv[0][0]) * (tu.uv[2][1] - tu.uv[0][1]) -
+                                       (tu.uv[2][0] - tu.uv[0][0]) * (tu.uv[1][1] - tu.uv[0][1]));
+      tu.uv_per_world = static_cast<float>(std::sqrt(uv_area / length(n)));
+    }
+  }
+  accel_->set_positions(part, positions, pose);
   update_epsilon();
   if (shadow_cache_) shadow_cache_->sync();
 }

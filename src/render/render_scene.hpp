@@ -72,10 +72,12 @@ inline Vec3 albedo_of(const SurfacePoint& sp) {
 
 class ShadowCache;
 
-/// One scene file of a shot: its description and whether it ever moves.
+/// One scene file of a shot: its description and whether it ever moves
+/// (rigidly: set_transforms) or deforms (its mesh vertices: set_vertices).
 struct ScenePart {
   const SceneDesc* desc = nullptr;
   bool movable = false;
+  bool deformable = false;
 };
 
 /// The bounds (the file's object space) of what `desc` holds, leaving out
@@ -102,6 +104,15 @@ class RenderScene {
   /// thread-safe against rendering. Throws std::invalid_argument as
   /// AccelScene::set_transforms does.
   void set_transforms(const std::vector<Affine>& object_to_world);
+  /// New vertices (object space) and vertex normals for a deformable part
+  /// (ScenePart::deformable; a skinned mesh posed for the next frame), in
+  /// the order of its meshes' vertices, tagged `pose` (AccelScene::pose: a
+  /// frame, not 0); `normals` empty keeps the flat triangles flat. Winding
+  /// normals, shading normals and texture footprints follow; the BVH is
+  /// refitted; the shadow cache is cleared. Not thread-safe against
+  /// rendering. Throws std::invalid_argument when the part is not
+  /// deformable or a count differs from its build.
+  void set_vertices(uint32_t part, const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals, uint64_t pose);
   void set_background(const Vec3& colour) { background_ = colour; }
   /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's,
   /// or the first scene file's own, Tachyon's `raydepth`).
@@ -168,6 +179,7 @@ class RenderScene {
   std::vector<uint32_t> object_material_;  // per object
   std::vector<uint32_t> tri_object_, sphere_object_, cone_object_;
   std::vector<std::array<uint32_t, 3>> group_base_;  // per group: first triangle, sphere, cone in the arrays
+  std::vector<ShadingModel> group_shading_;          // per group: its file's (the vertex normal rule)
   std::vector<Vec3> tri_normal_;                 // winding normal per triangle
   std::vector<int32_t> tri_patch_;               // index into patch_normals_, -1 for flat `p`
   std::vector<std::array<Vec3, 3>> patch_normals_;

@@ -40,6 +40,7 @@ uint64_t slots_for(const AccelScene& accel, size_t lights, uint64_t limit) {
 uint32_t load(uint32_t& w) { return std::atomic_ref<uint32_t>(w).load(std::memory_order_relaxed); }
 void store(uint32_t& w, uint32_t v) { std::atomic_ref<uint32_t>(w).store(v, std::memory_order_relaxed); }
 
+// Every group's transform and pose, bit for bit: what sync() compares.
 std::vector<uint64_t> transform_bits(const AccelScene& accel) {
   std::vector<uint64_t> bits;
   for (uint32_t g = 0; g < accel.group_count(); ++g) {
@@ -54,6 +55,7 @@ std::vector<uint64_t> transform_bits(const AccelScene& accel) {
       std::memcpy(&b, &d, sizeof b);
       bits.push_back(b);
     }
+    bits.push_back(accel.pose(g));  // a deformed mesh moved its cells' corners
   }
   return bits;
 }

@@ -6,13 +6,16 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <charconv>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <numbers>
 #include <stdexcept>
@@ -77,6 +80,7 @@ class MeshReader {
                                            limits_.max_triangles));
     out_.objects.reserve(static_cast<size_t>(triangles));
     walk(s_.mRootNode, aiMatrix4x4(), aiMatrix4x4(), -1);
+    for (const auto& [mesh, node] : skinned_) add_skinned_mesh(*mesh, node);
     read_lights();
     read_camera();
     return std::move(out_);
@@ -417,15 +421,92 @@ class MeshReader {
       cam.fixed = to_affine(rel);
       animation_->camera = cam;  // its lens and angle: read_camera()
     }
+    place_[node->mName.C_Str()] = {part, to_affine(rel)};
     Xform xf{rel, aiMatrix3x3(rel)};
     xf.normal.Inverse().Transpose();
     SceneDesc& target = part < 0 ? out_ : animation_->parts[static_cast<size_t>(part)].scene;
-    for (unsigned k = 0; k < node->mNumMeshes; ++k) add_mesh(*s_.mMeshes[node->mMeshes[k]], xf, world, target);
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const aiMesh& mesh = *s_.mMeshes[node->mMeshes[k]];
+      // Posed once every joint's place is known (after the walk).
+      if (mesh.mNumBones > 0) skinned_.push_back({&mesh, node->mName.C_Str()});
+      else add_mesh(mesh, xf, world, target);
+    }
     for (unsigned k = 0; k < node->mNumChildren; ++k) walk(node->mChildren[k], world, rel, part);
   }
 
-  // `xf` places the vertices in `target`'s frame; `world` (rest) bounds the default view.
-  void add_mesh(const aiMesh& mesh, const Xform& xf, const aiMatrix4x4& world, SceneDesc& target) {
+  // Where a joint node sits: its part's chain, then its frame in that part.
+  MeshAnimation::Skin::Joint joint_at(const std::string& node) const {
+    const NodePlace& at = place_.at(node);
+    MeshAnimation::Skin::Joint j;
+    if (at.part >= 0) j.chain = animation_->parts[static_cast<size_t>(at.part)].chain;
+    j.fixed = at.rel;
+    return j;
+  }
+
+  // A skinned mesh: its joints and weights (MeshAnimation::Skin), then the
+  // mesh posed at time 0 (a shot: a part of its own, which the sequence
+  // poses frame by frame) or at rest (a still: the file's own part).
+  void add_skinned_mesh(const aiMesh& mesh, const std::string& node) {
+    MeshAnimation::Skin skin;
+    skin.mesh = mesh.mName.C_Str();
+    const unsigned nv = mesh.mNumVertices;
+    for (unsigned v = 0; v < nv; ++v) skin.vertices.push_back(to_vec(mesh.mVertices[v]));
+    if (mesh.HasNormals())
+      for (unsigned v = 0; v < nv; ++v) skin.normals.push_back(to_vec(mesh.mNormals[v]));
+    std::vector<std::vector<std::pair<uint32_t, double>>> of_vertex(nv);
+    for (unsigned b = 0; b < mesh.mNumBones; ++b) {
+      const aiBone& bone = *mesh.mBones[b];
+      if (!place_.count(bone.mName.C_Str()))
+        throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}' is skinned to joint '{}', which is not a node "
+                                             "of the scene",
+                                             out_.source, skin.mesh, bone.mName.C_Str()));
+      MeshAnimation::Skin::Joint j = joint_at(bone.mName.C_Str());
+      j.inverse_bind = to_affine(bone.mOffsetMatrix);
+      skin.joints.push_back(std::move(j));
+      for (unsigned k = 0; k < bone.mNumWeights; ++k) {
+        const aiVertexWeight& w = bone.mWeights[k];
+        if (w.mVertexId >= nv || !std::isfinite(w.mWeight) || w.mWeight < 0)
+          throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}': joint '{}' has a bad weight (vertex {}, "
+                                               "weight {}); expected a vertex below {} and a weight of 0 or more",
+                                               out_.source, skin.mesh, bone.mName.C_Str(), w.mVertexId, w.mWeight, nv));
+        if (w.mWeight > 0) of_vertex[w.mVertexId].emplace_back(b, w.mWeight);
+      }
+    }
+    // A vertex without weight stays with the mesh's node: one more joint,
+    // that node's frame, binding the identity.
+    const auto unweighted = static_cast<uint32_t>(skin.joints.size());
+    skin.joints.push_back(joint_at(node));
+    skin.first.push_back(0);
+    for (auto& list : of_vertex) {
+      double sum = 0;
+      for (const auto& [j, w] : list) sum += w;
+      if (sum > 0)
+        for (const auto& [j, w] : list) skin.influences.emplace_back(j, w / sum);
+      else
+        skin.influences.emplace_back(unweighted, 1.0);
+      skin.first.push_back(static_cast<uint32_t>(skin.influences.size()));
+    }
+    std::vector<Vec3> vertices, normals;
+    pose_skin(skin, animation_ ? animation_->tracks : std::vector<NodeTrack>{}, 0, vertices, normals);
+    SceneDesc* target = &out_;
+    if (animation_) {
+      MeshAnimation::Part p;
+      p.node = node;
+      p.scene.source = out_.source;
+      skin.part = animation_->parts.size();
+      animation_->parts.push_back(std::move(p));
+      target = &animation_->parts.back().scene;
+    }
+    const size_t before = target->objects.size();
+    add_mesh(mesh, Xform{}, aiMatrix4x4(), *target, &vertices, &normals);
+    if (animation_ && target->objects.size() > before) animation_->skins.push_back(std::move(skin));
+  }
+
+  // `xf` places the vertices in `target`'s frame; `world` (rest) bounds the
+  // default view. `posed` (a skinned mesh's vertices and normals, file
+  // frame) replaces the file's vertices and normals.
+  void add_mesh(const aiMesh& mesh, const Xform& xf, const aiMatrix4x4& world, SceneDesc& target,
+                const std::vector<Vec3>* posed = nullptr, const std::vector<Vec3>* posed_normals = nullptr) {
     if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) {
       warn(fmt::format("mesh '{}': points and lines are not rendered", mesh.mName.C_Str()));
       return;
@@ -435,7 +516,7 @@ class MeshReader {
     TriangleMeshDesc m;
     m.vertices.reserve(mesh.mNumVertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const Vec3 p = xf.point(mesh.mVertices[v]);
+      const Vec3 p = posed ? (*posed)[v] : xf.point(mesh.mVertices[v]);
       if (!is_finite(p))
         throw std::runtime_error(
             fmt::format("cannot read '{}': mesh '{}' has a vertex that is not finite", out_.source, mesh.mName.C_Str()));
@@ -446,7 +527,7 @@ class MeshReader {
       // A zero or broken normal in the file becomes zero: the build step
       // puts the triangle's own normal in its place.
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-        const Vec3 n = xf.norm(mesh.mNormals[v]);
+        const Vec3 n = posed_normals ? (*posed_normals)[v] : xf.norm(mesh.mNormals[v]);
         m.normals.push_back(is_finite(n) ? n : Vec3{});
       }
     }
@@ -455,7 +536,8 @@ class MeshReader {
       if (face.mNumIndices != 3) continue;  // points and lines SortByPType left in a mixed mesh
       m.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
       for (unsigned c = 0; c < 3; ++c)
-        bounds_.extend(&target == &out_ ? m.vertices[face.mIndices[c]] : to_vec(world * mesh.mVertices[face.mIndices[c]]));
+        bounds_.extend(&target == &out_ || posed ? m.vertices[face.mIndices[c]]
+                                                 : to_vec(world * mesh.mVertices[face.mIndices[c]]));
     }
     if (m.triangles.empty()) return;
     // The texture coordinates the mesh's material reads, if it has a map.
@@ -610,6 +692,12 @@ class MeshReader {
   SceneDesc out_;
   Bounds3 bounds_;
   std::unordered_map<std::string, aiMatrix4x4> global_;
+  struct NodePlace {
+    int part = -1;  // the moving part the node belongs to, -1: the file's still part
+    Affine rel;     // the node's frame -> that part's frame (the file's at rest)
+  };
+  std::unordered_map<std::string, NodePlace> place_;
+  std::vector<std::pair<const aiMesh*, std::string>> skinned_;  // (mesh, its node), posed after the walk
 };
 
 
@@ -633,6 +721,33 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
                                            path, count, name, size));
     declared += n;
   }
+}
+
+// Debian's assimp (5.2) dereferences a glTF skin's inverseBindMatrices
+// without checking that the skin has them (the specification lets it leave
+// them out: identity matrices), and crashes. Such a skin is refused before
+// assimp reads the file. Only a file that mentions "skins" is parsed; one
+// that is not JSON, or not glTF, is left for assimp to report.
+void check_gltf_skins(std::ifstream& in, const std::string& path, bool binary) {
+  std::string text;
+  if (binary) {  // GLB: 12-byte header, then the JSON chunk (length, type "JSON", text)
+    char head[20];
+    if (!in.read(head, sizeof head) || std::string_view(head + 16, 4) != "JSON") return;
+    uint32_t length = 0;
+    std::memcpy(&length, head + 12, sizeof length);
+    text.resize(length);
+    if (!in.read(text.data(), length)) return;
+  } else {
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  if (text.find("\"skins\"") == std::string::npos) return;
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("skins") || !j["skins"].is_array()) return;
+  for (size_t k = 0; k < j["skins"].size(); ++k)
+    if (const auto& skin = j["skins"][k]; skin.is_object() && !skin.contains("inverseBindMatrices"))
+      throw std::runtime_error(fmt::format("cannot read '{}': skin {} has no inverseBindMatrices, which assimp cannot "
+                                           "read; export the skin with its inverse bind matrices",
+                                           path, k));
 }
 
 }  // namespace
@@ -660,11 +775,42 @@ Viewpoint MeshAnimation::camera_at(double seconds) const {
   return vp;
 }
 
+void pose_skin(const MeshAnimation::Skin& skin, const std::vector<NodeTrack>& tracks, double seconds,
+               std::vector<Vec3>& vertices, std::vector<Vec3>& normals) {
+  std::vector<Affine> joint(skin.joints.size());
+  for (size_t j = 0; j < joint.size(); ++j) {
+    const MeshAnimation::Skin::Joint& at = skin.joints[j];
+    joint[j] = (tracks.empty() ? Affine{} : chain_at(at.chain, tracks, seconds)) * at.fixed * at.inverse_bind;
+  }
+  const size_t n = skin.vertices.size();
+  vertices.resize(n);
+  normals.resize(skin.normals.empty() ? 0 : n);
+  for (size_t v = 0; v < n; ++v) {
+    Affine blend;
+    blend.m.fill(0);
+    for (uint32_t k = skin.first[v]; k < skin.first[v + 1]; ++k) {
+      const auto& [j, w] = skin.influences[k];
+      for (int c = 0; c < 9; ++c) blend.m[c] += w * joint[j].m[c];
+      blend.translation += joint[j].translation * w;
+    }
+    vertices[v] = blend.point(skin.vertices[v]);
+    if (!normals.empty()) {
+      const Vec3 nv = blend.normal(skin.normals[v]);
+      normals[v] = is_finite(nv) ? nv : Vec3{};  // a collapsed blend: the triangle's own normal stands in
+    }
+  }
+}
+
+void MeshAnimation::pose(size_t skin, double seconds, std::vector<Vec3>& vertices, std::vector<Vec3>& normals) const {
+  pose_skin(skins.at(skin), tracks, seconds, vertices, normals);
+}
+
 SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, MeshAnimation* animation) {
   std::ifstream in = open_for_reading(path);
   const std::string ext = lower_extension(path);
   std::error_code ec;
   if (ext == ".ply") check_ply_header(in, path, std::filesystem::file_size(path, ec));
+  if (ext == ".gltf" || ext == ".glb") check_gltf_skins(in, path, ext == ".glb");
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; triangulated polygons keep
   // their file order. Node transforms are applied by the reader itself, so

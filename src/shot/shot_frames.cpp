@@ -25,8 +25,14 @@ ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
     }
   }
   std::vector<ScenePart> parts;
-  for (size_t e = 0; e < entries_.size(); ++e)
-    parts.push_back({&descs_[e], entries_[e].part >= 0 || !shot_.objects[entries_[e].object].motion.is_static()});
+  for (size_t e = 0; e < entries_.size(); ++e) {
+    const Entry& en = entries_[e];
+    const auto& skins = animations_[en.object].skins;
+    for (size_t s = 0; s < skins.size(); ++s)
+      if (en.part >= 0 && skins[s].part == static_cast<size_t>(en.part)) skins_.push_back({e, en.object, s});
+    const bool deformable = !skins_.empty() && skins_.back().entry == e;
+    parts.push_back({&descs_[e], en.part >= 0 || !shot_.objects[en.object].motion.is_static(), deformable});
+  }
   scene_ = std::make_unique<RenderScene>(parts);
   if (shot_.background) scene_->set_background(*shot_.background);
 
@@ -123,6 +129,17 @@ LensArrayDesc ShotFrames::camera(int frame) const {
   }
 }
 
-void ShotFrames::seek(int frame) { scene_->set_transforms(transforms(frame)); }
+void ShotFrames::seek(int frame) {
+  scene_->set_transforms(transforms(frame));
+  // Tagged with the frame, so that two frames of one pose share it (reuse).
+  const auto pose = static_cast<uint64_t>(frame) + 1;
+  std::vector<Vec3> vertices, normals;
+  for (const SkinRef& s : skins_) {
+    const auto group = static_cast<uint32_t>(s.entry);
+    if (scene_->accel().pose(group) == pose) continue;
+    animations_[s.object].pose(s.skin, frame / shot_.fps, vertices, normals);
+    scene_->set_vertices(group, vertices, normals, pose);
+  }
+}
 
 }  // namespace holoray

@@ -26,6 +26,12 @@ struct PointImage {
   /// Object-to-world transform per scene group at the keyframe's time
   /// (AccelScene::transform); reverse reprojection moves hits back with it.
   std::vector<Affine> to_world;
+  /// Per scene group, its pose tag (AccelScene::pose: which vertices a
+  /// deforming mesh had) and its bounds (world) at the keyframe's time. A
+  /// group whose pose differs now cannot be mapped by a transform: reuse
+  /// traces what it covers afresh.
+  std::vector<uint64_t> pose;
+  std::vector<Bounds3> bounds;
   /// W*H, what each pixel's shading rays found (reverse reprojection with
   /// ReverseReuse::visibility); empty otherwise.
   std::vector<ShadeParts> parts;
@@ -36,6 +42,18 @@ struct PointImage {
   std::vector<int32_t> object;
 
   static constexpr size_t kBytesPerPixel = sizeof(PrimaryHit) + 3 * sizeof(float);
+
+  /// Records every scene group as the keyframe sees it: to_world, pose, bounds.
+  void record_groups(const AccelScene& accel) {
+    to_world.clear(), pose.clear(), bounds.clear();
+    for (uint32_t g = 0; g < accel.group_count(); ++g) {
+      to_world.push_back(accel.transform(g));
+      pose.push_back(accel.pose(g));
+      bounds.push_back(accel.group_bounds(g, accel.transform(g)));
+    }
+  }
+  /// Group `g` has the keyframe's vertices in `accel` (not deformed since).
+  bool same_pose(const AccelScene& accel, uint32_t g) const { return pose[g] == accel.pose(g); }
 };
 
 static_assert(sizeof(PrimaryHit) == 24, "the point image record is documented as 24 + 12 bytes per pixel");

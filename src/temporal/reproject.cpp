@@ -12,6 +12,7 @@
 #include "render/renderer.hpp"
 #include "render/shading.hpp"
 #include "render/tiles.hpp"
+#include "temporal/lens_reach.hpp"
 
 namespace holoray {
 
@@ -84,7 +85,8 @@ class Splatter {
     const LensArray& kc = key_.camera;
     const size_t idx = static_cast<size_t>(j) * kc.width() + i;
     const PrimaryHit& h = key_.hits[idx];
-    if (h.status != PrimaryHit::kHit) return;
+    // A deformed mesh's point has no transform to follow: left missed, traced.
+    if (h.status != PrimaryHit::kHit || !key_.same_pose(scene_.accel(), h.group)) return;
     const Vec3 p_object{h.p_object[0], h.p_object[1], h.p_object[2]};
     const Affine& xf = scene_.accel().transform(h.group);
     const Vec3 p_world = xf.is_identity() ? p_object : xf.point(p_object);
@@ -134,10 +136,13 @@ double lap(Clock::time_point& t) {
   return s;
 }
 
-void check_key(const PointImage* k) {
+void check_key(const RenderScene& scene, const PointImage* k) {
   if (k && k->hits.size() != static_cast<size_t>(k->camera.pixel_count()))
     throw std::invalid_argument(fmt::format("the point image of frame {} has {} records for {} pixels", k->frame,
                                             k->hits.size(), k->camera.pixel_count()));
+  if (k && (k->pose.size() != scene.accel().group_count() || k->bounds.size() != scene.accel().group_count()))
+    throw std::invalid_argument(fmt::format("the point image of frame {} has {} poses for {} scene groups", k->frame,
+                                            k->pose.size(), scene.accel().group_count()));
 }
 
 }  // namespace
@@ -147,8 +152,8 @@ size_t ReprojectedFrame::count(PixelStatus s) const { return static_cast<size_t>
 ReprojectedFrame reproject(const RenderScene& scene, const LensArray& camera, int frame, const PointImage* prev,
                            const PointImage* next, const ReprojectOptions& opt) {
   if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
-  check_key(prev);
-  check_key(next);
+  check_key(scene, prev);
+  check_key(scene, next);
   const int W = camera.width(), H = camera.height();
   const size_t n = static_cast<size_t>(W) * H;
   const PointImage* keys[2] = {prev, next};
@@ -221,6 +226,28 @@ ReprojectedFrame reproject(const RenderScene& scene, const LensArray& camera, in
       }
   });
 
+  // A mesh that deformed since a keyframe has no points to splat where it
+  // is now (splat_point leaves them out), so nothing there would hide what
+  // it now covers: every elemental image that can see it, where it is or
+  // where a keyframe saw it, is traced (lens_reach.hpp).
+  std::vector<BoundingSphere> deformed;
+  for (const PointImage* key : keys)
+    for (uint32_t g = 0; key && g < scene.accel().group_count(); ++g)
+      if (!key->same_pose(scene.accel(), g))
+        for (const Bounds3& b : {scene.accel().group_bounds(g, scene.accel().transform(g)), key->bounds[g]})
+          if (!b.empty()) deformed.push_back({b.centre(), 0.5 * length(b.diagonal())});
+  if (!deformed.empty()) {
+    const double half_angle = lens_half_angle(camera.desc());
+    for_each_tile(tiles, opt.threads, [&](int tile) {
+      const TileRect r = tiles.rect(tile);
+      for (int j = r.y0; j < r.y1; ++j)
+        for (int i = r.x0; i < r.x1; ++i) {
+          const size_t p = static_cast<size_t>(j) * W + i;
+          if (out.status[p] == PixelStatus::reprojected && lens_reaches(camera, camera.lens_of_pixel(i, j), deformed, half_angle))
+            out.status[p] = PixelStatus::missed;
+        }
+    });
+  }
   out.seconds.merge = lap(clock);
 
   // 4. Leaks: a point seen through a gap between a nearer surface's points

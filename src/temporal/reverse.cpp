@@ -12,6 +12,7 @@
 #include "render/renderer.hpp"
 #include "render/shading.hpp"
 #include "render/tiles.hpp"
+#include "temporal/lens_reach.hpp"
 
 namespace holoray {
 
@@ -22,12 +23,13 @@ namespace {
 struct Key {
   const PointImage* image = nullptr;
   std::vector<Affine> now_to_key;  // per group: key to_world * current to_object
-  std::vector<uint8_t> moved;      // per group: now_to_key is not the identity
+  std::vector<uint8_t> moved;      // per group: now_to_key is not the identity, or deformed
+  std::vector<uint8_t> deformed;   // per group: its vertices changed (no transform maps its hits)
   bool anything_moved = false;
   double footprint = 0;  // s / g of the keyframe camera
   // Bounding spheres (world centre, radius) of the groups moved since the
   // keyframe, where they are now and where the keyframe saw them.
-  std::vector<std::pair<Vec3, double>> moved_spheres;
+  std::vector<BoundingSphere> moved_spheres;
 };
 
 // What a lookup needs of an eye-ray hit: where (world), in which scene
@@ -57,25 +59,22 @@ class PointImageLookup {
       key.footprint = images[k]->camera.pixel_pitch() / images[k]->camera.desc().gap;
       key.now_to_key.resize(groups);
       key.moved.resize(groups);
+      key.deformed.resize(groups);
       for (size_t g = 0; g < groups; ++g) {
-        key.now_to_key[g] = images[k]->to_world[g] * scene.accel().inverse_transform(static_cast<uint32_t>(g));
-        key.moved[g] = !key.now_to_key[g].is_identity();
+        const auto group = static_cast<uint32_t>(g);
+        key.now_to_key[g] = images[k]->to_world[g] * scene.accel().inverse_transform(group);
+        key.deformed[g] = !images[k]->same_pose(scene.accel(), group);
+        key.moved[g] = !key.now_to_key[g].is_identity() || key.deformed[g];
         key.anything_moved |= key.moved[g] != 0;
         if (!key.moved[g]) continue;
-        const auto group = static_cast<uint32_t>(g);
-        for (const Affine& at : {scene.accel().transform(group), images[k]->to_world[g]}) {
-          const Bounds3 b = scene.accel().group_bounds(group, at);
-          if (!b.empty()) key.moved_spheres.emplace_back(b.centre(), 0.5 * length(b.diagonal()));
-        }
+        for (const Bounds3& b : {scene.accel().group_bounds(group, scene.accel().transform(group)), images[k]->bounds[g]})
+          if (!b.empty()) key.moved_spheres.push_back({b.centre(), 0.5 * length(b.diagonal())});
       }
       // The frame's camera: every pixel has its keyframe pixel's line.
       if (!same_camera_ && camera.desc().grid == Grid::square && images[k]->camera.desc() == camera.desc())
         same_camera_ = &key;
     }
-    const LensArrayDesc& d = camera.desc();
-    // Lines of one lens leave its centre within this angle of the array
-    // normal (the corners of a square elemental image, pitch / sqrt(2) off axis).
-    lens_half_angle_ = std::atan(d.pitch / (std::sqrt(2.0) * d.gap));
+    lens_half_angle_ = lens_half_angle(camera.desc());
   }
 
   // A keyframe with the frame's own camera on a square grid (a locked-off
@@ -87,22 +86,11 @@ class PointImageLookup {
   // of the lens (through its centre, within its field of view, either way
   // along it) meets a group that moved since that keyframe, where the group
   // is now or where the keyframe saw it; each line then meets what it met in
-  // the keyframe, and its colour reuse would read its own keyframe pixel.
-  // Tested against the groups' bounding spheres: the double cone of the
-  // lens's lines misses a sphere when the angle from the axis to the
-  // sphere's centre, less the sphere's angular radius, exceeds the cone's.
+  // the keyframe, and its colour reuse would read its own keyframe pixel
+  // (lens_reach.hpp: tested against the groups' bounding spheres).
   bool lens_unchanged(const LensArray& camera, LensIndex lens) const {
     if (!same_camera_) return false;
-    const Frame& f = camera.desc().frame;
-    const Vec3 c = f.to_world_point(camera.lens_centre_local(lens));
-    for (const auto& [centre, radius] : same_camera_->moved_spheres) {
-      const Vec3 v = centre - c;
-      const double dist = length(v);
-      if (dist <= radius) return false;
-      const double off_axis = std::acos(std::fmin(1.0, std::fabs(dot(v, f.z)) / dist));
-      if (off_axis - std::asin(radius / dist) <= lens_half_angle_) return false;
-    }
-    return true;
+    return !lens_reaches(camera, lens, same_camera_->moved_spheres, lens_half_angle_);
   }
 
   // The colour of an eye-ray hit from the keyframes with visibility reuse,
@@ -137,6 +125,7 @@ class PointImageLookup {
     const LensArray& kc = key.image->camera;
     const Frame& kf = kc.desc().frame;
     Vec3 p = hit.position, d = line_dir;
+    if (key.deformed[hit.group]) return kNone;
     if (key.moved[hit.group]) {
       const Affine& m = key.now_to_key[hit.group];
       p = m.point(p);
@@ -244,9 +233,10 @@ void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse
   if (k->hits.size() != pixels)
     throw std::invalid_argument(
         fmt::format("the point image of frame {} has {} records for {} pixels", k->frame, k->hits.size(), pixels));
-  if (k->to_world.size() != scene.accel().group_count())
+  const size_t groups = scene.accel().group_count();
+  if (k->to_world.size() != groups || k->pose.size() != groups || k->bounds.size() != groups)
     throw std::invalid_argument(fmt::format("the point image of frame {} has {} transforms for {} scene groups",
-                                            k->frame, k->to_world.size(), scene.accel().group_count()));
+                                            k->frame, k->to_world.size(), groups));
   if (k->object.size() != pixels)
     throw std::invalid_argument(
         fmt::format("the point image of frame {} has {} object ids for {} pixels", k->frame, k->object.size(), pixels));
@@ -482,7 +472,8 @@ const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, 
     bool still = true;
     for (size_t g = 0; g < k->to_world.size() && still; ++g) {
       const Affine& now = accel.transform(static_cast<uint32_t>(g));
-      still = k->to_world[g].m == now.m && k->to_world[g].translation == now.translation;
+      still = k->to_world[g].m == now.m && k->to_world[g].translation == now.translation &&
+              k->same_pose(accel, static_cast<uint32_t>(g));
     }
     if (still) return k;
   }
@@ -503,14 +494,13 @@ ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
 PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
                              int threads, RenderStats& stats) {
   const auto start = std::chrono::steady_clock::now();
-  PointImage key{frame, camera, {}, {}, {}, {}, {}};
+  PointImage key{frame, camera, {}, {}, {}, {}, {}, {}, {}};
   const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights &&
                           !scene.has_tachyon_materials();
   ReprojectedFrame traced = trace_keyframe(scene, camera, key.hits, want_parts ? &key.parts : nullptr, threads);
   key.colour = std::move(traced.colour);
   key.object = std::move(traced.object);
-  for (size_t g = 0; g < scene.accel().group_count(); ++g)
-    key.to_world.push_back(scene.accel().transform(static_cast<uint32_t>(g)));
+  key.record_groups(scene.accel());
   stats.rays = traced.rays;
   stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return key;

@@ -329,6 +329,122 @@ def lit_spheres(name):
         json.dump(gltf, f, indent=1)
 
 
+def quat_axis(axis, angle):
+    """Unit quaternion (x, y, z, w) of a rotation by `angle` radians about a unit axis."""
+    s = math.sin(angle / 2)
+    return [axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2)]
+
+
+SKIN_FRAMES = 10
+SKIN_FPS = 24
+
+
+def tube(x0, x1, rings, segments, radius, y):
+    """A tube of `radius` along x from x0 to x1 at height y, open ends,
+    outward normals, counter-clockwise from outside."""
+    pos, nrm, idx = [], [], []
+    for i in range(rings + 1):
+        x = x0 + (x1 - x0) * i / rings
+        for j in range(segments):
+            a = 2 * math.pi * j / segments
+            n = [0.0, math.cos(a), math.sin(a)]
+            pos.append([x, y + radius * n[1], radius * n[2]])
+            nrm.append(n)
+    for i in range(rings):
+        for j in range(segments):
+            a, b = i * segments + j, i * segments + (j + 1) % segments
+            c, d = a + segments, b + segments
+            idx += [a, b, d, a, d, c]
+    return pos, nrm, idx
+
+
+def skinned_arm(name):
+    """An arm of two skinned primitives (orange upper arm, blue forearm)
+    over a grey floor, bent by two joints over SKIN_FRAMES frames at
+    SKIN_FPS: the shoulder turns 25 degrees about y, the elbow 100 degrees
+    about z, one key per frame. Vertices within 0.3 of the elbow blend both
+    joints linearly (weights summing to 1). The oracle for linear blend
+    skinning (glTF 2.0 spec 3.7.3): holoray's frames 0, 5 and 9 against
+    Blender's."""
+    blob = bytearray()
+    views, accessors, meshes = [], [], []
+    add = functools.partial(add_accessor, blob, views, accessors)
+    y = 0.8
+
+    def vec3(rows, minmax=False):
+        mm = ([min(p[i] for p in rows) for i in range(3)], [max(p[i] for p in rows) for i in range(3)]) if minmax else None
+        return add(struct.pack("<%df" % (3 * len(rows)), *flat(rows)), 5126, len(rows), "VEC3", 34962, mm)
+
+    primitives = []
+    for (x0, x1, material) in ((-1.0, 0.0, 1), (0.0, 1.0, 2)):
+        pos, nrm, idx = tube(x0, x1, 12, 16, 0.25, y)
+        joints = [[0, 1, 0, 0]] * len(pos)
+        weights = []
+        for p in pos:
+            w = min(1.0, max(0.0, (p[0] + 0.3) / 0.6))
+            weights.append([1 - w, w, 0, 0])
+        a_j = add(struct.pack("<%dB" % (4 * len(joints)), *flat(joints)), 5121, len(joints), "VEC4", 34962)
+        a_w = add(struct.pack("<%df" % (4 * len(weights)), *flat(weights)), 5126, len(weights), "VEC4", 34962)
+        a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
+        primitives.append({"attributes": {"POSITION": vec3(pos, True), "NORMAL": vec3(nrm), "JOINTS_0": a_j,
+                                          "WEIGHTS_0": a_w}, "indices": a_idx, "material": material})
+    meshes.append({"name": "arm", "primitives": primitives})
+    floor_pos = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
+    a_floor = add(struct.pack("<6H", 0, 2, 1, 0, 3, 2), 5123, 6, "SCALAR", 34963)
+    meshes.append({"name": "floor", "primitives": [{"attributes": {"POSITION": vec3(floor_pos, True),
+                                                                  "NORMAL": vec3([[0, 1, 0]] * 4)},
+                                                   "indices": a_floor, "material": 0}]})
+    # Inverse bind matrices (column-major): the joints' rest frames are translations.
+    ibm = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1.0, -y, 0, 1,
+           1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.0, -y, 0, 1]
+    a_ibm = add(struct.pack("<32f", *ibm), 5126, 2, "MAT4", None)
+    views[-1].pop("target")
+    times = [k / SKIN_FPS for k in range(SKIN_FRAMES)]
+    a_t = add(struct.pack("<%df" % len(times), *times), 5126, len(times), "SCALAR", None,
+              ([times[0]], [times[-1]]))
+    views[-1].pop("target")
+    shoulder = [quat_axis([0, 1, 0], math.radians(25) * k / (SKIN_FRAMES - 1)) for k in range(SKIN_FRAMES)]
+    elbow = [quat_axis([0, 0, 1], math.radians(100) * k / (SKIN_FRAMES - 1)) for k in range(SKIN_FRAMES)]
+    a_s = add(struct.pack("<%df" % (4 * len(shoulder)), *flat(shoulder)), 5126, len(shoulder), "VEC4", None)
+    views[-1].pop("target")
+    a_e = add(struct.pack("<%df" % (4 * len(elbow)), *flat(elbow)), 5126, len(elbow), "VEC4", None)
+    views[-1].pop("target")
+    eye = [0.5, 2.6, 4.2]
+    gltf = {
+        "asset": {"version": "2.0", "generator": "holoray tests/data/blender/make_scenes.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 3, 4]}],
+        "nodes": [
+            {"name": "arm", "mesh": 0, "skin": 0},
+            {"name": "shoulder", "translation": [-1.0, y, 0.0], "children": [2]},
+            {"name": "elbow", "translation": [1.0, 0.0, 0.0]},
+            {"name": "floor", "mesh": 1},
+            {"name": "camera", "camera": 0, "translation": eye, "rotation": look_at_quaternion(eye, [0, 0.7, 0])},
+        ],
+        "skins": [{"joints": [1, 2], "inverseBindMatrices": a_ibm, "skeleton": 1}],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 1, "path": "rotation"}},
+                                     {"sampler": 1, "target": {"node": 2, "path": "rotation"}}],
+                        "samplers": [{"input": a_t, "output": a_s, "interpolation": "LINEAR"},
+                                     {"input": a_t, "output": a_e, "interpolation": "LINEAR"}]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}],
+        "meshes": meshes,
+        "materials": [
+            {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0.0,
+                                                       "roughnessFactor": 1.0}},
+            {"name": "upper", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.45, 0.1, 1], "metallicFactor": 0.0,
+                                                       "roughnessFactor": 1.0}},
+            {"name": "fore", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.35, 0.9, 1], "metallicFactor": 0.0,
+                                                      "roughnessFactor": 1.0}},
+        ],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
 if __name__ == "__main__":
     embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
@@ -337,3 +453,4 @@ if __name__ == "__main__":
     textured_box("transform_box", transform={"offset": [0.2, 0.1], "rotation": 0.4, "scale": [1.5, 0.8]})
     masked_leaf("masked_leaf")
     lit_spheres("lit_spheres")
+    skinned_arm("skinned_arm")

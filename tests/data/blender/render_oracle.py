@@ -8,7 +8,10 @@ Writes, linear RGB OpenEXR:
   NAME.albedo.exr  Cycles' DiffCol pass (every scene), for the albedo AOV;
   NAME.direct.exr  DiffDir x DiffCol + GlossDir x GlossCol (the lit scenes):
                    the light that reaches the camera after one bounce off a
-                   surface straight from a light, for holoray's shaded image.
+                   surface straight from a light, for holoray's shaded image;
+  NAME.fF.albedo.exr  DiffCol at frame F of an animated scene (Blender's
+                   importer keys glTF time t at frame t x 24, the fps of the
+                   scene it imports into).
 
 Debian's Blender 3.4: its glTF importer needs numpy.bool, which numpy has
 dropped, and the denoiser is off so the passes are the samples' mean.
@@ -30,6 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SIZE = 128
 ALBEDO = ["textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres"]
 DIRECT = ["lit_spheres"]
+FRAMES = {"skinned_arm": [0, 5, 9]}
 
 
 def setup(name, samples):
@@ -67,14 +71,17 @@ def setup(name, samples):
     return scene
 
 
-def render_albedo(name):
+def render_albedo(name, frame=None):
     scene = setup(name, 16)
+    if frame is not None:
+        scene.frame_set(frame)
     scene.view_layers[0].use_pass_diffuse_color = True
     tree = scene.node_tree
     rl = tree.nodes.new("CompositorNodeRLayers")
     out = tree.nodes.new("CompositorNodeComposite")
     tree.links.new(rl.outputs["DiffCol"], out.inputs["Image"])
-    scene.render.filepath = os.path.join(HERE, name + ".albedo.exr")
+    suffix = ".albedo.exr" if frame is None else ".f%d.albedo.exr" % frame
+    scene.render.filepath = os.path.join(HERE, name + suffix)
     bpy.ops.render.render(write_still=True)
 
 
@@ -107,4 +114,7 @@ for name in ALBEDO:
     render_albedo(name)
 for name in DIRECT:
     render_direct(name)
+for name, frames in FRAMES.items():
+    for frame in frames:
+        render_albedo(name, frame)
 sys.exit(0)
