@@ -1,8 +1,9 @@
-// Skinned meshes (scene/mesh_reader.hpp, MeshAnimation::Skin): linear blend
-// skinning on a hand-made skin with known answers, a glTF arm bent by two
-// joints against Blender's render of the same frames (the independent
-// oracle, tests/data/blender/render_oracle.py), and reuse in shots, where a
-// deforming mesh is a moving object.
+// Skinned and morphed meshes (scene/mesh_reader.hpp,
+// MeshAnimation::DeformingMesh): linear blend skinning and morph targets on
+// hand-made meshes with known answers, a glTF arm bent by two joints and a
+// box morphed by two targets against Blender's render of the same frames
+// (the independent oracle, tests/data/blender/render_oracle.py), and reuse
+// in shots, where a deforming mesh is a moving object.
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
@@ -36,18 +37,18 @@ MeshAnimation two_joint_skin() {
   const double h = std::numbers::pi / 4;  // half of 90 degrees
   turn.rotation = {{0.0, Quaternion{}}, {1.0, Quaternion{std::cos(h), 0, 0, std::sin(h)}}};
   a.tracks.push_back(turn);
-  MeshAnimation::Skin s;
+  MeshAnimation::DeformingMesh s;
   s.vertices = {{2, 0, 0}, {2, 0, 0}, {0.5, 0, 0}};
   s.normals = {{1, 0, 0}, {0, 0, 1}, {1, 0, 0}};
-  MeshAnimation::Skin::Joint root;  // identity everywhere
-  MeshAnimation::Skin::Joint elbow;
+  MeshAnimation::DeformingMesh::Joint root;  // identity everywhere
+  MeshAnimation::DeformingMesh::Joint elbow;
   elbow.chain = {{Affine::translate({1, 0, 0}), 0}};
   elbow.inverse_bind = Affine::translate({-1, 0, 0});
   s.joints = {root, elbow};
   // Vertex 0 follows the elbow; vertex 1 half each; vertex 2 the root.
   s.influences = {{1, 1.0}, {0, 0.5}, {1, 0.5}, {0, 1.0}};
   s.first = {0, 1, 3, 4};
-  a.skins.push_back(s);
+  a.deforming.push_back(s);
   return a;
 }
 
@@ -56,7 +57,7 @@ TEST(Skinning, AVertexMovesByTheWeightedBlendOfItsJointsMatrices) {
   std::vector<Vec3> v, n;
   a.pose(0, 0.0, v, n);
   ASSERT_EQ(v.size(), 3u);
-  for (size_t k = 0; k < 3; ++k) EXPECT_LT(distance(v[k], a.skins[0].vertices[k]), 1e-12) << "bind pose, vertex " << k;
+  for (size_t k = 0; k < 3; ++k) EXPECT_LT(distance(v[k], a.deforming[0].vertices[k]), 1e-12) << "bind pose, vertex " << k;
   a.pose(0, 1.0, v, n);
   // The elbow's vertex: (2, 0, 0) is 1 past the elbow, turned 90 degrees to (1, 1, 0).
   EXPECT_LT(distance(v[0], {1, 1, 0}), 1e-12);
@@ -74,9 +75,9 @@ TEST(Skinning, AFileReadForAShotKeepsEachSkinnedPrimitiveAsADeformablePart) {
   MeshAnimation anim;
   const SceneDesc still = read_mesh_file(kData + "skinned_arm.gltf", {}, &anim);
   // The arm's two primitives (two materials) are two skinned meshes; the floor stands still.
-  ASSERT_EQ(anim.skins.size(), 2u);
+  ASSERT_EQ(anim.deforming.size(), 2u);
   EXPECT_EQ(still.objects.size(), 1u);
-  for (const MeshAnimation::Skin& s : anim.skins) {
+  for (const MeshAnimation::DeformingMesh& s : anim.deforming) {
     EXPECT_EQ(s.joints.size(), 3u) << "shoulder, elbow, and the mesh's node for unweighted vertices";
     EXPECT_TRUE(anim.parts.at(s.part).chain.empty()) << "posed in the file frame";
     ASSERT_EQ(s.first.size(), s.vertices.size() + 1);
@@ -88,15 +89,17 @@ TEST(Skinning, AFileReadForAShotKeepsEachSkinnedPrimitiveAsADeformablePart) {
   }
 }
 
-// The arm bends at frames 0, 5 and 9 of a shot at the file's 24 fps (one
-// key per frame): holoray's pinhole albedo from the file's camera against
-// Blender's DiffCol at the same frames.
-TEST(BlenderSkinned, ArmFramesMatchBlendersAlbedoAtFramesZeroFiveAndNine) {
+// The arm bends, the box's top lifts and slides, at frames 0, 5 and 9 of a
+// shot at the files' 24 fps (one key per frame): holoray's pinhole albedo
+// from the file's camera against Blender's DiffCol at the same frames.
+class BlenderDeforming : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BlenderDeforming, FramesMatchBlendersAlbedoAtFramesZeroFiveAndNine) {
   test::TempDir dir;
-  test::write_text(dir.file("arm.toml"), fmt::format("frames = 10\nfps = 24\n[array]\nlenses = 24\npixels_per_lens = 6\n"
-                                                     "[[object]]\nscene = \"{}skinned_arm.gltf\"\n",
-                                                     kData));
-  ShotFrames shot(read_shot_file(dir.file("arm.toml")));
+  test::write_text(dir.file("shot.toml"), fmt::format("frames = 10\nfps = 24\n[array]\nlenses = 24\npixels_per_lens = 6\n"
+                                                      "[[object]]\nscene = \"{}{}.gltf\"\n",
+                                                      kData, GetParam()));
+  ShotFrames shot(read_shot_file(dir.file("shot.toml")));
   RenderOptions options;
   options.aovs.albedo = true;
   std::vector<ImageBuffer> ours;
@@ -104,14 +107,45 @@ TEST(BlenderSkinned, ArmFramesMatchBlendersAlbedoAtFramesZeroFiveAndNine) {
     shot.seek(f);
     RenderStats stats;
     const FrameBuffers fb = render_view(shot.scene(), PinholeCamera(view_of(shot.viewpoint(f), 128, 128)), options, stats);
-    const ImageBuffer blender = as_rgb(read_image(fmt::format("{}skinned_arm.f{}.albedo.exr", kData, f)));
+    const ImageBuffer blender = as_rgb(read_image(fmt::format("{}{}.f{}.albedo.exr", kData, GetParam(), f)));
     const double psnr = compare_images(fb.albedo, blender).psnr_all();
     RecordProperty(fmt::format("psnr_db_frame_{}", f), fmt::format("{:.2f}", psnr));
-    EXPECT_GE(psnr, 30) << "frame " << f;
+    EXPECT_GE(psnr, 30) << GetParam() << ", frame " << f;
     ours.push_back(fb.albedo);
   }
-  // The arm moved (else the test proves nothing): frames 0 and 9 differ.
+  // The mesh moved (else the test proves nothing): frames 0 and 9 differ.
   EXPECT_LT(compare_images(ours.front(), ours.back()).psnr_all(), 25);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderDeforming, ::testing::Values("skinned_arm", "morph_box"));
+
+TEST(Morphing, TargetsBlendLinearlyInTheirWeightsAndWeightKeysInTime) {
+  MeshAnimation a;
+  MeshAnimation::DeformingMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}};
+  m.normals = {{0, 0, 1}, {0, 0, 1}};
+  m.targets = {{{{0, 2, 0}, {1, 0, 0}}, {{0, 0, 1}, {0, 0, 1}}}, {{{0, 0, 0}, {1, 0, 4}}, {{1, 0, 0}, {0, 0, 1}}}};
+  m.weights = {0.5, 0.25};
+  m.weight_keys = {{1.0, {0.0, 1.0}}, {3.0, {1.0, 0.0}}};
+  MeshAnimation::DeformingMesh::Joint node;  // unskinned: the mesh's node, here the identity
+  m.joints = {node};
+  m.influences = {{0, 1.0}, {0, 1.0}};
+  m.first = {0, 1, 2};
+  a.deforming.push_back(m);
+  std::vector<Vec3> v, n;
+  // A still: the default weights, 0.5 of target 0 and 0.25 of target 1.
+  pose_mesh(m, m.weights, {}, 0, v, n);
+  EXPECT_LT(distance(v[0], {0, 1, 0}), 1e-12);
+  EXPECT_LT(distance(v[1], {1, 0, 1}), 1e-12);
+  EXPECT_LT(distance(n[0], normalize(Vec3{0.25, 0, 0.75})), 1e-12) << "normals blend, then are normalised";
+  // Keys: held before the first, linear between, held after the last.
+  a.pose(0, 0.0, v, n);
+  EXPECT_LT(distance(v[1], {1, 0, 4}), 1e-12);
+  a.pose(0, 2.5, v, n);  // weights (0.75, 0.25)
+  EXPECT_LT(distance(v[0], {0, 1.5, 0}), 1e-12);
+  EXPECT_LT(distance(v[1], {1, 0, 1}), 1e-12);
+  a.pose(0, 9.0, v, n);
+  EXPECT_LT(distance(v[0], {0, 2, 0}), 1e-12);
 }
 
 // Reuse in a shot of the bending arm (locked-off camera: the file's): a

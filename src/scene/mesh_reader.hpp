@@ -24,11 +24,13 @@
 //   the chain of transforms that places it (MeshAnimation). Without the
 //   request, or for a still, nodes stand at their rest transforms. A camera
 //   the animation moves is kept as MeshAnimation::camera.
-// - skinned meshes posed by their joints (linear blend skinning): a still
-//   at the joints' rest transforms; in a shot each becomes a part of its
-//   own whose vertices follow the animation (MeshAnimation::Skin).
+// - skinned and morphed meshes posed by their joints and morph weights: a
+//   still at the joints' rest transforms and the default weights; in a shot
+//   each becomes a part of its own whose vertices follow the animation
+//   (MeshAnimation::DeformingMesh).
 // What it cannot map yet it keeps as a warning, never silently: texture
-// maps, directional and spot lights, points and lines.
+// maps other than the base colour and emission, area and ambient lights,
+// points and lines.
 #pragma once
 
 #include <optional>
@@ -69,17 +71,26 @@ struct MeshAnimation {
     Vec3 from, look, up;
     double angle_deg = 45;
   };
-  /// A skinned mesh (glTF 2.0 §3.7.3, "Skins"; assimp's aiBone): each
-  /// vertex is carried by a weighted blend of its joints' matrices,
+  /// A mesh whose vertices move: morph targets (glTF 2.0 §3.7.2.2), then a
+  /// skin (§3.7.3; assimp's aiBone). Morphing blends the targets into the
+  /// base, v + sum_i w_i (t_i - v), with the weights at time t. Skinning
+  /// carries each vertex by a weighted blend of its joints' matrices,
   /// J(t) = (the joint node's frame -> file frame at t) x (its inverse bind
-  /// matrix), the mesh node's own transform ignored (the joints place it).
-  /// Linear blend skinning: v(t) = (sum_k w_k J_k(t)) v, normals by the
-  /// blend's inverse transpose. Weights are normalised to sum to 1; a
-  /// vertex with none stays with the mesh's node.
-  struct Skin {
+  /// matrix), the mesh node's own transform ignored (the joints place it):
+  /// linear blend skinning, v(t) = (sum_k w_k J_k(t)) v, normals by the
+  /// blend's inverse transpose. Skin weights are normalised to sum to 1; a
+  /// vertex with none stays with the mesh's node. A morphed mesh without a
+  /// skin has its node as its one joint.
+  struct DeformingMesh {
     size_t part = 0;   ///< parts index: a part of this mesh alone, in the file frame (empty chain)
     std::string mesh;  ///< the mesh's name (messages)
-    std::vector<Vec3> vertices, normals;  ///< bind pose, the mesh's own space, as the file has them
+    std::vector<Vec3> vertices, normals;  ///< base pose, the mesh's own space, as the file has them
+    struct Target {
+      std::vector<Vec3> vertices, normals;  ///< absolute (the base plus the displacement), as assimp gives them
+    };
+    std::vector<Target> targets;
+    std::vector<double> weights;  ///< the targets' default weights (no keys, or a still)
+    std::vector<std::pair<double, std::vector<double>>> weight_keys;  ///< (seconds, a weight per target), by time
     struct Joint {
       std::vector<Link> chain;  ///< the joint node's moving ancestors (empty: it stands still)
       Affine fixed;             ///< from the last link's node (or the file) to the joint's frame
@@ -88,25 +99,30 @@ struct MeshAnimation {
     std::vector<Joint> joints;
     std::vector<uint32_t> first;  ///< per vertex, plus one: where its influences start
     std::vector<std::pair<uint32_t, double>> influences;  ///< (joint, weight), weights summing to 1
+
+    /// The morph weights at `seconds`: linear between keys, held outside them.
+    std::vector<double> weights_at(double seconds) const;
   };
   std::vector<NodeTrack> tracks;
   std::vector<Part> parts;
-  std::vector<Skin> skins;
+  std::vector<DeformingMesh> deforming;
   std::optional<Camera> camera;
   double duration_s = 0;  ///< the animation's length (assimp's mDuration in seconds)
 
   Affine transform(size_t part, double seconds) const;
   /// The moving camera's viewpoint at `seconds` (file frame; needs `camera`).
   Viewpoint camera_at(double seconds) const;
-  /// Skin `skin`'s vertices and unit normals (file frame; normals empty
-  /// when the mesh has none) at `seconds`.
-  void pose(size_t skin, double seconds, std::vector<Vec3>& vertices, std::vector<Vec3>& normals) const;
+  /// Deforming mesh `k`'s vertices and unit normals (file frame; normals
+  /// empty when the mesh has none) at `seconds`.
+  void pose(size_t k, double seconds, std::vector<Vec3>& vertices, std::vector<Vec3>& normals) const;
 };
 
-/// Linear blend skinning of `skin` with the joints' frames at `seconds`
-/// (MeshAnimation::Skin; `tracks` empty: every joint at its rest transform).
-void pose_skin(const MeshAnimation::Skin& skin, const std::vector<NodeTrack>& tracks, double seconds,
-               std::vector<Vec3>& vertices, std::vector<Vec3>& normals);
+/// `mesh` morphed with `weights` (one per target), then skinned with the
+/// joints' frames at `seconds` (`tracks` empty: every joint at its rest
+/// transform): MeshAnimation::DeformingMesh.
+void pose_mesh(const MeshAnimation::DeformingMesh& mesh, const std::vector<double>& weights,
+               const std::vector<NodeTrack>& tracks, double seconds, std::vector<Vec3>& vertices,
+               std::vector<Vec3>& normals);
 
 /// Reads a mesh file. Throws std::runtime_error "cannot read 'FILE': REASON"
 /// (assimp's reason) when it cannot be read or parsed, and when it holds no

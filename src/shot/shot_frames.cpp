@@ -27,10 +27,10 @@ ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
   std::vector<ScenePart> parts;
   for (size_t e = 0; e < entries_.size(); ++e) {
     const Entry& en = entries_[e];
-    const auto& skins = animations_[en.object].skins;
-    for (size_t s = 0; s < skins.size(); ++s)
-      if (en.part >= 0 && skins[s].part == static_cast<size_t>(en.part)) skins_.push_back({e, en.object, s});
-    const bool deformable = !skins_.empty() && skins_.back().entry == e;
+    const auto& meshes = animations_[en.object].deforming;
+    for (size_t m = 0; m < meshes.size(); ++m)
+      if (en.part >= 0 && meshes[m].part == static_cast<size_t>(en.part)) deforming_.push_back({e, en.object, m});
+    const bool deformable = !deforming_.empty() && deforming_.back().entry == e;
     parts.push_back({&descs_[e], en.part >= 0 || !shot_.objects[en.object].motion.is_static(), deformable});
   }
   scene_ = std::make_unique<RenderScene>(parts);
@@ -134,10 +134,10 @@ void ShotFrames::seek(int frame) {
   // Tagged with the frame, so that two frames of one pose share it (reuse).
   const auto pose = static_cast<uint64_t>(frame) + 1;
   std::vector<Vec3> vertices, normals;
-  for (const SkinRef& s : skins_) {
-    const auto group = static_cast<uint32_t>(s.entry);
+  for (const DeformingRef& d : deforming_) {
+    const auto group = static_cast<uint32_t>(d.entry);
     if (scene_->accel().pose(group) == pose) continue;
-    animations_[s.object].pose(s.skin, frame / shot_.fps, vertices, normals);
+    animations_[d.object].pose(d.mesh, frame / shot_.fps, vertices, normals);
     scene_->set_vertices(group, vertices, normals, pose);
   }
 }

@@ -1,8 +1,9 @@
 // holoray/shot: a shot made ready to render frame by frame: its scene files
 // read and built into one RenderScene (a moving file, and each node a mesh
-// file's animation moves, becomes an Embree instance; each skinned mesh a
-// deformable one), and for every frame the objects' transforms, the skinned
-// meshes' vertices and the lens array.
+// file's animation moves, becomes an Embree instance; each skinned or
+// morphed mesh a
+// deformable one), and for every frame the objects' transforms, the
+// deforming meshes' vertices and the lens array.
 #pragma once
 
 #include <memory>
@@ -38,7 +39,7 @@ class ShotFrames {
   LensArrayDesc camera(int frame) const;
   /// The viewpoint the array is placed from at `frame` (world).
   Viewpoint viewpoint(int frame) const;
-  /// Moves the scene to `frame` and poses its skinned meshes there (not
+  /// Moves the scene to `frame` and poses its skinned and morphed meshes there (not
   /// thread-safe against rendering).
   void seek(int frame);
   /// Shadow cache for the frames that follow, or null (RenderScene::set_shadow_cache).
@@ -55,12 +56,12 @@ class ShotFrames {
   std::vector<SceneDesc> descs_;               // per entry
   std::vector<Entry> entries_;
   std::vector<MeshAnimation> animations_;      // per object (parts' scenes moved to descs_)
-  struct SkinRef {
-    size_t entry;   ///< the skinned mesh's part: index into entries_ (its scene group)
+  struct DeformingRef {
+    size_t entry;   ///< the deforming mesh's part: index into entries_ (its scene group)
     size_t object;  ///< index into shot_.objects (and animations_)
-    size_t skin;    ///< index into that object's MeshAnimation::skins
+    size_t mesh;    ///< index into that object's MeshAnimation::deforming
   };
-  std::vector<SkinRef> skins_;
+  std::vector<DeformingRef> deforming_;
   std::unique_ptr<RenderScene> scene_;
   double default_angle_ = 45;
   bool mirrored_ = false;  // the scene's viewpoint is Tachyon's (Viewpoint::mirrored)

@@ -445,6 +445,67 @@ def skinned_arm(name):
         json.dump(gltf, f, indent=1)
 
 
+def morph_box(name):
+    """A box on a grey floor with two morph targets (glTF 2.0 3.7.2.2): one
+    lifts its top face by 0.8, the other slides it 0.6 along x. Over
+    SKIN_FRAMES frames at SKIN_FPS the first target's weight grows from 0
+    to 1 while the second's falls from 1 to 0 (one key per frame; the mesh's
+    default weights are 0.5 and 0.5). The oracle for morph targets: frames
+    0, 5 and 9 against Blender's."""
+    blob = bytearray()
+    views, accessors = [], []
+    add = functools.partial(add_accessor, blob, views, accessors)
+
+    def vec3(rows, minmax=False, target=34962):
+        mm = ([min(p[i] for p in rows) for i in range(3)], [max(p[i] for p in rows) for i in range(3)]) if minmax else None
+        return add(struct.pack("<%df" % (3 * len(rows)), *flat(rows)), 5126, len(rows), "VEC3", target, mm)
+
+    pos, nrm, _, idx = cube(0.5)
+    pos = [[p[0], p[1] + 0.5, p[2]] for p in pos]  # standing on the floor
+    lift = [[0, 0.8 if p[1] > 0.9 else 0, 0] for p in pos]
+    slide = [[0.6 if p[1] > 0.9 else 0, 0, 0] for p in pos]
+    a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
+    box = {"attributes": {"POSITION": vec3(pos, True), "NORMAL": vec3(nrm)}, "indices": a_idx, "material": 1,
+           "targets": [{"POSITION": vec3(lift, True)}, {"POSITION": vec3(slide, True)}]}
+    floor_pos = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
+    a_floor = add(struct.pack("<6H", 0, 2, 1, 0, 3, 2), 5123, 6, "SCALAR", 34963)
+    floor = {"attributes": {"POSITION": vec3(floor_pos, True), "NORMAL": vec3([[0, 1, 0]] * 4)}, "indices": a_floor,
+             "material": 0}
+    times = [k / SKIN_FPS for k in range(SKIN_FRAMES)]
+    a_t = add(struct.pack("<%df" % len(times), *times), 5126, len(times), "SCALAR", None, ([times[0]], [times[-1]]))
+    views[-1].pop("target")
+    weights = flat([[k / (SKIN_FRAMES - 1), 1 - k / (SKIN_FRAMES - 1)] for k in range(SKIN_FRAMES)])
+    a_w = add(struct.pack("<%df" % len(weights), *weights), 5126, len(weights), "SCALAR", None)
+    views[-1].pop("target")
+    eye = [0.6, 1.6, 4.4]
+    gltf = {
+        "asset": {"version": "2.0", "generator": "holoray tests/data/blender/make_scenes.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [
+            {"name": "box", "mesh": 0, "rotation": [0.0, 0.2588190451, 0.0, 0.9659258263]},
+            {"name": "floor", "mesh": 1},
+            {"name": "camera", "camera": 0, "translation": eye, "rotation": look_at_quaternion(eye, [0, 0.8, 0])},
+        ],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}],
+                        "samplers": [{"input": a_t, "output": a_w, "interpolation": "LINEAR"}]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}],
+        "meshes": [{"name": "box", "primitives": [box], "weights": [0.5, 0.5]}, {"name": "floor", "primitives": [floor]}],
+        "materials": [
+            {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0.0,
+                                                       "roughnessFactor": 1.0}},
+            {"name": "box", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.7, 0.3, 1], "metallicFactor": 0.0,
+                                                     "roughnessFactor": 1.0}},
+        ],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
 if __name__ == "__main__":
     embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
@@ -454,3 +515,4 @@ if __name__ == "__main__":
     masked_leaf("masked_leaf")
     lit_spheres("lit_spheres")
     skinned_arm("skinned_arm")
+    morph_box("morph_box")

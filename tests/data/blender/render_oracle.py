@@ -33,7 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SIZE = 128
 ALBEDO = ["textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres"]
 DIRECT = ["lit_spheres"]
-FRAMES = {"skinned_arm": [0, 5, 9]}
+FRAMES = {"skinned_arm": [0, 5, 9], "morph_box": [0, 5, 9]}
 
 
 def setup(name, samples):
