@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "render/gltf_brdf.hpp"
 #include "reuse/shadow_cache.hpp"
@@ -83,11 +84,14 @@ inline void add_emission(const RenderScene& scene, const Ray& ray, const Surface
 // The shadow ray toward `light` and the light's falloff there; false when
 // no shadow ray is cast (light on the surface, the normal faces away from
 // it: nff-notes §10.10, or the falloff leaves nothing). A directional
-// light's ray is unbounded.
-[[gnu::always_inline]] inline bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
-                Ray& shadow, double& falloff) {
+// light's ray is unbounded. `Unit`: the caller knows the light is a point
+// of unit falloff (PointLight::unit_falloff: NFF's), and the code for the
+// other kinds is left out of its loop.
+template <bool Unit = false>
+[[gnu::always_inline]] inline bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp,
+                                              const PointLight& light, Ray& shadow, double& falloff) {
   const double eps = scene.epsilon();
-  if (light.kind == LightKind::directional) {
+  if (!Unit && light.kind == LightKind::directional) {
     const Vec3 to_light = -light.direction;
     if (dot(f.ns, to_light) <= 0) return false;
     shadow = Ray{f.above, to_light, 0, INFINITY};
@@ -100,7 +104,7 @@ inline void add_emission(const RenderScene& scene, const Ray& ray, const Surface
   to_light = to_light / dist;
   if (dot(f.ns, to_light) <= 0) return false;
   falloff = 1;
-  if (!light.unit_falloff) {
+  if (!Unit && !light.unit_falloff) {
     falloff = light_falloff(light, to_light, dist);
     if (!(falloff > 0)) return false;
   }
@@ -611,10 +615,11 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
   bool blocked[kPacketSize];
   double falloff[kPacketSize];
   const auto& lights = scene.lights();
-  for (size_t l = 0; l < lights.size(); ++l) {
+  // One light's lanes; `Unit` as shadow_ray's.
+  auto shade_light = [&]<bool Unit>(size_t l, std::bool_constant<Unit>) {
     int cast = 0;
     for (int k = 0; k < kPacketSize; ++k) {
-      shadows.active[k] = hit[k] && shadow_ray(scene, f[k], sps[k], lights[l], shadows.rays[k], falloff[k]);
+      shadows.active[k] = hit[k] && shadow_ray<Unit>(scene, f[k], sps[k], lights[l], shadows.rays[k], falloff[k]);
       if (!shadows.active[k]) continue;
       if (!cached) {
         ++cast;
@@ -628,12 +633,16 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
       }
       ++cast;
     }
-    if (cast == 0) continue;
+    if (cast == 0) return;
     counts.shadow += static_cast<uint64_t>(cast);
     scene.accel().occluded(shadows, blocked);
     for (int k = 0; k < kPacketSize; ++k)
       if (shadows.active[k] && !blocked[k])
         colours[k] += light_contribution(f[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
+  };
+  for (size_t l = 0; l < lights.size(); ++l) {
+    if (lights[l].unit_falloff) shade_light(l, std::true_type{});
+    else shade_light(l, std::false_type{});
   }
   if (!parts) {
     add_secondary(scene, rays, hit, sps, f, depth, counts, colours);
