@@ -108,7 +108,8 @@ TEST_P(BlenderAlbedo, PinholeAlbedoAovMatchesBlendersDiffuseColourPass) {
   EXPECT_GE(psnr, 30) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres"));
+INSTANTIATE_TEST_SUITE_P(Fixtures, BlenderAlbedo, ::testing::Values("textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres",
+                                           "mapped_plane"));
 
 // The same scene with its image beside the file, in a data URI and in a
 // GLB's binary chunk (tests/data/blender/make_scenes.py): the same pixels.

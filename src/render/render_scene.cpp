@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -416,7 +417,56 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   sp.colour = sp.material->colour;
   if (sp.material->texture >= 0 && sp.material->model != ShadingModel::tachyon && hit.kind == PrimKind::triangle)
     sp.colour = textured_colour(sp, hit.u, hit.v, hit.t * length(ray.dir));
+  if (sp.material->model == ShadingModel::gltf) {
+    sp.metallic = static_cast<float>(sp.material->metallic);
+    sp.roughness = static_cast<float>(sp.material->roughness);
+    if ((sp.material->metal_rough_texture >= 0 || sp.material->normal_texture >= 0) && hit.kind == PrimKind::triangle)
+      apply_gltf_maps(sp, hit.t * length(ray.dir));
+  }
   return sp;
+}
+
+// glTF 2.0 §3.9.3 and §3.9.4: metallic in the blue channel, roughness in
+// the green, each scaling its factor; the normal texture's RGB as a
+// tangent-space normal, (2c - 1) with x and y times the scale. The tangent
+// frame is the triangle's own: the tangent along increasing u, the
+// bitangent along increasing v (the image's up, OpenGL's convention, which
+// glTF's normal maps follow), both made orthonormal to the interpolated
+// normal. A file's own TANGENT attribute and a texture transform's
+// rotation of the frame are not read.
+void RenderScene::apply_gltf_maps(SurfacePoint& sp, double distance) const {
+  const Material& m = *sp.material;
+  Vec3 texel;
+  if (m.metal_rough_texture >= 0 && texel_at(m.metal_rough_texture, sp, sp.u, sp.v, distance, texel)) {
+    sp.metallic = static_cast<float>(std::clamp(m.metallic * texel.z, 0.0, 1.0));
+    sp.roughness = static_cast<float>(std::clamp(m.roughness * texel.y, 0.0, 1.0));
+  }
+  if (m.normal_texture < 0 || !texel_at(m.normal_texture, sp, sp.u, sp.v, distance, texel)) return;
+  const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
+  const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];  // texel_at found it
+  const TriangleData& tris = accel_->geometry(sp.group).triangles;
+  const uint32_t* idx = &tris.indices[3 * size_t{sp.prim}];
+  auto vertex = [&](int c) {
+    const float* p = &tris.positions[3 * size_t{idx[c]}];
+    return Vec3{p[0], p[1], p[2]};
+  };
+  const Vec3 p0 = vertex(0), e1 = vertex(1) - p0, e2 = vertex(2) - p0;
+  const double du1 = tu.uv[1][0] - tu.uv[0][0], dv1 = tu.uv[1][1] - tu.uv[0][1];
+  const double du2 = tu.uv[2][0] - tu.uv[0][0], dv2 = tu.uv[2][1] - tu.uv[0][1];
+  const double det = du1 * dv2 - du2 * dv1;
+  if (!(std::fabs(det) > 0)) return;  // the texture is not spread over the triangle: no frame
+  Vec3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
+  const Affine& xf = accel_->transform(sp.group);
+  if (!xf.is_identity()) dpdu = xf.dir(dpdu), dpdv = xf.dir(dpdv);
+  const Vec3 n = sp.ns;
+  const Vec3 along = dpdu - n * dot(n, dpdu);
+  if (!(length(along) > 0)) return;
+  const Vec3 tangent = normalize(along);
+  Vec3 bitangent = cross(n, tangent);
+  if (dot(bitangent, dpdv) < 0) bitangent = -bitangent;
+  const double x = (2 * texel.x - 1) * m.normal_scale, y = (2 * texel.y - 1) * m.normal_scale, z = 2 * texel.z - 1;
+  const Vec3 mapped = tangent * x + bitangent * y + n * z;
+  if (length(mapped) > 0) sp.ns = normalize(mapped);
 }
 
 Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, double distance) const {

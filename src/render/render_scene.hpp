@@ -47,6 +47,7 @@ struct SurfacePoint {
   Vec3 ng;          ///< unit geometric normal: outward (sphere, cone) or winding (polygon)
   Vec3 ns;          ///< unit shading normal, in the same hemisphere as ng
   int object = -1;  ///< object id: index in file order, files numbered one after another
+  PrimKind kind = PrimKind::triangle;  ///< (beside `object`: the record stays 136 bytes)
   const Material* material = nullptr;
   /// The surface colour C of NFF's formula (glTF's base colour; the albedo
   /// AOV is albedo_of(), below): the
@@ -58,15 +59,17 @@ struct SurfacePoint {
   // The primitive hit and its barycentrics (Hit's), for the surface cells of
   // reuse/. Kept small: every hit carries them, cache or not.
   uint32_t group = 0, prim = 0;
-  PrimKind kind = PrimKind::triangle;
   float u = 0, v = 0;  ///< triangle barycentrics (a cell index needs no more)
+  /// glTF materials: metallic and roughness here, the material's factors
+  /// times its metallic-roughness texture (Material::metal_rough_texture).
+  float metallic = 0, roughness = 1;
 };
 
 /// The albedo AOV at a hit (linear RGB): the surface colour C; for a glTF
 /// material its diffuse part, C (1 - metallic) (Appendix B's c_diff at
 /// F = 0, what Blender's DiffCol pass holds; a metal's colour is specular).
 inline Vec3 albedo_of(const SurfacePoint& sp) {
-  if (sp.material->model == ShadingModel::gltf) return sp.colour * (1 - sp.material->metallic);
+  if (sp.material->model == ShadingModel::gltf) return sp.colour * (1 - static_cast<double>(sp.metallic));
   return sp.colour;
 }
 
@@ -211,6 +214,9 @@ class RenderScene {
   const TriangleUv* texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
   /// SurfacePoint::colour of a hit at `distance` along its ray.
   Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
+  /// A glTF material's metallic, roughness and normal-mapped shading
+  /// normal at a triangle hit (Material::metal_rough_texture, normal_texture).
+  void apply_gltf_maps(SurfacePoint& sp, double distance) const;
   /// Texture `texture` (a uv_image) at the hit's coordinates, its MIP level
   /// from the footprint at `distance`; false when it cannot be read there.
   bool texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const;

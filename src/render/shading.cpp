@@ -30,6 +30,7 @@ struct HitFrame {
   Vec3 ns;     // shading normal turned likewise
   Vec3 above;  // origin for rays leaving on the viewer's side
   bool front;  // the ray met the outward (winding) side
+  float metallic, roughness;  // glTF materials: SurfacePoint's
 };
 
 HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
@@ -42,6 +43,8 @@ HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& 
   f.ng = f.front ? sp.ng : -sp.ng;
   f.ns = f.front ? sp.ns : -sp.ns;
   f.above = sp.position + f.ng * scene.epsilon();
+  f.metallic = sp.metallic;
+  f.roughness = sp.roughness;
   return f;
 }
 
@@ -113,7 +116,7 @@ template <bool Unit = false>
 }
 
 GltfSurface gltf_surface(const HitFrame& f) {
-  return GltfSurface{f.colour, f.m->metallic, f.m->roughness, dielectric_f0(f.m->ior)};
+  return GltfSurface{f.colour, f.metallic, f.roughness, dielectric_f0(f.m->ior)};
 }
 
 // light_contribution() of a glTF material: kept out of line, so that NFF's
@@ -201,7 +204,7 @@ Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
                                                     const HitFrame& f) {
   SecondaryRays s;
   const Material& m = *f.m;
-  if (m.roughness < kMirrorRoughness) {
+  if (f.roughness < kMirrorRoughness) {
     s.mirror = true;
     s.mirror_ray = mirror_ray_of(ray, f);
     s.mirror_weight = gltf_mirror_weight(gltf_surface(f), dot(f.ns, f.view)) * (1 - m.transmittance);

@@ -165,6 +165,7 @@ class MeshReader {
           break;
         }
       read_emission(m, mat, uv_set);
+      if (mat.model == ShadingModel::gltf) read_data_maps(m, mat, uv_set);
       uv_set_.resize(out_.materials.size(), -1);
       uv_set_.push_back(uv_set);
       out_.materials.push_back(mat);
@@ -194,13 +195,38 @@ class MeshReader {
     uv_set = map.uv_set;
   }
 
+  // glTF's metallicRoughnessTexture (assimp's UNKNOWN slot) and
+  // normalTexture with its scale: data, not colour (decoded linearly). Like
+  // the emissive map, each must read the base colour map's coordinates.
+  void read_data_maps(const aiMaterial& m, Material& mat, int& uv_set) {
+    auto take = [&](aiTextureType type, const char* what) {
+      if (m.GetTextureCount(type) == 0) return -1;
+      const TextureMap map = read_map(m, type, false);
+      if (uv_set >= 0 && map.uv_set != uv_set) {
+        warn(fmt::format("material '{}': its {} texture reads texture coordinate set {} and its other textures set {}: "
+                         "it is not applied (a mesh keeps one set)",
+                         m.GetName().C_Str(), what, map.uv_set, uv_set));
+        return -1;
+      }
+      uv_set = map.uv_set;
+      return map.texture;
+    };
+    mat.metal_rough_texture = take(aiTextureType_UNKNOWN, "metallic-roughness");
+    mat.normal_texture = take(aiTextureType_NORMALS, "normal");
+    float scale = 1;
+    if (mat.normal_texture >= 0 && m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), scale) == AI_SUCCESS &&
+        std::isfinite(scale))
+      mat.normal_scale = scale;
+  }
+
   // A material's image map as a uv_image texture: its index in
   // out_.textures, and the texture coordinate set it reads.
   struct TextureMap {
     int texture;
     int uv_set;
   };
-  TextureMap read_map(const aiMaterial& m, aiTextureType type) {
+  // `colour`: the image holds colours (sRGB codes); else data (linear).
+  TextureMap read_map(const aiMaterial& m, aiTextureType type, bool colour = true) {
     aiString path;
     unsigned uv_set = 0;
     aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
@@ -219,7 +245,7 @@ class MeshReader {
     if (m.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag) == AI_SUCCESS) tex.nearest = mag == 9728;  // GL NEAREST
     aiUVTransform t;
     if (gltf_ && m.Get(AI_MATKEY_UVTRANSFORM(type, 0), t) == AI_SUCCESS) tex.uv_transform = gltf_uv_transform(t);
-    tex.image = image_of(m.GetName().C_Str(), path.C_Str());
+    tex.image = image_of(m.GetName().C_Str(), path.C_Str(), colour);
     tex.srgb = out_.images[static_cast<size_t>(tex.image)].srgb;
     out_.textures.push_back(tex);
     return {static_cast<int>(out_.textures.size()) - 1, static_cast<int>(uv_set)};
@@ -244,10 +270,12 @@ class MeshReader {
 
   // The image `path` names (embedded in the file, or beside it) as an
   // ImageMap, read once per path; an image that cannot be read is named in a
-  // warning and replaced by a magenta checker, never black. Its codes are
-  // sRGB but for float images (OpenEXR, HDR), whose values are linear.
-  int image_of(const std::string& material, const std::string& path) {
-    if (const auto it = image_index_.find(path); it != image_index_.end()) return it->second;
+  // warning and replaced by a magenta checker, never black. A colour
+  // image's codes are sRGB but for float images (OpenEXR, HDR), whose
+  // values are linear; a data image (`colour` false) is linear.
+  int image_of(const std::string& material, const std::string& path, bool colour = true) {
+    const std::string key = colour ? path : path + "\n(data)";
+    if (const auto it = image_index_.find(key); it != image_index_.end()) return it->second;
     ImageMap img;
     img.path = path;
     try {
@@ -265,7 +293,7 @@ class MeshReader {
         raw = read_image(file.string(), &header);
       }
       to_image_map(raw, img);
-      img.srgb = header.format != "openexr" && header.format != "hdr";
+      img.srgb = colour && header.format != "openexr" && header.format != "hdr";
     } catch (const std::exception& e) {
       const auto* read_error = dynamic_cast<const ImageReadError*>(&e);
       warn(fmt::format("material '{}': cannot read texture '{}' ({}): a checker shows where it goes", material, path,
@@ -275,7 +303,7 @@ class MeshReader {
     }
     out_.images.push_back(std::move(img));
     const int index = static_cast<int>(out_.images.size()) - 1;
-    image_index_[path] = index;
+    image_index_[key] = index;
     return index;
   }
 

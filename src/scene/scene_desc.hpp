@@ -104,6 +104,13 @@ struct Material {
   /// [0, 1]; `colour` is the base colour, `ior` the dielectric's index
   /// (KHR_materials_ior; 1.5 by default, F0 = 0.04).
   double metallic = 0, roughness = 1;
+  /// glTF materials: the metallicRoughnessTexture (linear; blue scales
+  /// metallic, green roughness) and the normalTexture (tangent space,
+  /// linear, x and y scaled by `normal_scale`), indices into
+  /// SceneDesc::textures reading the base colour map's coordinates; -1: none.
+  int metal_rough_texture = -1;
+  int normal_texture = -1;
+  double normal_scale = 1;
   SourceLoc loc;
 };
 

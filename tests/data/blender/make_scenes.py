@@ -506,6 +506,71 @@ def morph_box(name):
         json.dump(gltf, f, indent=1)
 
 
+def mapped_plane(name):
+    """A square under a sun, its glTF metallicRoughnessTexture and
+    normalTexture both varying: the top half of the image metal (blue 255),
+    the bottom dielectric (blue 0); roughness (green) 0.3 on the left, 0.7 on
+    the right; the normal map tilting the normal along u by 0.6 cos(8 pi u)
+    and along the image's up by 0.4 sin(6 pi y / size) (RGB = (n + 1) / 2),
+    so that both tangent directions show. The oracle for the
+    texture-driven BRDF inputs and the tangent frame: direct light and albedo
+    against Blender's."""
+    size = 64
+    normal, mr = [], []
+    for y in range(size):
+        for x in range(size):
+            u = (x + 0.5) / size
+            up = 1 - (y + 0.5) / size  # rows run down the image
+            n = [-0.6 * math.cos(8 * math.pi * u), -0.4 * math.sin(6 * math.pi * up), 1.0]
+            length = math.sqrt(sum(c * c for c in n))
+            normal.append(tuple(int(round(255 * (c / length + 1) / 2)) for c in n))
+            mr.append((0, 77 if x < size // 2 else 179, 255 if y < size // 2 else 0))
+    write_png(os.path.join(HERE, name + "_normal.png"), size, size, normal)
+    write_png(os.path.join(HERE, name + "_mr.png"), size, size, mr)
+    blob = bytearray()
+    views, accessors = [], []
+    add = functools.partial(add_accessor, blob, views, accessors)
+    pos = [[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]]
+    nrm = [[0, 1, 0]] * 4
+    uv = [[0, 1], [1, 1], [1, 0], [0, 0]]  # glTF's v runs down the image: the far edge (z = -1) is the image's top
+    a_pos = add(struct.pack("<12f", *flat(pos)), 5126, 4, "VEC3", 34962, ([-1, 0, -1], [1, 0, 1]))
+    a_nrm = add(struct.pack("<12f", *flat(nrm)), 5126, 4, "VEC3", 34962)
+    a_uv = add(struct.pack("<8f", *flat(uv)), 5126, 4, "VEC2", 34962)
+    a_idx = add(struct.pack("<6H", 0, 1, 2, 0, 2, 3), 5123, 6, "SCALAR", 34963)
+    eye = [0.0, 2.4, 2.6]
+    sun_dir = [0.5, -1.0, -0.6]
+    gltf = {
+        "asset": {"version": "2.0", "generator": "holoray tests/data/blender/make_scenes.py"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 900.0}]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [
+            {"mesh": 0},
+            {"camera": 0, "translation": eye, "rotation": look_at_quaternion(eye, [0, 0, 0])},
+            {"name": "sun", "rotation": look_at_quaternion([0, 0, 0], sun_dir),
+             "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        ],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.75, "aspectRatio": 1.0, "znear": 0.1}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": a_pos, "NORMAL": a_nrm, "TEXCOORD_0": a_uv},
+                                    "indices": a_idx, "material": 0}]}],
+        "materials": [{"name": "mapped",
+                       "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1], "metallicFactor": 1.0,
+                                                "roughnessFactor": 1.0, "metallicRoughnessTexture": {"index": 1}},
+                       "normalTexture": {"index": 0, "scale": 1.0}}],
+        "textures": [{"sampler": 0, "source": 0}, {"sampler": 0, "source": 1}],
+        "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}],
+        "images": [{"uri": name + "_normal.png"}, {"uri": name + "_mr.png"}],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
 if __name__ == "__main__":
     embedded_copies("textured_box", *textured_box("textured_box"))
     # UVs over [0, 2]: the image repeats twice per face one way and mirrors the other.
@@ -516,3 +581,4 @@ if __name__ == "__main__":
     lit_spheres("lit_spheres")
     skinned_arm("skinned_arm")
     morph_box("morph_box")
+    mapped_plane("mapped_plane")

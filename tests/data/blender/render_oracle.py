@@ -31,8 +31,8 @@ numpy.bool = bool  # Debian's Blender 3.4 glTF importer still uses it
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SIZE = 128
-ALBEDO = ["textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres"]
-DIRECT = ["lit_spheres"]
+ALBEDO = ["textured_box", "wrapped_box", "transform_box", "masked_leaf", "lit_spheres", "mapped_plane"]
+DIRECT = ["lit_spheres", "mapped_plane"]
 FRAMES = {"skinned_arm": [0, 5, 9], "morph_box": [0, 5, 9]}
 
 
