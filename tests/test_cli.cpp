@@ -1,5 +1,6 @@
 // The command line end to end: outputs, messages and exit statuses.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <filesystem>
 
@@ -85,6 +86,28 @@ TEST(Cli, UnsupportedOutputAndMissingFolderAreRefusedBeforeRendering) {
   r = test::run_cli("render " + dir.file("s.nff") + " -o " + dir.file("nowhere/o.png"));
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.output, "holoray: error: -o: folder '" + dir.file("nowhere") + "' does not exist\n");
+}
+
+// --encoding auto (the default): a mesh scene's PNG is sRGB-encoded, an
+// NFF scene's linear; the codes prove which: the sRGB code of a linear
+// value v < 1 is above 255 v.
+TEST(Cli, EncodingAutoIsSrgbForMeshScenesAndLinearForNff) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.nff"), kScene);
+  test::write_text(dir.file("m.obj"), "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  auto codes = [&](const std::string& scene, const std::string& encoding) {
+    const std::string out = dir.file(fs::path(scene).stem().string() + encoding + ".png");
+    const auto r = test::run_cli(fmt::format("render {} --lenses 8x8 --pixels-per-lens 4 -q{} -o {}", dir.file(scene),
+                                             encoding.empty() ? "" : " --encoding " + encoding, out));
+    EXPECT_EQ(r.status, 0) << r.output;
+    return read_image(out).data;
+  };
+  EXPECT_EQ(codes("m.obj", ""), codes("m.obj", "srgb"));
+  EXPECT_NE(codes("m.obj", ""), codes("m.obj", "linear"));
+  EXPECT_EQ(codes("s.nff", ""), codes("s.nff", "linear"));
+  EXPECT_NE(codes("s.nff", ""), codes("s.nff", "srgb"));
+  const auto r = test::run_cli("render " + dir.file("s.nff") + " --encoding gamma -o " + dir.file("o.png"));
+  EXPECT_EQ(r.output, "holoray: error: --encoding: expected auto, linear or srgb, got 'gamma'\n");
 }
 
 TEST(Cli, SubapertureRefusesUnknownGridAndEncoding) {

@@ -104,7 +104,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--reach", o.reach, "near (one lens per point) or all (every lens that sees it)")->capture_default_str();
   cmd->add_flag("--no-leak-check", o.no_leak_check, "Keep points seen through gaps of nearer surfaces");
   cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
-  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb when the shot's first scene file is a mesh, linear for NFF and Tachyon)")->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
   cmd->add_option("--display", o.display, "Display file (docs/display-files.md): each frame as that display's native panel image, placed by the frame's viewpoint and traced in full (as render --display)");
   CLI::Option* lg = cmd->add_option("--looking-glass", o.looking_glass, "A Looking Glass's calibration file (visual.json): each frame as its native panel image, centred on the frame's viewpoint and traced in full (as render --looking-glass)");
@@ -180,7 +180,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     } else if (o.crf != -1) {
       throw std::invalid_argument("--crf: goes with --video");
     }
-    so.encoding = parse_encoding(o.encoding);
+    so.encoding = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
     const bool auto_keys = o.keyframe_interval == "auto";
     int interval = 0;
     if (!auto_keys) {
@@ -210,6 +210,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     int range_first = 0, range_last = -1;
     if (!o.frames.empty()) parse_frame_range(o.frames, range_first, range_last);
     ShotFrames shot(read_shot_file(o.shot));
+    if (!shot.shot().objects.empty()) so.encoding = parse_encoding(o.encoding, shot.shot().objects.front().scene);
     const int frames = shot.frame_count();
     if (o.frames.empty()) range_last = frames - 1;
     if (range_last >= frames)

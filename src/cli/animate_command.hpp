@@ -14,7 +14,7 @@ namespace holoray::cli {
 struct AnimateCommandOptions {
   std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
   std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
-  std::string format = "png", encoding = "linear", report;
+  std::string format = "png", encoding = "auto", report;
   std::string frames;                   ///< --frames A:B (inclusive) or N: only those frames
   std::string display;                  ///< --display FILE: native panel frames, traced in full
   std::string looking_glass;            ///< --looking-glass CAL.json: Looking Glass native frames, traced in full

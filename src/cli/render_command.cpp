@@ -129,7 +129,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; default: the scene's Tachyon raydepth, else 5, the SPD's)");
   cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
-  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")->capture_default_str();
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return cmd;
@@ -146,7 +146,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       throw std::invalid_argument(std::filesystem::exists(out_dir)
                                       ? fmt::format("-o: '{}' is not a folder", out_dir.string())
                                       : fmt::format("-o: folder '{}' does not exist", out_dir.string()));
-    const Encoding encoding = parse_encoding(o.encoding);
+    const Encoding encoding = parse_encoding(o.encoding, o.scene);
     if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
     if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
