@@ -5,12 +5,12 @@
 # is there, ../shared/scenes. Fails on the first finding and says where the
 # input is: add it to fuzz/regressions/<target>/ with the fix, and the test
 # suite (FuzzRegressions) replays it on every build from then on.
-# Usage: bash fuzz/run.sh [target...]   (targets: nff tachyon shot camera_path display)
+# Usage: bash fuzz/run.sh [target...]   (targets: nff tachyon shot camera_path display gltf)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
 targets=("$@")
-((${#targets[@]})) || targets=(nff tachyon shot camera_path display)
+((${#targets[@]})) || targets=(nff tachyon shot camera_path display gltf)
 
 command -v clang++ >/dev/null || { echo "fuzz/run.sh: clang++ not found (bash scripts/setup.sh installs it)" >&2; exit 1; }
 cmake -S fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -26,6 +26,7 @@ seeds() {  # the seed files of one target, small ones only (the fuzzer cuts inpu
     shot) files=(bench/shots/*.toml tests/data/*.toml) ;;
     camera_path) files=("$shared"/tachyon/*.cam) ;;
     display) files=(examples/displays/*.toml) ;;
+    gltf) files=(examples/*.gltf tests/data/blender/*.gltf) ;;
   esac
   files+=(fuzz/regressions/"$1"/*)
   for f in "${files[@]}"; do
@@ -39,8 +40,13 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings"
   seeds "$t" | while read -r f; do cp "$f" "$corpus/"; done
   echo "== fuzz_$t: ${seconds}s, $(ls "$corpus" | wc -l) inputs in the corpus"
-  if ! build-fuzz/fuzz_"$t" "$corpus" -dict=fuzz/dicts/"$t".dict -max_total_time="$seconds" -max_len=8192 \
-      -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/" 2>build-fuzz/fuzz_"$t".log; then
+  extra=() asan=${ASAN_OPTIONS:-}
+  # Debian's assimp 5.2 leaks a few hundred bytes reading valid glTF files
+  # (examples/swinging_box.gltf among them): leaks are not looked for there.
+  if [ "$t" = gltf ]; then extra=(-detect_leaks=0); asan="detect_leaks=0${asan:+:$asan}"; fi
+  if ! ASAN_OPTIONS=$asan build-fuzz/fuzz_"$t" "$corpus" -dict=fuzz/dicts/"$t".dict -max_total_time="$seconds" -max_len=8192 \
+      -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/" "${extra[@]}" \
+      2>build-fuzz/fuzz_"$t".log; then
     tail -40 build-fuzz/fuzz_"$t".log >&2
     echo "fuzz_$t found a problem; the input is in $findings/ (replay: build-fuzz/fuzz_$t FILE)" >&2
     exit 1

@@ -39,6 +39,7 @@ TEST(FuzzRegressions, TachyonInputsParseOrFailWithParseError) { replay("tachyon"
 TEST(FuzzRegressions, ShotInputsParseOrFailWithTheirErrors) { replay("shot", fuzz::shot); }
 TEST(FuzzRegressions, CameraPathInputsParseOrFailWithParseError) { replay("camera_path", fuzz::camera_path); }
 TEST(FuzzRegressions, DisplayInputsParseOrFailWithParseError) { replay("display", fuzz::display); }
+TEST(FuzzRegressions, GltfInputsReadOrFailWithRuntimeError) { replay("gltf", fuzz::gltf); }
 
 }  // namespace
 }  // namespace holoray

@@ -26,6 +26,7 @@
 
 #include "image/image_io.hpp"
 #include "scene/file_text.hpp"
+#include "scene/parse_error.hpp"
 #include "scene/tachyon_reader.hpp"
 #include "scene/nff_reader.hpp"
 
@@ -824,26 +825,57 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
   }
 }
 
-// Debian's assimp (5.2) dereferences a glTF skin's inverseBindMatrices
-// without checking that the skin has them (the specification lets it leave
-// them out: identity matrices), and crashes. Such a skin is refused before
-// assimp reads the file. Only a file that mentions "skins" is parsed; one
-// that is not JSON, or not glTF, is left for assimp to report.
-void check_gltf_skins(std::ifstream& in, const std::string& path, bool binary) {
+// glTF is JSON, checked here before assimp reads it:
+// - a file that is not JSON is refused with its place ("file:line:col:
+//   error: ..."): assimp's format detection would otherwise fall back on
+//   its other readers, and one of Debian's 5.2 reads past the end of a
+//   15-byte file doing so (found by fuzz/, target gltf);
+// - a skin without inverseBindMatrices is refused: assimp 5.2 dereferences
+//   them without checking that the skin has them (the specification lets it
+//   leave them out: identity matrices), and crashes.
+void check_gltf(std::ifstream& in, const std::string& path, bool binary) {
   std::string text;
   if (binary) {  // GLB: 12-byte header, then the JSON chunk (length, type "JSON", text)
     char head[20];
-    if (!in.read(head, sizeof head) || std::string_view(head + 16, 4) != "JSON") return;
+    if (!in.read(head, sizeof head) || std::string_view(head, 4) != "glTF" || std::string_view(head + 16, 4) != "JSON")
+      throw std::runtime_error(fmt::format("cannot read '{}': not a binary glTF file (expected the 'glTF' magic and a "
+                                           "JSON chunk first)",
+                                           path));
     uint32_t length = 0;
     std::memcpy(&length, head + 12, sizeof length);
+    std::error_code ec;
+    if (length > std::filesystem::file_size(path, ec) || ec)
+      throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk claims {} bytes, more than the file holds",
+                                           path, length));
     text.resize(length);
-    if (!in.read(text.data(), length)) return;
+    if (!in.read(text.data(), length))
+      throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is cut short", path));
   } else {
     text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  if (text.find("\"skins\"") == std::string::npos) return;
-  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("skins") || !j["skins"].is_array()) return;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann's byte is one past the character it stopped at (1-based).
+    const size_t at = std::min(text.size(), e.byte > 0 ? static_cast<size_t>(e.byte - 1) : size_t{0});
+    std::string reason = e.what();
+    if (const size_t colon = reason.find(": ", reason.find("column")); colon != std::string::npos)
+      reason = reason.substr(colon + 2);
+    if (binary) throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is not JSON ({})", path, reason));
+    const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1) == std::string::npos ? 0 : text.rfind('\n', at - 1) + 1;
+    const size_t line_end = std::min(text.find('\n', at), text.size());
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(line_start), '\n'));
+    // The offending line under the message, unless it is long (a one-line file of megabytes).
+    const bool show = line_end - line_start <= 200;
+    throw ParseError(path, SourceLoc{line, static_cast<int>(at - line_start) + 1}, "expected glTF's JSON: " + reason,
+                     show ? text.substr(line_start, line_end - line_start) : std::string());
+  } catch (const nlohmann::json::exception& e) {  // a number out of range: no place given
+    std::string reason = e.what();
+    if (const size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
+    throw std::runtime_error(fmt::format("cannot read '{}': its JSON is not glTF's ({})", path, reason));
+  }
+  if (!j.is_object() || !j.contains("skins") || !j["skins"].is_array()) return;
   for (size_t k = 0; k < j["skins"].size(); ++k)
     if (const auto& skin = j["skins"][k]; skin.is_object() && !skin.contains("inverseBindMatrices"))
       throw std::runtime_error(fmt::format("cannot read '{}': skin {} has no inverseBindMatrices, which assimp cannot "
@@ -933,7 +965,7 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   const std::string ext = lower_extension(path);
   std::error_code ec;
   if (ext == ".ply") check_ply_header(in, path, std::filesystem::file_size(path, ec));
-  if (ext == ".gltf" || ext == ".glb") check_gltf_skins(in, path, ext == ".glb");
+  if (ext == ".gltf" || ext == ".glb") check_gltf(in, path, ext == ".glb");
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; triangulated polygons keep
   // their file order. Node transforms are applied by the reader itself, so
