@@ -118,7 +118,7 @@ std::string gltf(const Scene& s) {
   std::string scene_nodes;
   for (size_t k = 0; k < nodes.size(); ++k) scene_nodes += fmt::format("{}{}", k ? ", " : "", k);
   return fmt::format(R"({{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [{}]}}],
- "extensionsUsed": ["KHR_lights_punctual"], "extensions": {{"KHR_lights_punctual": {{"lights": [{}]}}}},
+ "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission"], "extensions": {{"KHR_lights_punctual": {{"lights": [{}]}}}},
  "nodes": [{}],
  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}}}],
  "meshes": [{}], "materials": [{}],
@@ -215,6 +215,36 @@ TEST(GltfMaterials, ASmoothMetalMirrorsTheSceneInItsColourARoughOneDoesNot) {
     const Vec3 expected = roughness < kMirrorRoughness ? Vec3{0.5, 0.4, 0.3} : Vec3{};
     expect_rgb(render(s, dir).at(4, 4), expected, 1e-5);
   }
+}
+
+// KHR_materials_transmission, thin-walled: a rough glass square (T = 1)
+// in front of an emitting square passes its light on unbent, tinted by the
+// base colour and less the Fresnel reflectance at normal incidence,
+// (1 - 0.04) c E; the same square opaque (T = 0) shows nothing (the only
+// light shines along the squares, N.L = 0).
+TEST(GltfMaterials, ATransmittingSurfacePassesTheLightBehindItTintedByItsColour) {
+  test::TempDir dir;
+  for (const double transmission : {1.0, 0.0}) {
+    Scene s;
+    s.materials = fmt::format(
+        R"({{"name": "glass", "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": {}}}}},
+ "pbrMetallicRoughness": {{"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 0, "roughnessFactor": 0.5}}}},
+ {{"name": "glow", "emissiveFactor": [0.5, 0.5, 0.5], "pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 1}}}})",
+        transmission);
+    s.squares = {{1.5, 0}, {10, -2}};
+    s.lights = R"({"type": "directional", "intensity": 1000})";
+    s.light_node = R"({"rotation": [0, 0.7071068, 0, 0.7071068], "extensions": {"KHR_lights_punctual": {"light": 0}}})";
+    expect_rgb(render(s, dir).at(4, 4), Vec3{1, 0.5, 0.25} * (0.96 * 0.5 * transmission), 1e-5);
+  }
+  // Lit from the front, a white one passes its diffuse share on: only the
+  // specular 0.04 / 4 of kWhiteAtNormal is left (nothing behind it).
+  Scene s;
+  s.materials = R"({"name": "glass", "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}},
+ "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0, "roughnessFactor": 1}})";
+  s.squares = {{1.5, 0}};
+  s.lights = fmt::format(R"({{"type": "directional", "intensity": {}}})", 683 * kPi);
+  s.light_node = R"({"extensions": {"KHR_lights_punctual": {"light": 0}}})";
+  expect_rgb(render(s, dir).at(4, 4), Vec3{1, 1, 1} * (kWhiteAtNormal - 0.96), 1e-5);
 }
 
 // Against Blender (Cycles, tests/data/blender/render_oracle.py): the light

@@ -48,7 +48,8 @@ Vec3 gltf_direct(const GltfSurface& s, const Vec3& n, const Vec3& view, const Ve
   const Vec3 f_m = s.base + (Vec3{1, 1, 1} - s.base) * w;
   const double m = std::clamp(s.metallic, 0.0, 1.0);
   // pi * f: the Lambertian 1/pi cancels.
-  const Vec3 dielectric = s.base * (1 - f_d) + Vec3{1, 1, 1} * (f_d * specular * std::numbers::pi);
+  const Vec3 dielectric = s.base * ((1 - f_d) * (1 - std::clamp(s.transmission, 0.0, 1.0))) +
+                          Vec3{1, 1, 1} * (f_d * specular * std::numbers::pi);
   const Vec3 metal = f_m * (specular * std::numbers::pi);
   return (dielectric * (1 - m) + metal * m) * n_dot_l;
 }
@@ -59,6 +60,11 @@ Vec3 gltf_mirror_weight(const GltfSurface& s, double n_dot_v) {
   const Vec3 f_m = s.base + (Vec3{1, 1, 1} - s.base) * w;
   const double m = std::clamp(s.metallic, 0.0, 1.0);
   return Vec3{f_d, f_d, f_d} * (1 - m) + f_m * m;
+}
+
+Vec3 gltf_transmit_weight(const GltfSurface& s, double n_dot_v) {
+  const double f_d = s.f0 + (1 - s.f0) * schlick_weight(std::fabs(n_dot_v));
+  return s.base * ((1 - std::clamp(s.metallic, 0.0, 1.0)) * std::clamp(s.transmission, 0.0, 1.0) * (1 - f_d));
 }
 
 }  // namespace holoray

@@ -66,10 +66,12 @@ struct SurfacePoint {
 };
 
 /// The albedo AOV at a hit (linear RGB): the surface colour C; for a glTF
-/// material its diffuse part, C (1 - metallic) (Appendix B's c_diff at
-/// F = 0, what Blender's DiffCol pass holds; a metal's colour is specular).
+/// material its diffuse part, C (1 - metallic) (1 - transmission)
+/// (Appendix B's c_diff at F = 0, what Blender's DiffCol pass holds; a
+/// metal's colour is specular, a transmitting one's passes through).
 inline Vec3 albedo_of(const SurfacePoint& sp) {
-  if (sp.material->model == ShadingModel::gltf) return sp.colour * (1 - static_cast<double>(sp.metallic));
+  if (sp.material->model == ShadingModel::gltf)
+    return sp.colour * ((1 - static_cast<double>(sp.metallic)) * (1 - sp.material->transmission));
   return sp.colour;
 }
 

@@ -116,7 +116,7 @@ template <bool Unit = false>
 }
 
 GltfSurface gltf_surface(const HitFrame& f) {
-  return GltfSurface{f.colour, f.metallic, f.roughness, dielectric_f0(f.m->ior)};
+  return GltfSurface{f.colour, f.metallic, f.roughness, dielectric_f0(f.m->ior), f.m->transmission};
 }
 
 // light_contribution() of a glTF material: kept out of line, so that NFF's
@@ -209,10 +209,13 @@ Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
     s.mirror_ray = mirror_ray_of(ray, f);
     s.mirror_weight = gltf_mirror_weight(gltf_surface(f), dot(f.ns, f.view)) * (1 - m.transmittance);
   }
-  if (m.transmittance > 0) {
+  // BLEND's uncovered share and KHR_materials_transmission's share of the
+  // covered part both go straight through: one ray, their weights summed.
+  const Vec3 transmitted = m.transmission > 0 ? gltf_transmit_weight(gltf_surface(f), dot(f.ns, f.view)) : Vec3{};
+  if (m.transmittance > 0 || m.transmission > 0) {
     s.transmit = true;
     s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), ray.dir, 0, INFINITY};
-    s.transmit_weight = Vec3{1, 1, 1} * m.transmittance;
+    s.transmit_weight = Vec3{1, 1, 1} * m.transmittance + transmitted * (1 - m.transmittance);
   }
   return s;
 }

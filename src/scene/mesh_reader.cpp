@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <sstream>
 #include <numbers>
@@ -166,7 +167,14 @@ class MeshReader {
           break;
         }
       read_emission(m, mat, uv_set);
-      if (mat.model == ShadingModel::gltf) read_data_maps(m, mat, uv_set);
+      if (mat.model == ShadingModel::gltf) {
+        read_data_maps(m, mat, uv_set);
+        float transmission = 0;
+        if (m.Get(AI_MATKEY_TRANSMISSION_FACTOR, transmission) == AI_SUCCESS && std::isfinite(transmission))
+          mat.transmission = std::clamp(static_cast<double>(transmission), 0.0, 1.0);
+        if (m.GetTextureCount(aiTextureType_TRANSMISSION) > 0)
+          warn(fmt::format("material '{}': its transmission texture is not applied (the factor is)", m.GetName().C_Str()));
+      }
       uv_set_.resize(out_.materials.size(), -1);
       uv_set_.push_back(uv_set);
       out_.materials.push_back(mat);
@@ -833,6 +841,40 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
 // - a skin without inverseBindMatrices is refused: assimp 5.2 dereferences
 //   them without checking that the skin has them (the specification lets it
 //   leave them out: identity matrices), and crashes.
+// Values Debian's assimp 5.2 reads as numbers without checking that they
+// are (its rapidjson asserts, and the process aborts; found by fuzz/):
+// KHR_texture_transform's offset and scale (two numbers each), anywhere in
+// a material, and a mesh's default morph weights.
+void check_gltf_numbers(const nlohmann::json& j, const std::string& path) {
+  auto numbers = [&](const nlohmann::json& v, size_t at_least, const std::string& what) {
+    bool ok = v.is_array() && v.size() >= at_least;
+    for (size_t k = 0; ok && k < v.size(); ++k) ok = v[k].is_number();
+    if (!ok)
+      throw std::runtime_error(fmt::format("cannot read '{}': {} must be an array of {}numbers", path, what,
+                                           at_least > 0 ? fmt::format("at least {} ", at_least) : std::string()));
+  };
+  // Every KHR_texture_transform object under the materials, however deep.
+  std::function<void(const nlohmann::json&, const std::string&)> walk = [&](const nlohmann::json& v,
+                                                                          const std::string& where) {
+    if (v.is_object()) {
+      for (const auto& [key, value] : v.items()) {
+        if (key == "KHR_texture_transform" && value.is_object()) {
+          for (const char* field : {"offset", "scale"})
+            if (value.contains(field)) numbers(value[field], 2, fmt::format("{}: KHR_texture_transform's {}", where, field));
+        }
+        walk(value, where);
+      }
+    } else if (v.is_array()) {
+      for (const auto& e : v) walk(e, where);
+    }
+  };
+  if (j.contains("materials")) walk(j["materials"], "a material");
+  if (j.contains("meshes") && j["meshes"].is_array())
+    for (size_t m = 0; m < j["meshes"].size(); ++m)
+      if (const auto& mesh = j["meshes"][m]; mesh.is_object() && mesh.contains("weights"))
+        numbers(mesh["weights"], 0, fmt::format("mesh {}'s weights", m));
+}
+
 void check_gltf(std::ifstream& in, const std::string& path, bool binary) {
   std::string text;
   if (binary) {  // GLB: 12-byte header, then the JSON chunk (length, type "JSON", text)
@@ -875,7 +917,9 @@ void check_gltf(std::ifstream& in, const std::string& path, bool binary) {
     if (const size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
     throw std::runtime_error(fmt::format("cannot read '{}': its JSON is not glTF's ({})", path, reason));
   }
-  if (!j.is_object() || !j.contains("skins") || !j["skins"].is_array()) return;
+  if (!j.is_object()) return;  // assimp says what it expected
+  check_gltf_numbers(j, path);
+  if (!j.contains("skins") || !j["skins"].is_array()) return;
   for (size_t k = 0; k < j["skins"].size(); ++k)
     if (const auto& skin = j["skins"][k]; skin.is_object() && !skin.contains("inverseBindMatrices"))
       throw std::runtime_error(fmt::format("cannot read '{}': skin {} has no inverseBindMatrices, which assimp cannot "

@@ -108,6 +108,9 @@ struct Material {
   /// metallic, green roughness) and the normalTexture (tangent space,
   /// linear, x and y scaled by `normal_scale`), indices into
   /// SceneDesc::textures reading the base colour map's coordinates; -1: none.
+  /// glTF materials: KHR_materials_transmission's factor, the share of the
+  /// dielectric's diffuse light that passes through (thin-walled).
+  double transmission = 0;
   int metal_rough_texture = -1;
   int normal_texture = -1;
   double normal_scale = 1;
