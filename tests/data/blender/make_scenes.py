@@ -37,6 +37,37 @@ def add_accessor(blob, views, accessors, data, fmt, count, kind, target, minmax=
     return len(accessors) - 1
 
 
+def vec3_accessor(add, rows, minmax=False):
+    """A VEC3 float accessor of `rows` (with their bounds when `minmax`: positions)."""
+    mm = ([min(p[i] for p in rows) for i in range(3)], [max(p[i] for p in rows) for i in range(3)]) if minmax else None
+    return add(struct.pack("<%df" % (3 * len(rows)), *flat(rows)), 5126, len(rows), "VEC3", 34962, mm)
+
+
+def floor_primitive(add, material):
+    """A 6 x 6 square floor at y = 0 facing +y."""
+    a_idx = add(struct.pack("<6H", 0, 2, 1, 0, 3, 2), 5123, 6, "SCALAR", 34963)
+    pos = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
+    return {"attributes": {"POSITION": vec3_accessor(add, pos, True), "NORMAL": vec3_accessor(add, [[0, 1, 0]] * 4)},
+            "indices": a_idx, "material": material}
+
+
+def material(name, colour, metallic, roughness):
+    """A glTF metallic-roughness material of constant factors."""
+    return {"name": name, "pbrMetallicRoughness": {"baseColorFactor": colour + [1], "metallicFactor": metallic,
+                                                   "roughnessFactor": roughness}}
+
+
+def write_gltf(name, gltf, blob, views, accessors):
+    """Adds the one embedded buffer, its views and accessors to `gltf`, last,
+    and writes NAME.gltf here."""
+    gltf["buffers"] = [{"byteLength": len(blob),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}]
+    gltf["bufferViews"] = views
+    gltf["accessors"] = accessors
+    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
 def write_png(path, width, height, rgb):
     """8-bit RGB (or RGBA, with 4-tuples) PNG, rows from the top; rgb is a
     list of (r, g, b[, a]) codes."""
@@ -276,9 +307,7 @@ def lit_spheres(name):
     add = functools.partial(add_accessor, blob, views, accessors)
 
     def mesh(pos, nrm, idx, material):
-        a_pos = add(struct.pack("<%df" % (3 * len(pos)), *flat(pos)), 5126, len(pos), "VEC3", 34962,
-                    ([min(p[i] for p in pos) for i in range(3)], [max(p[i] for p in pos) for i in range(3)]))
-        a_nrm = add(struct.pack("<%df" % (3 * len(nrm)), *flat(nrm)), 5126, len(nrm), "VEC3", 34962)
+        a_pos, a_nrm = vec3_accessor(add, pos, True), vec3_accessor(add, nrm)
         a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
         meshes.append({"primitives": [{"attributes": {"POSITION": a_pos, "NORMAL": a_nrm}, "indices": a_idx,
                                        "material": material}]})
@@ -313,20 +342,12 @@ def lit_spheres(name):
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}],
         "meshes": meshes,
         "materials": [
-            {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.6, 0.6, 1], "metallicFactor": 0.0,
-                                                       "roughnessFactor": 0.9}},
-            {"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [1.0, 0.71, 0.29, 1], "metallicFactor": 1.0,
-                                                      "roughnessFactor": 0.35}},
-            {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.3, 0.8, 1], "metallicFactor": 0.0,
-                                                      "roughnessFactor": 0.3}},
+            material("floor", [0.6, 0.6, 0.6], 0.0, 0.9),
+            material("gold", [1.0, 0.71, 0.29], 1.0, 0.35),
+            material("blue", [0.1, 0.3, 0.8], 0.0, 0.3),
         ],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
-        "bufferViews": views,
-        "accessors": accessors,
     }
-    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
-        json.dump(gltf, f, indent=1)
+    write_gltf(name, gltf, blob, views, accessors)
 
 
 def quat_axis(axis, angle):
@@ -371,12 +392,8 @@ def skinned_arm(name):
     add = functools.partial(add_accessor, blob, views, accessors)
     y = 0.8
 
-    def vec3(rows, minmax=False):
-        mm = ([min(p[i] for p in rows) for i in range(3)], [max(p[i] for p in rows) for i in range(3)]) if minmax else None
-        return add(struct.pack("<%df" % (3 * len(rows)), *flat(rows)), 5126, len(rows), "VEC3", 34962, mm)
-
     primitives = []
-    for (x0, x1, material) in ((-1.0, 0.0, 1), (0.0, 1.0, 2)):
+    for (x0, x1, mat) in ((-1.0, 0.0, 1), (0.0, 1.0, 2)):
         pos, nrm, idx = tube(x0, x1, 12, 16, 0.25, y)
         joints = [[0, 1, 0, 0]] * len(pos)
         weights = []
@@ -386,14 +403,11 @@ def skinned_arm(name):
         a_j = add(struct.pack("<%dB" % (4 * len(joints)), *flat(joints)), 5121, len(joints), "VEC4", 34962)
         a_w = add(struct.pack("<%df" % (4 * len(weights)), *flat(weights)), 5126, len(weights), "VEC4", 34962)
         a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
-        primitives.append({"attributes": {"POSITION": vec3(pos, True), "NORMAL": vec3(nrm), "JOINTS_0": a_j,
-                                          "WEIGHTS_0": a_w}, "indices": a_idx, "material": material})
+        attributes = {"POSITION": vec3_accessor(add, pos, True), "NORMAL": vec3_accessor(add, nrm), "JOINTS_0": a_j,
+                      "WEIGHTS_0": a_w}
+        primitives.append({"attributes": attributes, "indices": a_idx, "material": mat})
     meshes.append({"name": "arm", "primitives": primitives})
-    floor_pos = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
-    a_floor = add(struct.pack("<6H", 0, 2, 1, 0, 3, 2), 5123, 6, "SCALAR", 34963)
-    meshes.append({"name": "floor", "primitives": [{"attributes": {"POSITION": vec3(floor_pos, True),
-                                                                  "NORMAL": vec3([[0, 1, 0]] * 4)},
-                                                   "indices": a_floor, "material": 0}]})
+    meshes.append({"name": "floor", "primitives": [floor_primitive(add, 0)]})
     # Inverse bind matrices (column-major): the joints' rest frames are translations.
     ibm = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1.0, -y, 0, 1,
            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.0, -y, 0, 1]
@@ -429,20 +443,12 @@ def skinned_arm(name):
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}],
         "meshes": meshes,
         "materials": [
-            {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0.0,
-                                                       "roughnessFactor": 1.0}},
-            {"name": "upper", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.45, 0.1, 1], "metallicFactor": 0.0,
-                                                       "roughnessFactor": 1.0}},
-            {"name": "fore", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.35, 0.9, 1], "metallicFactor": 0.0,
-                                                      "roughnessFactor": 1.0}},
+            material("floor", [0.5, 0.5, 0.5], 0.0, 1.0),
+            material("upper", [0.9, 0.45, 0.1], 0.0, 1.0),
+            material("fore", [0.1, 0.35, 0.9], 0.0, 1.0),
         ],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
-        "bufferViews": views,
-        "accessors": accessors,
     }
-    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
-        json.dump(gltf, f, indent=1)
+    write_gltf(name, gltf, blob, views, accessors)
 
 
 def morph_box(name):
@@ -456,21 +462,15 @@ def morph_box(name):
     views, accessors = [], []
     add = functools.partial(add_accessor, blob, views, accessors)
 
-    def vec3(rows, minmax=False, target=34962):
-        mm = ([min(p[i] for p in rows) for i in range(3)], [max(p[i] for p in rows) for i in range(3)]) if minmax else None
-        return add(struct.pack("<%df" % (3 * len(rows)), *flat(rows)), 5126, len(rows), "VEC3", target, mm)
-
     pos, nrm, _, idx = cube(0.5)
     pos = [[p[0], p[1] + 0.5, p[2]] for p in pos]  # standing on the floor
     lift = [[0, 0.8 if p[1] > 0.9 else 0, 0] for p in pos]
     slide = [[0.6 if p[1] > 0.9 else 0, 0, 0] for p in pos]
     a_idx = add(struct.pack("<%dH" % len(idx), *idx), 5123, len(idx), "SCALAR", 34963)
-    box = {"attributes": {"POSITION": vec3(pos, True), "NORMAL": vec3(nrm)}, "indices": a_idx, "material": 1,
-           "targets": [{"POSITION": vec3(lift, True)}, {"POSITION": vec3(slide, True)}]}
-    floor_pos = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
-    a_floor = add(struct.pack("<6H", 0, 2, 1, 0, 3, 2), 5123, 6, "SCALAR", 34963)
-    floor = {"attributes": {"POSITION": vec3(floor_pos, True), "NORMAL": vec3([[0, 1, 0]] * 4)}, "indices": a_floor,
-             "material": 0}
+    box = {"attributes": {"POSITION": vec3_accessor(add, pos, True), "NORMAL": vec3_accessor(add, nrm)},
+           "indices": a_idx, "material": 1,
+           "targets": [{"POSITION": vec3_accessor(add, lift, True)}, {"POSITION": vec3_accessor(add, slide, True)}]}
+    floor = floor_primitive(add, 0)
     times = [k / SKIN_FPS for k in range(SKIN_FRAMES)]
     a_t = add(struct.pack("<%df" % len(times), *times), 5126, len(times), "SCALAR", None, ([times[0]], [times[-1]]))
     views[-1].pop("target")
@@ -492,18 +492,11 @@ def morph_box(name):
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}],
         "meshes": [{"name": "box", "primitives": [box], "weights": [0.5, 0.5]}, {"name": "floor", "primitives": [floor]}],
         "materials": [
-            {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0.0,
-                                                       "roughnessFactor": 1.0}},
-            {"name": "box", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.7, 0.3, 1], "metallicFactor": 0.0,
-                                                     "roughnessFactor": 1.0}},
+            material("floor", [0.5, 0.5, 0.5], 0.0, 1.0),
+            material("box", [0.2, 0.7, 0.3], 0.0, 1.0),
         ],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
-        "bufferViews": views,
-        "accessors": accessors,
     }
-    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
-        json.dump(gltf, f, indent=1)
+    write_gltf(name, gltf, blob, views, accessors)
 
 
 def mapped_plane(name):
@@ -562,13 +555,8 @@ def mapped_plane(name):
         "textures": [{"sampler": 0, "source": 0}, {"sampler": 0, "source": 1}],
         "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}],
         "images": [{"uri": name + "_normal.png"}, {"uri": name + "_mr.png"}],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
-        "bufferViews": views,
-        "accessors": accessors,
     }
-    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
-        json.dump(gltf, f, indent=1)
+    write_gltf(name, gltf, blob, views, accessors)
 
 
 if __name__ == "__main__":
