@@ -175,5 +175,28 @@ TEST(Skinning, ReuseNeverShowsAStalePoseOfADeformingMesh) {
   EXPECT_LT(compare_images(full[0], full[7]).psnr_all(), 25) << "the arm moved";
 }
 
+// After its last key the arm holds its pose: the frames whose vertices are
+// the same keep one pose tag, and reverse reprojection copies them from a
+// keyframe (a locked-off shot where nothing moved) instead of tracing them.
+TEST(Skinning, AHeldPoseIsStillAndItsFramesAreCopied) {
+  test::TempDir dir;
+  test::write_text(dir.file("arm.toml"), fmt::format("frames = 20\nfps = 24\n[array]\nlenses = 16\npixels_per_lens = 6\n"
+                                                     "[[object]]\nscene = \"{}skinned_arm.gltf\"\n",
+                                                     kData));
+  const auto reverse = test::run_cli(
+      fmt::format("animate {} --method reverse --format exr -o {}", dir.file("arm.toml"), dir.file("reverse")));
+  ASSERT_EQ(reverse.status, 0) << reverse.output;
+  const auto full =
+      test::run_cli(fmt::format("animate {} --method full --format exr -q -o {}", dir.file("arm.toml"), dir.file("full")));
+  ASSERT_EQ(full.status, 0) << full.output;
+  // Frames 10 to 15 lie past the last key (frame 9) and before keyframe 16.
+  for (int f = 10; f <= 15; ++f) {
+    EXPECT_NE(reverse.output.find(fmt::format("frame {:>5}  copied", f)), std::string::npos) << "frame " << f;
+    EXPECT_EQ(read_image(fmt::format("{}/frame_{:04d}.exr", dir.file("reverse"), f)).data,
+              read_image(fmt::format("{}/frame_{:04d}.exr", dir.file("full"), f)).data)
+        << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace holoray

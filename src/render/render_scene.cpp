@@ -273,6 +273,10 @@ void RenderScene::set_vertices(uint32_t part, const std::vector<Vec3>& vertices,
   positions.reserve(3 * vertices.size());
   for (const Vec3& v : vertices)
     positions.insert(positions.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+  // The same vertices (a held pose: the animation over, or not moving this
+  // part): nothing changes, and the pose keeps its tag, so reuse still
+  // takes the part as standing still.
+  if (positions == tris.positions) return;
   // The triangles as add_mesh() built them, in the group's order.
   const uint32_t first = group_base_[part][0];
   for (size_t k = 0; k < tris.indices.size() / 3; ++k) {

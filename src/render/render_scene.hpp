@@ -115,8 +115,9 @@ class RenderScene {
   /// frame, not 0); `normals` empty keeps the flat triangles flat. Winding
   /// normals, shading normals and texture footprints follow; the BVH is
   /// refitted; the shadow cache is cleared. Not thread-safe against
-  /// rendering. Throws std::invalid_argument when the part is not
-  /// deformable or a count differs from its build.
+  /// rendering. Vertices equal to the current ones change nothing (the
+  /// pose keeps its earlier tag). Throws std::invalid_argument when the
+  /// part is not deformable or a count differs from its build.
   void set_vertices(uint32_t part, const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals, uint64_t pose);
   void set_background(const Vec3& colour) { background_ = colour; }
   /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's,
