@@ -30,7 +30,6 @@ struct HitFrame {
   Vec3 ns;     // shading normal turned likewise
   Vec3 above;  // origin for rays leaving on the viewer's side
   bool front;  // the ray met the outward (winding) side
-  float metallic, roughness;  // glTF materials: SurfacePoint's
 };
 
 HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
@@ -43,8 +42,6 @@ HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& 
   f.ng = f.front ? sp.ng : -sp.ng;
   f.ns = f.front ? sp.ns : -sp.ns;
   f.above = sp.position + f.ng * scene.epsilon();
-  f.metallic = sp.metallic;
-  f.roughness = sp.roughness;
   return f;
 }
 
@@ -115,15 +112,19 @@ template <bool Unit = false>
   return true;
 }
 
-GltfSurface gltf_surface(const HitFrame& f) {
-  return GltfSurface{f.colour, f.metallic, f.roughness, dielectric_f0(f.m->ior), f.m->transmission};
+// The BRDF's inputs at a hit. Metallic and roughness come from the
+// SurfacePoint (textures applied), not the HitFrame: NFF's hot loops keep
+// their frames as small as before glTF.
+GltfSurface gltf_surface(const HitFrame& f, const SurfacePoint& sp) {
+  return GltfSurface{f.colour, sp.metallic, sp.roughness, dielectric_f0(f.m->ior), f.m->transmission};
 }
 
 // light_contribution() of a glTF material: kept out of line, so that NFF's
 // hot path stays as small as it was.
-[[gnu::noinline]] Vec3 gltf_contribution(const HitFrame& f, const PointLight& light, const Vec3& to_light,
-                                         double falloff) {
-  return mul(light.intensity * (falloff * (1 - f.m->transmittance)), gltf_direct(gltf_surface(f), f.ns, f.view, to_light));
+[[gnu::noinline]] Vec3 gltf_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
+                                         const Vec3& to_light, double falloff) {
+  return mul(light.intensity * (falloff * (1 - f.m->transmittance)),
+             gltf_direct(gltf_surface(f, sp), f.ns, f.view, to_light));
 }
 
 // The light's contribution through the unblocked `shadow` ray. NFF's
@@ -131,11 +132,12 @@ GltfSurface gltf_surface(const HitFrame& f) {
 // lights that are seen, so a shadowed light costs no pow(). glTF's: the
 // metallic-roughness BRDF (gltf_brdf.hpp) times the part of the surface
 // that is there (BLEND: alpha).
-Vec3 light_contribution(const HitFrame& f, const PointLight& light, const Ray& shadow, double falloff) {
+Vec3 light_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light, const Ray& shadow,
+                        double falloff) {
   const Vec3& to_light = shadow.dir;
   const Material& m = *f.m;
   if (m.model == ShadingModel::gltf) [[unlikely]]
-    return gltf_contribution(f, light, to_light, falloff);
+    return gltf_contribution(f, sp, light, to_light, falloff);
   const double n_dot_l = dot(f.ns, to_light);
   Vec3 term = f.colour * (m.kd * n_dot_l);
   if (m.ks > 0) {
@@ -204,14 +206,14 @@ Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
                                                     const HitFrame& f) {
   SecondaryRays s;
   const Material& m = *f.m;
-  if (f.roughness < kMirrorRoughness) {
+  if (sp.roughness < kMirrorRoughness) {
     s.mirror = true;
     s.mirror_ray = mirror_ray_of(ray, f);
-    s.mirror_weight = gltf_mirror_weight(gltf_surface(f), dot(f.ns, f.view)) * (1 - m.transmittance);
+    s.mirror_weight = gltf_mirror_weight(gltf_surface(f, sp), dot(f.ns, f.view)) * (1 - m.transmittance);
   }
   // BLEND's uncovered share and KHR_materials_transmission's share of the
   // covered part both go straight through: one ray, their weights summed.
-  const Vec3 transmitted = m.transmission > 0 ? gltf_transmit_weight(gltf_surface(f), dot(f.ns, f.view)) : Vec3{};
+  const Vec3 transmitted = m.transmission > 0 ? gltf_transmit_weight(gltf_surface(f, sp), dot(f.ns, f.view)) : Vec3{};
   if (m.transmittance > 0 || m.transmission > 0) {
     s.transmit = true;
     s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), ray.dir, 0, INFINITY};
@@ -474,7 +476,7 @@ Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int
       ++counts.shadow;
       seen = !scene.accel().occluded(shadow);
     }
-    if (seen) colour += light_contribution(f, lights[l], shadow, falloff);
+    if (seen) colour += light_contribution(f, sp, lights[l], shadow, falloff);
   }
   add_secondary(scene, ray, sp, f, depth, counts, colour);
   return colour;
@@ -577,7 +579,7 @@ Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& s
       ++counts.shadow;
       if (scene.accel().occluded(shadow)) continue;
     }
-    colour += light_contribution(f, lights[l], shadow, falloff);
+    colour += light_contribution(f, sp, lights[l], shadow, falloff);
   }
   return colour;
 }
@@ -633,7 +635,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
       }
       const int seen = cached_visibility(scene, f[k], sps[k], cells[k], static_cast<int>(l), shadows.rays[k], counts);
       if (seen >= 0) {
-        if (seen) colours[k] += light_contribution(f[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
+        if (seen) colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
         shadows.active[k] = false;
         continue;
       }
@@ -644,7 +646,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     scene.accel().occluded(shadows, blocked);
     for (int k = 0; k < kPacketSize; ++k)
       if (shadows.active[k] && !blocked[k])
-        colours[k] += light_contribution(f[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
+        colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
   };
   for (size_t l = 0; l < lights.size(); ++l) {
     if (lights[l].unit_falloff) shade_light(l, std::true_type{});
