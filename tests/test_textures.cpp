@@ -271,6 +271,59 @@ TEST(MeshTextures, AlphaMaskCutsTheSurfaceForShadowRaysToo) {
   EXPECT_LT(shadowed, 0.75 * lit);  // ambient light stays: half or so
 }
 
+// MTL's map_d cuts the surface where the map is dark (a grey image: its
+// first channel is the coverage): a grey quad whose map is white on the
+// left and black on the right, before a red wall, shows grey on the left
+// and the wall on the right.
+TEST(MeshTextures, MtlMapDCutsTheSurfaceWhereTheMapIsDark) {
+  test::TempDir dir;
+  ImageBuffer mask(8, 8, 3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 3; ++c) mask.at(x, y)[c] = x < 4 ? 1.0f : 0.0f;
+  write_image(dir.file("mask.png"), mask);
+  test::write_text(dir.file("m.mtl"), "newmtl leaf\nKd 0.8 0.8 0.8\nmap_d mask.png\nnewmtl wall\nKd 1 0 0\n");
+  test::write_text(dir.file("m.obj"),
+                   "mtllib m.mtl\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                   "usemtl leaf\nf 1/1 2/2 3/3 4/4\nv -3 -3 0\nv 3 -3 0\nv 3 3 0\nv -3 3 0\nusemtl wall\nf 5 6 7 8\n");
+  const SceneDesc scene_desc = read_mesh_file(dir.file("m.obj"));
+  PinholeDesc pd;
+  pd.from = {0, 0, 6};
+  pd.at = {0, 0, 0};
+  pd.up = {0, 1, 0};
+  pd.fov_deg = 30;
+  pd.width = pd.height = 32;
+  RenderScene scene(scene_desc);
+  RenderStats stats;
+  const ImageBuffer img = render_view(scene, PinholeCamera(pd), RenderOptions{}, stats).colour;
+  const float* left = img.at(11, 16);   // on the quad's left half
+  const float* right = img.at(20, 16);  // on its right half: cut, the wall behind
+  EXPECT_GT(left[1], 0.1f) << "grey leaf";
+  EXPECT_NEAR(left[0], left[1], 1e-6);
+  EXPECT_GT(right[0], 0.1f) << "red wall";
+  EXPECT_EQ(right[1], 0.0f);
+}
+
+// Every texture index of a file is rebased when several files make one
+// scene: the mapped plane (its metallic-roughness and normal maps) after a
+// textured box far away renders as it does alone.
+TEST(MeshTextures, TheSecondFilesMapsAreItsOwn) {
+  const std::string data = std::string(HOLORAY_SOURCE_DIR) + "/tests/data/blender/";
+  SceneDesc box = read_mesh_file(data + "textured_box.gltf");
+  for (ObjectDesc& o : box.objects)
+    if (auto* m = std::get_if<TriangleMeshDesc>(&o.shape))
+      for (Vec3& v : m->vertices) v.x += 100;
+  const SceneDesc plane = read_mesh_file(data + "mapped_plane.gltf");
+  ASSERT_TRUE(plane.viewpoint);
+  const PinholeCamera cam(view_of(*plane.viewpoint, 64, 64));
+  RenderStats stats;
+  const RenderScene alone(plane);
+  const RenderScene both(std::vector<ScenePart>{{&box, false}, {&plane, false}});
+  const ImageBuffer a = render_view(alone, cam, RenderOptions{}, stats).colour;
+  const ImageBuffer b = render_view(both, cam, RenderOptions{}, stats).colour;
+  EXPECT_GE(compare_images(a, b).psnr_all(), 60);
+}
+
 // Emission is added to the shaded colour as it stands: a black, unlit
 // quad (its light behind it) shows exactly its emissive factor, and with an
 // emissive texture that times the decoded texel. (Debian's assimp 5.2 does

@@ -176,8 +176,9 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
     const auto texture_base = static_cast<int>(textures_.size());
     const auto image_base = static_cast<int>(mips_.size());
     for (Material m : desc.materials) {
-      if (m.texture >= 0) m.texture += texture_base;
-      if (m.emission_texture >= 0) m.emission_texture += texture_base;
+      // Every texture index of the file, rebased onto the scene's list.
+      for (int* index : {&m.texture, &m.emission_texture, &m.metal_rough_texture, &m.normal_texture, &m.alpha_texture})
+        if (*index >= 0) *index += texture_base;
       has_tachyon_ |= m.model == ShadingModel::tachyon;
       has_tachyon_transparency_ |= m.model == ShadingModel::tachyon && m.transmittance > 0;
       materials_.push_back(m);
@@ -525,11 +526,17 @@ bool RenderScene::AlphaCutout::cut(uint32_t group, uint32_t prim, float u, float
   const Material& mat = s_.materials_[s_.object_material_[s_.tri_object_[t]]];
   if (!mat.alpha_mask) return false;
   double alpha = mat.alpha;
-  if (mat.texture >= 0) {
-    const TextureDesc& tex = s_.textures_[static_cast<size_t>(mat.texture)];
+  // MTL's map_d, else the colour texture's alpha (glTF's MASK).
+  const int texture = mat.alpha_texture >= 0 ? mat.alpha_texture : mat.texture;
+  if (texture >= 0) {
+    const TextureDesc& tex = s_.textures_[static_cast<size_t>(texture)];
     double tu, tv;
-    if (tex.kind == TextureDesc::Kind::uv_image && tex.image >= 0 && s_.texture_uv(tex, t, u, v, tu, tv))
-      alpha *= s_.mips_[static_cast<size_t>(tex.image)].alpha_uv(tu, tv, tex.wrap_u, tex.wrap_v);
+    if (tex.kind == TextureDesc::Kind::uv_image && tex.image >= 0 && s_.texture_uv(tex, t, u, v, tu, tv)) {
+      const MipMap& mip = s_.mips_[static_cast<size_t>(tex.image)];
+      alpha *= mat.alpha_texture < 0 || mip.has_alpha()
+                   ? mip.alpha_uv(tu, tv, tex.wrap_u, tex.wrap_v)
+                   : mip.sample_uv(tu, tv, 0, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(false)).x;
+    }
   }
   return alpha < mat.alpha_cutoff;
 }

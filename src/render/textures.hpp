@@ -39,6 +39,8 @@ class MipMap {
   /// The image's alpha at (u, v), bilinear on level 0 with sample_uv's
   /// wrapping, in [0, 1]; 1 for an image without alpha.
   double alpha_uv(double u, double v, TextureWrap wrap_u, TextureWrap wrap_v) const;
+  /// The image has an alpha channel (alpha_uv reads it; else it is 1).
+  bool has_alpha() const { return !alpha_.empty(); }
 
  private:
   struct Level {

@@ -167,6 +167,7 @@ class MeshReader {
           break;
         }
       read_emission(m, mat, uv_set);
+      if (!gltf_) read_dissolve_map(m, mat, uv_set, opacity);
       if (mat.model == ShadingModel::gltf) {
         read_data_maps(m, mat, uv_set);
         float transmission = 0;
@@ -202,6 +203,26 @@ class MeshReader {
     }
     mat.emission_texture = map.texture;
     uv_set = map.uv_set;
+  }
+
+  // MTL's map_d (assimp's OPACITY slot): a cut-out, as glTF's MASK with
+  // cutoff 0.5, its coverage `d` times the map; the dissolve then lets
+  // nothing through where the surface stays. Like the emissive map, it must
+  // read the base colour map's coordinates.
+  void read_dissolve_map(const aiMaterial& m, Material& mat, int& uv_set, float opacity) {
+    if (m.GetTextureCount(aiTextureType_OPACITY) == 0) return;
+    const TextureMap map = read_map(m, aiTextureType_OPACITY, false);
+    if (uv_set >= 0 && map.uv_set != uv_set) {
+      warn(fmt::format("material '{}': its map_d reads texture coordinate set {} and its other textures set {}: it is "
+                       "not applied (a mesh keeps one set)",
+                       m.GetName().C_Str(), map.uv_set, uv_set));
+      return;
+    }
+    uv_set = map.uv_set;
+    mat.alpha_texture = map.texture;
+    mat.alpha_mask = true;
+    mat.alpha = std::clamp(static_cast<double>(opacity), 0.0, 1.0);
+    mat.transmittance = 0;
   }
 
   // glTF's metallicRoughnessTexture (assimp's UNKNOWN slot) and

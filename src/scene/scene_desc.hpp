@@ -94,6 +94,10 @@ struct Material {
   /// is below `alpha_cutoff` the surface is not there, for every ray.
   bool alpha_mask = false;
   double alpha = 1, alpha_cutoff = 0.5;
+  /// MTL `map_d`: the uv_image (index into SceneDesc::textures) whose
+  /// coverage multiplies `alpha` in place of the colour texture's alpha:
+  /// its alpha channel, else its first channel (linear); -1: none.
+  int alpha_texture = -1;
   /// NFF-model (mesh) materials: light the surface gives off, added to
   /// NFF's formula as it stands (glTF emissiveFactor x strength, MTL Ke),
   /// times `emission_texture` (a uv_image, index into SceneDesc::textures;
