@@ -193,56 +193,42 @@ class MeshReader {
     mat.emission = to_vec(e) * static_cast<double>(strength);
     if (!is_finite(mat.emission)) mat.emission = {};
     if (!(mat.emission.x > 0 || mat.emission.y > 0 || mat.emission.z > 0)) return;
-    if (m.GetTextureCount(aiTextureType_EMISSIVE) == 0) return;
-    const TextureMap map = read_map(m, aiTextureType_EMISSIVE);
+    mat.emission_texture = read_map_on_set(m, aiTextureType_EMISSIVE, true, "emissive", uv_set);
+  }
+
+  // Map `type` of the material (colour or data, as read_map), provided it
+  // reads the coordinate set of the material's other maps (`uv_set`, which
+  // it sets when it is the first): a mesh keeps one set. Its texture index,
+  // or -1 (none, or on another set: a warning).
+  int read_map_on_set(const aiMaterial& m, aiTextureType type, bool colour, const char* what, int& uv_set) {
+    if (m.GetTextureCount(type) == 0) return -1;
+    const TextureMap map = read_map(m, type, colour);
     if (uv_set >= 0 && map.uv_set != uv_set) {
-      warn(fmt::format("material '{}': its emissive texture reads texture coordinate set {} and its base colour texture "
-                       "set {}: the emissive texture is not applied (a mesh keeps one set)",
-                       m.GetName().C_Str(), map.uv_set, uv_set));
-      return;
+      warn(fmt::format("material '{}': its {} texture reads texture coordinate set {} and its other textures set {}: "
+                       "it is not applied (a mesh keeps one set)",
+                       m.GetName().C_Str(), what, map.uv_set, uv_set));
+      return -1;
     }
-    mat.emission_texture = map.texture;
     uv_set = map.uv_set;
+    return map.texture;
   }
 
   // MTL's map_d (assimp's OPACITY slot): a cut-out, as glTF's MASK with
   // cutoff 0.5, its coverage `d` times the map; the dissolve then lets
-  // nothing through where the surface stays. Like the emissive map, it must
-  // read the base colour map's coordinates.
+  // nothing through where the surface stays.
   void read_dissolve_map(const aiMaterial& m, Material& mat, int& uv_set, float opacity) {
-    if (m.GetTextureCount(aiTextureType_OPACITY) == 0) return;
-    const TextureMap map = read_map(m, aiTextureType_OPACITY, false);
-    if (uv_set >= 0 && map.uv_set != uv_set) {
-      warn(fmt::format("material '{}': its map_d reads texture coordinate set {} and its other textures set {}: it is "
-                       "not applied (a mesh keeps one set)",
-                       m.GetName().C_Str(), map.uv_set, uv_set));
-      return;
-    }
-    uv_set = map.uv_set;
-    mat.alpha_texture = map.texture;
+    mat.alpha_texture = read_map_on_set(m, aiTextureType_OPACITY, false, "map_d", uv_set);
+    if (mat.alpha_texture < 0) return;
     mat.alpha_mask = true;
     mat.alpha = std::clamp(static_cast<double>(opacity), 0.0, 1.0);
     mat.transmittance = 0;
   }
 
   // glTF's metallicRoughnessTexture (assimp's UNKNOWN slot) and
-  // normalTexture with its scale: data, not colour (decoded linearly). Like
-  // the emissive map, each must read the base colour map's coordinates.
+  // normalTexture with its scale: data, not colour (decoded linearly).
   void read_data_maps(const aiMaterial& m, Material& mat, int& uv_set) {
-    auto take = [&](aiTextureType type, const char* what) {
-      if (m.GetTextureCount(type) == 0) return -1;
-      const TextureMap map = read_map(m, type, false);
-      if (uv_set >= 0 && map.uv_set != uv_set) {
-        warn(fmt::format("material '{}': its {} texture reads texture coordinate set {} and its other textures set {}: "
-                         "it is not applied (a mesh keeps one set)",
-                         m.GetName().C_Str(), what, map.uv_set, uv_set));
-        return -1;
-      }
-      uv_set = map.uv_set;
-      return map.texture;
-    };
-    mat.metal_rough_texture = take(aiTextureType_UNKNOWN, "metallic-roughness");
-    mat.normal_texture = take(aiTextureType_NORMALS, "normal");
+    mat.metal_rough_texture = read_map_on_set(m, aiTextureType_UNKNOWN, false, "metallic-roughness", uv_set);
+    mat.normal_texture = read_map_on_set(m, aiTextureType_NORMALS, false, "normal", uv_set);
     float scale = 1;
     if (mat.normal_texture >= 0 && m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), scale) == AI_SUCCESS &&
         std::isfinite(scale))
@@ -926,7 +912,8 @@ void check_gltf(std::ifstream& in, const std::string& path, bool binary) {
     if (const size_t colon = reason.find(": ", reason.find("column")); colon != std::string::npos)
       reason = reason.substr(colon + 2);
     if (binary) throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is not JSON ({})", path, reason));
-    const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1) == std::string::npos ? 0 : text.rfind('\n', at - 1) + 1;
+    const size_t newline = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
+    const size_t line_start = newline == std::string::npos ? 0 : newline + 1;
     const size_t line_end = std::min(text.find('\n', at), text.size());
     const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(line_start), '\n'));
     // The offending line under the message, unless it is long (a one-line file of megabytes).
