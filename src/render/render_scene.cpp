@@ -50,6 +50,22 @@ Vec3 vertex_normal(const Vec3& n, const Vec3& winding, ShadingModel shading) {
   return length(n) > 0 ? normalize(n) : winding;
 }
 
+// A triangle's shading normals: its vertices' normals (`normals`, indexed
+// by `t`) as the shading reads them (vertex_normal) beside its winding
+// normal `n`.
+std::array<Vec3, 3> patch_of(const std::vector<Vec3>& normals, const uint32_t t[3], const Vec3& n, ShadingModel shading) {
+  return {vertex_normal(normals[t[0]], n, shading), vertex_normal(normals[t[1]], n, shading),
+          vertex_normal(normals[t[2]], n, shading)};
+}
+
+// Texture units per world unit across a triangle of texture coordinates
+// (u_k, v_k) and Newell normal `n`: sqrt(uv area / world area); |n| is twice
+// the world area as the cross product below is twice the uv area.
+float uv_per_world(const double u[3], const double v[3], const Vec3& n) {
+  const double uv_area = std::fabs((u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]));
+  return static_cast<float>(std::sqrt(uv_area / length(n)));
+}
+
 // Appends vertices to a group's float positions; returns the first one's index.
 uint32_t append_positions(const std::vector<Vec3>& vertices, TriangleData& tris) {
   const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
@@ -288,14 +304,11 @@ void RenderScene::set_vertices(uint32_t part, const std::vector<Vec3>& vertices,
     if (!(length(n) > 0)) continue;  // collapsed this frame: Embree cannot hit it; keep the last normal
     tri_normal_[t] = n;
     if (tri_patch_[t] >= 0 && !normals.empty())
-      patch_normals_[static_cast<size_t>(tri_patch_[t])] = {
-          vertex_normal(normals[idx[0]], n, group_shading_[part]), vertex_normal(normals[idx[1]], n, group_shading_[part]),
-          vertex_normal(normals[idx[2]], n, group_shading_[part])};
+      patch_normals_[static_cast<size_t>(tri_patch_[t])] = patch_of(normals, idx, n, group_shading_[part]);
     if (t < tri_uv_.size() && tri_uv_[t] >= 0) {
       TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
-      const double uv_area = std::fabs((tu.uv[1][0] - tu.uv[0][0]) * (tu.uv[2][1] - tu.uv[0][1]) -
-                                       (tu.uv[2][0] - tu.uv[0][0]) * (tu.uv[1][1] - tu.uv[0][1]));
-      tu.uv_per_world = static_cast<float>(std::sqrt(uv_area / length(n)));
+      const double u[3] = {tu.uv[0][0], tu.uv[1][0], tu.uv[2][0]}, v[3] = {tu.uv[0][1], tu.uv[1][1], tu.uv[2][1]};
+      tu.uv_per_world = uv_per_world(u, v, n);
     }
   }
   accel_->set_positions(part, positions, pose);
@@ -326,9 +339,9 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
       TriangleUv tu;
       for (int c = 0; c < 3; ++c)
         tu.uv[c] = {static_cast<float>(mesh.uvs[t[c]][0]), static_cast<float>(mesh.uvs[t[c]][1])};
-      const double uv_area = std::fabs((mesh.uvs[t[1]][0] - mesh.uvs[t[0]][0]) * (mesh.uvs[t[2]][1] - mesh.uvs[t[0]][1]) -
-                                       (mesh.uvs[t[2]][0] - mesh.uvs[t[0]][0]) * (mesh.uvs[t[1]][1] - mesh.uvs[t[0]][1]));
-      tu.uv_per_world = static_cast<float>(std::sqrt(uv_area / length(n)));  // |Newell normal| = twice the area, as uv_area
+      const double u[3] = {mesh.uvs[t[0]][0], mesh.uvs[t[1]][0], mesh.uvs[t[2]][0]};
+      const double v[3] = {mesh.uvs[t[0]][1], mesh.uvs[t[1]][1], mesh.uvs[t[2]][1]};
+      tu.uv_per_world = uv_per_world(u, v, n);
       tri_uvs_.push_back(tu);
     }
     if (!mesh.colours.empty()) {
@@ -342,9 +355,7 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
       tri_patch_.push_back(-1);
     } else {
       tri_patch_.push_back(static_cast<int32_t>(patch_normals_.size()));
-      patch_normals_.push_back({vertex_normal(mesh.normals[t[0]], n, shading),
-                                vertex_normal(mesh.normals[t[1]], n, shading),
-                                vertex_normal(mesh.normals[t[2]], n, shading)});
+      patch_normals_.push_back(patch_of(mesh.normals, t.data(), n, shading));
     }
   }
 }
