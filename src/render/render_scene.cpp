@@ -193,7 +193,8 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
     const auto image_base = static_cast<int>(mips_.size());
     for (Material m : desc.materials) {
       // Every texture index of the file, rebased onto the scene's list.
-      for (int* index : {&m.texture, &m.emission_texture, &m.metal_rough_texture, &m.normal_texture, &m.alpha_texture})
+      for (int* index : {&m.texture, &m.emission_texture, &m.metal_rough_texture, &m.normal_texture, &m.alpha_texture,
+                         &m.specular_texture})
         if (*index >= 0) *index += texture_base;
       has_tachyon_ |= m.model == ShadingModel::tachyon;
       has_tachyon_transparency_ |= m.model == ShadingModel::tachyon && m.transmittance > 0;
@@ -436,28 +437,41 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   if (sp.material->model == ShadingModel::gltf) {
     sp.metallic = static_cast<float>(sp.material->metallic);
     sp.roughness = static_cast<float>(sp.material->roughness);
-    if ((sp.material->metal_rough_texture >= 0 || sp.material->normal_texture >= 0) && hit.kind == PrimKind::triangle)
-      apply_gltf_maps(sp, hit.t * length(ray.dir));
+    if (sp.material->metal_rough_texture >= 0 && hit.kind == PrimKind::triangle)
+      apply_data_maps(sp, hit.t * length(ray.dir));
+  } else if (sp.material->model == ShadingModel::blinn_phong) {
+    sp.highlight = 1;
+    if (sp.material->specular_texture >= 0 && hit.kind == PrimKind::triangle)
+      apply_data_maps(sp, hit.t * length(ray.dir));
   }
+  if (sp.material->normal_texture >= 0 && hit.kind == PrimKind::triangle) apply_normal_map(sp, hit.t * length(ray.dir));
   return sp;
 }
 
-// glTF 2.0 §3.9.3 and §3.9.4: metallic in the blue channel, roughness in
-// the green, each scaling its factor; the normal texture's RGB as a
-// tangent-space normal, (2c - 1) with x and y times the scale. The tangent
-// frame is the triangle's own: the tangent along increasing u, the
-// bitangent along increasing v (the image's up, OpenGL's convention, which
-// glTF's normal maps follow), both made orthonormal to the interpolated
-// normal. A file's own TANGENT attribute and a texture transform's
-// rotation of the frame are not read.
-void RenderScene::apply_gltf_maps(SurfacePoint& sp, double distance) const {
+// glTF 2.0 §3.9.3: metallic in the blue channel, roughness in the green,
+// each scaling its factor. MTL's map_Ks: its first channel scales Ks.
+void RenderScene::apply_data_maps(SurfacePoint& sp, double distance) const {
   const Material& m = *sp.material;
   Vec3 texel;
-  if (m.metal_rough_texture >= 0 && texel_at(m.metal_rough_texture, sp, sp.u, sp.v, distance, texel)) {
+  if (m.model == ShadingModel::blinn_phong) {
+    if (texel_at(m.specular_texture, sp, sp.u, sp.v, distance, texel)) sp.highlight = static_cast<float>(texel.x);
+  } else if (texel_at(m.metal_rough_texture, sp, sp.u, sp.v, distance, texel)) {
     sp.metallic = static_cast<float>(std::clamp(m.metallic * texel.z, 0.0, 1.0));
     sp.roughness = static_cast<float>(std::clamp(m.roughness * texel.y, 0.0, 1.0));
   }
-  if (m.normal_texture < 0 || !texel_at(m.normal_texture, sp, sp.u, sp.v, distance, texel)) return;
+}
+
+// glTF 2.0 §3.9.4: the normal texture's RGB as a tangent-space normal,
+// (2c - 1) with x and y times the scale. The tangent frame is the
+// triangle's own: the tangent along increasing u, the bitangent along
+// increasing v (the image's up, OpenGL's convention, which glTF's normal
+// maps and Blender's follow), both made orthonormal to the interpolated
+// normal. A file's own TANGENT attribute and a texture transform's
+// rotation of the frame are not read.
+void RenderScene::apply_normal_map(SurfacePoint& sp, double distance) const {
+  const Material& m = *sp.material;
+  Vec3 texel;
+  if (!texel_at(m.normal_texture, sp, sp.u, sp.v, distance, texel)) return;
   const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
   const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];  // texel_at found it
   const TriangleData& tris = accel_->geometry(sp.group).triangles;

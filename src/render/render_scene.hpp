@@ -62,7 +62,13 @@ struct SurfacePoint {
   float u = 0, v = 0;  ///< triangle barycentrics (a cell index needs no more)
   /// glTF materials: metallic and roughness here, the material's factors
   /// times its metallic-roughness texture (Material::metal_rough_texture).
-  float metallic = 0, roughness = 1;
+  /// blinn_phong materials: `highlight` in place of metallic, the weight
+  /// of Material::specular there (its map_Ks texel, else 1).
+  union {
+    float metallic = 0;
+    float highlight;
+  };
+  float roughness = 1;
 };
 
 /// The albedo AOV at a hit (linear RGB): the surface colour C; for a glTF
@@ -217,9 +223,13 @@ class RenderScene {
   const TriangleUv* texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
   /// SurfacePoint::colour of a hit at `distance` along its ray.
   Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
-  /// A glTF material's metallic, roughness and normal-mapped shading
-  /// normal at a triangle hit (Material::metal_rough_texture, normal_texture).
-  void apply_gltf_maps(SurfacePoint& sp, double distance) const;
+  /// A glTF material's metallic and roughness at a triangle hit
+  /// (Material::metal_rough_texture), a blinn_phong one's highlight weight
+  /// (Material::specular_texture).
+  void apply_data_maps(SurfacePoint& sp, double distance) const;
+  /// The shading normal bent by the material's normal map at a triangle
+  /// hit (Material::normal_texture), in the triangle's tangent frame.
+  void apply_normal_map(SurfacePoint& sp, double distance) const;
   /// Texture `texture` (a uv_image) at the hit's coordinates, its MIP level
   /// from the footprint at `distance`; false when it cannot be read there.
   bool texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const;

@@ -127,24 +127,41 @@ GltfSurface gltf_surface(const HitFrame& f, const SurfacePoint& sp) {
              gltf_direct(gltf_surface(f, sp), f.ns, f.view, to_light));
 }
 
-// The light's contribution through the unblocked `shadow` ray. NFF's
-// materials: diffuse and highlight (nff-notes §10.10), computed only for
-// lights that are seen, so a shadowed light costs no pow(). glTF's: the
-// metallic-roughness BRDF (gltf_brdf.hpp) times the part of the surface
-// that is there (BLEND: alpha).
-Vec3 light_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light, const Ray& shadow,
-                        double falloff) {
-  const Vec3& to_light = shadow.dir;
+// NFF's diffuse and highlight weights toward a light (nff-notes §10.10).
+inline Vec3 nff_term(const HitFrame& f, const Vec3& to_light) {
   const Material& m = *f.m;
-  if (m.model == ShadingModel::gltf) [[unlikely]]
-    return gltf_contribution(f, sp, light, to_light, falloff);
   const double n_dot_l = dot(f.ns, to_light);
   Vec3 term = f.colour * (m.kd * n_dot_l);
   if (m.ks > 0) {
     const double r_dot_v = dot(reflect(-to_light, f.ns), f.view);
     if (r_dot_v > 0) term += Vec3{1, 1, 1} * (m.ks * std::pow(r_dot_v, m.shine));
   }
+  return term;
+}
+
+// light_contribution() of a blinn_phong material: NFF's terms plus MTL's
+// highlight Ks (N.H)^Ns (illumination model 2), out of line as glTF's.
+[[gnu::noinline]] Vec3 blinn_phong_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light,
+                                                const Vec3& to_light, double falloff) {
+  Vec3 term = nff_term(f, to_light);
+  const double n_dot_h = dot(f.ns, normalize(to_light + f.view));
+  if (n_dot_h > 0) term += f.m->specular * (sp.highlight * std::pow(n_dot_h, f.m->shine));
   return mul(light.intensity * falloff, term);
+}
+
+// The light's contribution through the unblocked `shadow` ray. NFF's
+// materials: diffuse and highlight, computed only for lights that are
+// seen, so a shadowed light costs no pow(). glTF's: the metallic-roughness
+// BRDF (gltf_brdf.hpp) times the part of the surface that is there
+// (BLEND: alpha). blinn_phong's: NFF's with MTL's highlight.
+Vec3 light_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light, const Ray& shadow,
+                        double falloff) {
+  const Vec3& to_light = shadow.dir;
+  if (f.m->model != ShadingModel::nff) [[unlikely]] {
+    if (f.m->model == ShadingModel::gltf) return gltf_contribution(f, sp, light, to_light, falloff);
+    return blinn_phong_contribution(f, sp, light, to_light, falloff);
+  }
+  return mul(light.intensity * falloff, nff_term(f, to_light));
 }
 
 // NFF's ambient term Ia*Kd*C (nff-notes §4); glTF materials have none.

@@ -2,6 +2,7 @@
 
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
+#include <assimp/ObjMaterial.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -26,6 +27,7 @@
 #include <unistd.h>
 
 #include "image/image_io.hpp"
+#include "scene/bump_map.hpp"
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
 #include "scene/tachyon_reader.hpp"
@@ -167,7 +169,11 @@ class MeshReader {
           break;
         }
       read_emission(m, mat, uv_set);
-      if (!gltf_) read_dissolve_map(m, mat, uv_set, opacity);
+      if (!gltf_) {
+        read_dissolve_map(m, mat, uv_set, opacity);
+        read_highlight(m, mat, uv_set);
+        read_bump_map(m, mat, uv_set);
+      }
       if (mat.model == ShadingModel::gltf) {
         read_data_maps(m, mat, uv_set);
         float transmission = 0;
@@ -222,6 +228,55 @@ class MeshReader {
     mat.alpha_mask = true;
     mat.alpha = std::clamp(static_cast<double>(opacity), 0.0, 1.0);
     mat.transmittance = 0;
+  }
+
+  // MTL's illumination model 2 and up (assimp's Phong or Blinn shading
+  // model; `illum` 0 and 1, and no `illum`, have no highlight): Ks (N.H)^Ns
+  // per light, times map_Ks's first channel. Other formats' Phong materials
+  // (a specular colour) alike.
+  void read_highlight(const aiMaterial& m, Material& mat, int& uv_set) {
+    int model = 0;
+    aiColor3D ks;
+    const bool phong = m.Get(AI_MATKEY_SHADING_MODEL, model) == AI_SUCCESS &&
+                       (model == aiShadingMode_Phong || model == aiShadingMode_Blinn);
+    const Vec3 specular = m.Get(AI_MATKEY_COLOR_SPECULAR, ks) == AI_SUCCESS ? to_vec(ks) : Vec3{};
+    if (!phong || !is_finite(specular) || !(specular.x > 0 || specular.y > 0 || specular.z > 0)) {
+      if (m.GetTextureCount(aiTextureType_SPECULAR) > 0)
+        warn(fmt::format("material '{}': its map_Ks is not applied: the material has no highlight (it needs a "
+                         "non-zero Ks and illum 2 or more)",
+                         m.GetName().C_Str()));
+      return;
+    }
+    mat.model = ShadingModel::blinn_phong;
+    mat.specular = Vec3{std::fmax(specular.x, 0.0), std::fmax(specular.y, 0.0), std::fmax(specular.z, 0.0)};
+    mat.specular_texture = read_map_on_set(m, aiTextureType_SPECULAR, false, "map_Ks", uv_set);
+  }
+
+  // MTL's `norm` (a normal map), else its `bump` (assimp's HEIGHT slot): a
+  // grey image is a height map, made a normal map by normals_from_heights
+  // with `-bm` as its strength; a coloured one is a normal map already (as
+  // Blender writes and reads `bump`), `-bm` scaling its x and y.
+  void read_bump_map(const aiMaterial& m, Material& mat, int& uv_set) {
+    const bool norm = m.GetTextureCount(aiTextureType_NORMALS) > 0;
+    const aiTextureType type = norm ? aiTextureType_NORMALS : aiTextureType_HEIGHT;
+    const int texture = read_map_on_set(m, type, false, norm ? "norm" : "bump", uv_set);
+    if (texture < 0) return;
+    float bm = 1;
+    if (m.Get(AI_MATKEY_OBJ_BUMPMULT(type, 0), bm) != AI_SUCCESS || !std::isfinite(bm)) bm = 1;
+    mat.normal_texture = texture;
+    TextureDesc& tex = out_.textures[static_cast<size_t>(texture)];
+    if (norm || !is_grey(out_.images[static_cast<size_t>(tex.image)])) {
+      mat.normal_scale = bm;
+      return;
+    }
+    const std::string key = out_.images[static_cast<size_t>(tex.image)].path + fmt::format("\n(heights {})", bm);
+    if (const auto it = image_index_.find(key); it != image_index_.end()) {
+      tex.image = it->second;
+      return;
+    }
+    out_.images.push_back(normals_from_heights(out_.images[static_cast<size_t>(tex.image)], bm));
+    tex.image = static_cast<int>(out_.images.size()) - 1;
+    image_index_[key] = tex.image;
   }
 
   // glTF's metallicRoughnessTexture (assimp's UNKNOWN slot) and

@@ -69,8 +69,11 @@ struct Light {
 /// metallic-roughness BRDF (the specification's Appendix B). A Tachyon
 /// scene's materials are all `tachyon`; the NFF reader and the mesh reader
 /// (for all but glTF 2.0 materials) make `nff` ones; glTF 2.0 materials are
-/// `gltf`.
-enum class ShadingModel { nff, tachyon, gltf };
+/// `gltf`. `blinn_phong` is NFF's model plus the highlight of MTL's
+/// illumination model 2 (a specular colour, Material::specular): the mesh
+/// reader makes it for a non-glTF material with a specular colour whose
+/// file asks for highlights (MTL `illum` 2 or more).
+enum class ShadingModel { nff, tachyon, gltf, blinn_phong };
 
 /// NFF `f` (nff-notes §5): colour, Kd, Ks (mirror weight and highlight weight),
 /// Phong exponent, transmittance T (weight of the refracted ray) and ior.
@@ -108,16 +111,24 @@ struct Material {
   /// [0, 1]; `colour` is the base colour, `ior` the dielectric's index
   /// (KHR_materials_ior; 1.5 by default, F0 = 0.04).
   double metallic = 0, roughness = 1;
-  /// glTF materials: the metallicRoughnessTexture (linear; blue scales
-  /// metallic, green roughness) and the normalTexture (tangent space,
-  /// linear, x and y scaled by `normal_scale`), indices into
-  /// SceneDesc::textures reading the base colour map's coordinates; -1: none.
   /// glTF materials: KHR_materials_transmission's factor, the share of the
   /// dielectric's diffuse light that passes through (thin-walled).
   double transmission = 0;
+  /// glTF materials: the metallicRoughnessTexture (linear; blue scales
+  /// metallic, green roughness). Index into SceneDesc::textures reading the
+  /// base colour map's coordinates, as every map below; -1: none.
   int metal_rough_texture = -1;
+  /// Mesh materials (glTF, and the others but Tachyon's): a tangent-space
+  /// normal map (glTF normalTexture, MTL `norm`, and `bump` made one by
+  /// normals_from_heights), linear, x and y scaled by `normal_scale`.
   int normal_texture = -1;
   double normal_scale = 1;
+  /// blinn_phong: MTL's Ks (linear RGB) and exponent `shine` (Ns): each seen
+  /// light adds Ks (N.H)^Ns times its intensity, H the half vector (MTL's
+  /// illumination model 2), times `specular_texture`'s first channel
+  /// (map_Ks, linear) where given.
+  Vec3 specular{0, 0, 0};
+  int specular_texture = -1;
   SourceLoc loc;
 };
 
