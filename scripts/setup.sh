@@ -10,6 +10,7 @@ packages=(
   openimageio-tools         # the tests' independent image decoder and docs/make_images.sh
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev             # meshes: OBJ, PLY, STL, glTF, 3DS, COLLADA, AC3D
+  assimp-testmodels         # glTF and OBJ sample models: docs/guide/scenes.md and the README pictures
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev  # animate --video: FFV1 and H.264
   nlohmann-json3-dev        # Looking Glass calibration files (JSON)
   libopenmpi-dev openmpi-bin  # mpirun -np N holoray animate|render (optional in CMake; installed so the README's commands build it)
