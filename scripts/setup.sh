@@ -6,6 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  help2man                  # the build's man page (build/holoray.1), made from --help
   libembree-dev libtbb-dev libpng-dev libopenexr-dev libjpeg-dev libgif-dev libstb-dev  # images (PNG, EXR, JPEG, GIF; PPM, Targa, BMP)
   openimageio-tools         # the tests' independent image decoder and docs/make_images.sh
   libcli11-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev

@@ -54,24 +54,27 @@ TEST(Cli, RefusesNonsenseCameraParameters) {
   test::TempDir dir;
   test::write_text(dir.file("s.nff"), kScene);
   const std::string base = "render " + dir.file("s.nff") + " -o " + dir.file("o.png") + " ";
-  const std::pair<std::string, std::string> cases[] = {
-      {"--gap 0", "holoray: error: gap must be positive and finite, got 0\n"},
-      {"--pitch -1", "holoray: error: lens pitch must be positive and finite, got -1\n"},
-      {"--fov-lens 180", "holoray: error: lens field of view must be between 0 and 180 degrees, got 180\n"},
-      {"--lenses 0x10", "holoray: error: --lenses: lens counts must be at least 1, got '0x10'\n"},
-      {"--lenses 10by10", "holoray: error: --lenses: expected NXxNY (e.g. 64x64), got '10by10'\n"},
-      {"--pixels-per-lens 0", "holoray: error: --pixels-per-lens: must be at least 1, got 0\n"},
-      {"--grid triangle", "holoray: error: --grid: expected square, hex or lenticular, got 'triangle'\n"},
-      {"--aov albedo,motion", "holoray: error: --aov: unknown AOV 'motion' (expected albedo, depth, normal, id)\n"},
+  // Values CLI11 checks are usage errors (status 2); the rules between them, 1.
+  const std::tuple<std::string, std::string, int> cases[] = {
+      {"--gap 0", "holoray: error: gap must be positive and finite, got 0\n", 1},
+      {"--pitch -1", "holoray: error: lens pitch must be positive and finite, got -1\n", 1},
+      {"--fov-lens 180", "holoray: error: lens field of view must be between 0 and 180 degrees, got 180\n", 1},
+      {"--lenses 0x10", "holoray: error: --lenses: lens counts must be at least 1, got '0x10'\n", 2},
+      {"--lenses 10by10", "holoray: error: --lenses: expected NXxNY (e.g. 64x64), got '10by10'\n", 2},
+      {"--pixels-per-lens 0", "holoray: error: --pixels-per-lens: must be at least 1, got 0\n", 2},
+      {"--grid triangle", "holoray: error: --grid: expected square, hex or lenticular, got 'triangle'\n", 2},
+      {"--aov albedo,motion", "holoray: error: --aov: unknown AOV 'motion' (expected albedo, depth, normal, id)\n", 2},
       {"--origin 0,0 --normal 0,0,1 --up 0,1,0 --pitch 1",
-       "holoray: error: --origin: expected X,Y,Z (three finite numbers), got '0,0'\n"},
+       "holoray: error: --origin: expected X,Y,Z (three finite numbers), got '0,0'\n", 2},
+      {"--origin 0,0,0 --up 0,1,0 --pitch 1", "holoray: error: --origin requires --normal\n", 2},
+      {"--view-cone 30", "holoray: error: --view-cone requires --quilt\n", 2},
       {"--lenses 100000x100000 --pixels-per-lens 64",
        // 6400000^2 px * (12 B colour + 12 B output copy) = 915527.34 GiB
-       "holoray: error: a 6400000x6400000 image needs 915527.34 GiB of buffers, more than 80% of this machine's "},
+       "holoray: error: a 6400000x6400000 image needs 915527.34 GiB of buffers, more than 80% of this machine's ", 1},
   };
-  for (const auto& [args, message] : cases) {
+  for (const auto& [args, message, status] : cases) {
     const auto r = test::run_cli(base + args);
-    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_EQ(r.status, status) << args;
     EXPECT_EQ(r.output.substr(0, message.size()), message) << args;
     EXPECT_FALSE(fs::exists(dir.file("o.png"))) << args;
   }
@@ -80,12 +83,13 @@ TEST(Cli, RefusesNonsenseCameraParameters) {
 TEST(Cli, UnsupportedOutputAndMissingFolderAreRefusedBeforeRendering) {
   test::TempDir dir;
   test::write_text(dir.file("s.nff"), kScene);
+  const std::string usage = "Run with --help for more information.\n";
   auto r = test::run_cli("render " + dir.file("s.nff") + " -o " + dir.file("o.jpg"));
-  EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.output, "holoray: error: -o: unsupported output '" + dir.file("o.jpg") + "' (use .png or .exr)\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.output, "holoray: error: --output: unsupported output '" + dir.file("o.jpg") + "' (use .png or .exr)\n" + usage);
   r = test::run_cli("render " + dir.file("s.nff") + " -o " + dir.file("nowhere/o.png"));
-  EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.output, "holoray: error: -o: folder '" + dir.file("nowhere") + "' does not exist\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.output, "holoray: error: --output: folder '" + dir.file("nowhere") + "' does not exist\n" + usage);
 }
 
 // --encoding auto (the default): a mesh scene's PNG is sRGB-encoded, an
@@ -107,7 +111,8 @@ TEST(Cli, EncodingAutoIsSrgbForMeshScenesAndLinearForNff) {
   EXPECT_EQ(codes("s.nff", ""), codes("s.nff", "linear"));
   EXPECT_NE(codes("s.nff", ""), codes("s.nff", "srgb"));
   const auto r = test::run_cli("render " + dir.file("s.nff") + " --encoding gamma -o " + dir.file("o.png"));
-  EXPECT_EQ(r.output, "holoray: error: --encoding: expected auto, linear or srgb, got 'gamma'\n");
+  EXPECT_EQ(r.output, "holoray: error: --encoding: expected auto, linear or srgb, got 'gamma'\n"
+                      "Run with --help for more information.\n");
 }
 
 TEST(Cli, SubapertureRefusesUnknownGridAndEncoding) {
@@ -125,9 +130,11 @@ TEST(Cli, SubapertureRefusesUnknownGridAndEncoding) {
 TEST(Cli, MissingSceneAndUnknownOptions) {
   test::TempDir dir;
   auto r = test::run_cli("render " + dir.file("none.nff") + " -o " + dir.file("o.png"));
-  EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.output, "holoray: error: cannot read '" + dir.file("none.nff") + "': No such file or directory\n");
-  r = test::run_cli("render x.nff -o o.png --frobnicate");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.output, "holoray: error: scene: cannot read '" + dir.file("none.nff") + "': no such file\n"
+                      "Run with --help for more information.\n");
+  test::write_text(dir.file("s.nff"), kScene);
+  r = test::run_cli("render " + dir.file("s.nff") + " -o " + dir.file("o.png") + " --frobnicate");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("--frobnicate"), std::string::npos) << r.output;
 }

@@ -279,9 +279,9 @@ INSTANTIATE_TEST_SUITE_P(Faults, MpiFault,
 TEST(MpiErrors, ASetupErrorIsPrintedOnceAndAWriteErrorNamesTheFile) {
   TempDir dir;
   write_shot(dir, 24, 16);
-  ASSERT_EQ(run(mpirun(3, {"render", dir.file("missing.nff"), "-o", dir.file("a.png")}), dir.file("log")), 1);
+  ASSERT_EQ(run(mpirun(3, {"render", dir.file("missing.nff"), "-o", dir.file("a.png")}), dir.file("log")), 2);
   const std::string log = test::read_bytes(dir.file("log"));
-  const std::string message = "holoray: error: cannot read '" + dir.file("missing.nff") + "'";
+  const std::string message = "holoray: error: scene: cannot read '" + dir.file("missing.nff") + "'";
   ASSERT_NE(log.find(message), std::string::npos) << log;
   EXPECT_EQ(log.find(message, log.find(message) + 1), std::string::npos) << "printed more than once:\n" << log;
   // A still too large for this machine: each rank would hold its own bands

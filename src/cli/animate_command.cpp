@@ -23,6 +23,7 @@
 #include "cluster/mpi_world.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/validators.hpp"
 #include "cli/scene_warnings.hpp"
 #include "display/display_file.hpp"
 #include "image/image_io.hpp"
@@ -82,8 +83,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required();
   cmd->add_option("-o,--output", o.output, "Output folder (created if missing)")->required();
   cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot; the default), reproject (keyframes + the paper's forward reprojection) or full (trace every frame; the default and only choice with --camera pinhole)");
-  cmd->add_option("--camera", o.camera, "integral (EIA frames) or pinhole (a preview: each frame's viewpoint as an ordinary view, traced in full)")->capture_default_str();
-  cmd->add_option("--resolution", o.resolution, "With --camera pinhole: frame size WxH (default: the first scene's resolution, else 512x512)");
+  add_camera_options(*cmd, o.view, "each frame (placed by the frame's viewpoint, traced in full)");
   cmd->add_option("--keyframe-interval", o.keyframe_interval,
                   "K: trace every K-th frame and the last; auto: place keyframes by how far point images move "
                   "(--keyframe-motion), sparse where nothing moves, dense where it moves fast")
@@ -106,11 +106,6 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb when the shot's first scene file is a mesh, linear for NFF and Tachyon)")->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
-  cmd->add_option("--display", o.display, "Display file (docs/display-files.md): each frame as that display's native panel image, placed by the frame's viewpoint and traced in full (as render --display)");
-  CLI::Option* lg = cmd->add_option("--looking-glass", o.looking_glass, "A Looking Glass's calibration file (visual.json): each frame as its native panel image, centred on the frame's viewpoint and traced in full (as render --looking-glass)");
-  lg->excludes("--display");
-  cmd->add_option("--views", o.looking_glass_views, "With --looking-glass: the views N of the quilt the native frames are the continuous version of")
-      ->check(CLI::Range(1, 4096))->needs(lg)->capture_default_str();
   cmd->add_option("--frames", o.frames, "Render only frames A:B (inclusive, from 0; or one frame N) and the keyframes they need, as a render farm's task does: ranges covering the shot, run apart (even at once, into one folder), give the folder of one run");
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
   cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete");
@@ -119,6 +114,16 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
+  lay_out_help(*cmd,
+               {{"Output", {"--output", "--format", "--encoding", "--video", "--crf", "--report", "--quiet", "--verbose"}},
+                {"Camera", {"--camera", "--resolution", "--display", "--looking-glass", "--views"}},
+                {"Reuse", {"--method", "--reuse", "--fill", "--rebuild-above", "--reach", "--no-leak-check", "--cache",
+                           "--cache-cell", "--cache-memory"}},
+                {"Keyframes", {"--keyframe-interval", "--keyframe-motion", "--max-keyframe-interval"}},
+                {"Farms and interruptions", {"--frames", "--resume", "--threads"}}},
+               {"holoray animate examples/shots/swinging_box.toml -o frames/ --video frames/shot.mkv",
+                "holoray animate examples/shots/swinging_box.toml -o views/ --camera pinhole --resolution 256x256"},
+               "docs/guide/animation.md, docs/guide/cluster.md");
   return cmd;
 }
 
@@ -126,34 +131,21 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
     SequenceOptions so;
-    const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
-    const bool glass = !o.looking_glass.empty();
-    const bool panel = !o.display.empty() || glass;
+    using Kind = FrameCameraDesc::Kind;
+    FrameCameraDesc camera_choice = camera_desc(o.view, false, false);
+    const bool pinhole = camera_choice.kind == Kind::pinhole;
+    const bool glass = camera_choice.kind == Kind::looking_glass;
+    const bool panel = glass || camera_choice.kind == Kind::display;
     const char* panel_flag = glass ? "--looking-glass" : "--display";
-    if (panel && pinhole)
-      throw std::invalid_argument(glass ? "--looking-glass: renders the panel's own views; it goes without --camera pinhole"
-                                        : "--display: renders the panel through its lenses; it goes without --camera pinhole");
     const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
     so.method = pick<Method>("--method", method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
     if (pinhole && so.method != Method::full)
       throw std::invalid_argument("--camera pinhole: goes with --method full (reuse works on elemental images)");
-    if (!o.resolution.empty()) {
-      if (!pinhole) throw std::invalid_argument("--resolution: goes with --camera pinhole (an EIA's size is the shot's [array])");
-      int w = 0, h = 0;
-      parse_resolution(o.resolution, w, h);
-      so.pinhole = std::array<int, 2>{w, h};
-    } else if (pinhole) {
-      so.pinhole = std::array<int, 2>{0, 0};  // the scene's, filled in once the shot is read
-    }
     if (panel && so.method != Method::full)
       throw std::invalid_argument(fmt::format("{}: goes with --method full (reuse works on elemental images)", panel_flag));
     if (panel && (!o.report.empty() || cache_enabled(o.cache)))
       throw std::invalid_argument(fmt::format("{}: goes without --report and --cache (native panels are traced in full, without the cache)", panel_flag));
-    if (!o.display.empty()) so.display = read_display_file(o.display);
-    if (glass) {
-      so.looking_glass = read_looking_glass(o.looking_glass);
-      so.looking_glass_views = o.looking_glass_views;
-    }
+    if (camera_choice.kind != Kind::integral) so.frame_camera = camera_choice;
     if (pinhole && !o.report.empty())
       throw std::invalid_argument("--report: goes with the integral camera (pinhole previews are traced in full)");
     if (pinhole && cache_enabled(o.cache))
@@ -218,12 +210,12 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const bool whole_shot = range_first == 0 && range_last == frames - 1;
     if (!o.video.empty() && !whole_shot)
       throw std::invalid_argument("--video: needs every frame; after the ranges, run the whole shot with --resume --video");
-    if (so.pinhole && (*so.pinhole)[0] == 0) {
+    if (pinhole && so.frame_camera->width == 0) {
+      // The first scene's resolution, as every frame's (a path's viewpoints carry none).
       auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
                                     [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
-      so.pinhole = first_res != shot.scenes().end()
-                       ? std::array<int, 2>{first_res->viewpoint->xres, first_res->viewpoint->yres}
-                       : std::array<int, 2>{512, 512};
+      so.frame_camera->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
+      so.frame_camera->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
     }
     if (auto_keys && so.method != Method::full)
       so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
@@ -242,8 +234,8 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     {
       // Two point images, two z-buffers and the frame (a panel: its samples,
       // three per pixel, and the packed frame): refuse before the first trace.
-      const int panel_w = so.display ? so.display->width : so.looking_glass ? so.looking_glass->width : 0;
-      const int panel_h = so.display ? so.display->height : so.looking_glass ? so.looking_glass->height : 0;
+      const int panel_w = !panel ? 0 : glass ? camera_choice.calibration->width : camera_choice.display->width;
+      const int panel_h = !panel ? 0 : glass ? camera_choice.calibration->height : camera_choice.display->height;
       const uint64_t panel_pixels = uint64_t(panel_w) * panel_h;
       const uint64_t need = panel ? panel_pixels * (3 * 12 + 2 * 12)
                                   : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
@@ -305,13 +297,14 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       const LensArray& cam = first;
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
                  shot.shot().objects.size());
-      if (so.display)
-        fmt::print("panel      {}x{} px from {}, each frame's viewpoint\n", so.display->width, so.display->height, o.display);
-      else if (so.looking_glass)
+      const FrameCameraDesc& c = camera_choice;
+      if (c.display)
+        fmt::print("panel      {}x{} px from {}, each frame's viewpoint\n", c.display->width, c.display->height, o.view.display);
+      else if (c.calibration)
         fmt::print("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
-                   so.looking_glass->width, so.looking_glass->height, o.looking_glass, so.looking_glass_views);
-      else if (so.pinhole)
-        fmt::print("view       {}x{} px, pinhole, each frame's viewpoint\n", (*so.pinhole)[0], (*so.pinhole)[1]);
+                   c.calibration->width, c.calibration->height, o.view.looking_glass, c.looking_glass_views);
+      else if (pinhole)
+        fmt::print("view       {}x{} px, pinhole, each frame's viewpoint\n", so.frame_camera->width, so.frame_camera->height);
       else
         fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),
                    to_string(cam.desc().grid), cam.lens_count_x(), cam.lens_count_y(), cam.desc().pixels_per_lens,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/cache_options.hpp"
+#include "cli/camera_options.hpp"
 #include "cluster/mpi_world.hpp"
 #include "display/looking_glass.hpp"
 
@@ -13,12 +14,9 @@ namespace holoray::cli {
 
 struct AnimateCommandOptions {
   std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
-  std::string camera = "integral", resolution;  ///< --camera, --resolution (pinhole previews)
+  CameraOptions view;                   ///< --camera, --resolution, --display, --looking-glass, --views
   std::string format = "png", encoding = "auto", report;
   std::string frames;                   ///< --frames A:B (inclusive) or N: only those frames
-  std::string display;                  ///< --display FILE: native panel frames, traced in full
-  std::string looking_glass;            ///< --looking-glass CAL.json: Looking Glass native frames, traced in full
-  int looking_glass_views = kDefaultLookingGlassViews;  ///< --views N
   std::string video;                    ///< --video PATH (.mkv FFV1 lossless, .mp4 H.264)
   int crf = -1;                         ///< --crf N (H.264; -1: 18)
   std::string keyframe_interval = "8";  ///< K, or "auto" (keyframe_schedule.hpp)

@@ -5,18 +5,27 @@
 
 #include "cli/animate_command.hpp"
 #include "cli/compare_command.hpp"
+#include "cli/completion.hpp"
 #include "cli/interlace_command.hpp"
 #include "cli/launch_check.hpp"
 #include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
+#include "cli/version.hpp"
 #include "cluster/mpi_world.hpp"
 
 int main(int argc, char** argv) {
   // Under mpirun (and built with MPI): this process's rank; else one of one.
   const holoray::cluster::World world(argc, argv);
-  CLI::App app{"holoray: integral image (elemental image array) renderer"};
+  // Named, so that usage lines (and the man page made from them) say holoray.
+  CLI::App app{"holoray: integral image (elemental image array) renderer", "holoray"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", holoray::cli::version_text);
+  // Usage errors read as every other error; set before the subcommands,
+  // which copy it.
+  app.failure_message([](const CLI::App* a, const CLI::Error& e) {
+    return "holoray: error: " + CLI::FailureMessage::simple(a, e);
+  });
   holoray::cli::RenderCommandOptions render_opts;
   CLI::App* render = holoray::cli::add_render_command(app, render_opts);
   holoray::cli::SubapertureCommandOptions sub_opts;
@@ -31,6 +40,16 @@ int main(int argc, char** argv) {
   CLI::App* interlace = holoray::cli::add_interlace_command(app, interlace_opts);
   holoray::cli::ViewsCommandOptions views_opts;
   CLI::App* views = holoray::cli::add_views_command(app, views_opts);
+  holoray::cli::add_completion_option(app);
+  app.footer(
+      "\nExamples:\n"
+      "  holoray render examples/primitives.nff -o eia.png\n"
+      "  holoray animate examples/shots/swinging_box.toml -o frames/\n"
+      "\nEach command's options: holoray COMMAND --help. The user guide: docs/guide/README.md");
+  if (argc == 1) {  // a bare `holoray` shows what it does
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  }
   // CLI11 would only say that a subcommand is required.
   const auto known = [&](const std::string& name) {
     for (const CLI::App* c : app.get_subcommands([](CLI::App*) { return true; }))
@@ -43,10 +62,10 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --version, --completion
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    if (world.rank() == 0) app.exit(e);  // once, not once per MPI rank
     return 2;  // usage errors: one status whatever CLI11's internal code
   }
   if ((render->parsed() || animate->parsed()) && !holoray::cluster::built_with_mpi()) {

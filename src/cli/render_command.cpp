@@ -19,14 +19,14 @@
 #include "display/looking_glass.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/validators.hpp"
 #include "cluster/band_exchange.hpp"
 #include "cluster/mpi_world.hpp"
 #include "cluster/row_bands.hpp"
 #include "cli/scene_warnings.hpp"
 #include "image/image_io.hpp"
-#include "render/display_renderer.hpp"
+#include "render/frame_camera.hpp"
 #include "render/renderer.hpp"
-#include "render/view_renderer.hpp"
 #include "scene/mesh_reader.hpp"
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
@@ -67,17 +67,13 @@ class FrameFiles {
   std::vector<std::pair<ImageBuffer FrameBuffers::*, std::unique_ptr<ImageWriter>>> files_;
 };
 
+// The lens array the options describe (each value checked by CLI11).
 ArraySettings resolve_settings(const RenderCommandOptions& o) {
   ArraySettings s;
   s.grid = parse_grid(o.grid);
-  if (o.mode == "orthoscopic") s.mode = RecordingMode::orthoscopic;
-  else if (o.mode == "pseudoscopic") s.mode = RecordingMode::pseudoscopic;
-  else throw std::invalid_argument(fmt::format("--mode: expected orthoscopic or pseudoscopic, got '{}'", o.mode));
+  s.mode = o.mode == "pseudoscopic" ? RecordingMode::pseudoscopic : RecordingMode::orthoscopic;
   parse_lens_count(o.lenses, s.lenses_x, s.lenses_y);
   s.pixels_per_lens = o.pixels_per_lens;
-  if (o.pixels_per_lens < 1)
-    throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", o.pixels_per_lens));
-  if (o.rows < 0) throw std::invalid_argument(fmt::format("--rows: must be at least 1, got {}", o.rows));
   s.rows = o.rows;
   if (!std::isnan(o.pitch)) s.pitch = o.pitch;
   if (!std::isnan(o.gap)) s.gap = o.gap;
@@ -89,112 +85,117 @@ ArraySettings resolve_settings(const RenderCommandOptions& o) {
   return s;
 }
 
+// A CLI11 check of an X,Y,Z option.
+CLI::Validator vec3(const char* option) {
+  return parsed_by([option](const std::string& t) { parse_vec3(option, t); }, "X,Y,Z");
+}
+
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA), or the scene's own pinhole view, from an NFF, Tachyon or mesh scene");
-  cmd->add_option("scene", o.scene, "Scene file: NFF (.nff), Tachyon (.dat), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")->required();
-  cmd->add_option("-o,--output", o.output, "Output image: .png (8-bit) or .exr (float)")->required();
-  cmd->add_option("--camera", o.camera, "integral (the EIA) or pinhole (the scene's own view, NFF v: previews and comparisons with other ray tracers)")->capture_default_str();
-  cmd->add_option("--resolution", o.resolution, "With --camera pinhole: image size WxH (default: the scene's resolution, else 512x512)");
-  cmd->add_option("--sample-at", o.sample_at, "With --camera pinhole: where in each pixel its single sample lies: centre, or tachyon (the upper-right corner, where Tachyon samples; for pixel-for-pixel comparisons)")->capture_default_str();
-  CLI::Option* display = cmd->add_option("--display", o.display, "Display file (TOML, docs/display-files.md): render the panel image of that display, each subpixel along its own line through its own lens; it sets the lens array, so the options below up to --view-distance go without it");
+  cmd->add_option("scene", o.scene, "Scene file: NFF (.nff), Tachyon (.dat), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")
+      ->required()
+      ->check(existing_file());
+  cmd->add_option("-o,--output", o.output, "Output image: .png (8-bit) or .exr (float)")->required()->check(output_image());
+  const auto [display, lg] = add_camera_options(*cmd, o.view, "the image");
+  cmd->add_option("--sample-at", o.sample_at, "With --camera pinhole: where in each pixel its single sample lies: centre, or tachyon (the upper-right corner, where Tachyon samples; for pixel-for-pixel comparisons)")
+      ->check(one_of({"centre", "tachyon"}))
+      ->capture_default_str();
   CLI::Option* array_options[] = {
-      cmd->add_option("--grid", o.grid, "Lens grid: square, hex or lenticular")->capture_default_str(),
-      cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")->capture_default_str(),
-      cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str(),
-      cmd->add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)"),
+      cmd->add_option("--grid", o.grid, "Lens grid")->check(one_of({"square", "hex", "lenticular"}))->capture_default_str(),
+      cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")
+          ->check(parsed_by([](const std::string& t) { int x, y; parse_lens_count(t, x, y); }, "NXxNY"))
+          ->capture_default_str(),
+      cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->check(in_range(1))->capture_default_str(),
+      cmd->add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)")->check(in_range(1)),
       cmd->add_option("--fov-lens", o.fov_lens, "Lens field of view in degrees (default 20); sets the gap"),
       cmd->add_option("--gap", o.gap, "Lens plane to pixel panel distance, scene units"),
       cmd->add_option("--pitch", o.pitch, "Lens pitch, scene units (default: NFF view width / NX)"),
-      cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")->capture_default_str(),
+      cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")
+          ->check(one_of({"orthoscopic", "pseudoscopic"}))
+          ->capture_default_str(),
       cmd->add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)")};
-  for (CLI::Option* a : array_options) display->excludes(a);
-  CLI::Option* quilt = cmd->add_option("--quilt", o.quilt, "A Looking Glass quilt of CxR off-axis views (sheared frusta sharing the viewpoint's focal plane), tiled as Looking Glass tools expect: view 0, the leftmost, bottom left; written as NAME_qsCxRaASPECT.ext. --resolution sets one view's size (default 420x560)");
-  cmd->add_option("--view-cone", o.view_cone, "With --quilt: degrees from the leftmost to the rightmost view")->capture_default_str();
-  cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says");
+  for (CLI::Option* a : array_options) display->excludes(a), lg->excludes(a);
+  CLI::Option* quilt = cmd->add_option("--quilt", o.quilt, "A Looking Glass quilt of CxR off-axis views (sheared frusta sharing the viewpoint's focal plane), tiled as Looking Glass tools expect: view 0, the leftmost, bottom left; written as NAME_qsCxRaASPECT.ext. --resolution sets one view's size (default 420x560)")
+      ->check(parsed_by([](const std::string& t) {
+        int c, r;
+        parse_lens_count(t, c, r, "--quilt");
+        if (int64_t{c} * r > 4096) throw std::invalid_argument(fmt::format("--quilt: at most 4096 views, got {}", t));
+      }, "CxR"));
+  cmd->add_option("--view-cone", o.view_cone, "With --quilt: degrees from the leftmost to the rightmost view")
+      ->check(in_range(0, 180, true, "degrees"))
+      ->needs(quilt)
+      ->capture_default_str();
+  cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says")
+      ->check(in_range(0))
+      ->needs(quilt);
   for (CLI::Option* a : array_options) quilt->excludes(a);
   quilt->excludes(display);
-  CLI::Option* lg = cmd->add_option("--looking-glass", o.looking_glass, "A Looking Glass's calibration file (visual.json): render its native panel image, each subpixel along the view its lenticule gives it (docs/display-files.md)");
-  for (CLI::Option* a : array_options) lg->excludes(a);
-  lg->excludes(display);
   lg->excludes(quilt);
-  cmd->add_option("--views", o.looking_glass_views, "With --looking-glass: the views N of the quilt the native image is the continuous version of (a subpixel whose view value x has x N = k shows quilt view k)")
-      ->check(CLI::Range(1, 4096))->needs(lg)->capture_default_str();
-  cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)");
-  cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer");
-  cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)");
-  cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->capture_default_str();
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
-  cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (1 to 16; default: the scene's Tachyon raydepth, else 5, the SPD's)");
-  cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")->capture_default_str();
-  cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id");
-  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")->capture_default_str();
+  CLI::Option* origin = cmd->add_option("--origin", o.origin, "Array centre X,Y,Z (explicit placement, with --normal --up --pitch)")->check(vec3("--origin"));
+  CLI::Option* normal = cmd->add_option("--normal", o.normal, "Array normal X,Y,Z, toward the viewer")->check(vec3("--normal"));
+  CLI::Option* up = cmd->add_option("--up", o.up, "Up direction X,Y,Z (orthogonalised)")->check(vec3("--up"));
+  for (CLI::Option* a : {origin, normal, up})
+    for (CLI::Option* b : {origin, normal, up})
+      if (a != b) a->needs(b);
+  cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->check(in_range(1))->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(in_range(0))->capture_default_str();
+  cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (default: the scene's Tachyon raydepth, else 5, the SPD's)")
+      ->check(in_range(1, kDepthCap));
+  cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")
+      ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
+      ->capture_default_str();
+  cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
+      ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")
+      ->check(one_of({"auto", "linear", "srgb"}))
+      ->capture_default_str();
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  lay_out_help(*cmd,
+               {{"Output", {"--output", "--aov", "--encoding", "--quiet"}},
+                {"Camera", {"--camera", "--resolution", "--sample-at", "--display", "--looking-glass", "--views", "--quilt",
+                            "--view-cone", "--quilt-view"}},
+                {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
+                                "--view-distance", "--origin", "--normal", "--up"}},
+                {"Tracing", {"--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}}},
+               {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
+                "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
+               "docs/guide/stills.md, docs/guide/displays.md");
   return cmd;
 }
 
 int run_render(const RenderCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
-    // Everything the user typed is checked before the scene is read.
-    if (!is_supported_output(o.output))
-      throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
-    const std::filesystem::path out_dir = std::filesystem::path(o.output).parent_path();
-    if (!out_dir.empty() && !std::filesystem::is_directory(out_dir))
-      throw std::invalid_argument(std::filesystem::exists(out_dir)
-                                      ? fmt::format("-o: '{}' is not a folder", out_dir.string())
-                                      : fmt::format("-o: folder '{}' does not exist", out_dir.string()));
+    // CLI11 checked each value; what it cannot say is checked here, before
+    // the scene is read.
     const Encoding encoding = parse_encoding(o.encoding, o.scene);
-    if (o.spp < 1) throw std::invalid_argument(fmt::format("--spp: must be at least 1, got {}", o.spp));
-    if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const std::optional<TraceStyle> style = parse_style(o.style);
-    if (o.max_depth != 0 && (o.max_depth < 1 || o.max_depth > kDepthCap))
-      throw std::invalid_argument(fmt::format("--max-depth: must be from 1 to {}, got {}", kDepthCap, o.max_depth));
-    const ArraySettings settings = resolve_settings(o);
-    const bool pinhole = pick<bool>("--camera", o.camera, {{"integral", false}, {"pinhole", true}});
-    std::optional<QuiltDesc> quilt_desc;
-    if (!o.quilt.empty()) {
-      if (pinhole) throw std::invalid_argument("--quilt: renders its own views; it goes without --camera pinhole");
-      quilt_desc.emplace();
-      parse_lens_count(o.quilt, quilt_desc->columns, quilt_desc->rows, "--quilt");
-      quilt_desc->view_cone_deg = o.view_cone;
-      if (!(o.view_cone >= 0 && o.view_cone < 180))
-        throw std::invalid_argument(fmt::format("--view-cone: must be from 0 to 180 degrees, got {}", o.view_cone));
-      if (int64_t{quilt_desc->columns} * quilt_desc->rows > 4096)
-        throw std::invalid_argument(fmt::format("--quilt: at most 4096 views, got {}x{}", quilt_desc->columns, quilt_desc->rows));
-      if (o.quilt_view >= quilt_desc->columns * quilt_desc->rows)
-        throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", quilt_desc->columns,
-                                                quilt_desc->rows, quilt_desc->columns * quilt_desc->rows - 1, o.quilt_view));
-    } else if (o.quilt_view >= 0 || o.view_cone != 40) {
-      throw std::invalid_argument("--quilt-view and --view-cone go with --quilt");
+    FrameCameraDesc camera_choice = camera_desc(o.view, !o.quilt.empty(), true);
+    camera_choice.array = resolve_settings(o);
+    using Kind = FrameCameraDesc::Kind;
+    const bool pinhole = camera_choice.kind == Kind::pinhole;
+    if (camera_choice.kind == Kind::quilt) {
+      QuiltDesc& q = camera_choice.quilt;
+      parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
+      q.view_cone_deg = o.view_cone;
+      if (camera_choice.width > 0) q.view_width = camera_choice.width, q.view_height = camera_choice.height;
+      if (o.quilt_view >= q.columns * q.rows)
+        throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", q.columns, q.rows,
+                                                q.columns * q.rows - 1, o.quilt_view));
+      camera_choice.quilt_view = o.quilt_view;
     }
-    if (o.quilt_view < -1) throw std::invalid_argument(fmt::format("--quilt-view: must be 0 or more, got {}", o.quilt_view));
-    int res_w = 0, res_h = 0;
-    if (!o.resolution.empty()) {
-      if (!pinhole && !quilt_desc)
-        throw std::invalid_argument("--resolution: goes with --camera pinhole or --quilt (an EIA's size is --lenses x --pixels-per-lens)");
-      parse_resolution(o.resolution, res_w, res_h);
-      if (quilt_desc) quilt_desc->view_width = res_w, quilt_desc->view_height = res_h;
-    }
-    const bool tachyon_samples = pick<bool>("--sample-at", o.sample_at, {{"centre", false}, {"tachyon", true}});
-    if (tachyon_samples && (!pinhole || o.spp != 1))
+    camera_choice.tachyon_samples = o.sample_at == "tachyon";
+    if (camera_choice.tachyon_samples && (!pinhole || o.spp != 1))
       throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
-    if (cache_enabled(o.cache) && pinhole)  // checked before the scene is read
+    // The cache's cells are sized in lens pitches (a display whose lenses
+    // are whole pixels has them too: checked once the camera is placed).
+    const bool cache_on = cache_enabled(o.cache);
+    if (cache_on && camera_choice.kind != Kind::integral && camera_choice.kind != Kind::display)
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-    std::optional<LookingGlassCalibration> calibration;
-    if (!o.looking_glass.empty()) {
-      if (pinhole) throw std::invalid_argument("--looking-glass: renders the panel's own views; it goes without --camera pinhole");
-      if (!o.resolution.empty()) throw std::invalid_argument("--resolution: the calibration sets a Looking Glass panel's size");
-      calibration = read_looking_glass(o.looking_glass);
-    }
-    std::optional<DisplayDesc> display;
-    if (!o.display.empty()) {
-      if (pinhole) throw std::invalid_argument("--display: renders the panel through its lenses; it goes without --camera pinhole");
-      display = read_display_file(o.display);
-    }
 
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
@@ -205,47 +206,17 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     const double parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(desc);
 
-    std::optional<LensArray> array;
-    std::optional<PinholeCamera> view;
-    std::optional<DisplayCamera> panel;
-    std::optional<QuiltCamera> quilt;
-    std::optional<LookingGlassCamera> glass;
-    if (calibration) {
-      if (!desc.viewpoint)
-        throw std::invalid_argument(fmt::format("--looking-glass: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));
-      glass.emplace(*calibration, view_of(*desc.viewpoint, calibration->width, calibration->height), o.looking_glass_views);
-    } else if (quilt_desc) {
-      if (!desc.viewpoint)
-        throw std::invalid_argument(fmt::format("--quilt: '{}' has no viewpoint (NFF 'v') to centre the views on", o.scene));
-      const PinholeDesc centre = view_of(*desc.viewpoint, quilt_desc->view_width, quilt_desc->view_height);
-      if (o.quilt_view >= 0) view.emplace(quilt_view(*quilt_desc, centre, o.quilt_view));
-      else quilt.emplace(*quilt_desc, centre);
-    } else if (pinhole) {
-      if (!desc.viewpoint)
-        throw std::invalid_argument(fmt::format("--camera pinhole: '{}' has no viewpoint (NFF 'v')", o.scene));
-      const Viewpoint& vp = *desc.viewpoint;
-      if (res_w == 0) {
-        res_w = vp.xres > 0 ? vp.xres : 512;
-        res_h = vp.yres > 0 ? vp.yres : 512;
-      }
-      PinholeDesc pd = view_of(vp, res_w, res_h);
-      if (tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
-      view.emplace(pd);
-    } else if (display) {
-      std::optional<Frame> frame;
-      if (settings.origin) frame = Frame::from_normal_up(*settings.origin, *settings.normal, *settings.up);
-      // An ordinary EIA in display units renders with the integral camera.
-      if (auto eia = as_lens_array(*display, desc.viewpoint, frame)) array.emplace(*eia);
-      else panel.emplace(place_display(*display, desc.viewpoint, frame));
-    } else {
-      array.emplace(place_array(settings, desc.viewpoint));
-    }
+    const FrameCamera camera = make_frame_camera(camera_choice, desc.viewpoint, o.scene);
+    const std::optional<LensArray>& array = camera.array;
+    const std::optional<PinholeCamera>& view = camera.view;
+    const std::optional<QuiltCamera>& quilt = camera.quilt;
+    const std::optional<DisplayCamera>& panel = camera.panel;
+    const std::optional<LookingGlassCamera>& glass = camera.glass;
     if ((panel || glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
       throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
-    if (!array && cache_enabled(o.cache))
+    if (!array && cache_on)
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-    const int width = glass ? calibration->width : view ? view->width() : quilt ? quilt->width() : panel ? panel->geometry().width : array->width();
-    const int height = glass ? calibration->height : view ? view->height() : quilt ? quilt->height() : panel ? panel->height() : array->height();
+    const int width = camera.width(), height = camera.height();
     const int64_t pixels = static_cast<int64_t>(width) * height;
     // Refuse before allocating: buffers plus the 8-bit or float copy made on
     // output (and a panel's samples, three per pixel with subpixels).
@@ -256,7 +227,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     const std::vector<RowBand> bands =
         world.distributed() ? row_bands(height, array ? array->desc().pixels_per_lens : 32, world.size())
                             : std::vector<RowBand>{};
-    int64_t samples = panel ? static_cast<int64_t>(panel->width()) * height : glass ? 3 * pixels : 0;
+    int64_t samples = static_cast<int64_t>(camera.panel_samples_per_row()) * height;
     int64_t held = pixels, copied = pixels;
     if (world.distributed()) {
       int64_t own = 0, largest = 0;
@@ -280,8 +251,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     RenderScene scene(desc);
     if (o.max_depth != 0) scene.set_max_depth(o.max_depth);
     // Mesh textures take the MIP level of what one pixel sees.
-    if (array) scene.set_pixel_footprint(0, pixel_angle(array->desc()));
-    else if (view) scene.set_pixel_footprint(0, pixel_angle(view->desc()));
+    if (const auto angle = camera.pixel_angle()) scene.set_pixel_footprint(0, *angle);
     const std::unique_ptr<ShadowCache> cache = array ? make_cache(scene, array->desc().pitch, o.cache) : nullptr;
     scene.set_shadow_cache(cache.get());
     const double build_s = seconds_since(t_build);
@@ -307,15 +277,11 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       };
     RenderStats stats;
     FrameBuffers fb;
-    // The whole image, or one band of its rows, through whichever camera this is.
+    // The whole image, or one band of its rows.
     auto render_rows = [&](std::optional<std::array<int, 2>> rows, RenderStats& st) {
       RenderOptions ro = ropt;
       ro.rows = rows;
-      if (glass) return render_looking_glass(scene, *glass, ro, st);
-      if (view) return render_view(scene, *view, ro, st);
-      if (quilt) return render_quilt(scene, *quilt, ro, st);
-      if (panel) return render_display(scene, *panel, display->subpixels != SubpixelOrder::bgr, ro, st);
-      return render_frame(scene, *array, ro, st);
+      return render_through(scene, camera, ro, st);
     };
     if (!world.distributed()) fb = render_rows(std::nullopt, stats);
     // A quilt's name tells Looking Glass tools its layout.
@@ -362,19 +328,20 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
                  scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
       if (glass) {
         fmt::print("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
-                   width, height, o.looking_glass, calibration->view_cone_deg);
+                   width, height, o.view.looking_glass, glass->calibration().view_cone_deg);
       } else if (quilt) {
         const QuiltDesc& q = quilt->desc();
         fmt::print("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
                    width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
-      } else if (quilt_desc) {
+      } else if (camera_choice.kind == Kind::quilt) {
+        const QuiltDesc& q = camera_choice.quilt;
         fmt::print("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, o.quilt_view,
-                   quilt_desc->columns, quilt_desc->rows, quilt_desc->view_cone_deg);
+                   q.columns, q.rows, q.view_cone_deg);
       } else if (pinhole) {
         fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
                    view->desc().fov_deg);
       } else if (panel) {
-        const DisplayDesc& d = *display;
+        const DisplayDesc& d = *camera_choice.display;
         const DisplayGeometry& g = panel->geometry();
         fmt::print("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
                    d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
@@ -383,7 +350,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
         fmt::print("lenses     pitch {:.6g} mm ({:.6g} px across a row), gap {:.6g} mm; {:.6g} scene units per mm\n",
                    d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
       } else {
-        if (display) fmt::print("display    {}: whole pixels per lens, rendered as the EIA below\n", o.display);
+        if (camera_choice.display) fmt::print("display    {}: whole pixels per lens, rendered as the EIA below\n", o.view.display);
         const LensArrayDesc& d = array->desc();
         fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid),
                    array->lens_count_x(), array->lens_count_y(), d.pixels_per_lens, to_string(d.mode));

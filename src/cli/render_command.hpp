@@ -6,25 +6,25 @@
 #include <string>
 
 #include "cli/cache_options.hpp"
+#include "cli/camera_options.hpp"
 #include "cluster/mpi_world.hpp"
-#include "display/looking_glass.hpp"
 
 namespace holoray::cli {
 
-/// Options of `holoray render` as typed; resolved and validated in run_render.
+/// Options of `holoray render` as typed: CLI11 checks each value
+/// (add_render_command), run_render the rules between them that CLI11
+/// cannot say.
 struct RenderCommandOptions {
   std::string scene, output;
   std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "auto", style = "auto";
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
-  std::string camera = "integral", resolution, sample_at = "centre";  ///< --camera, --resolution, --sample-at (pinhole)
-  std::string display;  ///< --display FILE: the panel image of a physical display (issue 14)
-  std::string quilt;    ///< --quilt CxR: a Looking Glass quilt of C*R views (issue 14)
-  double view_cone = 40;  ///< --view-cone DEG
-  int quilt_view = -1;  ///< --quilt-view K: only view K, as a plain image
-  std::string looking_glass;  ///< --looking-glass CAL.json: a Looking Glass's native panel
-  int looking_glass_views = kDefaultLookingGlassViews;  ///< --views N: the quilt it is the continuous version of
+  CameraOptions view;                 ///< --camera, --resolution, --display, --looking-glass, --views
+  std::string sample_at = "centre";   ///< --sample-at (pinhole)
+  std::string quilt;                  ///< --quilt CxR: a Looking Glass quilt of C*R views
+  double view_cone = 40;              ///< --view-cone DEG
+  int quilt_view = -1;                ///< --quilt-view K: only view K, as a plain image
   CacheCommandOptions cache;
   bool quiet = false;
 };

@@ -1,10 +1,5 @@
 #include "temporal/sequence.hpp"
 
-#include "camera/pinhole.hpp"
-#include "display/display_placement.hpp"
-#include "render/display_renderer.hpp"
-#include "render/view_renderer.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -115,7 +110,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     return r;
   };
 
-  const bool panel_frames = opt.pinhole || opt.display || opt.looking_glass;
+  const bool panel_frames = opt.frame_camera.has_value();
   // EIA frames: every frame's array has the shot's pitch, gap and pixels.
   if (!panel_frames) shot.set_pixel_footprint(0, pixel_angle(shot.camera(0)));
   if (panel_frames && opt.method != Method::full)
@@ -138,25 +133,10 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         ro.threads = opt.threads;
         RenderStats stats;
         const auto start = Clock::now();
-        const FrameBuffers b = [&] {
-          if (opt.looking_glass) {
-            const LookingGlassCalibration& c = *opt.looking_glass;
-            return render_looking_glass(shot.scene(), LookingGlassCamera(c, view_of(vp, c.width, c.height), opt.looking_glass_views),
-                                        ro, stats);
-          }
-          // Mesh textures take the MIP level of what one pixel sees, as in `render`.
-          if (!opt.display) {
-            const PinholeDesc view = view_of(vp, (*opt.pinhole)[0], (*opt.pinhole)[1]);
-            shot.set_pixel_footprint(0, pixel_angle(view));
-            return render_view(shot.scene(), PinholeCamera(view), ro, stats);
-          }
-          if (const auto eia = as_lens_array(*opt.display, vp)) {
-            shot.set_pixel_footprint(0, pixel_angle(*eia));
-            return render_frame(shot.scene(), LensArray(*eia), ro, stats);
-          }
-          return render_display(shot.scene(), DisplayCamera(place_display(*opt.display, vp)),
-                                opt.display->subpixels != SubpixelOrder::bgr, ro, stats);
-        }();
+        const FrameCamera camera = make_frame_camera(*opt.frame_camera, vp, "the shot");
+        // Mesh textures take the MIP level of what one pixel sees, as in `render`.
+        if (const auto angle = camera.pixel_angle()) shot.set_pixel_footprint(0, *angle);
+        const FrameBuffers b = render_through(shot.scene(), camera, ro, stats);
         emit(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
         continue;
       }

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "display/display_desc.hpp"
-#include "display/looking_glass.hpp"
+#include "render/frame_camera.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "shot/shot_frames.hpp"
@@ -48,19 +48,12 @@ struct SequenceOptions {
   /// (for the report): FrameReport::reference and ::difference.
   bool reference = false;
   Encoding encoding = Encoding::linear;  ///< the 8-bit quantisation compared against
-  /// Method::full only: render each frame's viewpoint (ShotFrames::viewpoint)
-  /// as a pinhole view of this width and height (render_view) instead of
-  /// the EIA: previews of a shot's camera path.
-  std::optional<std::array<int, 2>> pinhole;
-  /// Method::full only: render each frame as this display's native panel
-  /// image (display/display_file.hpp), placed by the frame's viewpoint
-  /// (ShotFrames::viewpoint) as `render --display` places it.
-  std::optional<DisplayDesc> display;
-  /// Method::full only: render each frame as this Looking Glass's native
-  /// panel image centred on the frame's viewpoint, the continuous version of
-  /// a quilt of `looking_glass_views` views (as `render --looking-glass`).
-  std::optional<LookingGlassCalibration> looking_glass;
-  int looking_glass_views = kDefaultLookingGlassViews;
+  /// Method::full only: render each frame through this camera placed by the
+  /// frame's viewpoint (ShotFrames::viewpoint) instead of the shot's array:
+  /// pinhole previews of a shot's camera path (a size of 0 is the first
+  /// scene's, filled in by the caller), a display's native panel images, a
+  /// Looking Glass's, as `render` renders them.
+  std::optional<FrameCameraDesc> frame_camera;
   /// Shadow cache (reuse/shadow_cache.hpp) for traced frames, filling and
   /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
   /// it lives across frames while nothing moves. The reference frames

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# CI: the Debian package works once installed. Builds build/ and its .deb
+# (CPack), installs it with apt, then from an empty folder, with only the
+# system's folders on PATH, checks that /usr/bin/holoray runs (--version, a
+# small render of an installed example, an animation with --video, which loads
+# the FFmpeg module from /usr/lib/holoray), that the man page and the bash
+# completion are installed (the completion completing in bash), and removes
+# the package again (purged: nothing of it left), also when a check fails.
+# Usage: bash scripts/package_check.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+if dpkg-query -W -f='${Status}' holoray 2>/dev/null | grep -q "install ok installed"; then
+  echo "package_check: the holoray package is installed already: remove it first (apt-get remove holoray)" >&2
+  exit 1
+fi
+
+rm -f build/holoray_*.deb
+cmake --build build --target package
+debs=(build/holoray_*_amd64.deb)
+((${#debs[@]} == 1)) || { echo "package_check: expected one build/holoray_*_amd64.deb, found ${debs[*]}" >&2; exit 1; }
+
+tmp=$(mktemp -d)
+cleanup() {
+  cd /
+  rm -rf "$tmp"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get purge -y -qq holoray >/dev/null || true
+}
+trap cleanup EXIT
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "./${debs[0]}"
+
+cd "$tmp"
+export PATH=/usr/sbin:/usr/bin:/sbin:/bin
+[ "$(command -v holoray)" = /usr/bin/holoray ] || { echo "package_check: holoray is not /usr/bin/holoray" >&2; exit 1; }
+holoray --version
+holoray --version | head -1 | grep -Eq '^holoray [0-9]+\.[0-9]+\.[0-9]+ \(git ' || { echo "package_check: bad --version" >&2; exit 1; }
+examples=/usr/share/holoray/examples
+holoray render "$examples/primitives.nff" --lenses 16x16 --pixels-per-lens 4 -o t.png -q
+[ -s t.png ] || { echo "package_check: render wrote no t.png" >&2; exit 1; }
+holoray animate "$examples/shots/swinging_box.toml" -o frames --video s.mkv -q
+[ -s s.mkv ] || { echo "package_check: animate --video wrote no s.mkv" >&2; exit 1; }
+if command -v man >/dev/null; then
+  man -w holoray
+else
+  ls /usr/share/man/man1/holoray.1*
+fi
+completion=/usr/share/bash-completion/completions/holoray
+[ -f "$completion" ] || { echo "package_check: no $completion" >&2; exit 1; }
+got=$(bash -c ". $completion; COMP_WORDS=(holoray render --pix); COMP_CWORD=2; _holoray; echo \"\${COMPREPLY[*]}\"")
+[ "$got" = --pixels-per-lens ] || { echo "package_check: completion of 'holoray render --pix' gave '$got'" >&2; exit 1; }
+echo "package_check: ${debs[0]} installs, runs from /usr and has its man page and completion"

@@ -1,0 +1,37 @@
+// holoray/cli: the camera options `render` and `animate` share (--camera,
+// --resolution, --display, --looking-glass, --views), declared once with
+// their CLI11 checks, and the one place that turns them into the
+// FrameCameraDesc both commands render through (render/frame_camera.hpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "display/looking_glass.hpp"
+#include "render/frame_camera.hpp"
+
+namespace holoray::cli {
+
+/// The shared camera options as typed.
+struct CameraOptions {
+  std::string camera = "integral";  ///< --camera integral|pinhole
+  std::string resolution;           ///< --resolution WxH (pinhole; render's --quilt: one view)
+  std::string display;              ///< --display FILE (display-files.md)
+  std::string looking_glass;        ///< --looking-glass CAL.json
+  int looking_glass_views = kDefaultLookingGlassViews;  ///< --views N
+};
+
+/// Registers the options on `cmd`; `what` words the help for a still
+/// ("the image") or a shot ("each frame"). Returns --display and
+/// --looking-glass, for the command's own `excludes`.
+std::array<CLI::Option*, 2> add_camera_options(CLI::App& cmd, CameraOptions& o, const std::string& what);
+
+/// The camera the options name, its display or calibration file read.
+/// `quilt`: render's --quilt CxR was given (it takes --resolution as one
+/// view's size); `still`: render's (else animate's) wording. The rules
+/// CLI11 cannot say, for a value of --camera, throw std::invalid_argument:
+/// a panel or a quilt goes without `--camera pinhole`; --resolution goes
+/// with the pinhole camera or a quilt.
+FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still);
+
+}  // namespace holoray::cli

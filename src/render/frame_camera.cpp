@@ -1,0 +1,99 @@
+#include "render/frame_camera.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "display/display_placement.hpp"
+#include "render/display_renderer.hpp"
+#include "render/view_renderer.hpp"
+
+namespace holoray {
+
+int FrameCamera::width() const {
+  if (array) return array->width();
+  if (view) return view->width();
+  if (quilt) return quilt->width();
+  if (panel) return panel->geometry().width;
+  return glass->calibration().width;
+}
+
+int FrameCamera::height() const {
+  if (array) return array->height();
+  if (view) return view->height();
+  if (quilt) return quilt->height();
+  if (panel) return panel->height();
+  return glass->height();
+}
+
+int FrameCamera::panel_samples_per_row() const {
+  if (panel) return panel->width();
+  if (glass) return glass->width();
+  return 0;
+}
+
+std::optional<double> FrameCamera::pixel_angle() const {
+  if (array) return holoray::pixel_angle(array->desc());
+  if (view) return holoray::pixel_angle(view->desc());
+  return std::nullopt;
+}
+
+FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<Viewpoint>& viewpoint,
+                              const std::string& scene) {
+  using Kind = FrameCameraDesc::Kind;
+  auto need_viewpoint = [&](const char* option, const char* what) -> const Viewpoint& {
+    if (!viewpoint) throw std::invalid_argument(fmt::format("{}: '{}' has no viewpoint (NFF 'v'){}", option, scene, what));
+    return *viewpoint;
+  };
+  FrameCamera c;
+  switch (d.kind) {
+    case Kind::looking_glass: {
+      const Viewpoint& vp = need_viewpoint("--looking-glass", " to centre the views on");
+      const LookingGlassCalibration& cal = *d.calibration;
+      c.glass.emplace(cal, view_of(vp, cal.width, cal.height), d.looking_glass_views);
+      break;
+    }
+    case Kind::quilt: {
+      const Viewpoint& vp = need_viewpoint("--quilt", " to centre the views on");
+      const PinholeDesc centre = view_of(vp, d.quilt.view_width, d.quilt.view_height);
+      if (d.quilt_view >= 0) c.view.emplace(quilt_view(d.quilt, centre, d.quilt_view));
+      else c.quilt.emplace(d.quilt, centre);
+      break;
+    }
+    case Kind::pinhole: {
+      const Viewpoint& vp = need_viewpoint("--camera pinhole", "");
+      const int w = d.width > 0 ? d.width : vp.xres > 0 ? vp.xres : 512;
+      const int h = d.width > 0 ? d.height : vp.yres > 0 ? vp.yres : 512;
+      PinholeDesc pd = view_of(vp, w, h);
+      if (d.tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
+      c.view.emplace(pd);
+      break;
+    }
+    case Kind::display: {
+      std::optional<Frame> frame;
+      const ArraySettings& s = d.array;
+      if (s.origin || s.normal || s.up) {
+        if (!(s.origin && s.normal && s.up))
+          throw std::invalid_argument("explicit placement needs all of --origin, --normal and --up");
+        frame = Frame::from_normal_up(*s.origin, *s.normal, *s.up);
+      }
+      if (auto eia = as_lens_array(*d.display, viewpoint, frame)) c.array.emplace(*eia);
+      else c.panel.emplace(place_display(*d.display, viewpoint, frame));
+      c.red_first = d.display->subpixels != SubpixelOrder::bgr;
+      break;
+    }
+    case Kind::integral: c.array.emplace(place_array(d.array, viewpoint)); break;
+  }
+  return c;
+}
+
+FrameBuffers render_through(const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options,
+                            RenderStats& stats) {
+  if (camera.glass) return render_looking_glass(scene, *camera.glass, options, stats);
+  if (camera.view) return render_view(scene, *camera.view, options, stats);
+  if (camera.quilt) return render_quilt(scene, *camera.quilt, options, stats);
+  if (camera.panel) return render_display(scene, *camera.panel, camera.red_first, options, stats);
+  return render_frame(scene, *camera.array, options, stats);
+}
+
+}  // namespace holoray

@@ -1,0 +1,77 @@
+// holoray/render: the camera an image is rendered through, chosen once.
+//
+// `render` and `animate` both pick among the integral camera (the EIA,
+// camera-model.md), a pinhole view, a Looking Glass quilt (or one of its
+// views), a physical display's panel and a Looking Glass's native panel.
+// FrameCameraDesc is that choice as plain data, validated by the command
+// line; make_frame_camera() places it by a viewpoint (a still's, or each
+// frame's); render_through() traces it.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "camera/lens_array.hpp"
+#include "camera/pinhole.hpp"
+#include "camera/placement.hpp"
+#include "camera/quilt_camera.hpp"
+#include "camera/display_camera.hpp"
+#include "display/display_file.hpp"
+#include "display/looking_glass.hpp"
+#include "render/renderer.hpp"
+
+namespace holoray {
+
+/// What an image is rendered as, before any viewpoint places it.
+struct FrameCameraDesc {
+  enum class Kind { integral, pinhole, quilt, display, looking_glass };
+  Kind kind = Kind::integral;
+  /// integral: the lens array; its origin, normal and up (when set) also
+  /// place a display's panel explicitly.
+  ArraySettings array;
+  /// pinhole: the view's size in pixels; 0 takes the viewpoint's
+  /// resolution, else 512x512.
+  int width = 0, height = 0;
+  bool tachyon_samples = false;  ///< pinhole: one sample at each pixel's upper-right corner, where Tachyon samples
+  QuiltDesc quilt;               ///< quilt: its layout, cone and one view's size
+  int quilt_view = -1;           ///< quilt: >= 0 renders that view alone, as a pinhole view
+  std::optional<DisplayDesc> display;                  ///< display
+  std::optional<LookingGlassCalibration> calibration;  ///< looking_glass
+  int looking_glass_views = kDefaultLookingGlassViews; ///< looking_glass: the quilt it is the continuous version of
+};
+
+/// A FrameCameraDesc placed: exactly one camera is set. A display whose
+/// lenses are whole pixels is its integral camera (as_lens_array), so it
+/// renders with every integral-camera feature.
+struct FrameCamera {
+  std::optional<LensArray> array;
+  std::optional<PinholeCamera> view;  ///< a pinhole view, or one quilt view
+  std::optional<QuiltCamera> quilt;
+  std::optional<DisplayCamera> panel;
+  std::optional<LookingGlassCamera> glass;
+  bool red_first = true;  ///< panel: subpixel order RGB (else BGR)
+
+  /// The image's size in pixels (a panel's pixels, not its subpixels).
+  int width() const;
+  int height() const;
+  /// Samples a panel traces per row before packing them into its pixels
+  /// (three per pixel with subpixels); 0 for the other cameras, whose
+  /// samples are their pixels.
+  int panel_samples_per_row() const;
+  /// The angle one pixel subtends (radians), for mesh textures' MIP levels
+  /// (RenderScene::set_pixel_footprint); nullopt where the finest level is read.
+  std::optional<double> pixel_angle() const;
+};
+
+/// `d` placed by `viewpoint` (the scene file's, or a frame's). Throws
+/// std::invalid_argument naming the option and `scene` when the camera
+/// needs a viewpoint and there is none, and as the placements do.
+FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<Viewpoint>& viewpoint,
+                              const std::string& scene);
+
+/// The image (or the rows options.rows names) through `camera`, by the
+/// renderer of its kind.
+FrameBuffers render_through(const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options,
+                            RenderStats& stats);
+
+}  // namespace holoray
