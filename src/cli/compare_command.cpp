@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "cli/validators.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 
@@ -13,6 +14,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("compare", "Compare two images: MSE, RMSE and PSNR on the 8-bit scale");
   cmd->add_option("a", o.a, "First image (PNG, EXR, ...)")->required();
   cmd->add_option("b", o.b, "Second image, same size")->required();
+  lay_out_help(*cmd, {},
+               {"holoray compare frames/frame_0005.png reference/frame_0005.png",
+                "holoray compare a.exr b.exr"},
+               "docs/guide/animation.md");
   return cmd;
 }
 

@@ -8,6 +8,7 @@
 
 #include "camera/quilt_camera.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/validators.hpp"
 #include "display/looking_glass.hpp"
 #include "image/image_io.hpp"
 
@@ -21,6 +22,10 @@ CLI::App* add_interlace_command(CLI::App& app, InterlaceCommandOptions& o) {
   cmd->add_option("--quilt", o.quilt, "Columns x rows of the quilt (default: read from the file's _qsCxR name)");
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb (the quilt's values are passed on as they are)")->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  lay_out_help(*cmd, {},
+               {"holoray render examples/primitives.nff --quilt 8x6 -o quilt.png",
+                "holoray interlace quilt_qs8x6a0.75.png --looking-glass visual.json -o native.png"},
+               "docs/guide/displays.md");
   return cmd;
 }
 

@@ -4,6 +4,7 @@
 
 #include "camera/subaperture.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/validators.hpp"
 #include "display/display_file.hpp"
 #include "image/image_io.hpp"
 #include "preview/simulate.hpp"
@@ -21,6 +22,10 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateCommandOptions& o) {
   cmd->add_option("--width", o.width, "Output width in pixels (the height keeps the panel's aspect)")->capture_default_str();
   cmd->add_option("--samples", o.samples, "Samples per output pixel along each axis, averaged as the eye integrates")->capture_default_str();
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear or srgb")->capture_default_str();
+  lay_out_help(*cmd, {},
+               {"holoray simulate panel.png --display examples/displays/lenticular_4k.toml --eye -40,0,600 -o left.png",
+                "holoray simulate panel.png --display examples/displays/lenticular_4k.toml --eye 40,0,600 -o right.png"},
+               "docs/guide/displays.md");
   return cmd;
 }
 
@@ -32,6 +37,10 @@ CLI::App* add_views_command(CLI::App& app, ViewsCommandOptions& o) {
   cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->capture_default_str();
   cmd->add_option("--fps", o.fps, "With .gif: frames per second")->capture_default_str();
   cmd->add_option("--encoding", o.encoding, "8-bit encoding: linear or srgb")->capture_default_str();
+  lay_out_help(*cmd, {},
+               {"holoray views eia.png --pixels-per-lens 8 -o views.gif",
+                "holoray views eia.png --pixels-per-lens 8 -o views.png"},
+               "docs/guide/displays.md");
   return cmd;
 }
 

@@ -166,95 +166,167 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   return cmd;
 }
 
+namespace {
+
+using Kind = FrameCameraDesc::Kind;
+
+// The camera the options name, with the rules between options that CLI11
+// cannot say (each value it checked already).
+FrameCameraDesc camera_choice_of(const RenderCommandOptions& o) {
+  FrameCameraDesc c = camera_desc(o.view, !o.quilt.empty(), true);
+  c.array = resolve_settings(o);
+  if (c.kind == Kind::quilt) {
+    QuiltDesc& q = c.quilt;
+    parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
+    q.view_cone_deg = o.view_cone;
+    if (c.width > 0) q.view_width = c.width, q.view_height = c.height;
+    if (o.quilt_view >= q.columns * q.rows)
+      throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", q.columns, q.rows,
+                                              q.columns * q.rows - 1, o.quilt_view));
+    c.quilt_view = o.quilt_view;
+  }
+  c.tachyon_samples = o.sample_at == "tachyon";
+  if (c.tachyon_samples && (c.kind != Kind::pinhole || o.spp != 1))
+    throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
+  // The cache's cells are sized in lens pitches (a display whose lenses are
+  // whole pixels has them too: checked again once the camera is placed).
+  if (cache_enabled(o.cache) && c.kind != Kind::integral && c.kind != Kind::display)
+    throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
+  return c;
+}
+
+// Refuses, before anything is allocated, an image whose buffers would not
+// fit in 80% of memory: the frame and its AOVs, the 8-bit or float copy
+// made on output, and a panel's samples (three per pixel with subpixels).
+// Under mpirun a rank holds only its own `bands`, rank 0 one band more
+// (cluster/band_exchange.hpp), each copied once as it is written.
+void refuse_if_too_large(const FrameCamera& camera, const AovSet& aovs, const cluster::World& world,
+                         const std::vector<RowBand>& bands) {
+  const int width = camera.width(), height = camera.height();
+  const int64_t pixels = static_cast<int64_t>(width) * height;
+  int64_t samples = static_cast<int64_t>(camera.panel_samples_per_row()) * height;
+  int64_t held = pixels, copied = pixels;
+  if (world.distributed()) {
+    int64_t own = 0, largest = 0;
+    for (const RowBand& b : bands) {
+      largest = std::max<int64_t>(largest, b.y1 - b.y0);
+      if (b.rank == world.rank()) own += b.y1 - b.y0;
+    }
+    held = (own + (world.rank() == 0 ? largest : 0)) * width;
+    copied = largest * width;
+    samples = samples / height * (held / width);
+  }
+  const uint64_t need = frame_bytes(held, aovs) + static_cast<uint64_t>(copied) * 12 + frame_bytes(samples, aovs);
+  const uint64_t have = physical_memory_bytes();
+  if (have && need > have / 10 * 8)
+    throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers{}, more than 80% of this machine's {:.2f} GiB",
+                                        width, height, need / 1073741824.0,
+                                        held < pixels ? fmt::format(" on rank {} of {}", world.rank(), world.size()) : "",
+                                        have / 1073741824.0));
+}
+
+// What happened, for the printed summary.
+struct RenderRun {
+  double parse_s = 0, build_s = 0, write_s = 0, gather_s = 0, band_bytes = 0;
+  std::string output;
+  TraceStyle style = TraceStyle::packet;
+  RenderStats stats;
+};
+
+// The summary `render` prints: the scene, the camera, the times and rays.
+void print_summary(const RenderCommandOptions& o, const SceneDesc& desc, const RenderScene& scene,
+                   const FrameCameraDesc& choice, const FrameCamera& camera, const ShadowCache* cache,
+                   const RenderRun& run, const cluster::World& world) {
+  const int width = camera.width(), height = camera.height();
+  const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
+  fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
+             scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
+  if (camera.glass) {
+    fmt::print("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
+               width, height, o.view.looking_glass, camera.glass->calibration().view_cone_deg);
+  } else if (camera.quilt) {
+    const QuiltDesc& q = camera.quilt->desc();
+    fmt::print("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
+               width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
+  } else if (choice.kind == Kind::quilt) {
+    const QuiltDesc& q = choice.quilt;
+    fmt::print("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, o.quilt_view, q.columns,
+               q.rows, q.view_cone_deg);
+  } else if (choice.kind == Kind::pinhole) {
+    fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
+               camera.view->desc().fov_deg);
+  } else if (camera.panel) {
+    const DisplayDesc& d = *choice.display;
+    const DisplayGeometry& g = camera.panel->geometry();
+    fmt::print("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
+               d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
+               d.samples_per_pixel() == 1 ? "one line" : "three lines", to_string(d.grid),
+               d.slant_deg != 0 ? fmt::format(" slanted {:.4g} deg", d.slant_deg) : "", to_string(d.mode));
+    fmt::print("lenses     pitch {:.6g} mm ({:.6g} px across a row), gap {:.6g} mm; {:.6g} scene units per mm\n",
+               d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
+  } else {
+    if (choice.display) fmt::print("display    {}: whole pixels per lens, rendered as the EIA below\n", o.view.display);
+    const LensArray& a = *camera.array;
+    const LensArrayDesc& d = a.desc();
+    fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid),
+               a.lens_count_x(), a.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
+    fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, a.lens_fov_deg());
+  }
+  fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", run.parse_s + run.build_s, run.parse_s, run.build_s);
+  fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", run.stats.trace_seconds, o.spp,
+             o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), to_string(run.style),
+             world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
+                                               world.size(), run.gather_s, run.band_bytes / 1048576.0)
+                                 : "");
+  const RayCounts& r = run.stats.rays;
+  fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
+             r.reflected, r.refracted, r.total(), run.stats.trace_seconds > 0 ? r.total() / run.stats.trace_seconds / 1e6 : 0.0);
+  if (cache) fmt::print("{}", cache_summary(*cache, r, o.cache));
+  fmt::print("wrote      {} ({:.3f} s{})\n", run.output, world.distributed() ? run.gather_s : run.write_s,
+             world.distributed() ? ", gathering the bands" : "");
+}
+
+}  // namespace
+
 int run_render(const RenderCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
-    // CLI11 checked each value; what it cannot say is checked here, before
-    // the scene is read.
+    // Everything the user typed is checked before the scene is read.
     const Encoding encoding = parse_encoding(o.encoding, o.scene);
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const std::optional<TraceStyle> style = parse_style(o.style);
-    FrameCameraDesc camera_choice = camera_desc(o.view, !o.quilt.empty(), true);
-    camera_choice.array = resolve_settings(o);
-    using Kind = FrameCameraDesc::Kind;
-    const bool pinhole = camera_choice.kind == Kind::pinhole;
-    if (camera_choice.kind == Kind::quilt) {
-      QuiltDesc& q = camera_choice.quilt;
-      parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
-      q.view_cone_deg = o.view_cone;
-      if (camera_choice.width > 0) q.view_width = camera_choice.width, q.view_height = camera_choice.height;
-      if (o.quilt_view >= q.columns * q.rows)
-        throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", q.columns, q.rows,
-                                                q.columns * q.rows - 1, o.quilt_view));
-      camera_choice.quilt_view = o.quilt_view;
-    }
-    camera_choice.tachyon_samples = o.sample_at == "tachyon";
-    if (camera_choice.tachyon_samples && (!pinhole || o.spp != 1))
-      throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
-    // The cache's cells are sized in lens pitches (a display whose lenses
-    // are whole pixels has them too: checked once the camera is placed).
-    const bool cache_on = cache_enabled(o.cache);
-    if (cache_on && camera_choice.kind != Kind::integral && camera_choice.kind != Kind::display)
-      throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-
+    const FrameCameraDesc choice = camera_choice_of(o);
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
+    RenderRun run;
     const auto t_parse = Clock::now();
     const SceneDesc desc = read_scene_file(o.scene);
-    const double parse_s = seconds_since(t_parse);
+    run.parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(desc);
 
-    const FrameCamera camera = make_frame_camera(camera_choice, desc.viewpoint, o.scene);
-    const std::optional<LensArray>& array = camera.array;
-    const std::optional<PinholeCamera>& view = camera.view;
-    const std::optional<QuiltCamera>& quilt = camera.quilt;
-    const std::optional<DisplayCamera>& panel = camera.panel;
-    const std::optional<LookingGlassCamera>& glass = camera.glass;
-    if ((panel || glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
+    const FrameCamera camera = make_frame_camera(choice, desc.viewpoint, o.scene);
+    if ((camera.panel || camera.glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
       throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
-    if (!array && cache_on)
+    if (!camera.array && cache_enabled(o.cache))
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
     const int width = camera.width(), height = camera.height();
-    const int64_t pixels = static_cast<int64_t>(width) * height;
-    // Refuse before allocating: buffers plus the 8-bit or float copy made on
-    // output (and a panel's samples, three per pixel with subpixels).
-    // Under mpirun a rank holds only its own bands, rank 0 one band more
-    // (cluster/band_exchange.hpp), each copied once as it is written.
-    // Bands are whole lens rows of an EIA, else rows of 32 (the line
-    // renderers' tile); the image never depends on them.
+    // Under mpirun: bands of whole lens rows of an EIA, else rows of 32 (the
+    // line renderers' tile); the image never depends on them.
     const std::vector<RowBand> bands =
-        world.distributed() ? row_bands(height, array ? array->desc().pixels_per_lens : 32, world.size())
+        world.distributed() ? row_bands(height, camera.array ? camera.array->desc().pixels_per_lens : 32, world.size())
                             : std::vector<RowBand>{};
-    int64_t samples = static_cast<int64_t>(camera.panel_samples_per_row()) * height;
-    int64_t held = pixels, copied = pixels;
-    if (world.distributed()) {
-      int64_t own = 0, largest = 0;
-      for (const RowBand& b : bands) {
-        largest = std::max<int64_t>(largest, b.y1 - b.y0);
-        if (b.rank == world.rank()) own += b.y1 - b.y0;
-      }
-      held = (own + (world.rank() == 0 ? largest : 0)) * width;
-      copied = largest * width;
-      samples = samples / height * (held / width);
-    }
-    const uint64_t need = frame_bytes(held, aovs) + static_cast<uint64_t>(copied) * 12 + frame_bytes(samples, aovs);
-    const uint64_t have = physical_memory_bytes();
-    if (have && need > have / 10 * 8)
-      throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers{}, more than 80% of this machine's {:.2f} GiB",
-                                          width, height, need / 1073741824.0,
-                                          held < pixels ? fmt::format(" on rank {} of {}", world.rank(), world.size()) : "",
-                                          have / 1073741824.0));
+    refuse_if_too_large(camera, aovs, world, bands);
 
     const auto t_build = Clock::now();
     RenderScene scene(desc);
     if (o.max_depth != 0) scene.set_max_depth(o.max_depth);
     // Mesh textures take the MIP level of what one pixel sees.
     if (const auto angle = camera.pixel_angle()) scene.set_pixel_footprint(0, *angle);
-    const std::unique_ptr<ShadowCache> cache = array ? make_cache(scene, array->desc().pitch, o.cache) : nullptr;
+    const std::unique_ptr<ShadowCache> cache = camera.array ? make_cache(scene, camera.array->desc().pitch, o.cache) : nullptr;
     scene.set_shadow_cache(cache.get());
-    const double build_s = seconds_since(t_build);
+    run.build_s = seconds_since(t_build);
 
     if (!world.agree(true, "")) return 1;
     rendering = true;
@@ -265,7 +337,8 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.spp = o.spp;
     ropt.threads = o.threads;
     ropt.aovs = aovs;
-    ropt.style = style ? *style : array ? preferred_style(array->desc()) : TraceStyle::packet;
+    ropt.style = style ? *style : camera.array ? preferred_style(camera.array->desc()) : TraceStyle::packet;
+    run.style = ropt.style;
     if (tty)
       ropt.progress = [&](double f) {
         std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -275,18 +348,14 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
         std::fprintf(stderr, "\rtracing %3d%%", pct);
         std::fflush(stderr);
       };
-    RenderStats stats;
-    FrameBuffers fb;
     // The whole image, or one band of its rows.
     auto render_rows = [&](std::optional<std::array<int, 2>> rows, RenderStats& st) {
       RenderOptions ro = ropt;
       ro.rows = rows;
       return render_through(scene, camera, ro, st);
     };
-    if (!world.distributed()) fb = render_rows(std::nullopt, stats);
     // A quilt's name tells Looking Glass tools its layout.
-    const std::string output = quilt ? quilt_file_name(o.output, quilt->desc()) : o.output;
-    double gather_s = 0, band_bytes = 0, write_s = 0;
+    run.output = camera.quilt ? quilt_file_name(o.output, camera.quilt->desc()) : o.output;
     if (world.distributed()) {
       // Bands of rows dealt round robin (cluster/row_bands.hpp); each rank
       // traces its own, rank 0 writes them to the files in order as they
@@ -297,78 +366,32 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       for (const RowBand& b : bands) {
         if (b.rank != world.rank()) continue;
         mine.push_back(render_rows(std::array<int, 2>{b.y0, b.y1}, band_stats));
-        stats.rays += band_stats.rays;
+        run.stats.rays += band_stats.rays;
       }
       const auto t_gather = Clock::now();
       std::optional<FrameFiles> files;
-      if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding);
+      if (world.rank() == 0) files.emplace(run.output, width, height, aovs, encoding);
       cluster::stream_bands(world, bands, mine, width, aovs, [&](const RowBand&, const FrameBuffers& b) { files->write(b); },
-                            band_bytes);
+                            run.band_bytes);
       if (files) files->finish();
-      gather_s = seconds_since(t_gather);
-      stats.trace_seconds = seconds_since(t_trace);
-      for (uint64_t* n : {&stats.rays.eye, &stats.rays.shadow, &stats.rays.reflected, &stats.rays.refracted,
-                          &stats.rays.shadow_cached, &stats.rays.cache_samples})
+      run.gather_s = seconds_since(t_gather);
+      run.stats.trace_seconds = seconds_since(t_trace);
+      RayCounts& r = run.stats.rays;
+      for (uint64_t* n : {&r.eye, &r.shadow, &r.reflected, &r.refracted, &r.shadow_cached, &r.cache_samples})
         *n = static_cast<uint64_t>(world.sum(static_cast<int64_t>(*n)));
-      band_bytes = world.sum(band_bytes);
+      run.band_bytes = world.sum(run.band_bytes);
       if (world.rank() != 0) return 0;
       if (tty) std::fprintf(stderr, "\r             \r");
     } else {
+      const FrameBuffers fb = render_rows(std::nullopt, run.stats);
       if (tty) std::fprintf(stderr, "\r             \r");
       const auto t_write = Clock::now();
-      FrameFiles files(output, width, height, aovs, encoding);
+      FrameFiles files(run.output, width, height, aovs, encoding);
       files.write(fb);
       files.finish();
-      write_s = seconds_since(t_write);
+      run.write_s = seconds_since(t_write);
     }
-
-    if (!o.quiet) {
-      const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
-      fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
-                 scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
-      if (glass) {
-        fmt::print("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
-                   width, height, o.view.looking_glass, glass->calibration().view_cone_deg);
-      } else if (quilt) {
-        const QuiltDesc& q = quilt->desc();
-        fmt::print("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
-                   width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
-      } else if (camera_choice.kind == Kind::quilt) {
-        const QuiltDesc& q = camera_choice.quilt;
-        fmt::print("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, o.quilt_view,
-                   q.columns, q.rows, q.view_cone_deg);
-      } else if (pinhole) {
-        fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
-                   view->desc().fov_deg);
-      } else if (panel) {
-        const DisplayDesc& d = *camera_choice.display;
-        const DisplayGeometry& g = panel->geometry();
-        fmt::print("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
-                   d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
-                   d.samples_per_pixel() == 1 ? "one line" : "three lines", to_string(d.grid),
-                   d.slant_deg != 0 ? fmt::format(" slanted {:.4g} deg", d.slant_deg) : "", to_string(d.mode));
-        fmt::print("lenses     pitch {:.6g} mm ({:.6g} px across a row), gap {:.6g} mm; {:.6g} scene units per mm\n",
-                   d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
-      } else {
-        if (camera_choice.display) fmt::print("display    {}: whole pixels per lens, rendered as the EIA below\n", o.view.display);
-        const LensArrayDesc& d = array->desc();
-        fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid),
-                   array->lens_count_x(), array->lens_count_y(), d.pixels_per_lens, to_string(d.mode));
-        fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, array->lens_fov_deg());
-      }
-      fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + build_s, parse_s, build_s);
-      fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", stats.trace_seconds, o.spp,
-                 o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), to_string(ropt.style),
-                 world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
-                                                   world.size(), gather_s, band_bytes / 1048576.0)
-                                     : "");
-      const RayCounts& r = stats.rays;
-      fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
-                 r.reflected, r.refracted, r.total(), stats.trace_seconds > 0 ? r.total() / stats.trace_seconds / 1e6 : 0.0);
-      if (cache) fmt::print("{}", cache_summary(*cache, r, o.cache));
-      fmt::print("wrote      {} ({:.3f} s{})\n", output, world.distributed() ? gather_s : write_s,
-                 world.distributed() ? ", gathering the bands" : "");
-    }
+    if (!o.quiet) print_summary(o, desc, scene, choice, camera, cache.get(), run, world);
     return 0;
   } catch (const ParseError& e) {
     return world.fail(e.what(), rendering);

@@ -6,6 +6,7 @@
 
 #include "camera/subaperture.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/validators.hpp"
 #include "image/image_io.hpp"
 
 namespace holoray::cli {
@@ -19,6 +20,10 @@ CLI::App* add_subaperture_command(CLI::App& app, SubapertureCommandOptions& o) {
   cmd->add_option("--u", o.u, "Column within the elemental image, 0..P-1 (default P/2)");
   cmd->add_option("--v", o.v, "Row within the elemental image, 0..P-1 (default P/2)");
   cmd->add_option("--encoding", o.encoding, "PNG encoding of the output: linear or srgb")->capture_default_str();
+  lay_out_help(*cmd, {},
+               {"holoray subaperture eia.png --pixels-per-lens 8 -o centre.png",
+                "holoray subaperture eia.png --pixels-per-lens 8 --u 0 --v 4 -o leftmost.png"},
+               "docs/guide/stills.md");
   return cmd;
 }
 
