@@ -130,7 +130,7 @@ TEST(BumpMaps, ABumpRampAndItsNormalMapTiltTheLightAsTheSlopeSays) {
 // MTL's highlight adds Ks (N.H)^Ns times the light's intensity, H halfway
 // between the directions to the eye and to the light at the hit. map_Ks
 // scales it by its texel: none on its black right quarter. Without
-// `illum 2` there is no highlight.
+// `illum 2`, or with Ns below 1, there is no highlight.
 TEST(MtlHighlights, KsAddsTheBlinnPhongHighlightWhereMapKsAllowsIt) {
   test::TempDir dir;
   ImageBuffer spec(8, 8, 3);
@@ -159,6 +159,9 @@ TEST(MtlHighlights, KsAddsTheBlinnPhongHighlightWhereMapKsAllowsIt) {
   EXPECT_GT(highlight(shiny, 31, 0), 0.01);
   EXPECT_NEAR(highlight(mapped, 31, 0), 0, 1e-6);
   EXPECT_EQ(dull.desc.materials.back().model, ShadingModel::nff) << "no illum: no highlight";
+  // Ns 0 (an exporter's "no gloss"): no highlight, not Ks added everywhere.
+  const LitQuad flat = lit_quad(dir, "flat", "newmtl shiny\nKd 0.5 0.5 0.5\nKs 0.4 0.2 0.1\nNs 0\nillum 2\n", eye);
+  EXPECT_EQ(flat.colour.data, dull.colour.data);
 }
 
 }  // namespace

@@ -233,17 +233,20 @@ class MeshReader {
   // MTL's illumination model 2 and up (assimp's Phong or Blinn shading
   // model; `illum` 0 and 1, and no `illum`, have no highlight): Ks (N.H)^Ns
   // per light, times map_Ks's first channel. Other formats' Phong materials
-  // (a specular colour) alike.
+  // (a specular colour) alike. An exponent below 1 gives none: (N.H)^Ns
+  // would light the whole hemisphere nearly evenly, adding Ks to every lit
+  // point, and exporters write Ns 0 for "no gloss" (3ds Max; Blender for
+  // roughness 1, which it reads back as a faint, fully rough lobe).
   void read_highlight(const aiMaterial& m, Material& mat, int& uv_set) {
     int model = 0;
     aiColor3D ks;
     const bool phong = m.Get(AI_MATKEY_SHADING_MODEL, model) == AI_SUCCESS &&
                        (model == aiShadingMode_Phong || model == aiShadingMode_Blinn);
     const Vec3 specular = m.Get(AI_MATKEY_COLOR_SPECULAR, ks) == AI_SUCCESS ? to_vec(ks) : Vec3{};
-    if (!phong || !is_finite(specular) || !(specular.x > 0 || specular.y > 0 || specular.z > 0)) {
+    if (!phong || !is_finite(specular) || !(specular.x > 0 || specular.y > 0 || specular.z > 0) || !(mat.shine >= 1)) {
       if (m.GetTextureCount(aiTextureType_SPECULAR) > 0)
         warn(fmt::format("material '{}': its map_Ks is not applied: the material has no highlight (it needs a "
-                         "non-zero Ks and illum 2 or more)",
+                         "non-zero Ks, Ns of 1 or more and illum 2 or more)",
                          m.GetName().C_Str()));
       return;
     }
