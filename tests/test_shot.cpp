@@ -215,8 +215,8 @@ translate = [0, 0, 0.3]
   }
   // An unknown method is refused with the choices.
   const auto bad = run_cli("animate " + shot + " -o " + dir.file("c") + " --method fast");
-  EXPECT_EQ(bad.status, 1);
-  EXPECT_NE(bad.output.find("--method: expected one of full, reproject, reverse, got 'fast'"), std::string::npos) << bad.output;
+  EXPECT_EQ(bad.status, 2) << "a usage error";
+  EXPECT_NE(bad.output.find("holoray: error: --method: expected reverse, reproject or full, got 'fast'"), std::string::npos) << bad.output;
 }
 
 TEST(CompareCli, PsnrFollowsThePapersDefinition) {

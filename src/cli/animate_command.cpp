@@ -61,6 +61,17 @@ void remove_stale_temporaries(const std::string& dir, int first, int last) {
   }
 }
 
+// --keyframe-interval K: a whole number of frames, at least 1 ("auto" is
+// handled by the caller).
+int keyframe_interval_of(const std::string& k) {
+  int interval = 0;
+  const auto [end, err] = std::from_chars(k.data(), k.data() + k.size(), interval);
+  if (k != "auto" && (err != std::errc() || end != k.data() + k.size() || interval < 1))
+    throw std::invalid_argument(
+        fmt::format("--keyframe-interval: must be a whole number of frames, at least 1, or auto; got '{}'", k));
+  return interval;
+}
+
 // "A:B" (inclusive) or "N" for --frames; -1 ends mean "not given".
 void parse_frame_range(const std::string& text, int& first, int& last) {
   const auto colon = text.find(':');
@@ -80,13 +91,15 @@ void parse_frame_range(const std::string& text, int& first, int& last) {
 
 CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("animate", "Render an animated shot (TOML) as numbered EIA frames");
-  cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required();
+  cmd->add_option("shot", o.shot, "Shot file (TOML, docs/shot-format.md)")->required()->check(existing_file());
   cmd->add_option("-o,--output", o.output, "Output folder (created if missing)")->required();
-  cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot; the default), reproject (keyframes + the paper's forward reprojection) or full (trace every frame; the default and only choice with --camera pinhole)");
+  cmd->add_option("--method", o.method, "reverse (keyframes + every eye ray traced, shading reused: faster than full on every bench shot; the default), reproject (keyframes + the paper's forward reprojection) or full (trace every frame; the default and only choice with --camera pinhole)")
+      ->check(one_of({"reverse", "reproject", "full"}));
   add_camera_options(*cmd, o.view, "each frame (placed by the frame's viewpoint, traced in full)");
   cmd->add_option("--keyframe-interval", o.keyframe_interval,
                   "K: trace every K-th frame and the last; auto: place keyframes by how far point images move "
                   "(--keyframe-motion), sparse where nothing moves, dense where it moves fast")
+      ->check(parsed_by([](const std::string& k) { keyframe_interval_of(k); }, "K|auto"))
       ->capture_default_str();
   cmd->add_option("--keyframe-motion", o.keyframe_motion,
                   "With --keyframe-interval auto: the most pixels a point image may move between a frame and its "
@@ -94,23 +107,35 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
       ->capture_default_str();
   cmd->add_option("--max-keyframe-interval", o.max_keyframe_interval,
                   "With --keyframe-interval auto: the most frames from one keyframe to the next")
+      ->check(in_range(1))
       ->capture_default_str();
   cmd->add_option("--reuse", o.reuse,
                   "What a reprojected pixel reuses. --method reproject: geometry (default; re-shade the reused hit) or "
                   "color (the keyframe colour); --method reverse: color (default; the keyframe colour) or visibility "
                   "(light visibility and reflected light reused, local shading exact)");
-  cmd->add_option("--fill", o.fill, "Missed pixels: trace or interpolate")->capture_default_str();
-  cmd->add_option("--rebuild-above", o.rebuild_above, "With --fill interpolate: trace the holes of a frame with more than this percent of them (wider holes interpolate worse than holding a keyframe)")->capture_default_str();
-  cmd->add_option("--reach", o.reach, "near (one lens per point) or all (every lens that sees it)")->capture_default_str();
+  cmd->add_option("--fill", o.fill, "Missed pixels: trace or interpolate")->check(one_of({"trace", "interpolate"}))->capture_default_str();
+  cmd->add_option("--rebuild-above", o.rebuild_above, "With --fill interpolate: trace the holes of a frame with more than this percent of them (wider holes interpolate worse than holding a keyframe)")
+      ->check(in_range(0, 100, false, "percent"))
+      ->capture_default_str();
+  cmd->add_option("--reach", o.reach, "near (one lens per point) or all (every lens that sees it)")->check(one_of({"near", "all"}))->capture_default_str();
   cmd->add_flag("--no-leak-check", o.no_leak_check, "Keep points seen through gaps of nearer surfaces");
-  cmd->add_option("--format", o.format, "Frame format: png or exr")->capture_default_str();
-  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb when the shot's first scene file is a mesh, linear for NFF and Tachyon)")->capture_default_str();
+  cmd->add_option("--format", o.format, "Frame format")->check(one_of({"png", "exr"}))->capture_default_str();
+  cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb when the shot's first scene file is a mesh, linear for NFF and Tachyon)")
+      ->check(one_of({"auto", "linear", "srgb"}))
+      ->capture_default_str();
   cmd->add_option("--report", o.report, "Also trace every frame in full and write the quality/time tables here (.md)");
-  cmd->add_option("--frames", o.frames, "Render only frames A:B (inclusive, from 0; or one frame N) and the keyframes they need, as a render farm's task does: ranges covering the shot, run apart (even at once, into one folder), give the folder of one run");
+  cmd->add_option("--frames", o.frames, "Render only frames A:B (inclusive, from 0; or one frame N) and the keyframes they need, as a render farm's task does: ranges covering the shot, run apart (even at once, into one folder), give the folder of one run")
+      ->check(parsed_by([](const std::string& t) { int a, b; parse_frame_range(t, a, b); }, "A:B"));
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
-  cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete");
-  cmd->add_option("--crf", o.crf, "With --video .mp4: H.264 constant rate factor, 0 (best) to 51 (default 18)");
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete")
+      ->check(parsed_by([](const std::string& v) {
+        if (!is_supported_video(v))
+          throw std::invalid_argument(fmt::format("--video: '{}' is neither .mkv (FFV1, lossless) nor .mp4 (H.264)", v));
+      }, "OUT.mkv|OUT.mp4"));
+  cmd->add_option("--crf", o.crf, "With --video .mp4: H.264 constant rate factor, 0 (best) to 51 (default 18)")
+      ->check(in_range(0, 51))
+      ->needs("--video");
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(in_range(0))->capture_default_str();
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
@@ -162,33 +187,15 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
     VideoOptions vo;
     if (!o.video.empty()) {
-      if (!is_supported_video(o.video))
-        throw std::invalid_argument(fmt::format("--video: '{}' is neither .mkv (FFV1, lossless) nor .mp4 (H.264)", o.video));
       const bool h264 = !is_lossless_video(o.video);
       if (o.crf != -1 && !h264) throw std::invalid_argument("--crf: goes with an .mp4 video (FFV1 is lossless)");
-      if (o.crf != -1 && (o.crf < 0 || o.crf > 51))
-        throw std::invalid_argument(fmt::format("--crf: must be from 0 to 51, got {}", o.crf));
       if (o.crf != -1) vo.crf = o.crf;
-    } else if (o.crf != -1) {
-      throw std::invalid_argument("--crf: goes with --video");
     }
     so.encoding = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
     const bool auto_keys = o.keyframe_interval == "auto";
-    int interval = 0;
-    if (!auto_keys) {
-      const std::string& k = o.keyframe_interval;
-      const auto [end, err] = std::from_chars(k.data(), k.data() + k.size(), interval);
-      if (err != std::errc() || end != k.data() + k.size() || interval < 1)
-        throw std::invalid_argument(
-            fmt::format("--keyframe-interval: must be a whole number of frames, at least 1, or auto; got '{}'", k));
-    }
+    const int interval = auto_keys ? 0 : keyframe_interval_of(o.keyframe_interval);
     if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
       throw std::invalid_argument(fmt::format("--keyframe-motion: must be a positive number of pixels, got {}", o.keyframe_motion));
-    if (o.max_keyframe_interval < 1)
-      throw std::invalid_argument(fmt::format("--max-keyframe-interval: must be at least 1, got {}", o.max_keyframe_interval));
-    if (o.threads < 0) throw std::invalid_argument(fmt::format("--threads: must be 0 (all) or more, got {}", o.threads));
-    if (!(o.rebuild_above >= 0 && o.rebuild_above <= 100))
-      throw std::invalid_argument(fmt::format("--rebuild-above: must be a percentage from 0 to 100, got {}", o.rebuild_above));
     so.max_interpolated_share = o.rebuild_above / 100;
     if (!auto_keys) so.keyframe_interval = interval;
     so.threads = o.threads;
