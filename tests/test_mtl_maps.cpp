@@ -85,15 +85,6 @@ LitQuad lit_quad(const test::TempDir& dir, const std::string& name, const std::s
   return q;
 }
 
-// An image whose every texel is `rgb` (codes), written as PNG.
-void write_flat(const std::string& path, int w, int h, const float rgb[3]) {
-  ImageBuffer img(w, h, 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) img.at(x, y)[c] = rgb[c];
-  write_image(path, img);
-}
-
 // The quad's centre lit from L (the stand-in light's direction) at N.L =
 // L.z when flat. A height ramp rising along u tilts the normal toward -x:
 // N.L becomes (L.z - s L.x) / sqrt(1 + s^2), s the slope times -bm; a `norm`
@@ -101,14 +92,10 @@ void write_flat(const std::string& path, int w, int h, const float rgb[3]) {
 // give (L.z + s L.x) / sqrt(1 + s^2) instead.
 TEST(BumpMaps, ABumpRampAndItsNormalMapTiltTheLightAsTheSlopeSays) {
   test::TempDir dir;
-  ImageBuffer ramp(12, 12, 3);
-  for (int y = 0; y < 12; ++y)
-    for (int x = 0; x < 12; ++x)
-      for (int c = 0; c < 3; ++c) ramp.at(x, y)[c] = static_cast<float>(20 * x) / 255.0f;
-  write_image(dir.file("ramp.png"), ramp);
+  test::write_image_of(dir.file("ramp.png"), 12, 12, [](int x, int, int) { return static_cast<float>(20 * x) / 255.0f; });
   const double s = 5 * 20 / 255.0, len = std::sqrt(1 + s * s);
   const float tilted[3] = {static_cast<float>((1 - s / len) / 2), 0.5f, static_cast<float>((1 + 1 / len) / 2)};
-  write_flat(dir.file("normals.png"), 12, 12, tilted);
+  test::write_image_of(dir.file("normals.png"), 12, 12, [&](int, int, int c) { return tilted[c]; });
   const Vec3 eye{0, 0, 5};
   const LitQuad flat = lit_quad(dir, "flat", "newmtl grey\nKd 0.8 0.8 0.8\n", eye);
   const LitQuad bump = lit_quad(dir, "bump", "newmtl grey\nKd 0.8 0.8 0.8\nbump -bm 5 ramp.png\n", eye);
@@ -133,11 +120,7 @@ TEST(BumpMaps, ABumpRampAndItsNormalMapTiltTheLightAsTheSlopeSays) {
 // `illum 2`, or with Ns below 1, there is no highlight.
 TEST(MtlHighlights, KsAddsTheBlinnPhongHighlightWhereMapKsAllowsIt) {
   test::TempDir dir;
-  ImageBuffer spec(8, 8, 3);
-  for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 8; ++x)
-      for (int c = 0; c < 3; ++c) spec.at(x, y)[c] = x < 6 ? 1.0f : 0.0f;
-  write_image(dir.file("spec.png"), spec);
+  test::write_image_of(dir.file("spec.png"), 8, 8, [](int x, int, int) { return x < 6 ? 1.0f : 0.0f; });
   const Vec3 eye{0, 0, 5};
   const std::string base = "newmtl shiny\nKd 0.5 0.5 0.5\nKs 0.4 0.2 0.1\nNs 30\n";
   const LitQuad dull = lit_quad(dir, "dull", base, eye);

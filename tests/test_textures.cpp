@@ -277,11 +277,7 @@ TEST(MeshTextures, AlphaMaskCutsTheSurfaceForShadowRaysToo) {
 // and the wall on the right.
 TEST(MeshTextures, MtlMapDCutsTheSurfaceWhereTheMapIsDark) {
   test::TempDir dir;
-  ImageBuffer mask(8, 8, 3);
-  for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 8; ++x)
-      for (int c = 0; c < 3; ++c) mask.at(x, y)[c] = x < 4 ? 1.0f : 0.0f;
-  write_image(dir.file("mask.png"), mask);
+  test::write_image_of(dir.file("mask.png"), 8, 8, [](int x, int, int) { return x < 4 ? 1.0f : 0.0f; });
   test::write_text(dir.file("m.mtl"), "newmtl leaf\nKd 0.8 0.8 0.8\nmap_d mask.png\nnewmtl wall\nKd 1 0 0\n");
   test::write_text(dir.file("m.obj"),
                    "mtllib m.mtl\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -20,6 +21,7 @@
 
 #include "camera/lens_array.hpp"
 #include "camera/placement.hpp"
+#include "image/image_io.hpp"
 #include "render/renderer.hpp"
 #include "scene/scene_desc.hpp"
 
@@ -42,6 +44,17 @@ inline std::string base64(const std::vector<uint8_t>& b) {
   }
   return out;
 }
+/// A width x height RGB image whose channel c of texel (x, y) (row 0 at the
+/// top, as files store them) is texel(x, y, c), written to `path`.
+inline void write_image_of(const std::string& path, int width, int height,
+                           const std::function<float(int x, int y, int c)>& texel) {
+  ImageBuffer img(width, height, 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y)[c] = texel(x, y, c);
+  write_image(path, img);
+}
+
 inline bool have_shared_scenes() { return std::filesystem::is_directory(shared_dir() + "/scenes/nff"); }
 
 /// Two spheres on a floor under one light, with a viewpoint (NFF text), for

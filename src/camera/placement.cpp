@@ -20,6 +20,13 @@ ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& vp) {
   return out;
 }
 
+std::optional<Frame> explicit_frame(const ArraySettings& s) {
+  if (!(s.origin || s.normal || s.up)) return std::nullopt;
+  if (!(s.origin && s.normal && s.up))
+    throw std::invalid_argument("explicit placement needs all of --origin, --normal and --up");
+  return Frame::from_normal_up(*s.origin, *s.normal, *s.up);
+}
+
 LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>& vp) {
   LensArrayDesc d;
   d.grid = s.grid;
@@ -32,12 +39,9 @@ LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>
   if (s.lenses_x < 1 || s.lenses_y < 1)
     throw std::invalid_argument(fmt::format("lens counts must be at least 1, got {}x{}", s.lenses_x, s.lenses_y));
 
-  const bool explicit_any = s.origin || s.normal || s.up;
-  if (explicit_any) {
-    if (!(s.origin && s.normal && s.up))
-      throw std::invalid_argument("explicit placement needs all of --origin, --normal and --up");
+  if (const std::optional<Frame> frame = explicit_frame(s)) {
     if (!s.pitch) throw std::invalid_argument("explicit placement needs --pitch (the lens pitch in scene units)");
-    d.frame = Frame::from_normal_up(*s.origin, *s.normal, *s.up);
+    d.frame = *frame;
     d.pitch = *s.pitch;
   } else {
     if (!vp)

@@ -38,6 +38,11 @@ struct ViewPlacement {
 };
 ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& viewpoint);
 
+/// The frame --origin, --normal and --up place something in (a lens array,
+/// a display's panel): nullopt when none of them is given. Throws
+/// std::invalid_argument when only some are.
+std::optional<Frame> explicit_frame(const ArraySettings& settings);
+
 /// Resolves settings into a camera description. Explicit placement needs
 /// origin, normal, up and pitch; otherwise the viewpoint places the array:
 /// orthoscopic O = at, z = normalize(from - at); pseudoscopic O = from,

@@ -70,13 +70,7 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       break;
     }
     case Kind::display: {
-      std::optional<Frame> frame;
-      const ArraySettings& s = d.array;
-      if (s.origin || s.normal || s.up) {
-        if (!(s.origin && s.normal && s.up))
-          throw std::invalid_argument("explicit placement needs all of --origin, --normal and --up");
-        frame = Frame::from_normal_up(*s.origin, *s.normal, *s.up);
-      }
+      const std::optional<Frame> frame = explicit_frame(d.array);
       if (auto eia = as_lens_array(*d.display, viewpoint, frame)) c.array.emplace(*eia);
       else c.panel.emplace(place_display(*d.display, viewpoint, frame));
       c.red_first = d.display->subpixels != SubpixelOrder::bgr;

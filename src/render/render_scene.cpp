@@ -434,22 +434,26 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   sp.colour = sp.material->colour;
   if (sp.material->texture >= 0 && sp.material->model != ShadingModel::tachyon && hit.kind == PrimKind::triangle)
     sp.colour = textured_colour(sp, hit.u, hit.v, hit.t * length(ray.dir));
-  if (sp.material->model == ShadingModel::gltf) {
-    sp.metallic = static_cast<float>(sp.material->metallic);
-    sp.roughness = static_cast<float>(sp.material->roughness);
-    if (sp.material->metal_rough_texture >= 0 && hit.kind == PrimKind::triangle)
-      apply_data_maps(sp, hit.t * length(ray.dir));
-  } else if (sp.material->model == ShadingModel::blinn_phong) {
+  const Material& m = *sp.material;
+  if (m.model == ShadingModel::gltf) {
+    sp.metallic = static_cast<float>(m.metallic);
+    sp.roughness = static_cast<float>(m.roughness);
+  } else if (m.model == ShadingModel::blinn_phong) {
     sp.highlight = 1;
-    if (sp.material->specular_texture >= 0 && hit.kind == PrimKind::triangle)
-      apply_data_maps(sp, hit.t * length(ray.dir));
   }
-  if (sp.material->normal_texture >= 0 && hit.kind == PrimKind::triangle) apply_normal_map(sp, hit.t * length(ray.dir));
+  // Only a mesh's triangles carry texture coordinates.
+  const bool data_maps = m.metal_rough_texture >= 0 || m.specular_texture >= 0;
+  if (hit.kind == PrimKind::triangle && (data_maps || m.normal_texture >= 0)) {
+    const double distance = hit.t * length(ray.dir);
+    if (data_maps) apply_data_maps(sp, distance);
+    if (m.normal_texture >= 0) apply_normal_map(sp, distance);
+  }
   return sp;
 }
 
 // glTF 2.0 §3.9.3: metallic in the blue channel, roughness in the green,
-// each scaling its factor. MTL's map_Ks: its first channel scales Ks.
+// each scaling its factor. MTL's map_Ks (a blinn_phong material's only
+// data map): its first channel scales Ks.
 void RenderScene::apply_data_maps(SurfacePoint& sp, double distance) const {
   const Material& m = *sp.material;
   Vec3 texel;

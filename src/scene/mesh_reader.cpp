@@ -272,14 +272,9 @@ class MeshReader {
       mat.normal_scale = bm;
       return;
     }
-    const std::string key = out_.images[static_cast<size_t>(tex.image)].path + fmt::format("\n(heights {})", bm);
-    if (const auto it = image_index_.find(key); it != image_index_.end()) {
-      tex.image = it->second;
-      return;
-    }
-    out_.images.push_back(normals_from_heights(out_.images[static_cast<size_t>(tex.image)], bm));
-    tex.image = static_cast<int>(out_.images.size()) - 1;
-    image_index_[key] = tex.image;
+    const int heights = tex.image;
+    tex.image = cached_image(out_.images[static_cast<size_t>(heights)].path + fmt::format("\n(heights {})", bm),
+                             [&] { return normals_from_heights(out_.images[static_cast<size_t>(heights)], bm); });
   }
 
   // glTF's metallicRoughnessTexture (assimp's UNKNOWN slot) and
@@ -348,8 +343,21 @@ class MeshReader {
   // image's codes are sRGB but for float images (OpenEXR, HDR), whose
   // values are linear; a data image (`colour` false) is linear.
   int image_of(const std::string& material, const std::string& path, bool colour = true) {
-    const std::string key = colour ? path : path + "\n(data)";
+    return cached_image(colour ? path : path + "\n(data)", [&] { return read_image_map(material, path, colour); });
+  }
+
+  // The index in out_.images of the image cached under `key`, made by
+  // `make` the first time.
+  int cached_image(const std::string& key, const std::function<ImageMap()>& make) {
     if (const auto it = image_index_.find(key); it != image_index_.end()) return it->second;
+    out_.images.push_back(make());
+    const int index = static_cast<int>(out_.images.size()) - 1;
+    image_index_[key] = index;
+    return index;
+  }
+
+  // image_of()'s image, read (or the checker, with a warning).
+  ImageMap read_image_map(const std::string& material, const std::string& path, bool colour) {
     ImageMap img;
     img.path = path;
     try {
@@ -375,10 +383,7 @@ class MeshReader {
       checker(img);
       img.srgb = true;
     }
-    out_.images.push_back(std::move(img));
-    const int index = static_cast<int>(out_.images.size()) - 1;
-    image_index_[key] = index;
-    return index;
+    return img;
   }
 
   // An embedded image: raw texels (assimp's BGRA), or a compressed file
