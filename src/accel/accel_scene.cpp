@@ -118,6 +118,7 @@ struct AccelScene::Impl {
   RTCScene scene = nullptr;
   std::vector<RTCScene> children;                  // per group; null for static groups
   std::vector<RTCGeometry> instances;              // per group; null for static groups
+  bool instanced = false;                          // some group is movable (an instance)
 
   void check(const char* what) {
     if (!last_error.empty()) throw std::runtime_error(fmt::format("{}: {}", what, last_error));
@@ -255,6 +256,7 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
       attach_geometry(m.device, m.scene, g.geo, g.cones, base, &g.cutout_ref);
       continue;
     }
+    m.instanced = true;
     RTCScene child = new_scene(g.geo.deformable);
     attach_geometry(m.device, child, g.geo, g.cones, 0, &g.cutout_ref);
     rtcCommitScene(child);
@@ -505,12 +507,15 @@ void AccelScene::primitive_of(const RawHit& raw, uint32_t& group, PrimKind& kind
   prim = raw.prim_id;
 }
 
-void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize]) const {
+void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(64) int valid[kPacketSize];
   alignas(64) RTCRay16 ray;
   to_rtc_packet(p, ray, valid);
+  // Embree 3.13.5's coherent occlusion packets loop forever in a scene
+  // with instances (seen on animated glTF shots): coherent only without.
+  if (coherence == RayCoherence::coherent && !impl_->instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcOccluded16(valid, impl_->scene, &ctx, &ray);
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.active[k] && ray.tfar[k] == -INFINITY;
 }

@@ -149,8 +149,13 @@ class AccelScene {
     resolve(ray, raw.geom_id, raw.inst_id, raw.prim_id, raw.ng, raw.u, raw.v, raw.t, hit);
   }
   /// occluded() for every active lane at once (rtcOccluded16); false for
-  /// inactive lanes.
-  void occluded(const RayPacket& packet, bool blocked[kPacketSize]) const;
+  /// inactive lanes. Coherent by default: a shading packet's shadow rays
+  /// toward one light share their end point, and Embree's coherent packet
+  /// traversal measured 5 % faster per gears_s4 EIA on them (same bits).
+  /// Scenes with movable groups (instances) always take the incoherent
+  /// traversal: Embree 3.13.5's coherent one never returns on them.
+  void occluded(const RayPacket& packet, bool blocked[kPacketSize],
+                RayCoherence coherence = RayCoherence::coherent) const;
   /// The ray against one primitive only, exactly (no BVH; for checking a
   /// reprojected point, temporal/). Triangles count as hit when the
   /// barycentrics are inside to 1e-9. Same refinement as intersect(), so the
