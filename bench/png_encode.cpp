@@ -1,5 +1,6 @@
 // How a PNG's zlib level, strategy and row filter trade file size against
-// writing time on real EIAs (the choice in src/image/png_format.cpp).
+// writing time on real EIAs, and what deflating in segments on every core
+// (level1_none_segmented) gains (the choice in src/image/png_format.cpp).
 // Usage: png_encode IMAGE.exr...   (Google Benchmark flags first)
 // Each image is encoded to PNG in memory-backed /tmp with every setting;
 // the counters give the file's bytes and its ratio to the raw 8-bit size.
@@ -24,6 +25,7 @@ struct Setting {
 const Setting kSettings[] = {
     {"level0_none", {0, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE}},
     {"level1_none", {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE}},
+    {"level1_none_segmented", {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE, size_t{256} << 10}},
     {"level1_rle_none", {1, Z_RLE, PNG_FILTER_NONE}},
     {"level1_rle_sub", {1, Z_RLE, PNG_FILTER_SUB}},
     {"level1_huffman_sub", {1, Z_HUFFMAN_ONLY, PNG_FILTER_SUB}},

@@ -9,6 +9,9 @@
 
 #include <zlib.h>
 
+#include <png.h>
+
+#include "image/formats.hpp"
 #include "image/image_io.hpp"
 #include "test_util.hpp"
 
@@ -182,6 +185,37 @@ TEST(ImageFormats, PngCodesAreTheEncodedValuesForAnIndependentDecoder) {
       ASSERT_EQ(codes.size(), img.data.size()) << channels;
       for (size_t k = 0; k < codes.size(); ++k) ASSERT_EQ(codes[k], encode_8bit(img.data[k], e)) << channels << " " << k;
     }
+}
+
+// Deflated on several threads in segments of one 121-byte row each, from two
+// bands of rows: still one image for another decoder, and the same codes as
+// libpng's own compression gives.
+TEST(ImageFormats, SegmentedPngIsTheSameImageForAnIndependentDecoder) {
+  test::TempDir dir;
+  const ImageBuffer img = pattern(40, 30, 3);
+  auto write = [&](const std::string& file, formats::PngCompression c) {
+    auto png = formats::open_png(file, 40, 30, 3, Encoding::srgb, c);
+    png->write_rows(img.data.data(), 11);
+    png->write_rows(img.data.data() + 11 * 40 * 3, 19);
+    png->close();
+  };
+  write(dir.file("segmented.png"), {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE, 200});
+  write(dir.file("serial.png"), {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE, 0});
+  const std::vector<double> codes = oiio_values(dir.file("segmented.png"));
+  ASSERT_EQ(codes.size(), img.data.size());
+  for (size_t k = 0; k < codes.size(); ++k) ASSERT_EQ(codes[k], encode_8bit(img.data[k], Encoding::srgb)) << k;
+  EXPECT_EQ(oiio_values(dir.file("serial.png")), codes);
+  EXPECT_NE(test::run_shell("oiiotool --info -v '" + dir.file("segmented.png") + "'").output.find("sRGB"), std::string::npos);
+}
+
+TEST(ImageFormats, SegmentedPngNeedsRowsWithoutAFilter) {
+  test::TempDir dir;
+  try {
+    formats::open_png(dir.file("x.png"), 4, 4, 3, Encoding::linear, {1, Z_DEFAULT_STRATEGY, PNG_FILTER_SUB, 200});
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "segmented PNG compression writes rows without a filter");
+  }
 }
 
 TEST(ImageFormats, ExrFloatsAndChannelNamesAreTheSameForAnIndependentDecoder) {

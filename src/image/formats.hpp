@@ -33,8 +33,12 @@ class ScanlineOutput {
 
 /// How a PNG's rows are compressed: the zlib level (0..9) and strategy
 /// (zlib's Z_* constants) and the row filters (libpng's PNG_FILTER_* bits).
+/// With segment_bytes > 0 the image data is deflated on every core in
+/// segments of that many bytes (parallel_deflate.hpp), which needs filters
+/// PNG_FILTER_NONE; 0 leaves it to libpng, on one thread.
 struct PngCompression {
   int level, strategy, filters;
+  size_t segment_bytes = 0;
 };
 
 /// The one write_image uses, chosen by measurement (png_format.cpp says

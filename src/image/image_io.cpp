@@ -1,10 +1,9 @@
 #include "image/image_io.hpp"
 
 #include "image/formats.hpp"
+#include "image/parallel_each.hpp"
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -66,13 +65,8 @@ void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding enc
     else
       for (size_t k = begin; k < end; ++k) codes[k] = encode_8bit(values[k], encoding);
   };
-#ifdef HOLORAY_STD_THREADS
-  run(0, count);  // the ThreadSanitizer build sees no oneTBB
-#else
   constexpr size_t kChunk = size_t{1} << 16;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kChunk),
-                    [&](const tbb::blocked_range<size_t>& r) { run(r.begin(), r.end()); });
-#endif
+  parallel_each((count + kChunk - 1) / kChunk, [&](size_t k) { run(k * kChunk, std::min(count, (k + 1) * kChunk)); });
 }
 
 bool is_supported_output(const std::string& path) {

@@ -8,11 +8,14 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "image/formats.hpp"
+#include "image/parallel_deflate.hpp"
+#include "image/parallel_each.hpp"
 
 namespace holoray::formats {
 
@@ -69,6 +72,13 @@ bool write_row(png_structp png, png_const_bytep row) {
   return true;
 }
 
+// A chunk of bytes made here (the segmented IDAT data, IEND after it).
+bool write_chunk(png_structp png, const char* type, const uint8_t* data, size_t n) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_write_chunk(png, reinterpret_cast<png_const_bytep>(type), data, n);
+  return true;
+}
+
 bool write_end(png_structp png, png_infop info) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_write_end(png, info);
@@ -82,6 +92,11 @@ class PngOutput final : public ScanlineOutput {
     static constexpr int kType[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                      PNG_COLOR_TYPE_RGB_ALPHA};
     if (channels < 1 || channels > 4) throw std::runtime_error("PNG holds 1 to 4 channels");
+    if (compression.segment_bytes > 0) {
+      if (compression.filters != PNG_FILTER_NONE)
+        throw std::invalid_argument("segmented PNG compression writes rows without a filter");
+      deflate_ = std::make_unique<ParallelDeflate>(compression.level, compression.strategy, compression.segment_bytes);
+    }
     png_ = png_create_write_struct(PNG_LIBPNG_VER_STRING, &messages_, on_error, on_warning);
     if (!png_) throw std::runtime_error("out of memory");
     info_ = png_create_info_struct(png_);
@@ -94,23 +109,48 @@ class PngOutput final : public ScanlineOutput {
 
   void write_rows(const float* values, int count) override {
     const size_t n = size_t(width_) * size_t(channels_);
-    if (codes_.capacity() < n * size_t(count)) {
-      codes_ = std::vector<uint8_t>();
-      codes_.reserve(n * size_t(count));
-      advise_huge_pages(codes_.data(), n * size_t(count));
+    if (deflate_) {
+      // The IDAT data: each row behind its filter-type byte (0: None), made
+      // a segment at a time on the deflating threads.
+      deflate_->add_rows(
+          size_t(count), n + 1,
+          [&](size_t first, size_t rows, uint8_t* dst) {
+            for (size_t y = 0; y < rows; ++y, dst += n + 1) {
+              dst[0] = 0;
+              encode_8bit(values + n * (first + y), n, dst + 1, encoding_);
+            }
+          },
+          [&](const uint8_t* data, size_t bytes) {
+            if (!write_chunk(png_, "IDAT", data, bytes)) fail();
+          });
+      return;
     }
-    codes_.resize(n * size_t(count));
+    reserve_codes(n * size_t(count));
     encode_8bit(values, codes_.size(), codes_.data(), encoding_);
     for (int y = 0; y < count; ++y)
       if (!write_row(png_, codes_.data() + n * size_t(y))) fail();
   }
 
   void close() override {
-    if (!write_end(png_, info_)) fail();
+    if (deflate_) {
+      const std::vector<uint8_t> tail = deflate_->finish();
+      if (!write_chunk(png_, "IDAT", tail.data(), tail.size()) || !write_chunk(png_, "IEND", nullptr, 0)) fail();
+    } else if (!write_end(png_, info_)) {
+      fail();
+    }
     file_.close();
   }
 
  private:
+  void reserve_codes(size_t bytes) {
+    if (codes_.capacity() < bytes) {
+      codes_ = std::vector<uint8_t>();
+      codes_.reserve(bytes);
+      advise_huge_pages(codes_.data(), bytes);
+    }
+    codes_.resize(bytes);
+  }
+
   [[noreturn]] void fail() {
     // A write error inside libpng is errno's (disk full, ...); say that.
     throw std::runtime_error(errno ? std::string(std::strerror(errno)) : std::string(messages_.text));
@@ -122,6 +162,7 @@ class PngOutput final : public ScanlineOutput {
   int width_, channels_;
   Encoding encoding_;
   std::vector<uint8_t> codes_;  // the band being written, as 8-bit codes
+  std::unique_ptr<ParallelDeflate> deflate_;  // null: libpng compresses the rows
 };
 
 // Reading: the header first (for size limits), then the rows.
@@ -169,7 +210,11 @@ bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
 PngCompression default_png_compression() {
   // zlib level 1, default strategy, no row filter: an EIA's rows are
   // hundreds of small elemental images, which the PNG filters predict badly.
-  return {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE};
+  // Deflated on every core in 256 KiB segments (parallel_deflate.hpp): on 2
+  // cores a teapot_s6 2048x2048 EIA in 37.6 ms against 64.2 ms on one
+  // thread, gears_s4 in 55.1 against 97.8, file sizes within 0.1 %
+  // (bench/png_results.md).
+  return {1, Z_DEFAULT_STRATEGY, PNG_FILTER_NONE, size_t{256} << 10};
 }
 
 std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding,
