@@ -52,6 +52,9 @@ TEST(Encode8Bit, ManyAtOnceGiveTheCodesOfOneAtATime) {
     std::vector<uint8_t> codes(v.size());
     encode_8bit(v.data(), v.size(), codes.data(), e);
     for (size_t k = 0; k < v.size(); ++k) ASSERT_EQ(codes[k], encode_8bit(v[k], e)) << v[k];
+    std::vector<uint8_t> here(v.size());
+    encode_8bit_here(v.data(), v.size(), here.data(), e);
+    EXPECT_EQ(here, codes);
   }
 }
 

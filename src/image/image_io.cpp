@@ -59,14 +59,18 @@ void encode_linear(const float* v, size_t n, uint8_t* out) {
 
 }  // namespace
 
+void encode_8bit_here(const float* values, size_t count, uint8_t* codes, Encoding encoding) {
+  if (encoding == Encoding::linear) encode_linear(values, count, codes);
+  else
+    for (size_t k = 0; k < count; ++k) codes[k] = encode_8bit(values[k], encoding);
+}
+
 void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding) {
-  auto run = [&](size_t begin, size_t end) {
-    if (encoding == Encoding::linear) encode_linear(values + begin, end - begin, codes + begin);
-    else
-      for (size_t k = begin; k < end; ++k) codes[k] = encode_8bit(values[k], encoding);
-  };
   constexpr size_t kChunk = size_t{1} << 16;
-  parallel_each((count + kChunk - 1) / kChunk, [&](size_t k) { run(k * kChunk, std::min(count, (k + 1) * kChunk)); });
+  parallel_each((count + kChunk - 1) / kChunk, [&](size_t k) {
+    const size_t begin = k * kChunk;
+    encode_8bit_here(values + begin, std::min(count, begin + kChunk) - begin, codes + begin, encoding);
+  });
 }
 
 bool is_supported_output(const std::string& path) {

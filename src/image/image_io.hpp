@@ -27,6 +27,9 @@ uint8_t encode_8bit(float v, Encoding encoding);
 /// vector code (255 v + 1/2 is exact in double, so truncation after
 /// clamping is the floor) and large runs on every core.
 void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding);
+/// The same on the calling thread alone: for callers already running as
+/// one of several parallel tasks (the PNG writer's deflate segments).
+void encode_8bit_here(const float* values, size_t count, uint8_t* codes, Encoding encoding);
 
 /// Writes `image` to `path`; the format follows the extension: `.png` (8-bit,
 /// encoded as above) or `.exr` (32-bit float, linear). Throws

@@ -67,7 +67,7 @@ std::vector<uint8_t> deflate_segment(const uint8_t* dict, size_t dict_n, const u
   z.avail_in = static_cast<uInt>(n);
   for (;;) {
     z.next_out = scratch.data() + used;
-    z.avail_out = static_cast<uInt>(scratch.size() - used);
+    z.avail_out = static_cast<uInt>(std::min(scratch.size() - used, kMaxSegment));
     const int rc = deflate(&z, Z_SYNC_FLUSH);
     if (rc != Z_OK && rc != Z_BUF_ERROR) throw std::runtime_error("zlib failed to compress");
     used = scratch.size() - z.avail_out;

@@ -27,6 +27,8 @@ class ParallelDeflate {
   /// Writes rows [first, first + count) of this call's input, count *
   /// row_bytes bytes, to dst. Called from several threads at once, and
   /// twice for some rows (the rows before a segment are its dictionary).
+  /// It must not start parallel work of its own: a thread waiting on it
+  /// could pick up another segment and reuse the buffer dst lies in.
   using RowSource = std::function<void(size_t first, size_t count, uint8_t* dst)>;
   /// Receives the stream's next bytes, in order.
   using Sink = std::function<void(const uint8_t* data, size_t bytes)>;

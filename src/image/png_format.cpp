@@ -15,7 +15,6 @@
 
 #include "image/formats.hpp"
 #include "image/parallel_deflate.hpp"
-#include "image/parallel_each.hpp"
 
 namespace holoray::formats {
 
@@ -117,7 +116,7 @@ class PngOutput final : public ScanlineOutput {
           [&](size_t first, size_t rows, uint8_t* dst) {
             for (size_t y = 0; y < rows; ++y, dst += n + 1) {
               dst[0] = 0;
-              encode_8bit(values + n * (first + y), n, dst + 1, encoding_);
+              encode_8bit_here(values + n * (first + y), n, dst + 1, encoding_);
             }
           },
           [&](const uint8_t* data, size_t bytes) {
