@@ -1,6 +1,7 @@
 // The segmented zlib stream behind PNG's IDAT data (image/parallel_deflate):
 // zlib's own inflate reads it back whole, its back-references reach across
-// segments and calls, and its bytes do not depend on the thread count.
+// segments and calls, and its bytes depend neither on the thread count nor
+// on how the rows are split into calls.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <zlib.h>
@@ -86,6 +87,20 @@ TEST(ParallelDeflate, BytesDoNotDependOnTheThreadCount) {
   const std::vector<uint8_t> many = deflate_rows(data, 100, {500, 500}, 1500);
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   EXPECT_EQ(deflate_rows(data, 100, {500, 500}, 1500), many);
+}
+
+// A giant EIA arrives band by band (mpirun render): however the rows are
+// split into calls, the segments and so the bytes are those of one call.
+TEST(ParallelDeflate, BytesDoNotDependOnHowTheRowsArrive) {
+  const std::vector<uint8_t> data = sample(100 * 1000);
+  const std::vector<uint8_t> whole = deflate_rows(data, 100, {1000}, 1500);
+  EXPECT_EQ(deflate_rows(data, 100, {1, 0, 333, 666}, 1500), whole);
+  EXPECT_EQ(deflate_rows(data, 100, {7, 7, 986}, 1500), whole);
+  std::vector<size_t> ones(1000, 1);
+  EXPECT_EQ(deflate_rows(data, 100, ones, 1500), whole);
+  // Fewer rows than a segment in all: everything goes out in finish().
+  const std::vector<uint8_t> small(data.begin(), data.begin() + 1000);
+  EXPECT_EQ(inflate_all(deflate_rows(small, 100, {4, 6}, 1500), small.size()), small);
 }
 
 TEST(ParallelDeflate, NoRowsIsAnEmptyStream) {

@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -103,51 +104,84 @@ void ParallelDeflate::add_rows(size_t rows, size_t row_bytes, const RowSource& s
   row_bytes_ = row_bytes;
   const size_t per_segment = std::max<size_t>(1, segment_bytes_ / row_bytes);
   const size_t dict_rows = (kWindow + row_bytes - 1) / row_bytes;
-  const size_t count = (rows + per_segment - 1) / per_segment;
+  // This call's input is the rows held back by the last call followed by
+  // the new ones; only whole segments go out, so where the calls cut the
+  // rows never moves a segment boundary.
+  const size_t held = pending_.size() / row_bytes, total = held + rows;
+  const size_t count = total / per_segment;
+  auto fetch = [&](size_t first, size_t n, uint8_t* dst) {
+    if (first < held) {
+      const size_t from_held = std::min(n, held - first);
+      std::memcpy(dst, pending_.data() + first * row_bytes, from_held * row_bytes);
+      dst += from_held * row_bytes, first += from_held, n -= from_held;
+    }
+    if (n > 0) source(first - held, n, dst);
+  };
   std::vector<std::vector<uint8_t>> out(count);
   std::vector<uLong> adlers(count);
   const size_t header = started_ ? 0 : 2;
   parallel_each(count, [&](size_t k) {
-    const size_t first = k * per_segment, n = std::min(per_segment, rows - first);
+    const size_t first = k * per_segment;
     // The rows before the segment (its dictionary) and the segment's, made
-    // in one buffer per thread; the last call's window joins in where this
-    // call has not yet 32 KiB before the segment.
+    // in one buffer per thread; the window of the input already deflated
+    // joins in where this call has not yet 32 KiB before the segment.
     const size_t before = std::min(first, dict_rows);
     thread_local std::vector<uint8_t> buf;
-    buf.resize((before + n) * row_bytes);
-    source(first - before, before + n, buf.data());
-    const uint8_t* in = buf.data() + before * row_bytes;
-    std::vector<uint8_t> joined;
-    const uint8_t* dict = buf.data();
-    size_t dict_n = before * row_bytes;
-    if (dict_n < kWindow && !window_.empty()) {
-      joined = last_window(window_, buf.data(), dict_n);
-      dict = joined.data(), dict_n = joined.size();
-    } else if (dict_n > kWindow) {
-      dict += dict_n - kWindow, dict_n = kWindow;
-    }
-    out[k] = deflate_segment(dict, dict_n, in, n * row_bytes, level_, strategy_, k == 0 ? header : 0);
-    adlers[k] = adler32(adler32(0, nullptr, 0), in, static_cast<uInt>(n * row_bytes));
+    buf.resize((before + per_segment) * row_bytes);
+    fetch(first - before, before + per_segment, buf.data());
+    out[k] = deflate_with_window(buf.data(), before * row_bytes, per_segment * row_bytes, k == 0 ? header : 0);
+    adlers[k] = adler32(adler32(0, nullptr, 0), buf.data() + before * row_bytes, static_cast<uInt>(per_segment * row_bytes));
   });
-  if (!started_) {
+  if (count > 0 && !started_) {
     const std::vector<uint8_t> h = zlib_header(level_, strategy_);
     std::copy(h.begin(), h.end(), out[0].begin());
     started_ = true;
   }
   for (size_t k = 0; k < count; ++k) {
-    const size_t bytes = std::min(per_segment, rows - k * per_segment) * row_bytes;
-    adler_ = static_cast<uint32_t>(adler32_combine(adler_, adlers[k], static_cast<z_off_t>(bytes)));
+    adler_ = static_cast<uint32_t>(adler32_combine(adler_, adlers[k], static_cast<z_off_t>(per_segment * row_bytes)));
     sink(out[k].data(), out[k].size());
   }
-  // The input's last 32 KiB: the next call's first dictionary.
-  const size_t tail_rows = std::min(rows, dict_rows);
-  std::vector<uint8_t> tail(tail_rows * row_bytes);
-  source(rows - tail_rows, tail_rows, tail.data());
-  window_ = last_window(window_, tail.data(), tail.size());
+  // The last 32 KiB of what went out: the next segment's dictionary; the
+  // rows after the last whole segment wait for the next call or finish().
+  const size_t sent = count * per_segment;
+  if (count > 0) {
+    const size_t tail_rows = std::min(sent, dict_rows);
+    std::vector<uint8_t> tail(tail_rows * row_bytes);
+    fetch(sent - tail_rows, tail_rows, tail.data());
+    window_ = last_window(window_, tail.data(), tail.size());
+  }
+  std::vector<uint8_t> rest((total - sent) * row_bytes);
+  fetch(sent, total - sent, rest.data());
+  pending_ = std::move(rest);
+}
+
+std::vector<uint8_t> ParallelDeflate::deflate_with_window(const uint8_t* buf, size_t before_bytes, size_t n,
+                                                          size_t reserve_front) const {
+  const uint8_t* dict = buf;
+  size_t dict_n = before_bytes;
+  std::vector<uint8_t> joined;
+  if (dict_n < kWindow && !window_.empty()) {
+    joined = last_window(window_, buf, dict_n);
+    dict = joined.data(), dict_n = joined.size();
+  } else if (dict_n > kWindow) {
+    dict += dict_n - kWindow, dict_n = kWindow;
+  }
+  return deflate_segment(dict, dict_n, buf + before_bytes, n, level_, strategy_, reserve_front);
 }
 
 std::vector<uint8_t> ParallelDeflate::finish() {
+  // The rows held back (less than a segment) are the last segment.
   std::vector<uint8_t> tail;
+  if (!pending_.empty()) {
+    tail = deflate_with_window(pending_.data(), 0, pending_.size(), started_ ? 0 : 2);
+    adler_ = static_cast<uint32_t>(adler32(adler_, pending_.data(), static_cast<uInt>(pending_.size())));
+    if (!started_) {
+      const std::vector<uint8_t> h = zlib_header(level_, strategy_);
+      std::copy(h.begin(), h.end(), tail.begin());
+    }
+    started_ = true;
+    pending_.clear();
+  }
   if (!started_) tail = zlib_header(level_, strategy_), started_ = true;
   // A final fixed-Huffman block holding only its end code (RFC 1951 §3.2.6),
   // then the Adler-32 of the input, most significant byte first.

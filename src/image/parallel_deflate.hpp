@@ -7,7 +7,7 @@
 // do. The file is a few bytes per segment larger than a serial deflate's
 // at the same level (the flush markers) and its bytes depend only on the
 // input, its rows, the level, the strategy and the segment size, never on
-// the thread count. PNG's IDAT data is such a stream (png_format.cpp).
+// the thread count or on how the rows arrive. PNG's IDAT data is such a stream (png_format.cpp).
 #pragma once
 
 #include <cstddef>
@@ -35,13 +35,16 @@ class ParallelDeflate {
 
   /// The stream's bytes for `rows` more rows of `row_bytes` bytes each,
   /// handed to `sink` a segment at a time (the zlib header in front of the
-  /// first). The rows are made segment by segment in small buffers, never
-  /// all at once. Throws std::runtime_error where zlib fails (out of memory),
+  /// first). Only whole segments go out; the rows after the last one (less
+  /// than a segment) are kept for the next call or finish(), so the bytes do
+  /// not depend on how the rows are split into calls either. The rows are
+  /// made segment by segment in small buffers, never all at once. Throws std::runtime_error where zlib fails (out of memory),
   /// std::invalid_argument for a row size different from the last call's.
   void add_rows(size_t rows, size_t row_bytes, const RowSource& source, const Sink& sink);
 
-  /// The end of the stream: an empty final block and the Adler-32 of all the
-  /// input (6 bytes, or 8 with the header when no row came).
+  /// The end of the stream: the rows held back as the last segment, an empty
+  /// final block and the Adler-32 of all the input (the header in front when
+  /// nothing went out before).
   std::vector<uint8_t> finish();
 
  private:
@@ -50,7 +53,12 @@ class ParallelDeflate {
   size_t row_bytes_ = 0;
   bool started_ = false;
   uint32_t adler_;
-  std::vector<uint8_t> window_;  // the last 32 KiB of input so far: the next call's dictionary
+  // A segment whose `before_bytes` of buf[] precede its n bytes, with
+  // window_ as the dictionary where those are under 32 KiB.
+  std::vector<uint8_t> deflate_with_window(const uint8_t* buf, size_t before_bytes, size_t n,
+                                           size_t reserve_front) const;
+  std::vector<uint8_t> window_;   // the last 32 KiB of input deflated so far: the next segment's dictionary
+  std::vector<uint8_t> pending_;  // rows not yet deflated: fewer than a segment's
 };
 
 }  // namespace holoray::formats
