@@ -1,6 +1,7 @@
 #include "scene/tessellate.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace holoray {
@@ -65,34 +66,64 @@ Tessellation tessellate_polygon(std::span<const Vec3> vertices) {
     if (orient(p[a], p[b], p[c]) > eps) out.triangles.push_back({a, b, c});
   };
 
-  while (ring.size() > 3) {
-    const size_t m = ring.size();
-    size_t chosen = m;          // an ear
-    size_t fallback = 0;        // the most convex corner, if no ear exists (self-intersection)
-    double fallback_area = -std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < m && chosen == m; ++k) {
-      const int ia = ring[(k + m - 1) % m], ib = ring[k], ic = ring[(k + 1) % m];
-      const double area = orient(p[ia], p[ib], p[ic]);
-      if (area > fallback_area) { fallback_area = area; fallback = k; }
-      if (area <= eps) {
-        // Collinear corner: removing it changes nothing but the vertex list.
-        if (std::fabs(area) <= eps) chosen = k;
-        continue;
-      }
-      bool blocked = false;
-      for (size_t j = 0; j < m && !blocked; ++j) {
-        const int iv = ring[j];
-        if (iv == ia || iv == ib || iv == ic) continue;
-        const P2& q = p[iv];
-        // A repeated vertex at a corner (polygon touching itself) does not block.
-        if ((q.x == p[ia].x && q.y == p[ia].y) || (q.x == p[ib].x && q.y == p[ib].y) || (q.x == p[ic].x && q.y == p[ic].y)) continue;
-        blocked = inside_or_on(q, p[ia], p[ib], p[ic], eps);
-      }
-      if (!blocked) chosen = k;
+  // The ring as a linked list; each corner's ear status is kept and, after
+  // a clip, recomputed only at the two corners next to it (removing an
+  // ear's tip unblocks no other corner of a simple polygon), so the whole
+  // clipping is O(n^2). Of the ears, the one whose new edge is shortest
+  // goes first: a 144-vertex gear face becomes fat triangles around its
+  // rim, where clipping the first ear found fans slivers across the whole
+  // face, whose long boxes the BVH's rays keep entering.
+  const size_t m0 = ring.size();
+  std::vector<size_t> prev(m0), next(m0);
+  for (size_t k = 0; k < m0; ++k) prev[k] = (k + m0 - 1) % m0, next[k] = (k + 1) % m0;
+  enum class Corner : uint8_t { reflex, collinear, blocked, ear };
+  std::vector<Corner> state(m0);
+  std::vector<double> diagonal(m0);
+  size_t left = m0;
+  auto classify = [&](size_t k) {
+    const int ia = ring[prev[k]], ib = ring[k], ic = ring[next[k]];
+    const double area = orient(p[ia], p[ib], p[ic]);
+    if (std::fabs(area) <= eps) return state[k] = Corner::collinear;
+    if (area < 0) return state[k] = Corner::reflex;
+    for (size_t j = next[next[k]]; j != prev[k]; j = next[j]) {
+      const P2& q = p[ring[j]];
+      // A repeated vertex at a corner (polygon touching itself) does not block.
+      if ((q.x == p[ia].x && q.y == p[ia].y) || (q.x == p[ib].x && q.y == p[ib].y) || (q.x == p[ic].x && q.y == p[ic].y)) continue;
+      if (inside_or_on(q, p[ia], p[ib], p[ic], eps)) return state[k] = Corner::blocked;
     }
-    if (chosen == m) chosen = fallback;
-    emit(ring[(chosen + m - 1) % m], ring[chosen], ring[(chosen + 1) % m]);
-    ring.erase(ring.begin() + static_cast<long>(chosen));
+    const double dx = p[ia].x - p[ic].x, dy = p[ia].y - p[ic].y;
+    diagonal[k] = dx * dx + dy * dy;
+    return state[k] = Corner::ear;
+  };
+  for (size_t k = 0; k < m0; ++k) classify(k);
+  size_t at = 0;  // a corner still in the ring
+  while (left > 3) {
+    size_t chosen = m0;
+    for (int pass = 0; pass < 2 && chosen == m0; ++pass) {
+      if (pass == 1)  // none flagged: recheck all before giving up on ears
+        for (size_t k = at, n = 0; n < left; k = next[k], ++n) classify(k);
+      double best = std::numeric_limits<double>::infinity();
+      for (size_t k = at, n = 0; n < left; k = next[k], ++n) {
+        // Collinear corner: removing it changes nothing but the vertex list.
+        if (state[k] == Corner::collinear) { chosen = k; break; }
+        if (state[k] == Corner::ear && diagonal[k] < best) best = diagonal[k], chosen = k;
+      }
+    }
+    if (chosen == m0) {  // no ear (self-intersection): the most convex corner
+      double most = -std::numeric_limits<double>::infinity();
+      for (size_t k = at, n = 0; n < left; k = next[k], ++n) {
+        const double area = orient(p[ring[prev[k]]], p[ring[k]], p[ring[next[k]]]);
+        if (area > most) most = area, chosen = k;
+      }
+    }
+    emit(ring[prev[chosen]], ring[chosen], ring[next[chosen]]);
+    const size_t a = prev[chosen], c = next[chosen];
+    next[a] = c, prev[c] = a, at = a, --left;
+    if (left > 3) classify(a), classify(c);
+  }
+  if (left == 3) {
+    emit(ring[prev[at]], ring[at], ring[next[at]]);
+    return out;
   }
   if (ring.size() == 3) emit(ring[0], ring[1], ring[2]);
   return out;
