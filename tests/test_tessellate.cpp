@@ -120,8 +120,8 @@ double box_cost(const std::vector<Vec3>& v) {
   return boxes / (2 * std::fabs(polygon_area(v, t.normal)));
 }
 
-// Ears with the shortest new edge go first: the SPD gear faces become fat
-// triangles, not slivers across the face (3.3 and 3.4 here; clipping the
+// The ear with the smallest bounding box goes first: the SPD gear faces
+// become fat triangles, not slivers across the face (2.5 here; clipping the
 // first ear found gave 20.1), and a star the same.
 TEST(Tessellate, GearFacesBecomeFatTrianglesNotSlivers) {
   if (!test::have_shared_scenes()) GTEST_SKIP() << "no ../shared/scenes";

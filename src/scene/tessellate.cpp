@@ -69,16 +69,17 @@ Tessellation tessellate_polygon(std::span<const Vec3> vertices) {
   // The ring as a linked list; each corner's ear status is kept and, after
   // a clip, recomputed only at the two corners next to it (removing an
   // ear's tip unblocks no other corner of a simple polygon), so the whole
-  // clipping is O(n^2). Of the ears, the one whose new edge is shortest
-  // goes first: a 144-vertex gear face becomes fat triangles around its
-  // rim, where clipping the first ear found fans slivers across the whole
-  // face, whose long boxes the BVH's rays keep entering.
+  // clipping is O(n^2). Of the ears, the one whose world bounding box has
+  // the least surface area goes first (the BVH's cost of the triangle): a
+  // 144-vertex gear face becomes fat triangles, where clipping the first ear
+  // found fans slivers across the whole face, whose long boxes the rays keep
+  // entering.
   const size_t m0 = ring.size();
   std::vector<size_t> prev(m0), next(m0);
   for (size_t k = 0; k < m0; ++k) prev[k] = (k + m0 - 1) % m0, next[k] = (k + 1) % m0;
   enum class Corner : uint8_t { reflex, collinear, blocked, ear };
   std::vector<Corner> state(m0);
-  std::vector<double> diagonal(m0);
+  std::vector<double> box(m0);  // an ear's bounding-box half surface area
   size_t left = m0;
   auto classify = [&](size_t k) {
     const int ia = ring[prev[k]], ib = ring[k], ic = ring[next[k]];
@@ -91,8 +92,9 @@ Tessellation tessellate_polygon(std::span<const Vec3> vertices) {
       if ((q.x == p[ia].x && q.y == p[ia].y) || (q.x == p[ib].x && q.y == p[ib].y) || (q.x == p[ic].x && q.y == p[ic].y)) continue;
       if (inside_or_on(q, p[ia], p[ib], p[ic], eps)) return state[k] = Corner::blocked;
     }
-    const double dx = p[ia].x - p[ic].x, dy = p[ia].y - p[ic].y;
-    diagonal[k] = dx * dx + dy * dy;
+    const Vec3 lo = min(vertices[ia], min(vertices[ib], vertices[ic]));
+    const Vec3 e = max(vertices[ia], max(vertices[ib], vertices[ic])) - lo;
+    box[k] = e.x * e.y + e.y * e.z + e.z * e.x;
     return state[k] = Corner::ear;
   };
   for (size_t k = 0; k < m0; ++k) classify(k);
@@ -106,7 +108,7 @@ Tessellation tessellate_polygon(std::span<const Vec3> vertices) {
       for (size_t k = at, n = 0; n < left; k = next[k], ++n) {
         // Collinear corner: removing it changes nothing but the vertex list.
         if (state[k] == Corner::collinear) { chosen = k; break; }
-        if (state[k] == Corner::ear && diagonal[k] < best) best = diagonal[k], chosen = k;
+        if (state[k] == Corner::ear && box[k] < best) best = box[k], chosen = k;
       }
     }
     if (chosen == m0) {  // no ear (self-intersection): the most convex corner

@@ -22,8 +22,8 @@ struct Tessellation {
 Vec3 polygon_normal(std::span<const Vec3> vertices);
 
 /// Triangulates a simple planar polygon, convex or concave, by ear clipping in
-/// its own plane, the ear with the shortest new edge first (fat triangles for
-/// the BVH, not slivers fanned across the face); O(n^2). Zero-area triangles (collinear or repeated vertices) are
+/// its own plane, the ear with the smallest world bounding box first (fat
+/// triangles for the BVH, not slivers fanned across the face); O(n^2). Zero-area triangles (collinear or repeated vertices) are
 /// dropped; a polygon with no area gives no triangles. Never fails: on a
 /// self-intersecting polygon it still terminates, clipping the best corner left.
 Tessellation tessellate_polygon(std::span<const Vec3> vertices);
