@@ -188,6 +188,10 @@ Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base,
       if (std::fabs(tex.scale.z) > std::fabs(max_scale)) max_scale = tex.scale.z;
       return mip->sample_volume(u, v, w, 0.05 * optic_dist * std::fabs(max_scale));
     }
+    case TextureDesc::Kind::uv_image:
+      // A mesh's map is read at the hit's texture coordinates, which a
+      // world-space point does not give (RenderScene::texel_at).
+      return base;
   }
   return base;
 }
