@@ -132,11 +132,7 @@ void ParallelDeflate::add_rows(size_t rows, size_t row_bytes, const RowSource& s
     out[k] = deflate_with_window(buf.data(), before * row_bytes, per_segment * row_bytes, k == 0 ? header : 0);
     adlers[k] = adler32(adler32(0, nullptr, 0), buf.data() + before * row_bytes, static_cast<uInt>(per_segment * row_bytes));
   });
-  if (count > 0 && !started_) {
-    const std::vector<uint8_t> h = zlib_header(level_, strategy_);
-    std::copy(h.begin(), h.end(), out[0].begin());
-    started_ = true;
-  }
+  if (count > 0) header_into(out[0]);
   for (size_t k = 0; k < count; ++k) {
     adler_ = static_cast<uint32_t>(adler32_combine(adler_, adlers[k], static_cast<z_off_t>(per_segment * row_bytes)));
     sink(out[k].data(), out[k].size());
@@ -169,20 +165,22 @@ std::vector<uint8_t> ParallelDeflate::deflate_with_window(const uint8_t* buf, si
   return deflate_segment(dict, dict_n, buf + before_bytes, n, level_, strategy_, reserve_front);
 }
 
+void ParallelDeflate::header_into(std::vector<uint8_t>& first) {
+  if (started_) return;
+  const std::vector<uint8_t> h = zlib_header(level_, strategy_);
+  std::copy(h.begin(), h.end(), first.begin());
+  started_ = true;
+}
+
 std::vector<uint8_t> ParallelDeflate::finish() {
   // The rows held back (less than a segment) are the last segment.
-  std::vector<uint8_t> tail;
+  std::vector<uint8_t> tail(started_ ? 0 : 2);
   if (!pending_.empty()) {
     tail = deflate_with_window(pending_.data(), 0, pending_.size(), started_ ? 0 : 2);
     adler_ = static_cast<uint32_t>(adler32(adler_, pending_.data(), static_cast<uInt>(pending_.size())));
-    if (!started_) {
-      const std::vector<uint8_t> h = zlib_header(level_, strategy_);
-      std::copy(h.begin(), h.end(), tail.begin());
-    }
-    started_ = true;
     pending_.clear();
   }
-  if (!started_) tail = zlib_header(level_, strategy_), started_ = true;
+  header_into(tail);
   // A final fixed-Huffman block holding only its end code (RFC 1951 §3.2.6),
   // then the Adler-32 of the input, most significant byte first.
   const uint8_t end[6] = {0x03,

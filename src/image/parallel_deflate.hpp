@@ -53,6 +53,9 @@ class ParallelDeflate {
   size_t row_bytes_ = 0;
   bool started_ = false;
   uint32_t adler_;
+  // The zlib header into the 2 bytes left free at the front of the
+  // stream's first output, once.
+  void header_into(std::vector<uint8_t>& first);
   // A segment whose `before_bytes` of buf[] precede its n bytes, with
   // window_ as the dictionary where those are under 32 KiB.
   std::vector<uint8_t> deflate_with_window(const uint8_t* buf, size_t before_bytes, size_t n,
