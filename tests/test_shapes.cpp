@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "accel/shapes.hpp"
 
@@ -85,4 +86,38 @@ TEST(Cone, BoundsContainTheSurface) {
       }
     }
   }
+}
+
+// Shadow rays ask only whether a shape is met (meets_sphere, meets_cone):
+// over random segments through and past spheres and cones of both kinds of
+// radius (inside-only among them), the answer is the full intersection's.
+TEST(Shapes, MeetsAgreesWithTheFullIntersectionOnRandomSegments) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-2, 2);
+  auto vec = [&] { return Vec3{u(rng), u(rng), u(rng)}; };
+  const Sphere spheres[] = {{{0.1, -0.2, 0.3}, 0.8}, {{0, 0, 0}, -1.1}};
+  const PreparedCone cones[] = {prepare_cone({{0, 0, -1}, {0.2, 0.1, 1}, 0.9, 0.3}),
+                                prepare_cone({{0, 0, -1}, {0, 0, 1}, 1, 0}),
+                                prepare_cone({{-0.5, 0, 0}, {0.5, 0.2, 0}, -0.6, -0.6})};
+  int met = 0, missed = 0;
+  for (int k = 0; k < 20000; ++k) {
+    // From around the shapes toward a point near them, stopping short or not.
+    const Vec3 o = vec() * 1.5, d = vec() * 0.4 - o;
+    const double tnear = k % 3 == 0 ? 0.0 : std::fabs(u(rng)) * 0.2, tfar = k % 5 == 0 ? INFINITY : std::fabs(u(rng));
+    double t;
+    Vec3 n;
+    for (const Sphere& s : spheres) {
+      const bool full = intersect_sphere(s, o, d, tnear, tfar, t, n);
+      ASSERT_EQ(meets_sphere(s, o, d, tnear, tfar), full) << "sphere " << s.radius << " ray " << k;
+      (full ? met : missed)++;
+    }
+    for (const PreparedCone& c : cones) {
+      const bool full = intersect_cone(c, o, d, tnear, tfar, t, n);
+      ASSERT_EQ(meets_cone(c, o, d, tnear, tfar), full) << "cone " << c.cone.base_radius << " ray " << k;
+      (full ? met : missed)++;
+    }
+  }
+  // Both answers were asked often enough to mean something.
+  EXPECT_GT(met, 25000);
+  EXPECT_GT(missed, 25000);
 }

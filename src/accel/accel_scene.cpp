@@ -41,6 +41,13 @@ inline bool hit_shape(const PreparedCone& c, const Vec3& o, const Vec3& d, doubl
   return intersect_cone(c, o, d, tn, tf, t, n);
 }
 
+inline bool meets_shape(const Sphere& s, const Vec3& o, const Vec3& d, double tn, double tf) {
+  return meets_sphere(s, o, d, tn, tf);
+}
+inline bool meets_shape(const PreparedCone& c, const Vec3& o, const Vec3& d, double tn, double tf) {
+  return meets_cone(c, o, d, tn, tf);
+}
+
 template <class Shape>
 void shape_intersect(const RTCIntersectFunctionNArguments* args) {
   const auto* shapes = static_cast<const Shape*>(args->geometryUserPtr);
@@ -80,9 +87,7 @@ void shape_occluded(const RTCOccludedFunctionNArguments* args) {
     if (args->valid[i] != -1) continue;
     const Vec3 o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i)};
     const Vec3 d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
-    double t;
-    Vec3 n;
-    if (hit_shape(shape, o, d, RTCRayN_tnear(args->ray, N, i), RTCRayN_tfar(args->ray, N, i), t, n))
+    if (meets_shape(shape, o, d, RTCRayN_tnear(args->ray, N, i), RTCRayN_tfar(args->ray, N, i)))
       RTCRayN_tfar(args->ray, N, i) = -INFINITY;
   }
 }

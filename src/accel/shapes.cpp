@@ -95,6 +95,50 @@ bool intersect_cone(const PreparedCone& pc, const Vec3& o, const Vec3& d, double
   return false;
 }
 
+bool meets_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar) {
+  if (s.radius < 0) {
+    double t;
+    Vec3 n;
+    return intersect_sphere(s, o, d, tnear, tfar, t, n);
+  }
+  const double r = s.radius;
+  const double a = dot(d, d);
+  const Vec3 oc = o - s.centre;
+  const double tc = -dot(oc, d) / a;
+  const Vec3 q = oc + d * tc;
+  const double h2 = r * r - dot(q, q);
+  if (h2 < 0) return false;
+  const double h = std::sqrt(h2 / a);
+  const double t0 = tc - h, t1 = tc + h;
+  return (t0 > tnear && t0 < tfar) || (t1 > tnear && t1 < tfar);
+}
+
+bool meets_cone(const PreparedCone& pc, const Vec3& o, const Vec3& d, double tnear, double tfar) {
+  if (pc.cone.base_radius < 0) {
+    double t;
+    Vec3 n;
+    return intersect_cone(pc, o, d, tnear, tfar, t, n);
+  }
+  const Vec3& a = pc.a;
+  const double len = pc.len, k = pc.k, rb = pc.rb;
+  const Vec3 w = o - pc.cone.base;
+  const double hw = dot(w, a), hd = dot(d, a);
+  const Vec3 wp = w - a * hw, dp = d - a * hd;
+  const double r0 = rb + k * hw;
+  const double qa = dot(dp, dp) - k * k * hd * hd;
+  const double qb = dot(wp, dp) - k * hd * r0;
+  const double qc = dot(wp, wp) - r0 * r0;
+  double t0, t1;
+  if (!solve_quadratic(qa, qb, qc, t0, t1)) return false;
+  for (double root : {t0, t1}) {
+    if (!(root > tnear && root < tfar)) continue;
+    const double h = hw + root * hd;
+    if (h < 0 || h > len || rb + k * h < 0) continue;
+    return true;
+  }
+  return false;
+}
+
 Bounds3 bounds_of(const Sphere& s) {
   const double r = std::fabs(s.radius);
   Bounds3 b;

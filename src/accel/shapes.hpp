@@ -42,6 +42,13 @@ bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, d
 bool intersect_cone(const PreparedCone& c, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t,
                     Vec3& n_outward);
 
+/// Whether o + t*d meets the shape for some t in (tnear, tfar): the same
+/// answer as intersect_sphere / intersect_cone, without the normal, which a
+/// shadow ray does not need (an inside-only shape's test needs it and goes
+/// through the full intersection).
+bool meets_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar);
+bool meets_cone(const PreparedCone& c, const Vec3& o, const Vec3& d, double tnear, double tfar);
+
 Bounds3 bounds_of(const Sphere& s);
 Bounds3 bounds_of(const Cone& c);
 inline Bounds3 bounds_of(const PreparedCone& c) { return bounds_of(c.cone); }

@@ -239,6 +239,12 @@ Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
   return s;
 }
 
+// Whether secondary_rays() can give a ray for material `m` at all (a glTF
+// material's depends on its texel's roughness: assumed yes).
+inline bool may_cast_secondary(const Material& m) {
+  return m.model == ShadingModel::gltf || m.ks > 0 || m.transmittance > 0;
+}
+
 SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
   const Material& m = *f.m;
   if (m.model == ShadingModel::gltf) [[unlikely]]
@@ -535,6 +541,11 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
                    const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize], int depth, RayCounts& counts,
                    Vec3 colours[kPacketSize]) {
   if (depth >= scene.max_depth()) return;
+  // Most NFF surfaces are matte: their packets skip building 16 empty ray
+  // pairs (tree_s11, all matte: 4 % of its cycles went there).
+  bool any = false;
+  for (int k = 0; k < kPacketSize; ++k) any |= hit[k] && may_cast_secondary(*f[k].m);
+  if (!any) return;
   SecondaryRays s[kPacketSize];
   for (int k = 0; k < kPacketSize; ++k)
     if (hit[k]) s[k] = secondary_rays(scene, rays.rays[k], sps[k], f[k]);
