@@ -27,9 +27,12 @@ bool solve_quadratic(double a, double b, double c, double& t0, double& t1) {
   return true;
 }
 
-}  // namespace
-
-bool intersect_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+// The nearest hit of o + t*d with t in (tnear, tfar), as intersect_sphere()
+// documents. Without `Normal` (a shadow ray's question: is there a hit?)
+// neither t nor n is set, and the normal is computed only where an
+// inside-only sphere's test needs it; the answer is the same.
+template <bool Normal>
+bool sphere_hit(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
   const double r = std::fabs(s.radius);
   const double a = dot(d, d);
   const Vec3 oc = o - s.centre;
@@ -42,13 +45,57 @@ bool intersect_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnea
   const double roots[2] = {tc - h, tc + h};
   for (double root : roots) {
     if (!(root > tnear && root < tfar)) continue;
+    if constexpr (!Normal)
+      if (s.radius >= 0) return true;
     const Vec3 nn = (oc + d * root) / r;
     if (s.radius < 0 && dot(nn, d) <= 0) continue;  // inside-only: the hit must face away from the ray
-    t = root;
-    n = nn;
+    if constexpr (Normal) t = root, n = nn;
     return true;
   }
   return false;
+}
+
+// intersect_cone()'s test, with `Normal` as sphere_hit's.
+template <bool Normal>
+bool cone_hit(const PreparedCone& pc, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+  const Vec3& a = pc.a;
+  const double len = pc.len, k = pc.k, rb = pc.rb;
+  const Vec3 w = o - pc.cone.base;
+  const double hw = dot(w, a), hd = dot(d, a);
+  const Vec3 wp = w - a * hw, dp = d - a * hd;
+  const double r0 = rb + k * hw;  // radius at the origin's height
+  const double qa = dot(dp, dp) - k * k * hd * hd;
+  const double qb = dot(wp, dp) - k * hd * r0;
+  const double qc = dot(wp, wp) - r0 * r0;
+  double t0, t1;
+  if (!solve_quadratic(qa, qb, qc, t0, t1)) return false;
+  const double roots[2] = {t0, t1};
+  for (double root : roots) {
+    if (!(root > tnear && root < tfar)) continue;
+    const double h = hw + root * hd;
+    if (h < 0 || h > len) continue;
+    if (rb + k * h < 0) continue;  // the mirrored nappe beyond a cone's tip
+    if constexpr (!Normal)
+      if (pc.cone.base_radius >= 0) return true;
+    const Vec3 radial = normalize(wp + dp * root);
+    const Vec3 nn = normalize(radial - a * k);
+    if (pc.cone.base_radius < 0 && dot(nn, d) <= 0) continue;  // inside-only
+    if constexpr (Normal) t = root, n = nn;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool intersect_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t, Vec3& n) {
+  return sphere_hit<true>(s, o, d, tnear, tfar, t, n);
+}
+
+bool meets_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar) {
+  double t;
+  Vec3 n;
+  return sphere_hit<false>(s, o, d, tnear, tfar, t, n);
 }
 
 PreparedCone prepare_cone(const Cone& c) {
@@ -68,75 +115,13 @@ bool intersect_cone(const Cone& c, const Vec3& o, const Vec3& d, double tnear, d
 
 bool intersect_cone(const PreparedCone& pc, const Vec3& o, const Vec3& d, double tnear, double tfar, double& t,
                     Vec3& n) {
-  const Vec3& a = pc.a;
-  const double len = pc.len, k = pc.k, rb = pc.rb;
-  const Vec3 w = o - pc.cone.base;
-  const double hw = dot(w, a), hd = dot(d, a);
-  const Vec3 wp = w - a * hw, dp = d - a * hd;
-  const double r0 = rb + k * hw;  // radius at the origin's height
-  const double qa = dot(dp, dp) - k * k * hd * hd;
-  const double qb = dot(wp, dp) - k * hd * r0;
-  const double qc = dot(wp, wp) - r0 * r0;
-  double t0, t1;
-  if (!solve_quadratic(qa, qb, qc, t0, t1)) return false;
-  const double roots[2] = {t0, t1};
-  for (double root : roots) {
-    if (!(root > tnear && root < tfar)) continue;
-    const double h = hw + root * hd;
-    if (h < 0 || h > len) continue;
-    if (rb + k * h < 0) continue;  // the mirrored nappe beyond a cone's tip
-    const Vec3 radial = normalize(wp + dp * root);
-    const Vec3 nn = normalize(radial - a * k);
-    if (pc.cone.base_radius < 0 && dot(nn, d) <= 0) continue;  // inside-only
-    t = root;
-    n = nn;
-    return true;
-  }
-  return false;
-}
-
-bool meets_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, double tfar) {
-  if (s.radius < 0) {
-    double t;
-    Vec3 n;
-    return intersect_sphere(s, o, d, tnear, tfar, t, n);
-  }
-  const double r = s.radius;
-  const double a = dot(d, d);
-  const Vec3 oc = o - s.centre;
-  const double tc = -dot(oc, d) / a;
-  const Vec3 q = oc + d * tc;
-  const double h2 = r * r - dot(q, q);
-  if (h2 < 0) return false;
-  const double h = std::sqrt(h2 / a);
-  const double t0 = tc - h, t1 = tc + h;
-  return (t0 > tnear && t0 < tfar) || (t1 > tnear && t1 < tfar);
+  return cone_hit<true>(pc, o, d, tnear, tfar, t, n);
 }
 
 bool meets_cone(const PreparedCone& pc, const Vec3& o, const Vec3& d, double tnear, double tfar) {
-  if (pc.cone.base_radius < 0) {
-    double t;
-    Vec3 n;
-    return intersect_cone(pc, o, d, tnear, tfar, t, n);
-  }
-  const Vec3& a = pc.a;
-  const double len = pc.len, k = pc.k, rb = pc.rb;
-  const Vec3 w = o - pc.cone.base;
-  const double hw = dot(w, a), hd = dot(d, a);
-  const Vec3 wp = w - a * hw, dp = d - a * hd;
-  const double r0 = rb + k * hw;
-  const double qa = dot(dp, dp) - k * k * hd * hd;
-  const double qb = dot(wp, dp) - k * hd * r0;
-  const double qc = dot(wp, wp) - r0 * r0;
-  double t0, t1;
-  if (!solve_quadratic(qa, qb, qc, t0, t1)) return false;
-  for (double root : {t0, t1}) {
-    if (!(root > tnear && root < tfar)) continue;
-    const double h = hw + root * hd;
-    if (h < 0 || h > len || rb + k * h < 0) continue;
-    return true;
-  }
-  return false;
+  double t;
+  Vec3 n;
+  return cone_hit<false>(pc, o, d, tnear, tfar, t, n);
 }
 
 Bounds3 bounds_of(const Sphere& s) {
