@@ -91,6 +91,8 @@ TEST(Tessellate, PatchNormalFlippedIntoWindingHemisphere) {
   EXPECT_EQ(shading_normal_in_hemisphere({0, 0, 0}, winding), winding);
 }
 
+namespace {
+
 // The concave 144-vertex gear faces of the SPD's gears_s1.
 std::vector<std::vector<Vec3>> gear_faces() {
   const SceneDesc s = read_nff_file(test::shared_dir() + "/scenes/nff/gears_s1.nff");
@@ -100,12 +102,16 @@ std::vector<std::vector<Vec3>> gear_faces() {
   return faces;
 }
 
+}  // namespace
+
 TEST(Tessellate, EveryGearFaceIsCoveredExactly) {
   if (!test::have_shared_scenes()) GTEST_SKIP() << "no ../shared/scenes";
   const auto faces = gear_faces();
   EXPECT_FALSE(faces.empty());
   for (const auto& f : faces) expect_exact_cover(f);
 }
+
+namespace {
 
 // The summed surface areas of the triangles' world bounding boxes, over
 // twice the face's area: what a BVH's rays pay for the face (its SAH cost;
@@ -122,6 +128,8 @@ double box_cost(const std::vector<Vec3>& v) {
   }
   return boxes / (2 * std::fabs(polygon_area(v, t.normal)));
 }
+
+}  // namespace
 
 // The ear with the smallest bounding box goes first: the SPD gear faces
 // become fat triangles, not slivers across the face (2.5 here; clipping the
