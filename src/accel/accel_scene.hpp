@@ -124,6 +124,8 @@ class AccelScene {
   /// whose poses differ do not share its geometry: reuse treats it as moved.
   uint64_t pose(uint32_t group) const { return groups_[group].pose; }
   const Affine& transform(uint32_t group) const { return groups_[group].to_world; }
+  /// transform(group).is_identity(), kept when the transform is set: asked per hit.
+  bool is_identity(uint32_t group) const { return groups_[group].identity; }
   const Affine& inverse_transform(uint32_t group) const { return groups_[group].to_object; }
   size_t group_count() const { return groups_.size(); }
   /// The geometry of one group, in its object space (as built).
@@ -182,6 +184,7 @@ class AccelScene {
       const TriangleCutout* cutout = nullptr;
       uint32_t group = 0;
     } cutout_ref;  // Embree's user data for the triangles' filter functions
+    std::vector<PreparedTriangle> triangles;  // geo.triangles prepared: what refine() reads
     std::vector<PreparedCone> cones;  // geo.cones prepared: what Embree's callbacks and refine() test
     Bounds3 object_bounds;
     Affine to_world, to_object;

@@ -409,7 +409,7 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
       obj = tri_object_[t];
       // The Newell normal of the whole polygon (object space), like the winding the file gave.
       const Affine& xf = accel_->transform(hit.group);
-      const bool moved = !xf.is_identity();
+      const bool moved = !accel_->is_identity(hit.group);
       sp.ng = moved ? xf.normal(tri_normal_[t]) : tri_normal_[t];
       sp.ns = sp.ng;
       const int32_t patch = tri_patch_[t];
@@ -490,8 +490,10 @@ void RenderScene::apply_normal_map(SurfacePoint& sp, double distance) const {
   const double det = du1 * dv2 - du2 * dv1;
   if (!(std::fabs(det) > 0)) return;  // the texture is not spread over the triangle: no frame
   Vec3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
-  const Affine& xf = accel_->transform(sp.group);
-  if (!xf.is_identity()) dpdu = xf.dir(dpdu), dpdv = xf.dir(dpdv);
+  if (!accel_->is_identity(sp.group)) {
+    const Affine& xf = accel_->transform(sp.group);
+    dpdu = xf.dir(dpdu), dpdv = xf.dir(dpdv);
+  }
   const Vec3 n = sp.ns;
   const Vec3 along = dpdu - n * dot(n, dpdu);
   if (!(length(along) > 0)) return;

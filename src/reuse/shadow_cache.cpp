@@ -116,7 +116,7 @@ CellRef ShadowCache::locate(const SurfacePoint& sp) const {
   if (lights_ == 0) return CellRef::none();
   // Spheres and cones locate by the object-space point: only they pay for the transform.
   Vec3 p_object = sp.position;
-  if (sp.kind != PrimKind::triangle && !scene_.accel().transform(sp.group).is_identity())
+  if (sp.kind != PrimKind::triangle && !scene_.accel().is_identity(sp.group))
     p_object = scene_.accel().inverse_transform(sp.group).point(sp.position);
   return cells_.locate(sp.group, sp.kind, sp.prim, sp.u, sp.v, p_object);
 }
@@ -149,7 +149,7 @@ uint32_t ShadowCache::sample_state(const CellSample& sample, uint32_t group, int
   uint32_t v;
   const AccelScene& accel = scene_.accel();
   const Affine& xf = accel.transform(group);
-  const bool moved = !xf.is_identity();
+  const bool moved = !accel.is_identity(group);
   const Vec3 p = moved ? xf.point(sample.p_object) : sample.p_object;
   const Vec3 nrm = moved ? xf.normal(sample.n_object) : sample.n_object;
   const Vec3 light_pos = scene_.lights()[static_cast<size_t>(light)].position;
