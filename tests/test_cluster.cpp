@@ -212,7 +212,7 @@ TEST(FrameGroups, GroupsRenderedInAnyOrderGiveTheInOrderFrames) {
     else ASSERT_EQ(groups.size(), 3u);  // keyframes 0, 4, 8, 12: 0-3, 4-7, 8-12
     auto render = [&](std::vector<size_t> order) {
       ShotFrames shot(read_shot_file(dir.file("shot.toml")));
-      std::map<int, std::vector<float>> frames;
+      std::map<int, FloatSamples> frames;
       SequenceOptions o = so;
       if (!order.empty()) {
         std::reverse(order.begin(), order.end());

@@ -27,7 +27,7 @@ size_t hits_of(const PointImage& key) {
   return n;
 }
 
-float max_difference(const std::vector<float>& a, const std::vector<float>& b) {
+float max_difference(const FloatSamples& a, const FloatSamples& b) {
   float d = 0;
   for (size_t k = 0; k < a.size(); ++k) d = std::fmax(d, std::fabs(a[k] - b[k]));
   return d;

@@ -1,0 +1,22 @@
+#include "image/image.hpp"
+
+#include <algorithm>
+
+#include "image/parallel_each.hpp"
+
+namespace holoray {
+
+ImageBuffer::ImageBuffer(int w, int h, int c, float fill) : width(w), height(h), channels(c) {
+  const size_t n = static_cast<size_t>(w) * h * c;
+  data.reserve(n);
+  advise_huge_pages(data.data(), n * sizeof(float));
+  data.resize(n);
+  // In pieces of one 2 MiB page: each page is first touched by one thread.
+  constexpr size_t kPiece = (size_t{2} << 20) / sizeof(float);
+  parallel_each((n + kPiece - 1) / kPiece, [&](size_t k) {
+    std::fill(data.begin() + static_cast<std::ptrdiff_t>(k * kPiece),
+              data.begin() + static_cast<std::ptrdiff_t>(std::min(n, (k + 1) * kPiece)), fill);
+  });
+}
+
+}  // namespace holoray
