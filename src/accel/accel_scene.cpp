@@ -195,11 +195,6 @@ void attach_geometry(RTCDevice device, RTCScene scene, GeometryGroup& geo, std::
   add_user(cones, PrimKind::cone);
 }
 
-void prepare_triangles(const TriangleData& tri, std::vector<PreparedTriangle>& out) {
-  out.resize(tri.indices.size() / 3);
-  for (size_t i = 0; i < out.size(); ++i) out[i] = prepare_triangle(tri.positions.data(), &tri.indices[3 * i]);
-}
-
 Bounds3 geometry_bounds(const GeometryGroup& geo) {
   Bounds3 b;
   const auto& p = geo.triangles.positions;
@@ -258,7 +253,6 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
     g.geo = std::move(groups[gi]);
     g.geo.movable |= g.geo.deformable;
     g.object_bounds = geometry_bounds(g.geo);
-    prepare_triangles(g.geo.triangles, g.triangles);
     g.cones.reserve(g.geo.cones.size());
     for (const Cone& c : g.geo.cones) g.cones.push_back(prepare_cone(c));
     g.cutout_ref = {g.geo.cutout, static_cast<uint32_t>(gi)};
@@ -340,7 +334,6 @@ void AccelScene::set_positions(uint32_t group, const std::vector<float>& positio
     rtcCommitGeometry(m.instances[group]);
     rtcCommitScene(m.scene);
   }
-  prepare_triangles(tri, g.triangles);
   g.object_bounds = geometry_bounds(g.geo);
   g.pose = pose;
   bounds_ = Bounds3{};
@@ -375,10 +368,14 @@ bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_gues
   Vec3 n_obj;
   switch (hit.kind) {
     case PrimKind::triangle: {
-      const PreparedTriangle& tri = g.triangles[hit.prim];
-      const Vec3 v0{tri.p[0], tri.p[1], tri.p[2]};
-      const Vec3 e1 = Vec3{tri.p[3], tri.p[4], tri.p[5]} - v0, e2 = Vec3{tri.p[6], tri.p[7], tri.p[8]} - v0;
-      const Vec3 n{tri.n[0], tri.n[1], tri.n[2]};
+      const TriangleData& tri = g.geo.triangles;
+      const uint32_t* idx = &tri.indices[3 * size_t{hit.prim}];
+      auto vtx = [&](int k) {
+        const float* p = &tri.positions[3 * size_t{idx[k]}];
+        return Vec3{p[0], p[1], p[2]};
+      };
+      const Vec3 v0 = vtx(0), e1 = vtx(1) - v0, e2 = vtx(2) - v0;
+      const Vec3 n = normalize(cross(e1, e2));
       const double dn = dot(d, n);
       if (dn == 0) {
         if (strict) return false;
@@ -387,7 +384,7 @@ bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_gues
         hit.t = dot(v0 - o, n) / dn;
       }
       const Vec3 p = o + d * hit.t;
-      const double area = tri.area;
+      const double area = dot(cross(e1, e2), n);
       hit.u = dot(cross(p - v0, e2), n) / area;
       hit.v = dot(cross(e1, p - v0), n) / area;
       if (strict) {

@@ -184,7 +184,6 @@ class AccelScene {
       const TriangleCutout* cutout = nullptr;
       uint32_t group = 0;
     } cutout_ref;  // Embree's user data for the triangles' filter functions
-    std::vector<PreparedTriangle> triangles;  // geo.triangles prepared: what refine() reads
     std::vector<PreparedCone> cones;  // geo.cones prepared: what Embree's callbacks and refine() test
     Bounds3 object_bounds;
     Affine to_world, to_object;

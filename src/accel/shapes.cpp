@@ -98,20 +98,6 @@ bool meets_sphere(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, d
   return sphere_hit<false>(s, o, d, tnear, tfar, t, n);
 }
 
-PreparedTriangle prepare_triangle(const float* v, const uint32_t* idx) {
-  PreparedTriangle t;
-  for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) t.p[3 * k + c] = v[3 * size_t{idx[k]} + c];
-  const Vec3 v0{t.p[0], t.p[1], t.p[2]};
-  const Vec3 e1 = Vec3{t.p[3], t.p[4], t.p[5]} - v0, e2 = Vec3{t.p[6], t.p[7], t.p[8]} - v0;
-  const Vec3 n = normalize(cross(e1, e2));
-  t.n[0] = n.x;
-  t.n[1] = n.y;
-  t.n[2] = n.z;
-  t.area = dot(cross(e1, e2), n);
-  return t;
-}
-
 PreparedCone prepare_cone(const Cone& c) {
   PreparedCone p;
   p.cone = c;

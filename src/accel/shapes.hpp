@@ -3,8 +3,6 @@
 // callbacks; the renderer calls them again to refine a hit's t to double.
 #pragma once
 
-#include <cstdint>
-
 #include "math/vec.hpp"
 
 namespace holoray {
@@ -36,20 +34,6 @@ struct PreparedCone {
   double rb = 1;       ///< |base radius|
 };
 PreparedCone prepare_cone(const Cone& c);
-
-/// A triangle as AccelScene's double-precision refinement reads it: its three
-/// float vertices (object space, exactly the ones Embree traces) beside the
-/// unit normal n = normalize(e1 x e2) and area = (e1 x e2).n, computed once
-/// with the refinement's own arithmetic, so a hit's refined t, u, v are the
-/// same bits as when both were recomputed per hit. One 72-byte record: a hit
-/// reads it instead of an index triple and three scattered vertices.
-struct PreparedTriangle {
-  float p[9];          ///< v0, v1, v2 (xyz each)
-  double n[3];         ///< unit winding normal
-  double area = 0;     ///< (e1 x e2).n, twice the triangle's area
-};
-/// `v`: the float positions (xyz per vertex); `idx`: the triangle's 3 indices.
-PreparedTriangle prepare_triangle(const float* v, const uint32_t* idx);
 
 /// Nearest hit of o + t*d with t in (tnear, tfar); d need not be unit.
 /// On a hit, sets t and the outward geometric normal (unit) and returns true.
