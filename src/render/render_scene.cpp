@@ -66,9 +66,19 @@ float uv_per_world(const double u[3], const double v[3], const Vec3& n) {
   return static_cast<float>(std::sqrt(uv_area / length(n)));
 }
 
+// Makes room for `size` elements at once, growing geometrically (a scene of
+// many small polygons stays linear). A million-triangle mesh then
+// fills each per-triangle array once: grown by push_back, they were copied
+// and first-touched about twice over, and fresh pages are dear on our VMs.
+template <class T>
+void make_room(std::vector<T>& v, size_t size) {
+  if (size > v.capacity()) v.reserve(std::max(size, 2 * v.capacity()));
+}
+
 // Appends vertices to a group's float positions; returns the first one's index.
 uint32_t append_positions(const std::vector<Vec3>& vertices, TriangleData& tris) {
   const auto base = static_cast<uint32_t>(tris.positions.size() / 3);
+  make_room(tris.positions, tris.positions.size() + 3 * vertices.size());
   for (const Vec3& v : vertices) {
     tris.positions.push_back(static_cast<float>(v.x));
     tris.positions.push_back(static_cast<float>(v.y));
@@ -325,6 +335,15 @@ void RenderScene::set_max_depth(int depth) {
 
 void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingModel shading, TriangleData& tris) {
   const uint32_t base = append_positions(mesh.vertices, tris);
+  const size_t total = tri_object_.size() + mesh.triangles.size();  // the scene's triangles with this mesh
+  make_room(tris.indices, tris.indices.size() + 3 * mesh.triangles.size());
+  make_room(tri_object_, total);
+  make_room(tri_normal_, total);
+  make_room(tri_patch_, total);
+  if (!mesh.normals.empty()) make_room(patch_normals_, patch_normals_.size() + mesh.triangles.size());
+  if (!mesh.uvs.empty()) make_room(tri_uv_, total), make_room(tri_uvs_, tri_uvs_.size() + mesh.triangles.size());
+  if (!mesh.colours.empty())
+    make_room(tri_colour_, total), make_room(tri_colours_, tri_colours_.size() + mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
     // The Newell normal, as a `p` polygon of the same three vertices gets it.
     const std::array<Vec3, 3> corners{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};

@@ -709,6 +709,7 @@ class MeshReader {
         m.normals.push_back(is_finite(n) ? n : Vec3{});
       }
     }
+    m.triangles.reserve(mesh.mNumFaces);
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines SortByPType left in a mixed mesh
