@@ -4,7 +4,8 @@
 #   1. start-up: `holoray --help` and a 4x4-lens render against `true`;
 #   2. the four SPD scenes as 2048x2048 EIAs (128x128 lenses x 16 px) against
 #      `tachyon SCENE.nff -res 2048 2048 -raydepth 5 -aasamples 0`, both
-#      reading the same NFF file, whole commands, runs alternated, medians;
+#      reading the same NFF file, whole commands, runs alternated (at least
+#      5 rounds), ratios taken round by round, medians;
 #   3. the images of the two holoray builds compared (four SPD scenes and
 #      Tachyon's Room), PSNR over float EXRs (inf: identical);
 #   4. the cycle shares of each SPD render (perf record: Embree, holoray,
@@ -48,13 +49,22 @@ def wall(cmd, cwd=None):
         sys.exit(f"failed: {' '.join(cmd)}\n{r.stdout}")
     return t, r.stdout
 
-def medians(cmds, n):
-    """Runs the commands alternated n times; the median wall time of each."""
+def alternated(cmds, n):
+    """Runs the commands alternated n times; each one's wall times, round by round."""
     times = [[] for _ in cmds]
     for _ in range(n):
         for k, c in enumerate(cmds):
             times[k].append(wall(c)[0])
-    return [statistics.median(t) for t in times]
+    return times
+def medians(cmds, n):
+    """The median wall time of each command, run alternated n times."""
+    return [statistics.median(t) for t in alternated(cmds, n)]
+def ratio(num, den):
+    """num/den round by round (each round's runs sat side by side): the
+    median, and the spread as min-max; a ratio of medians would mix rounds
+    taken in different moods of the machine."""
+    r = sorted(a / b for a, b in zip(num, den))
+    return f"{statistics.median(r):.2f}x ({r[0]:.2f}-{r[-1]:.2f})"
 
 print(f"# Speed: holoray {head} against {base_commit} and Tachyon\n")
 print(f"`bash bench/run_speed_bench.sh` on {machine}; every figure from this one run.\n")
@@ -70,20 +80,25 @@ print(f"| `holoray render examples/primitives.nff --lenses 4x4` | {t_small*1e3:.
 print(f"| `true` (do-nothing baseline) | {t_true*1e3:.1f} | | |\n")
 
 # 2. against Tachyon
-print(f"## 2048x2048 against Tachyon (whole commands, 2 threads, alternated, median of {rounds} s)\n")
-print("| scene | holoray | baseline holoray | tachyon | Tachyon / holoray | Tachyon / baseline | this / baseline speed-up | trace s | Mrays/s | baseline Mrays/s |")
+tachyon_rounds = max(rounds, 5)
+print(f"## 2048x2048 against Tachyon (whole commands, 2 threads, alternated, {tachyon_rounds} rounds)\n")
+print("Seconds are medians; each ratio is the median of the rounds' own ratios, "
+      "with their range in brackets.\n")
+print("| scene | holoray s | baseline holoray s | tachyon s | Tachyon / holoray | Tachyon / baseline | this / baseline speed-up | trace s | Mrays/s | baseline Mrays/s |")
 print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 for s in scenes:
     f = f"{nff}/{s}.nff"
-    h, b, t = medians([[new, "render", f] + eia + ["-o", f"{tmp}/n.png", "-q"],
-                       [base, "render", f] + eia + ["-o", f"{tmp}/b.png", "-q"],
-                       ["tachyon", f, "-res", "2048", "2048", "-raydepth", "5", "-aasamples", "0", "-o", f"{tmp}/t.tga"]], rounds)
+    hs, bs, ts = alternated([[new, "render", f] + eia + ["-o", f"{tmp}/n.png", "-q"],
+                             [base, "render", f] + eia + ["-o", f"{tmp}/b.png", "-q"],
+                             ["tachyon", f, "-res", "2048", "2048", "-raydepth", "5", "-aasamples", "0", "-o", f"{tmp}/t.tga"]],
+                            tachyon_rounds)
+    h, b, t = (statistics.median(x) for x in (hs, bs, ts))
     out = wall([new, "render", f] + eia + ["-o", f"{tmp}/n.png"])[1]
     bout = wall([base, "render", f] + eia + ["-o", f"{tmp}/b.png"])[1]
     tr = float(re.search(r"trace\s+([\d.]+) s", out).group(1))
     mr = float(re.search(r"([\d.]+) Mrays/s", out).group(1))
     bmr = float(re.search(r"([\d.]+) Mrays/s", bout).group(1))
-    print(f"| {s} | {h:.3f} | {b:.3f} | {t:.3f} | {t/h:.2f}x | {t/b:.2f}x | {b/h:.2f}x | {tr:.3f} | {mr:.1f} | {bmr:.1f} |")
+    print(f"| {s} | {h:.3f} | {b:.3f} | {t:.3f} | {ratio(ts, hs)} | {ratio(ts, bs)} | {ratio(bs, hs)} | {tr:.3f} | {mr:.1f} | {bmr:.1f} |")
 print()
 
 # 3. same images
