@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,25 @@
 #include "test_util.hpp"
 
 using namespace holoray;
+
+// The fill is written on every core in 2 MiB pieces (image.cpp): every
+// sample, the last partial piece included, must get it; sizes around the
+// piece boundary and a 2048x2048 RGB frame (24 pieces).
+TEST(ImageBufferFill, EverySampleGetsTheFillValueWhateverTheSize) {
+  constexpr size_t kPiece = (size_t{2} << 20) / sizeof(float);
+  const std::vector<std::array<int, 3>> sizes = {{1, 1, 1}, {3, 5, 3},           {int(kPiece) - 1, 1, 1},
+                                                 {int(kPiece), 1, 1},            {int(kPiece) + 1, 1, 1},
+                                                 {2048, 2048, 3}};
+  for (const auto& [w, h, c] : sizes)
+    for (float fill : {0.0f, -1.0f}) {
+      const ImageBuffer img(w, h, c, fill);
+      ASSERT_EQ(img.data.size(), size_t(w) * h * c);
+      EXPECT_TRUE(std::all_of(img.data.begin(), img.data.end(), [&](float v) { return v == fill; }))
+          << w << "x" << h << "x" << c << " fill " << fill;
+    }
+  const ImageBuffer depth(2048, 2048, 1, NAN);
+  EXPECT_TRUE(std::all_of(depth.data.begin(), depth.data.end(), [](float v) { return std::isnan(v); }));
+}
 
 TEST(Encode8Bit, LinearIsFloorOf255vPlusHalfClamped) {
   EXPECT_EQ(encode_8bit(0.0f, Encoding::linear), 0);
