@@ -28,9 +28,10 @@ inline void advise_huge_pages(void* p, size_t bytes) {
 
 /// std::allocator, except that resize() leaves new trivial elements as they
 /// are instead of zeroing them: ImageBuffer then writes its fill value on
-/// every core, which spreads a large buffer's first touch (page faults and
-/// the kernel's zeroing: 3 to 60 ms for a 2048x2048 EIA's 48 MiB of colour
-/// on our 2-core machines, serial before this) over the threads.
+/// every core, so that a large buffer's first touch (page faults and the
+/// kernel's zeroing: 3 to 60 ms for a 2048x2048 EIA's 48 MiB of colour on
+/// our VMs) is shared by the threads rather than paid by one while the
+/// others wait.
 template <class T>
 struct DefaultInitAllocator : std::allocator<T> {
   template <class U>
