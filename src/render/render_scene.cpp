@@ -67,9 +67,9 @@ float uv_per_world(const double u[3], const double v[3], const Vec3& n) {
 }
 
 // Makes room for `size` elements at once, growing geometrically (a scene of
-// many small polygons stays linear). A million-triangle mesh then
-// fills each per-triangle array once: grown by push_back, they were copied
-// and first-touched about twice over, and fresh pages are dear on our VMs.
+// many small polygons stays linear), so that a million-triangle mesh fills
+// each per-triangle array once: grown by push_back, the arrays would be
+// copied and first-touched about twice over, and fresh pages are dear.
 template <class T>
 void make_room(std::vector<T>& v, size_t size) {
   if (size > v.capacity()) v.reserve(std::max(size, 2 * v.capacity()));
@@ -341,9 +341,14 @@ void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingMod
   make_room(tri_normal_, total);
   make_room(tri_patch_, total);
   if (!mesh.normals.empty()) make_room(patch_normals_, patch_normals_.size() + mesh.triangles.size());
-  if (!mesh.uvs.empty()) make_room(tri_uv_, total), make_room(tri_uvs_, tri_uvs_.size() + mesh.triangles.size());
-  if (!mesh.colours.empty())
-    make_room(tri_colour_, total), make_room(tri_colours_, tri_colours_.size() + mesh.triangles.size());
+  if (!mesh.uvs.empty()) {
+    make_room(tri_uv_, total);
+    make_room(tri_uvs_, tri_uvs_.size() + mesh.triangles.size());
+  }
+  if (!mesh.colours.empty()) {
+    make_room(tri_colour_, total);
+    make_room(tri_colours_, tri_colours_.size() + mesh.triangles.size());
+  }
   for (const auto& t : mesh.triangles) {
     // The Newell normal, as a `p` polygon of the same three vertices gets it.
     const std::array<Vec3, 3> corners{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
