@@ -11,7 +11,11 @@
 #   4. the cycle shares of each SPD render (perf record: Embree, holoray,
 #      the dynamic loader, the kernel, libc, zlib, the rest);
 #   5. the packet styles by array: trace seconds of `--style packet` and
-#      `--style subaperture` at three lens pitches, and what `auto` picks.
+#      `--style subaperture` at three lens pitches, and what `auto` picks;
+#   6. the floor under each Tachyon ratio: Embree's own CPU seconds in the
+#      EIA and in a 2048x2048 pinhole view of the same scene (the same rays,
+#      coherent), and the whole command's time if holoray's own code took
+#      none: what the targets of section 2 would leave that code.
 # The baseline is built from BASE (a commit; default: the commit before
 # the image-library change) into a scratch folder, or taken from BASE_BIN.
 # Needs ../shared, tachyon and perf (linux-perf).
@@ -49,12 +53,16 @@ def wall(cmd, cwd=None):
         sys.exit(f"failed: {' '.join(cmd)}\n{r.stdout}")
     return t, r.stdout
 
-def alternated(cmds, n):
-    """Runs the commands alternated n times; each one's wall times, round by round."""
+def alternated(cmds, n, outputs=None):
+    """Runs the commands alternated n times; each one's wall times, round by
+    round (and, into `outputs` when given, each one's printed outputs)."""
     times = [[] for _ in cmds]
     for _ in range(n):
         for k, c in enumerate(cmds):
-            times[k].append(wall(c)[0])
+            t, out = wall(c)
+            times[k].append(t)
+            if outputs is not None:
+                outputs.setdefault(k, []).append(out)
     return times
 def medians(cmds, n):
     """The median wall time of each command, run alternated n times."""
@@ -81,6 +89,7 @@ print(f"| `true` (do-nothing baseline) | {t_true*1e3:.1f} | | |\n")
 
 # 2. against Tachyon
 tachyon_rounds = max(rounds, 5)
+against_tachyon = {}  # scene: (holoray s, tachyon s, trace s), medians over section 2's runs
 print(f"## 2048x2048 against Tachyon (whole commands, 2 threads, alternated, {tachyon_rounds} rounds)\n")
 print("Seconds are medians; each ratio is the median of the rounds' own ratios, "
       "with their range in brackets.\n")
@@ -88,17 +97,19 @@ print("| scene | holoray s | baseline holoray s | tachyon s | Tachyon / holoray 
 print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 for s in scenes:
     f = f"{nff}/{s}.nff"
-    hs, bs, ts = alternated([[new, "render", f] + eia + ["-o", f"{tmp}/n.png", "-q"],
-                             [base, "render", f] + eia + ["-o", f"{tmp}/b.png", "-q"],
+    outs = {}
+    hs, bs, ts = alternated([[new, "render", f] + eia + ["-o", f"{tmp}/n.png"],
+                             [base, "render", f] + eia + ["-o", f"{tmp}/b.png"],
                              ["tachyon", f, "-res", "2048", "2048", "-raydepth", "5", "-aasamples", "0", "-o", f"{tmp}/t.tga"]],
-                            tachyon_rounds)
+                            tachyon_rounds, outs)
     h, b, t = (statistics.median(x) for x in (hs, bs, ts))
-    out = wall([new, "render", f] + eia + ["-o", f"{tmp}/n.png"])[1]
-    bout = wall([base, "render", f] + eia + ["-o", f"{tmp}/b.png"])[1]
-    tr = float(re.search(r"trace\s+([\d.]+) s", out).group(1))
-    mr = float(re.search(r"([\d.]+) Mrays/s", out).group(1))
-    bmr = float(re.search(r"([\d.]+) Mrays/s", bout).group(1))
+    # Trace seconds and Mrays/s: medians over the same runs as the wall times.
+    def printed(k, pattern):
+        return statistics.median(float(re.search(pattern, o).group(1)) for o in outs[k])
+    tr = printed(0, r"trace\s+([\d.]+) s")
+    mr, bmr = printed(0, r"([\d.]+) Mrays/s"), printed(1, r"([\d.]+) Mrays/s")
     print(f"| {s} | {h:.3f} | {b:.3f} | {t:.3f} | {ratio(ts, hs)} | {ratio(ts, bs)} | {ratio(bs, hs)} | {tr:.3f} | {mr:.1f} | {bmr:.1f} |")
+    against_tachyon[s] = (h, t, tr)
 print()
 
 # 3. same images
@@ -113,18 +124,22 @@ for s, f, extra in [(s, f"{nff}/{s}.nff", eia) for s in scenes] + [("room (Tachy
 print()
 
 # 4. cycle shares
-def shares(binary, f):
+PERF_HZ = 2000  # perf's samples per second of one thread's CPU time
+
+def shares(binary, f, view=None, seconds=False):
+    """The whole command's cycles by component: % of perf's samples, or
+    CPU seconds (`seconds`). `view`: the camera options (default: the EIA)."""
     data = f"{tmp}/perf.data"
-    subprocess.run(["perf", "record", "-q", "-F", "2000", "-o", data, binary, "render", f] + eia + ["-o", f"{tmp}/p.png", "-q"],
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-    rep = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "dso", "--stdio"],
+    subprocess.run(["perf", "record", "-q", "-F", str(PERF_HZ), "-o", data, binary, "render", f] + (view or eia) +
+                   ["-o", f"{tmp}/p.png", "-q"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    rep = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "dso", "-n", "--stdio"],
                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout
     got = {"embree": 0.0, "holoray": 0.0, "loader": 0.0, "kernel": 0.0, "libc": 0.0, "zlib": 0.0, "other": 0.0}
     for line in rep.splitlines():
-        m = re.match(r"\s+([\d.]+)%\s+(\S+)", line)
+        m = re.match(r"\s+([\d.]+)%\s+(\d+)\s+(\S+)", line)
         if not m:
             continue
-        pct, dso = float(m.group(1)), m.group(2)
+        pct, dso = (int(m.group(2)) / PERF_HZ if seconds else float(m.group(1))), m.group(3)
         key = ("embree" if "embree" in dso else "holoray" if dso == "holoray" else "loader" if dso.startswith("ld-linux")
                else "kernel" if "kernel" in dso else "libc" if dso.startswith("libc.") else "zlib" if dso.startswith("libz") else "other")
         got[key] += pct
@@ -152,6 +167,34 @@ for s in scenes:
         pk, sa = (statistics.median(runs[st]) for st in ("packet", "subaperture"))
         picked = re.search(r"(\w+) style", wall(cmd)[1]).group(1)
         print(f"| {s} | {lenses} x {p} | {pk:.3f} | {sa:.3f} | {pk/sa:.2f}x | {picked} |")
+print()
+
+# 6. the floor under the Tachyon ratios
+targets = {"teapot_s6": 2.5, "gears_s4": 1.0}
+pinhole = ["--camera", "pinhole", "--resolution", "2048x2048"]
+def total_rays(view, f):
+    return int(re.search(r"total (\d+)", wall([new, "render", f] + view + ["-o", f"{tmp}/r.png"])[1]).group(1))
+print("## The floor under the Tachyon ratios (perf record, CPU seconds of one run each)\n")
+print("Embree's CPU seconds in the EIA and in a 2048x2048 pinhole view of the same scene "
+      "(about the same rays, but neighbouring pixels' rays are coherent); the floor is the "
+      "whole command with holoray's own code taking no time: Embree's seconds spread over "
+      "2 cores, plus the phases around the trace (start-up, parse, BVH build, PNG), "
+      "from section 2's medians. Where there is a target, the last column is the wall time "
+      "it leaves holoray's own code, against what that code takes today (its CPU seconds "
+      "over 2 cores).\n")
+print("| scene | rays EIA / pinhole (M) | Embree CPU s EIA | Embree CPU s pinhole | holoray CPU s EIA | "
+      "floor s | Tachyon s | Tachyon / floor | target | own code: allowed s / today s |")
+print("|---|---|---:|---:|---:|---:|---:|---:|---:|---|")
+for s in scenes:
+    f = f"{nff}/{s}.nff"
+    h, t, tr = against_tachyon[s]
+    e, p = shares(new, f, seconds=True), shares(new, f, pinhole, seconds=True)
+    floor = e["embree"] / 2 + (h - tr)
+    target = targets.get(s)
+    allowed = (f"{t / target - floor:.3f} / {e['holoray'] / 2:.3f}" if target else "")
+    print(f"| {s} | {total_rays(eia, f) / 1e6:.1f} / {total_rays(pinhole, f) / 1e6:.1f} | {e['embree']:.2f} | "
+          f"{p['embree']:.2f} | {e['holoray']:.2f} | {floor:.3f} | {t:.3f} | {t / floor:.2f}x | "
+          f"{f'{target:g}x' if target else ''} | {allowed} |")
 PY
 cp "$tmp/speed_results.md" bench/speed_results.md
 cat bench/speed_results.md
