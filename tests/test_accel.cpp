@@ -1,6 +1,7 @@
 // AccelScene's shadow packets (rtcOccluded16, coherent traversal where the
-// scene allows it) against its single-ray occlusion test, in a static scene
-// and in one whose geometry is an instance.
+// scene allows it), as RayPackets and as ShadowPackets filled lane by lane,
+// against its single-ray occlusion test, in a static scene and in one whose
+// geometry is an instance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,9 +44,22 @@ void expect_packets_agree_with_single_rays(const AccelScene& accel) {
       }
       bool blocked[kPacketSize];
       accel.occluded(packet, blocked);
+      // The same segments from tnear 0, written straight into Embree's layout
+      // as the shading writes them.
+      ShadowPacket direct;
       for (int k = 0; k < kPacketSize; ++k) {
-        const bool single = packet.active[k] && accel.occluded(packet.rays[k]);
+        const Ray& r = packet.rays[k];
+        const float org[3] = {static_cast<float>(r.org.x), static_cast<float>(r.org.y), static_cast<float>(r.org.z)};
+        direct.set(k, org, r.dir, r.tfar, packet.active[k]);
+      }
+      bool direct_blocked[kPacketSize];
+      accel.occluded(direct, direct_blocked);
+      for (int k = 0; k < kPacketSize; ++k) {
+        const Ray& r = packet.rays[k];
+        const bool single = packet.active[k] && accel.occluded(r);
         ASSERT_EQ(blocked[k], single) << "row " << row << ", column " << col << ", lane " << k;
+        const bool single_from_0 = packet.active[k] && accel.occluded(Ray{r.org, r.dir, 0, r.tfar});
+        ASSERT_EQ(direct_blocked[k], single_from_0) << "ShadowPacket: row " << row << ", column " << col << ", lane " << k;
         lanes += packet.active[k];
         blocked_lanes += blocked[k];
       }

@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <type_traits>
 #include <numeric>
 #include <stdexcept>
@@ -523,6 +525,20 @@ void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCohe
   if (coherence == RayCoherence::coherent && !impl_->instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcOccluded16(valid, impl_->scene, &ctx, &ray);
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.active[k] && ray.tfar[k] == -INFINITY;
+}
+
+// ShadowPacket's rays are RTCRay16's members in RTCRay16's order.
+static_assert(sizeof(RTCRay16) == offsetof(ShadowPacket, valid) && offsetof(ShadowPacket, tfar) == offsetof(RTCRay16, tfar) &&
+              offsetof(ShadowPacket, flags) == offsetof(RTCRay16, flags));
+
+void AccelScene::occluded(const ShadowPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherence == RayCoherence::coherent && !impl_->instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRay16 ray;
+  std::memcpy(&ray, &p, sizeof ray);
+  rtcOccluded16(p.valid, impl_->scene, &ctx, &ray);
+  for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.valid[k] != 0 && ray.tfar[k] == -INFINITY;
 }
 
 bool AccelScene::intersect_primitive(const Ray& r, uint32_t group, PrimKind kind, uint32_t prim, Hit& hit) const {

@@ -5,6 +5,7 @@
 // at no cost. Queried with single rays; the renderer never sees an Embree type.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -96,6 +97,29 @@ struct RayPacket {
   bool active[kPacketSize] = {};
 };
 
+/// Shadow rays in Embree's 16-wide layout (RTCRay16: one float array per
+/// coordinate, world frame), filled where the shading computes them, so that
+/// no RayPacket of doubles is built and converted in between. Each value is
+/// the double's static_cast<float>, as occluded(const RayPacket&) rounds, so
+/// either gives the same answers for the same rays.
+struct ShadowPacket {
+  alignas(64) float org_x[kPacketSize], org_y[kPacketSize], org_z[kPacketSize], tnear[kPacketSize];
+  float dir_x[kPacketSize], dir_y[kPacketSize], dir_z[kPacketSize], time[kPacketSize];
+  float tfar[kPacketSize];
+  unsigned mask[kPacketSize], id[kPacketSize], flags[kPacketSize];
+  alignas(64) int valid[kPacketSize];  // -1: traced, 0: ignored
+
+  /// Lane k: the segment from `org` (already rounded to float) along unit
+  /// `dir` to `tfar`, traced where `traced`. Branch-free, so that a loop over
+  /// the lanes computes every lane and keeps the ones it needs.
+  void set(int k, const float org[3], const Vec3& dir, double tfar_, bool traced) {
+    org_x[k] = org[0], org_y[k] = org[1], org_z[k] = org[2], tnear[k] = 0, time[k] = 0;
+    dir_x[k] = static_cast<float>(dir.x), dir_y[k] = static_cast<float>(dir.y), dir_z[k] = static_cast<float>(dir.z);
+    tfar[k] = static_cast<float>(tfar_);  // an infinity stays one
+    mask[k] = ~0u, id[k] = static_cast<unsigned>(k), flags[k] = 0, valid[k] = -static_cast<int>(traced);
+  }
+};
+
 class AccelScene {
  public:
   /// Builds one BVH per movable group and the top level (Embree's build runs
@@ -157,6 +181,10 @@ class AccelScene {
   /// Scenes with movable groups (instances) always take the incoherent
   /// traversal: Embree 3.13.5's coherent one never returns on them.
   void occluded(const RayPacket& packet, bool blocked[kPacketSize],
+                RayCoherence coherence = RayCoherence::coherent) const;
+  /// occluded() for the lanes of `packet` with valid[k] set; blocked[k] is
+  /// false for the others. Same traversal and coherence rule as above.
+  void occluded(const ShadowPacket& packet, bool blocked[kPacketSize],
                 RayCoherence coherence = RayCoherence::coherent) const;
   /// The ray against one primitive only, exactly (no BVH; for checking a
   /// reprojected point, temporal/). Triangles count as hit when the

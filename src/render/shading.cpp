@@ -149,14 +149,13 @@ inline Vec3 nff_term(const HitFrame& f, const Vec3& to_light) {
   return mul(light.intensity * falloff, term);
 }
 
-// The light's contribution through the unblocked `shadow` ray. NFF's
+// The light's contribution along the unblocked shadow ray's unit direction `to_light`. NFF's
 // materials: diffuse and highlight, computed only for lights that are
 // seen, so a shadowed light costs no pow(). glTF's: the metallic-roughness
 // BRDF (gltf_brdf.hpp) times the part of the surface that is there
 // (BLEND: alpha). blinn_phong's: NFF's with MTL's highlight.
-Vec3 light_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light, const Ray& shadow,
+Vec3 light_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLight& light, const Vec3& to_light,
                         double falloff) {
-  const Vec3& to_light = shadow.dir;
   if (f.m->model != ShadingModel::nff) [[unlikely]] {
     if (f.m->model == ShadingModel::gltf) return gltf_contribution(f, sp, light, to_light, falloff);
     return blinn_phong_contribution(f, sp, light, to_light, falloff);
@@ -499,7 +498,7 @@ Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int
       ++counts.shadow;
       seen = !scene.accel().occluded(shadow);
     }
-    if (seen) colour += light_contribution(f, sp, lights[l], shadow, falloff);
+    if (seen) colour += light_contribution(f, sp, lights[l], shadow.dir, falloff);
   }
   add_secondary(scene, ray, sp, f, depth, counts, colour);
   return colour;
@@ -607,7 +606,7 @@ Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& s
       ++counts.shadow;
       if (scene.accel().occluded(shadow)) continue;
     }
-    colour += light_contribution(f, sp, lights[l], shadow, falloff);
+    colour += light_contribution(f, sp, lights[l], shadow.dir, falloff);
   }
   return colour;
 }
@@ -617,6 +616,65 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
   add_secondary(scene, ray, sp, frame_of(scene, ray, sp), depth, counts, colour);
   return colour;
 }
+
+namespace {
+
+// What every light's shadow rays need of a packet's lanes, one array per
+// coordinate, gathered once per packet: the hit points, the shading normals
+// and the shadow rays' origins (already rounded to Embree's floats).
+struct LaneGeometry {
+  alignas(64) double px[kPacketSize], py[kPacketSize], pz[kPacketSize];
+  alignas(64) double nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];
+  float origin[kPacketSize][3];
+  bool hit[kPacketSize];
+
+  void gather(const bool hit_[kPacketSize], const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize]) {
+    for (int k = 0; k < kPacketSize; ++k) {
+      hit[k] = hit_[k];
+      // Missed lanes get harmless values: every lane is computed, the hit ones kept.
+      const Vec3 p = hit[k] ? sps[k].position : Vec3{}, n = hit[k] ? f[k].ns : Vec3{}, o = hit[k] ? f[k].above : Vec3{};
+      px[k] = p.x, py[k] = p.y, pz[k] = p.z, nx[k] = n.x, ny[k] = n.y, nz[k] = n.z;
+      origin[k][0] = static_cast<float>(o.x), origin[k][1] = static_cast<float>(o.y), origin[k][2] = static_cast<float>(o.z);
+    }
+  }
+};
+
+// One point light of unit falloff (NFF's) for a packet's lanes without the
+// shadow cache: shadow_ray<true>()'s arithmetic, each operation the same as
+// there and in the same order (the same bits as the RayPacket path), on
+// every lane without a branch, the rays written straight into Embree's
+// 16-wide layout instead of a RayPacket of doubles that occluded() then
+// converts, each origin rounded once per packet, not once per light. GCC
+// leaves the loop scalar: the gain is the branches and conversions saved.
+template <class MarkLit>
+void shade_point_light(const RenderScene& scene, const LaneGeometry& g, const SurfacePoint sps[kPacketSize],
+                       const HitFrame f[kPacketSize], size_t l, RayCounts& counts, Vec3 colours[kPacketSize],
+                       MarkLit&& mark_lit) {
+  const PointLight& light = scene.lights()[l];
+  const double eps = scene.epsilon();
+  const double lx = light.position.x, ly = light.position.y, lz = light.position.z;
+  ShadowPacket shadows;
+  alignas(64) double ux[kPacketSize], uy[kPacketSize], uz[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k) {
+    const double dx = lx - g.px[k], dy = ly - g.py[k], dz = lz - g.pz[k];
+    const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double inv = 1.0 / dist;
+    ux[k] = dx * inv, uy[k] = dy * inv, uz[k] = dz * inv;
+    const double n_dot_l = g.nx[k] * ux[k] + g.ny[k] * uy[k] + g.nz[k] * uz[k];
+    shadows.set(k, g.origin[k], Vec3{ux[k], uy[k], uz[k]}, dist - eps, g.hit[k] & (dist > eps) & !(n_dot_l <= 0));
+  }
+  int cast = 0;
+  for (int k = 0; k < kPacketSize; ++k) cast += shadows.valid[k] != 0;
+  if (cast == 0) return;
+  counts.shadow += static_cast<uint64_t>(cast);
+  bool blocked[kPacketSize];
+  scene.accel().occluded(shadows, blocked);
+  for (int k = 0; k < kPacketSize; ++k)
+    if (shadows.valid[k] && !blocked[k])
+      colours[k] += light_contribution(f[k], sps[k], light, Vec3{ux[k], uy[k], uz[k]}, 1.0), mark_lit(k, l);
+}
+
+}  // namespace
 
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
@@ -651,8 +709,17 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
   bool blocked[kPacketSize];
   double falloff[kPacketSize];
   const auto& lights = scene.lights();
+  LaneGeometry lanes;  // gathered for the first NFF light
+  bool gathered = false;
   // One light's lanes; `Unit` as shadow_ray's.
   auto shade_light = [&]<bool Unit>(size_t l, std::bool_constant<Unit>) {
+    if constexpr (Unit) {
+      if (!cached) {
+        if (!gathered) lanes.gather(hit, sps, f), gathered = true;
+        shade_point_light(scene, lanes, sps, f, l, counts, colours, mark_lit);
+        return;
+      }
+    }
     int cast = 0;
     for (int k = 0; k < kPacketSize; ++k) {
       shadows.active[k] = hit[k] && shadow_ray<Unit>(scene, f[k], sps[k], lights[l], shadows.rays[k], falloff[k]);
@@ -663,7 +730,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
       }
       const int seen = cached_visibility(scene, f[k], sps[k], cells[k], static_cast<int>(l), shadows.rays[k], counts);
       if (seen >= 0) {
-        if (seen) colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
+        if (seen) colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k].dir, falloff[k]), mark_lit(k, l);
         shadows.active[k] = false;
         continue;
       }
@@ -674,7 +741,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     scene.accel().occluded(shadows, blocked);
     for (int k = 0; k < kPacketSize; ++k)
       if (shadows.active[k] && !blocked[k])
-        colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k], falloff[k]), mark_lit(k, l);
+        colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k].dir, falloff[k]), mark_lit(k, l);
   };
   for (size_t l = 0; l < lights.size(); ++l) {
     if (lights[l].unit_falloff) shade_light(l, std::true_type{});
