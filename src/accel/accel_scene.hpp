@@ -5,7 +5,6 @@
 // at no cost. Queried with single rays; the renderer never sees an Embree type.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
