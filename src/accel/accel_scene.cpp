@@ -514,15 +514,23 @@ void AccelScene::primitive_of(const RawHit& raw, uint32_t& group, PrimKind& kind
   prim = raw.prim_id;
 }
 
-void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
+namespace {
+// The context of a shadow packet. Embree 3.13.5's coherent occlusion packets
+// loop forever in a scene with instances (seen on animated glTF shots):
+// coherent only without.
+RTCIntersectContext occlusion_context(RayCoherence coherence, bool instanced) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
+  if (coherence == RayCoherence::coherent && !instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  return ctx;
+}
+}  // namespace
+
+void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
+  RTCIntersectContext ctx = occlusion_context(coherence, impl_->instanced);
   alignas(64) int valid[kPacketSize];
   alignas(64) RTCRay16 ray;
   to_rtc_packet(p, ray, valid);
-  // Embree 3.13.5's coherent occlusion packets loop forever in a scene
-  // with instances (seen on animated glTF shots): coherent only without.
-  if (coherence == RayCoherence::coherent && !impl_->instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcOccluded16(valid, impl_->scene, &ctx, &ray);
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.active[k] && ray.tfar[k] == -INFINITY;
 }
@@ -532,9 +540,7 @@ static_assert(sizeof(RTCRay16) == offsetof(ShadowPacket, valid) && offsetof(Shad
               offsetof(ShadowPacket, flags) == offsetof(RTCRay16, flags));
 
 void AccelScene::occluded(const ShadowPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherence == RayCoherence::coherent && !impl_->instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = occlusion_context(coherence, impl_->instanced);
   alignas(64) RTCRay16 ray;
   std::memcpy(&ray, &p, sizeof ray);
   rtcOccluded16(p.valid, impl_->scene, &ctx, &ray);

@@ -626,11 +626,9 @@ struct LaneGeometry {
   alignas(64) double px[kPacketSize], py[kPacketSize], pz[kPacketSize];
   alignas(64) double nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];
   float origin[kPacketSize][3];
-  bool hit[kPacketSize];
 
-  void gather(const bool hit_[kPacketSize], const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize]) {
+  void gather(const bool hit[kPacketSize], const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize]) {
     for (int k = 0; k < kPacketSize; ++k) {
-      hit[k] = hit_[k];
       // Missed lanes get harmless values: every lane is computed, the hit ones kept.
       const Vec3 p = hit[k] ? sps[k].position : Vec3{}, n = hit[k] ? f[k].ns : Vec3{}, o = hit[k] ? f[k].above : Vec3{};
       px[k] = p.x, py[k] = p.y, pz[k] = p.z, nx[k] = n.x, ny[k] = n.y, nz[k] = n.z;
@@ -647,7 +645,8 @@ struct LaneGeometry {
 // converts, each origin rounded once per packet, not once per light. GCC
 // leaves the loop scalar: the gain is the branches and conversions saved.
 template <class MarkLit>
-void shade_point_light(const RenderScene& scene, const LaneGeometry& g, const SurfacePoint sps[kPacketSize],
+void shade_point_light(const RenderScene& scene, const bool hit[kPacketSize], const LaneGeometry& g,
+                       const SurfacePoint sps[kPacketSize],
                        const HitFrame f[kPacketSize], size_t l, RayCounts& counts, Vec3 colours[kPacketSize],
                        MarkLit&& mark_lit) {
   const PointLight& light = scene.lights()[l];
@@ -661,7 +660,7 @@ void shade_point_light(const RenderScene& scene, const LaneGeometry& g, const Su
     const double inv = 1.0 / dist;
     ux[k] = dx * inv, uy[k] = dy * inv, uz[k] = dz * inv;
     const double n_dot_l = g.nx[k] * ux[k] + g.ny[k] * uy[k] + g.nz[k] * uz[k];
-    shadows.set(k, g.origin[k], Vec3{ux[k], uy[k], uz[k]}, dist - eps, g.hit[k] & (dist > eps) & !(n_dot_l <= 0));
+    shadows.set(k, g.origin[k], Vec3{ux[k], uy[k], uz[k]}, dist - eps, hit[k] & (dist > eps) & !(n_dot_l <= 0));
   }
   int cast = 0;
   for (int k = 0; k < kPacketSize; ++k) cast += shadows.valid[k] != 0;
@@ -716,7 +715,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     if constexpr (Unit) {
       if (!cached) {
         if (!gathered) lanes.gather(hit, sps, f), gathered = true;
-        shade_point_light(scene, lanes, sps, f, l, counts, colours, mark_lit);
+        shade_point_light(scene, hit, lanes, sps, f, l, counts, colours, mark_lit);
         return;
       }
     }
