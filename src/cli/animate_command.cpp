@@ -19,20 +19,16 @@
 #include <type_traits>
 
 #include "cli/interrupt.hpp"
+#include "holoray/holoray.hpp"
 #include "cluster/group_dealer.hpp"
 #include "cluster/mpi_world.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
 #include "cli/scene_warnings.hpp"
-#include "display/display_file.hpp"
 #include "image/image_io.hpp"
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
-#include "shot/shot_reader.hpp"
-#include "temporal/keyframe_schedule.hpp"
-#include "temporal/report.hpp"
-#include "temporal/sequence.hpp"
 #include "video/video_writer.hpp"
 
 namespace holoray::cli {
@@ -155,35 +151,43 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
 int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
-    SequenceOptions so;
-    using Kind = FrameCameraDesc::Kind;
-    FrameCameraDesc camera_choice = camera_desc(o.view, false, false);
-    const bool pinhole = camera_choice.kind == Kind::pinhole;
-    const bool glass = camera_choice.kind == Kind::looking_glass;
-    const bool panel = glass || camera_choice.kind == Kind::display;
+    // The options' rules, worded for the command line; the API checks them
+    // again in its own words (api::Animation).
+    api::AnimateOptions ao;
+    camera_desc_rules(o.view, false, false);
+    const bool pinhole = o.view.camera == "pinhole";
+    const bool glass = !o.view.looking_glass.empty();
+    const bool panel = glass || !o.view.display.empty();
     const char* panel_flag = glass ? "--looking-glass" : "--display";
     const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
-    so.method = pick<Method>("--method", method, {{"full", Method::full}, {"reproject", Method::reproject}, {"reverse", Method::reverse}});
-    if (pinhole && so.method != Method::full)
+    ao.method = pick<api::Method>("--method", method,
+                                  {{"full", api::Method::full}, {"reproject", api::Method::reproject}, {"reverse", api::Method::reverse}});
+    if (pinhole && ao.method != api::Method::full)
       throw std::invalid_argument("--camera pinhole: goes with --method full (reuse works on elemental images)");
-    if (panel && so.method != Method::full)
+    if (panel && ao.method != api::Method::full)
       throw std::invalid_argument(fmt::format("{}: goes with --method full (reuse works on elemental images)", panel_flag));
     if (panel && (!o.report.empty() || cache_enabled(o.cache)))
       throw std::invalid_argument(fmt::format("{}: goes without --report and --cache (native panels are traced in full, without the cache)", panel_flag));
-    if (camera_choice.kind != Kind::integral) so.frame_camera = camera_choice;
     if (pinhole && !o.report.empty())
       throw std::invalid_argument("--report: goes with the integral camera (pinhole previews are traced in full)");
     if (pinhole && cache_enabled(o.cache))
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-    const std::string reuse = !o.reuse.empty() ? o.reuse : so.method == Method::reverse ? "color" : "geometry";
-    if (so.method == Method::reverse)
-      so.reverse.reuse =
-          pick<ReverseReuse>("--reuse", reuse, {{"visibility", ReverseReuse::visibility}, {"color", ReverseReuse::color}});
-    else
-      so.reproject.reuse = pick<Reuse>("--reuse", reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
-    so.reproject.reach = pick<Reach>("--reach", o.reach, {{"near", Reach::near}, {"all", Reach::all}});
-    so.fill = pick<Fill>("--fill", o.fill, {{"trace", Fill::trace}, {"interpolate", Fill::interpolate}});
-    so.reproject.detect_leaks = !o.no_leak_check;
+    if (glass) {
+      ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views};
+    } else if (panel) {
+      ao.camera = api::Display{o.view.display, std::nullopt};
+    } else if (pinhole) {
+      api::Pinhole p;
+      if (!o.view.resolution.empty()) parse_resolution(o.view.resolution, p.width, p.height);
+      ao.camera = p;
+    }
+    const std::string reuse = !o.reuse.empty() ? o.reuse : ao.method == api::Method::reverse ? "color" : "geometry";
+    if (ao.method == api::Method::reverse) pick<int>("--reuse", reuse, {{"visibility", 0}, {"color", 1}});
+    else pick<int>("--reuse", reuse, {{"geometry", 0}, {"color", 1}});
+    ao.reuse = o.reuse;
+    ao.reach = pick<std::string>("--reach", o.reach, {{"near", "near"}, {"all", "all"}});
+    ao.fill = pick<std::string>("--fill", o.fill, {{"trace", "trace"}, {"interpolate", "interpolate"}});
+    ao.leak_check = !o.no_leak_check;
     const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
     VideoOptions vo;
     if (!o.video.empty()) {
@@ -191,67 +195,53 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       if (o.crf != -1 && !h264) throw std::invalid_argument("--crf: goes with an .mp4 video (FFV1 is lossless)");
       if (o.crf != -1) vo.crf = o.crf;
     }
-    so.encoding = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
+    const Encoding encoding_choice = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
+    if (o.encoding != "auto") ao.encoding = encoding_choice == Encoding::srgb ? api::Encoding::srgb : api::Encoding::linear;
     const bool auto_keys = o.keyframe_interval == "auto";
     const int interval = auto_keys ? 0 : keyframe_interval_of(o.keyframe_interval);
     if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
       throw std::invalid_argument(fmt::format("--keyframe-motion: must be a positive number of pixels, got {}", o.keyframe_motion));
-    so.max_interpolated_share = o.rebuild_above / 100;
-    if (!auto_keys) so.keyframe_interval = interval;
-    so.threads = o.threads;
-    so.reproject.threads = o.threads;
-    so.reference = !o.report.empty();
-    cache_enabled(o.cache);  // checked before the shot is read
+    ao.keyframe_interval = interval;
+    ao.keyframe_motion = o.keyframe_motion;
+    ao.max_keyframe_interval = o.max_keyframe_interval;
+    ao.rebuild_above_percent = o.rebuild_above;
+    ao.threads = o.threads;
+    ao.reference = !o.report.empty();
+    ao.cache = {cache_enabled(o.cache), o.cache.cell, o.cache.memory_mib};  // checked before the shot is read
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
     int range_first = 0, range_last = -1;
     if (!o.frames.empty()) parse_frame_range(o.frames, range_first, range_last);
-    ShotFrames shot(read_shot_file(o.shot));
-    if (!shot.shot().objects.empty()) so.encoding = parse_encoding(o.encoding, shot.shot().objects.front().scene);
-    const int frames = shot.frame_count();
+    // Frames outside the range count as done: never written, and their
+    // keyframes traced only where a frame in the range needs one. The
+    // keyframes are the whole shot's, so a range's frames are one run's.
+    int frames = 0;
+    ao.done = [&](int f) {
+      return f < range_first || f > range_last || (o.resume && std::filesystem::exists(frame_path(o.output, f, frames, ext)));
+    };
+    std::optional<cluster::GroupDealer> dealer;
+    if (world.distributed()) ao.next_group = [&] { return dealer->next(); };
+    const StopOnSignal interrupt;
+    ao.stop = [&] {
+      if (!interrupt.requested()) return false;
+      if (dealer) dealer->stop();
+      return true;
+    };
+    api::Animation animation(o.shot, ao);
+    const Encoding encoding = animation.encoding() == api::Encoding::srgb ? Encoding::srgb : Encoding::linear;
+    frames = animation.frame_count();
     if (o.frames.empty()) range_last = frames - 1;
     if (range_last >= frames)
       throw std::invalid_argument(fmt::format("--frames: the shot has frames 0 to {}, got '{}'", frames - 1, o.frames));
     const bool whole_shot = range_first == 0 && range_last == frames - 1;
     if (!o.video.empty() && !whole_shot)
       throw std::invalid_argument("--video: needs every frame; after the ranges, run the whole shot with --resume --video");
-    if (pinhole && so.frame_camera->width == 0) {
-      // The first scene's resolution, as every frame's (a path's viewpoints carry none).
-      auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
-                                    [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
-      so.frame_camera->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
-      so.frame_camera->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
-    }
-    if (auto_keys && so.method != Method::full)
-      so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
-    // How the keyframes were placed, for the printed method and the report.
-    const std::string key_rule =
-        auto_keys ? fmt::format("{} keyframes placed by motion (at most {:g} px, {} frames apart)", so.keys.size(),
-                                o.keyframe_motion, o.max_keyframe_interval)
-                  : fmt::format("keyframe every {}", interval);
     const std::string key_args =
         auto_keys ? fmt::format("--keyframe-interval auto --keyframe-motion {:g} --max-keyframe-interval {}",
                                 o.keyframe_motion, o.max_keyframe_interval)
                   : fmt::format("--keyframe-interval {}", interval);
-    const LensArray first(shot.camera(0));  // sizes and the printed description
-    const std::unique_ptr<ShadowCache> cache = make_cache(shot.scene(), first.desc().pitch, o.cache);
-    so.cache = cache.get();
-    {
-      // Two point images, two z-buffers and the frame (a panel: its samples,
-      // three per pixel, and the packed frame): refuse before the first trace.
-      const int panel_w = !panel ? 0 : glass ? camera_choice.calibration->width : camera_choice.display->width;
-      const int panel_h = !panel ? 0 : glass ? camera_choice.calibration->height : camera_choice.display->height;
-      const uint64_t panel_pixels = uint64_t(panel_w) * panel_h;
-      const uint64_t need = panel ? panel_pixels * (3 * 12 + 2 * 12)
-                                  : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
-      const uint64_t have = physical_memory_bytes();
-      if (have && need > have / 10 * 8)
-        throw std::length_error(fmt::format("{}x{} frames need {:.2f} GiB while animating, more than 80% of this machine's {:.2f} GiB",
-                                            panel ? panel_w : first.width(), panel ? panel_h : first.height(), need / 1073741824.0,
-                                            have / 1073741824.0));
-    }
     std::error_code ec;
     std::filesystem::create_directories(o.output, ec);
     if (!std::filesystem::is_directory(o.output))
@@ -268,61 +258,24 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     }
     // Rank 0 alone, before any rank starts (agree() below waits for all).
     if (o.resume && world.rank() == 0) remove_stale_temporaries(o.output, range_first, range_last);
-    // Frames outside the range count as done: never written, and their
-    // keyframes traced only where a frame in the range needs one. The
-    // keyframes are the whole shot's, so a range's frames are one run's.
-    if (o.resume || !whole_shot)
-      so.done = [&](int f) {
-        return f < range_first || f > range_last || (o.resume && std::filesystem::exists(frame_path(o.output, f, frames, ext)));
-      };
-    const StopOnSignal interrupt;
     // Under mpirun, ranks are dealt groups of frames (cluster/group_dealer):
     // weighted by the frames each has left to render.
-    std::optional<cluster::GroupDealer> dealer;
     if (world.distributed()) {
       std::vector<double> weights;
-      for (const FrameGroup& g : frame_groups(frames, so)) {
+      for (const auto& [first, last] : animation.groups()) {
         int left = 0;
-        for (int f = g.first; f <= g.last; ++f) left += !(so.done && so.done(f));
+        for (int f = first; f <= last; ++f) left += !ao.done(f);
         weights.push_back(left);
       }
       dealer.emplace(world, std::move(weights));
-      so.next_group = [&] { return dealer->next(); };
     }
-    so.stop = [&] {
-      if (!interrupt.requested()) return false;
-      if (dealer) dealer->stop();
-      return true;
-    };
     const std::string rank_tag = world.distributed() ? fmt::format("rank {:>2}  ", world.rank()) : "";
 
     if (!o.quiet && world.rank() == 0) {
-      // Once per file: several shot objects may place the same scene file.
-      std::set<std::string> warned;
-      for (const SceneDesc& desc : shot.scenes())
-        if (warned.insert(desc.source).second) print_scene_warnings(desc);
-      const LensArray& cam = first;
-      fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, shot.shot().fps,
-                 shot.shot().objects.size());
-      const FrameCameraDesc& c = camera_choice;
-      if (c.display)
-        fmt::print("panel      {}x{} px from {}, each frame's viewpoint\n", c.display->width, c.display->height, o.view.display);
-      else if (c.calibration)
-        fmt::print("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
-                   c.calibration->width, c.calibration->height, o.view.looking_glass, c.looking_glass_views);
-      else if (pinhole)
-        fmt::print("view       {}x{} px, pinhole, each frame's viewpoint\n", so.frame_camera->width, so.frame_camera->height);
-      else
-        fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", cam.width(), cam.height(),
-                   to_string(cam.desc().grid), cam.lens_count_x(), cam.lens_count_y(), cam.desc().pixels_per_lens,
-                   to_string(cam.desc().mode));
-      if (so.method == Method::reproject)
-        fmt::print("method     reproject: {}, reuse {}, fill {}, reach {}{}\n", key_rule, reuse, o.fill, o.reach,
-                   o.no_leak_check ? ", no leak check" : "");
-      else if (so.method == Method::reverse)
-        fmt::print("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, reuse);
-      else
-        fmt::print("method     full ray tracing\n");
+      for (const auto& w : animation.warnings()) print_scene_warnings(w.text, w.count, w.source);
+      fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, animation.fps(),
+                 animation.object_count());
+      fmt::print("{}", animation.describe());
       if (world.distributed())
         fmt::print("ranks      {}: groups of frames (a keyframe and the frames up to the next) dealt by rank 0\n", world.size());
     }
@@ -330,11 +283,11 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     rendering = true;
     const auto run_start = std::chrono::steady_clock::now();
 
-    std::vector<FrameReport> reports;
-    double write_seconds = 0;  // encoding and writing the frames (not in FrameReport::seconds)
-    render_sequence(shot, so, [&](int f, const ImageBuffer& colour, const FrameReport& r) {
+    std::vector<api::FrameRow> reports;
+    double write_seconds = 0;  // encoding and writing the frames (not in FrameRow::seconds)
+    animation.run([&](int f, const api::Image& colour, const api::FrameRow& r) {
       const auto t_write = std::chrono::steady_clock::now();
-      write_image(frame_path(o.output, f, frames, ext), colour, so.encoding);
+      api::write_image(frame_path(o.output, f, frames, ext), colour, animation.encoding());
       write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_write).count();
       reports.push_back(r);
       if (o.quiet) return;
@@ -342,15 +295,15 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
         fmt::print("{}frame {:>5}  traced       {:.3f} s\n", rank_tag, f, r.seconds);
       } else if (r.copied_from >= 0) {
         fmt::print("{}frame {:>5}  copied       {:.3f} s  keyframe {} (same camera, nothing moved){}\n", rank_tag, f,
-                   r.seconds, r.copied_from, r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr_all()) : "");
+                   r.seconds, r.copied_from, r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr()) : "");
       } else {
         const double px = static_cast<double>(r.pixels);
         fmt::print("{}frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", rank_tag, f,
                    r.seconds, 100 * r.reprojected / px, 100 * r.traced / px, 100 * r.interpolated / px,
-                   r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr_all()) : "");
+                   r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr()) : "");
         if (o.verbose)
           fmt::print("             splat {:.3f} s, merge {:.3f} s, leaks {:.3f} s, check {:.3f} s, fill {:.3f} s\n",
-                     r.stages.splat, r.stages.merge, r.stages.leaks, r.stages.check, r.stages.fill);
+                     r.stage_seconds[0], r.stage_seconds[1], r.stage_seconds[2], r.stage_seconds[3], r.stage_seconds[4]);
       }
       std::fflush(stdout);
     });
@@ -358,17 +311,17 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const cluster::DealStats deal = dealer ? dealer->finish() : cluster::DealStats{};
     // Every rank's frame reports (one per frame written) on rank 0, in frame
     // order, for the totals and --report (collective: every rank has finished
-    // writing). FrameReport is plain data: its bytes travel as they are.
-    static_assert(std::is_trivially_copyable_v<FrameReport>);
+    // writing). api::FrameRow is plain data: its bytes travel as they are.
+    static_assert(std::is_trivially_copyable_v<api::FrameRow>);
     if (world.distributed()) {
-      std::vector<unsigned char> bytes(reports.size() * sizeof(FrameReport));
+      std::vector<unsigned char> bytes(reports.size() * sizeof(api::FrameRow));
       if (!reports.empty()) std::memcpy(bytes.data(), reports.data(), bytes.size());
       bytes = world.gather(bytes);
-      reports.resize(bytes.size() / sizeof(FrameReport));
+      reports.resize(bytes.size() / sizeof(api::FrameRow));
       if (!reports.empty()) std::memcpy(reports.data(), bytes.data(), bytes.size());
-      std::sort(reports.begin(), reports.end(), [](const FrameReport& a, const FrameReport& b) { return a.frame < b.frame; });
+      std::sort(reports.begin(), reports.end(), [](const api::FrameRow& a, const api::FrameRow& b) { return a.frame < b.frame; });
     }
-    const RunSummary s = summarise(reports);
+    const api::RunTotals s = api::totals(reports);
     const int64_t written_all = static_cast<int64_t>(reports.size());  // on rank 0
     const double write_seconds_all = world.sum(write_seconds);
     const int64_t interrupted_ranks = world.sum(int64_t{interrupt.requested() ? 1 : 0});
@@ -384,7 +337,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     if (!o.video.empty()) {
       // From the frames on disk, in order: the video shows exactly what the
       // folder holds, and a resumed run rebuilds it whole.
-      vo.fps = shot.shot().fps;
+      vo.fps = animation.fps();
       const auto t0 = std::chrono::steady_clock::now();
       std::optional<VideoWriter> video;
       std::vector<uint8_t> bytes;
@@ -394,7 +347,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
         if (img.channels < 3) throw std::runtime_error(fmt::format("frame {} has {} channels, not RGB", f, img.channels));
         bytes.resize(size_t(img.width) * img.height * 3);
         // PNG frames hold their codes already; EXR frames are encoded as PNG frames would be.
-        const Encoding enc = ext == "png" ? Encoding::linear : so.encoding;
+        const Encoding enc = ext == "png" ? Encoding::linear : encoding;
         for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
           for (int c = 0; c < 3; ++c) bytes[p * 3 + c] = encode_8bit(img.data[p * img.channels + c], enc);
         video->add_frame(bytes.data());
@@ -414,27 +367,24 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
                    "(a keyframe traced twice each), {} steals, {} bytes of requests; {:.3f} s writing frames (all ranks)\n",
                    world.size(), wall_s, deal.groups_dealt, deal.unchained_starts, deal.steals, deal.request_bytes,
                    write_seconds_all);
-      fmt::print("time       {:.3f} s{}\n", s.accelerated_seconds,
-                 so.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
-                                            s.saved_percent(), s.mean_psnr)
+      fmt::print("time       {:.3f} s{}\n", s.seconds,
+                 ao.reference ? fmt::format(" (full ray tracing {:.3f} s, {:.1f}% saved, mean PSNR {:.2f} dB)", s.full_seconds,
+                                            s.saved_percent, s.mean_psnr)
                               : "");
     }
     if (!o.report.empty()) {
       std::string cmdline = fmt::format("{}holoray animate {} -o {} --method {} --cache {}",
                                         world.distributed() ? fmt::format("mpirun -np {} ", world.size()) : "", o.shot,
                                         o.output, method, o.cache.cache);
-      if (so.method == Method::reproject)
+      if (ao.method == api::Method::reproject)
         cmdline += fmt::format(" {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}", key_args, reuse, o.fill,
                                o.rebuild_above, o.reach, o.no_leak_check ? " --no-leak-check" : "");
-      else if (so.method == Method::reverse)
+      else if (ao.method == api::Method::reverse)
         cmdline += fmt::format(" {} --reuse {}", key_args, reuse);
-      const LensArray& cam = first;
       write_text_file(o.report,
-                      markdown_report(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
+                      api::report_markdown(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
                                       {fmt::format("- command: `{} --report {}`", cmdline, o.report),
-                                       fmt::format("- EIA: {}x{} px, {} grid, {}x{} lenses x {} px, {}", cam.width(),
-                                                   cam.height(), to_string(cam.desc().grid), cam.lens_count_x(),
-                                                   cam.lens_count_y(), cam.desc().pixels_per_lens, to_string(cam.desc().mode)),
+                                       fmt::format("- EIA: {}", animation.array_summary()),
                                        fmt::format("- machine: {}, {} threads{}", machine_description(),
                                                    o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency()),
                                                    world.distributed()

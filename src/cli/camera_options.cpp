@@ -35,9 +35,7 @@ std::array<CLI::Option*, 2> add_camera_options(CLI::App& cmd, CameraOptions& o, 
   return {display, glass};
 }
 
-FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still) {
-  using Kind = FrameCameraDesc::Kind;
-  FrameCameraDesc d;
+void camera_desc_rules(const CameraOptions& o, bool quilt, bool still) {
   const bool pinhole = o.camera == "pinhole";
   if (pinhole && !o.looking_glass.empty())
     throw std::invalid_argument("--looking-glass: renders the panel's own views; it goes without --camera pinhole");
@@ -50,6 +48,23 @@ FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still) {
       throw std::invalid_argument(
           still ? "--resolution: goes with --camera pinhole or --quilt (an EIA's size is --lenses x --pixels-per-lens)"
                 : "--resolution: goes with --camera pinhole (an EIA's size is the shot's [array])");
+  }
+}
+
+std::optional<api::Placement> placement_of(const std::string& origin, const std::string& normal, const std::string& up) {
+  if (origin.empty() && normal.empty() && up.empty()) return std::nullopt;
+  if (origin.empty() || normal.empty() || up.empty())
+    throw std::invalid_argument("--origin, --normal and --up: give all three, or none");
+  auto arr = [](const Vec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
+  return api::Placement{arr(parse_vec3("--origin", origin)), arr(parse_vec3("--normal", normal)), arr(parse_vec3("--up", up))};
+}
+
+FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still) {
+  using Kind = FrameCameraDesc::Kind;
+  FrameCameraDesc d;
+  const bool pinhole = o.camera == "pinhole";
+  camera_desc_rules(o, quilt, still);
+  if (!o.resolution.empty()) {
     parse_resolution(o.resolution, d.width, d.height);
   }
   if (!o.looking_glass.empty()) {

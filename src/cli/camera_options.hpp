@@ -5,9 +5,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "display/looking_glass.hpp"
+#include "holoray/camera.hpp"
 #include "render/frame_camera.hpp"
 
 namespace holoray::cli {
@@ -33,5 +35,11 @@ std::array<CLI::Option*, 2> add_camera_options(CLI::App& cmd, CameraOptions& o, 
 /// a panel or a quilt goes without `--camera pinhole`; --resolution goes
 /// with the pinhole camera or a quilt.
 FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still);
+/// camera_desc's rules alone, without reading any file.
+void camera_desc_rules(const CameraOptions& o, bool quilt, bool still);
+
+/// --origin, --normal and --up as an explicit placement (CLI11 makes them
+/// go together); nullopt when none is given.
+std::optional<api::Placement> placement_of(const std::string& origin, const std::string& normal, const std::string& up);
 
 }  // namespace holoray::cli

@@ -12,23 +12,15 @@
 #include <mutex>
 #include <optional>
 
-#include "camera/placement.hpp"
-#include "camera/quilt_camera.hpp"
-#include "display/display_file.hpp"
-#include "display/display_placement.hpp"
-#include "display/looking_glass.hpp"
-#include "cli/machine.hpp"
+#include "api/internal.hpp"
 #include "cli/option_parsing.hpp"
+#include "cli/scene_warnings.hpp"
 #include "cli/validators.hpp"
 #include "cluster/band_exchange.hpp"
 #include "cluster/mpi_world.hpp"
 #include "cluster/row_bands.hpp"
-#include "cli/scene_warnings.hpp"
+#include "holoray/holoray.hpp"
 #include "image/image_io.hpp"
-#include "render/frame_camera.hpp"
-#include "render/renderer.hpp"
-#include "scene/mesh_reader.hpp"
-#include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 
 namespace holoray::cli {
@@ -67,22 +59,33 @@ class FrameFiles {
   std::vector<std::pair<ImageBuffer FrameBuffers::*, std::unique_ptr<ImageWriter>>> files_;
 };
 
+// A rendered band's planes as the writers and the band exchange take them (shared, not copied).
+FrameBuffers buffers_of(const api::Result& r) {
+  using api::detail::ImageAccess;
+  FrameBuffers fb;
+  fb.colour = ImageAccess::buffer(r.colour);
+  fb.albedo = ImageAccess::buffer(r.albedo);
+  fb.depth = ImageAccess::buffer(r.depth);
+  fb.normal = ImageAccess::buffer(r.normal);
+  fb.id = ImageAccess::buffer(r.id);
+  return fb;
+}
+
 // The lens array the options describe (each value checked by CLI11).
-ArraySettings resolve_settings(const RenderCommandOptions& o) {
-  ArraySettings s;
-  s.grid = parse_grid(o.grid);
-  s.mode = o.mode == "pseudoscopic" ? RecordingMode::pseudoscopic : RecordingMode::orthoscopic;
-  parse_lens_count(o.lenses, s.lenses_x, s.lenses_y);
-  s.pixels_per_lens = o.pixels_per_lens;
-  s.rows = o.rows;
-  if (!std::isnan(o.pitch)) s.pitch = o.pitch;
-  if (!std::isnan(o.gap)) s.gap = o.gap;
-  if (!std::isnan(o.fov_lens)) s.fov_lens_deg = o.fov_lens;
-  s.view_distance = o.view_distance;
-  if (!o.origin.empty()) s.origin = parse_vec3("--origin", o.origin);
-  if (!o.normal.empty()) s.normal = parse_vec3("--normal", o.normal);
-  if (!o.up.empty()) s.up = parse_vec3("--up", o.up);
-  return s;
+api::LensArray lens_array_of(const RenderCommandOptions& o) {
+  api::LensArray a;
+  const Grid grid = parse_grid(o.grid);
+  a.grid = grid == Grid::hex ? api::Grid::hex : grid == Grid::lenticular ? api::Grid::lenticular : api::Grid::square;
+  a.mode = o.mode == "pseudoscopic" ? api::Mode::pseudoscopic : api::Mode::orthoscopic;
+  parse_lens_count(o.lenses, a.lenses_x, a.lenses_y);
+  a.pixels_per_lens = o.pixels_per_lens;
+  a.rows = o.rows;
+  if (!std::isnan(o.pitch)) a.pitch = o.pitch;
+  if (!std::isnan(o.gap)) a.gap = o.gap;
+  if (!std::isnan(o.fov_lens)) a.fov_lens_deg = o.fov_lens;
+  a.view_distance = o.view_distance;
+  a.placement = placement_of(o.origin, o.normal, o.up);
+  return a;
 }
 
 // A CLI11 check of an X,Y,Z option.
@@ -168,121 +171,61 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
 
 namespace {
 
-using Kind = FrameCameraDesc::Kind;
-
 // The camera the options name, with the rules between options that CLI11
 // cannot say (each value it checked already).
-FrameCameraDesc camera_choice_of(const RenderCommandOptions& o) {
-  FrameCameraDesc c = camera_desc(o.view, !o.quilt.empty(), true);
-  c.array = resolve_settings(o);
-  if (c.kind == Kind::quilt) {
-    QuiltDesc& q = c.quilt;
-    parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
-    q.view_cone_deg = o.view_cone;
-    if (c.width > 0) q.view_width = c.width, q.view_height = c.height;
-    if (o.quilt_view >= q.columns * q.rows)
-      throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", q.columns, q.rows,
-                                              q.columns * q.rows - 1, o.quilt_view));
-    c.quilt_view = o.quilt_view;
-  }
-  c.tachyon_samples = o.sample_at == "tachyon";
-  if (c.tachyon_samples && (c.kind != Kind::pinhole || o.spp != 1))
+api::Camera camera_of(const RenderCommandOptions& o) {
+  const CameraOptions& v = o.view;
+  const bool pinhole = v.camera == "pinhole", quilt = !o.quilt.empty();
+  camera_desc_rules(v, quilt, true);
+  if (o.sample_at == "tachyon" && (!pinhole || o.spp != 1))
     throw std::invalid_argument("--sample-at tachyon: goes with --camera pinhole and one sample per pixel");
   // The cache's cells are sized in lens pitches (a display whose lenses are
   // whole pixels has them too: checked again once the camera is placed).
-  if (cache_enabled(o.cache) && c.kind != Kind::integral && c.kind != Kind::display)
+  if (cache_enabled(o.cache) && (pinhole || quilt || !v.looking_glass.empty()))
     throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-  return c;
-}
-
-// Refuses, before anything is allocated, an image whose buffers would not
-// fit in 80% of memory: the frame and its AOVs, the 8-bit or float copy
-// made on output, and a panel's samples (three per pixel with subpixels).
-// Under mpirun a rank holds only its own `bands`, rank 0 one band more
-// (cluster/band_exchange.hpp), each copied once as it is written.
-void refuse_if_too_large(const FrameCamera& camera, const AovSet& aovs, const cluster::World& world,
-                         const std::vector<RowBand>& bands) {
-  const int width = camera.width(), height = camera.height();
-  const int64_t pixels = static_cast<int64_t>(width) * height;
-  int64_t samples = static_cast<int64_t>(camera.panel_samples_per_row()) * height;
-  int64_t held = pixels, copied = pixels;
-  if (world.distributed()) {
-    int64_t own = 0, largest = 0;
-    for (const RowBand& b : bands) {
-      largest = std::max<int64_t>(largest, b.y1 - b.y0);
-      if (b.rank == world.rank()) own += b.y1 - b.y0;
-    }
-    held = (own + (world.rank() == 0 ? largest : 0)) * width;
-    copied = largest * width;
-    samples = samples / height * (held / width);
+  if (!v.looking_glass.empty()) return api::LookingGlass{v.looking_glass, v.looking_glass_views};
+  if (!v.display.empty()) return api::Display{v.display, placement_of(o.origin, o.normal, o.up)};
+  if (quilt) {
+    api::Quilt q;
+    parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
+    q.view_cone_deg = o.view_cone;
+    if (!v.resolution.empty()) parse_resolution(v.resolution, q.view_width, q.view_height);
+    if (o.quilt_view >= q.columns * q.rows)
+      throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", q.columns, q.rows,
+                                              q.columns * q.rows - 1, o.quilt_view));
+    q.view = o.quilt_view;
+    return q;
   }
-  const uint64_t need = frame_bytes(held, aovs) + static_cast<uint64_t>(copied) * 12 + frame_bytes(samples, aovs);
-  const uint64_t have = physical_memory_bytes();
-  if (have && need > have / 10 * 8)
-    throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers{}, more than 80% of this machine's {:.2f} GiB",
-                                        width, height, need / 1073741824.0,
-                                        held < pixels ? fmt::format(" on rank {} of {}", world.rank(), world.size()) : "",
-                                        have / 1073741824.0));
+  if (pinhole) {
+    api::Pinhole p;
+    if (!v.resolution.empty()) parse_resolution(v.resolution, p.width, p.height);
+    p.tachyon_samples = o.sample_at == "tachyon";
+    return p;
+  }
+  return lens_array_of(o);
 }
-
-// What happened, for the printed summary.
-struct RenderRun {
-  double parse_s = 0, build_s = 0, write_s = 0, gather_s = 0, band_bytes = 0;
-  std::string output;
-  TraceStyle style = TraceStyle::packet;
-  RenderStats stats;
-};
 
 // The summary `render` prints: the scene, the camera, the times and rays.
-void print_summary(const RenderCommandOptions& o, const SceneDesc& desc, const RenderScene& scene,
-                   const FrameCameraDesc& choice, const FrameCamera& camera, const ShadowCache* cache,
-                   const RenderRun& run, const cluster::World& world) {
-  const int width = camera.width(), height = camera.height();
+void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const api::Renderer& renderer,
+                   const api::Result& result, double parse_s, double gather_s, double band_bytes, const std::string& output,
+                   double write_s, const cluster::World& world) {
   const auto count = [](size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); };
-  fmt::print("scene      {}: {}, {}{}\n", o.scene, count(desc.objects.size(), "object"), count(desc.lights.size(), "light"),
-             scene.skipped_polygons() ? fmt::format(" ({} skipped)", count(scene.skipped_polygons(), "zero-area polygon")) : "");
-  if (camera.glass) {
-    fmt::print("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
-               width, height, o.view.looking_glass, camera.glass->calibration().view_cone_deg);
-  } else if (camera.quilt) {
-    const QuiltDesc& q = camera.quilt->desc();
-    fmt::print("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
-               width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
-  } else if (choice.kind == Kind::quilt) {
-    const QuiltDesc& q = choice.quilt;
-    fmt::print("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, o.quilt_view, q.columns,
-               q.rows, q.view_cone_deg);
-  } else if (choice.kind == Kind::pinhole) {
-    fmt::print("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
-               camera.view->desc().fov_deg);
-  } else if (camera.panel) {
-    const DisplayDesc& d = *choice.display;
-    const DisplayGeometry& g = camera.panel->geometry();
-    fmt::print("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
-               d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
-               d.samples_per_pixel() == 1 ? "one line" : "three lines", to_string(d.grid),
-               d.slant_deg != 0 ? fmt::format(" slanted {:.4g} deg", d.slant_deg) : "", to_string(d.mode));
-    fmt::print("lenses     pitch {:.6g} mm ({:.6g} px across a row), gap {:.6g} mm; {:.6g} scene units per mm\n",
-               d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
-  } else {
-    if (choice.display) fmt::print("display    {}: whole pixels per lens, rendered as the EIA below\n", o.view.display);
-    const LensArray& a = *camera.array;
-    const LensArrayDesc& d = a.desc();
-    fmt::print("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid),
-               a.lens_count_x(), a.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
-    fmt::print("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, a.lens_fov_deg());
-  }
-  fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", run.parse_s + run.build_s, run.parse_s, run.build_s);
-  fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", run.stats.trace_seconds, o.spp,
-             o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), to_string(run.style),
+  const size_t skipped = renderer.skipped_polygons();
+  fmt::print("scene      {}: {}, {}{}\n", o.scene, count(scene.object_count(), "object"), count(scene.light_count(), "light"),
+             skipped ? fmt::format(" ({} skipped)", count(skipped, "zero-area polygon")) : "");
+  fmt::print("{}", renderer.describe());
+  const api::RenderStats& st = result.stats;
+  fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + st.build_seconds, parse_s, st.build_seconds);
+  fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", st.trace_seconds, o.spp,
+             o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), renderer.style_name(),
              world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
-                                               world.size(), run.gather_s, run.band_bytes / 1048576.0)
+                                               world.size(), gather_s, band_bytes / 1048576.0)
                                  : "");
-  const RayCounts& r = run.stats.rays;
+  const api::RayCounts& r = st.rays;
   fmt::print("rays       eye {}, shadow {}, reflected {}, refracted {}; total {}, {:.2f} Mrays/s\n", r.eye, r.shadow,
-             r.reflected, r.refracted, r.total(), run.stats.trace_seconds > 0 ? r.total() / run.stats.trace_seconds / 1e6 : 0.0);
-  if (cache) fmt::print("{}", cache_summary(*cache, r, o.cache));
-  fmt::print("wrote      {} ({:.3f} s{})\n", run.output, world.distributed() ? run.gather_s : run.write_s,
+             r.reflected, r.refracted, r.total(), st.trace_seconds > 0 ? r.total() / st.trace_seconds / 1e6 : 0.0);
+  fmt::print("{}", result.cache_summary);
+  fmt::print("wrote      {} ({:.3f} s{})\n", output, world.distributed() ? gather_s : write_s,
              world.distributed() ? ", gathering the bands" : "");
 }
 
@@ -295,50 +238,47 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     const Encoding encoding = parse_encoding(o.encoding, o.scene);
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const std::optional<TraceStyle> style = parse_style(o.style);
-    const FrameCameraDesc choice = camera_choice_of(o);
+    const api::Camera camera = camera_of(o);
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
-    RenderRun run;
     const auto t_parse = Clock::now();
-    const SceneDesc desc = read_scene_file(o.scene);
-    run.parse_s = seconds_since(t_parse);
-    if (!o.quiet) print_scene_warnings(desc);
+    const api::Scene scene = api::Scene::load(o.scene);
+    const double parse_s = seconds_since(t_parse);
+    if (!o.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), o.scene);
 
-    const FrameCamera camera = make_frame_camera(choice, desc.viewpoint, o.scene);
-    if ((camera.panel || camera.glass) && (aovs.albedo || aovs.depth || aovs.normal || aovs.id))
-      throw std::invalid_argument("--aov: not written for native panel images yet (colour only)");
-    if (!camera.array && cache_enabled(o.cache))
-      throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-    const int width = camera.width(), height = camera.height();
+    api::RenderOptions ropt;
+    ropt.spp = o.spp;
+    ropt.threads = o.threads;
+    ropt.max_depth = o.max_depth;
+    ropt.aovs = {aovs.albedo, aovs.depth, aovs.normal, aovs.id};
+    ropt.style = !style ? api::Style::automatic
+                 : *style == TraceStyle::packet ? api::Style::packet
+                 : *style == TraceStyle::subaperture ? api::Style::subaperture
+                 : *style == TraceStyle::horizontal ? api::Style::horizontal
+                                                    : api::Style::vertical;
+    ropt.cache = {cache_enabled(o.cache), o.cache.cell, o.cache.memory_mib};
     // Under mpirun: bands of whole lens rows of an EIA, else rows of 32 (the
-    // line renderers' tile); the image never depends on them.
-    const std::vector<RowBand> bands =
-        world.distributed() ? row_bands(height, camera.array ? camera.array->desc().pixels_per_lens : 32, world.size())
-                            : std::vector<RowBand>{};
-    refuse_if_too_large(camera, aovs, world, bands);
-
-    const auto t_build = Clock::now();
-    RenderScene scene(desc);
-    if (o.max_depth != 0) scene.set_max_depth(o.max_depth);
-    // Mesh textures take the MIP level of what one pixel sees.
-    if (const auto angle = camera.pixel_angle()) scene.set_pixel_footprint(0, *angle);
-    const std::unique_ptr<ShadowCache> cache = camera.array ? make_cache(scene, camera.array->desc().pitch, o.cache) : nullptr;
-    scene.set_shadow_cache(cache.get());
-    run.build_s = seconds_since(t_build);
-
-    if (!world.agree(true, "")) return 1;
-    rendering = true;
+    // line renderers' tile); the image never depends on them. A rank holds
+    // only its own bands, rank 0 one band more (cluster/band_exchange.hpp),
+    // each copied once as it is written.
+    std::vector<RowBand> bands;
+    if (world.distributed())
+      ropt.memory_share = [&](int height, int band_rows) {
+        bands = row_bands(height, band_rows, world.size());
+        int64_t own = 0, largest = 0;
+        for (const RowBand& b : bands) {
+          largest = std::max<int64_t>(largest, b.y1 - b.y0);
+          if (b.rank == world.rank()) own += b.y1 - b.y0;
+        }
+        const int64_t held = own + (world.rank() == 0 ? largest : 0);
+        return api::MemoryShare{held, largest,
+                                held < height ? fmt::format(" on rank {} of {}", world.rank(), world.size()) : ""};
+      };
     const bool tty = !o.quiet && world.rank() == 0 && ::isatty(STDERR_FILENO);
     std::mutex progress_mutex;
     int shown = -1;
-    RenderOptions ropt;
-    ropt.spp = o.spp;
-    ropt.threads = o.threads;
-    ropt.aovs = aovs;
-    ropt.style = style ? *style : camera.array ? preferred_style(camera.array->desc()) : TraceStyle::packet;
-    run.style = ropt.style;
     if (tty)
       ropt.progress = [&](double f) {
         std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -348,50 +288,60 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
         std::fprintf(stderr, "\rtracing %3d%%", pct);
         std::fflush(stderr);
       };
-    // The whole image, or one band of its rows.
-    auto render_rows = [&](std::optional<std::array<int, 2>> rows, RenderStats& st) {
-      RenderOptions ro = ropt;
-      ro.rows = rows;
-      return render_through(scene, camera, ro, st);
-    };
+    const api::Renderer renderer(scene, camera, ropt);
+    const int width = renderer.width(), height = renderer.height();
+
+    if (!world.agree(true, "")) return 1;
+    rendering = true;
     // A quilt's name tells Looking Glass tools its layout.
-    run.output = camera.quilt ? quilt_file_name(o.output, camera.quilt->desc()) : o.output;
+    const auto* quilt = std::get_if<api::Quilt>(&camera);
+    const std::string output =
+        quilt && quilt->view < 0 ? quilt_file_name(o.output, QuiltDesc{quilt->columns, quilt->rows, quilt->view_width,
+                                                                       quilt->view_height, quilt->view_cone_deg})
+                                 : o.output;
+    api::Result result;
+    double gather_s = 0, band_bytes = 0, write_s = 0;
     if (world.distributed()) {
       // Bands of rows dealt round robin (cluster/row_bands.hpp); each rank
       // traces its own, rank 0 writes them to the files in order as they
       // arrive (the gather time includes those writes).
       const auto t_trace = Clock::now();
       std::vector<FrameBuffers> mine;
-      RenderStats band_stats;
       for (const RowBand& b : bands) {
         if (b.rank != world.rank()) continue;
-        mine.push_back(render_rows(std::array<int, 2>{b.y0, b.y1}, band_stats));
-        run.stats.rays += band_stats.rays;
+        const api::Result band = renderer.render(std::array<int, 2>{b.y0, b.y1});
+        mine.push_back(buffers_of(band));
+        api::RayCounts& r = result.stats.rays;
+        const api::RayCounts& n = band.stats.rays;
+        r.eye += n.eye, r.shadow += n.shadow, r.reflected += n.reflected, r.refracted += n.refracted;
+        r.shadow_cached += n.shadow_cached, r.cache_samples += n.cache_samples;
+        result.cache_summary = band.cache_summary;
       }
+      result.stats.build_seconds = renderer.build_stats().build_seconds;
       const auto t_gather = Clock::now();
       std::optional<FrameFiles> files;
-      if (world.rank() == 0) files.emplace(run.output, width, height, aovs, encoding);
+      if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding);
       cluster::stream_bands(world, bands, mine, width, aovs, [&](const RowBand&, const FrameBuffers& b) { files->write(b); },
-                            run.band_bytes);
+                            band_bytes);
       if (files) files->finish();
-      run.gather_s = seconds_since(t_gather);
-      run.stats.trace_seconds = seconds_since(t_trace);
-      RayCounts& r = run.stats.rays;
+      gather_s = seconds_since(t_gather);
+      result.stats.trace_seconds = seconds_since(t_trace);
+      api::RayCounts& r = result.stats.rays;
       for (uint64_t* n : {&r.eye, &r.shadow, &r.reflected, &r.refracted, &r.shadow_cached, &r.cache_samples})
         *n = static_cast<uint64_t>(world.sum(static_cast<int64_t>(*n)));
-      run.band_bytes = world.sum(run.band_bytes);
+      band_bytes = world.sum(band_bytes);
       if (world.rank() != 0) return 0;
       if (tty) std::fprintf(stderr, "\r             \r");
     } else {
-      const FrameBuffers fb = render_rows(std::nullopt, run.stats);
+      result = renderer.render();
       if (tty) std::fprintf(stderr, "\r             \r");
       const auto t_write = Clock::now();
-      FrameFiles files(run.output, width, height, aovs, encoding);
-      files.write(fb);
+      FrameFiles files(output, width, height, aovs, encoding);
+      files.write(buffers_of(result));
       files.finish();
-      run.write_s = seconds_since(t_write);
+      write_s = seconds_since(t_write);
     }
-    if (!o.quiet) print_summary(o, desc, scene, choice, camera, cache.get(), run, world);
+    if (!o.quiet) print_summary(o, scene, renderer, result, parse_s, gather_s, band_bytes, output, write_s, world);
     return 0;
   } catch (const ParseError& e) {
     return world.fail(e.what(), rendering);

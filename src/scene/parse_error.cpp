@@ -21,13 +21,10 @@ std::string format_report(const std::string& file, SourceLoc loc, const std::str
 }  // namespace
 
 ParseError::ParseError(std::string file, SourceLoc loc, std::string message, const std::string& line_text)
-    : std::runtime_error(format_report(file, loc, message, line_text)),
-      file_(std::move(file)),
-      loc_(loc),
-      message_(std::move(message)) {}
+    : api::SceneError(file, loc.line, loc.col, message, format_report(file, loc, message, line_text)) {}
 
 std::string ParseError::headline() const {
-  return fmt::format("{}:{}:{}: error: {}", file_, loc_.line, loc_.col, message_);
+  return fmt::format("{}:{}:{}: error: {}", file(), line(), column(), message());
 }
 
 }  // namespace holoray

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "holoray/errors.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace holoray {
@@ -14,21 +15,16 @@ namespace holoray {
 ///       <the offending line>
 ///       <caret under the column>
 ///
-/// message() alone is "<what was expected>, found <what was found>".
-class ParseError : public std::runtime_error {
+/// message() alone is "<what was expected>, found <what was found>". It is
+/// the public API's SceneError (holoray/errors.hpp), so every front end
+/// catches one type for every malformed file.
+class ParseError : public api::SceneError {
  public:
   ParseError(std::string file, SourceLoc loc, std::string message, const std::string& line_text);
 
-  const std::string& file() const { return file_; }
-  SourceLoc loc() const { return loc_; }
-  const std::string& message() const { return message_; }
+  SourceLoc loc() const { return {line(), column()}; }
   /// The first line of what(): "file:line:col: error: message".
   std::string headline() const;
-
- private:
-  std::string file_;
-  SourceLoc loc_;
-  std::string message_;
 };
 
 }  // namespace holoray

@@ -1,0 +1,133 @@
+// holoray public API: rendering a scene through a camera, once.
+//
+//   Renderer r(scene, camera, options);  // validated, placed, built once
+//   Result out = r.render();             // colour, AOVs, rays, seconds
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stop_token>
+#include <string>
+
+#include "holoray/camera.hpp"
+#include "holoray/export.hpp"
+#include "holoray/image.hpp"
+#include "holoray/scene.hpp"
+
+namespace holoray::api {
+
+/// Outputs besides the colour, from each pixel's first (centre) sample.
+struct Aovs {
+  bool albedo = false;  ///< flat surface colour, unlit; linear RGB
+  bool depth = false;   ///< the camera's line parameter t (camera-model.md); NaN for background
+  bool normal = false;  ///< unit shading normal, world frame, facing the viewer; 0 for background
+  bool id = false;      ///< object index (file order, then add order); -1 for background
+};
+
+/// The order pixels are traced in (paper §6); never changes the image.
+enum class Style { automatic, packet, subaperture, horizontal, vertical };
+
+/// The shadow cache (docs/guide/performance.md): light visibility reused per
+/// surface cell across lenses; lens-array cameras only.
+struct ShadowCacheOptions {
+  bool enabled = false;
+  double cell = 1;           ///< cell size in lens pitches
+  double memory_mib = 512;   ///< bound on its storage
+};
+
+/// What of an image one process holds: rows held at once, rows copied once
+/// more on output, and where, for the message (" on rank 0 of 4").
+struct MemoryShare {
+  int64_t held_rows = 0, copied_rows = 0;
+  std::string where;
+};
+
+struct RenderOptions {
+  int threads = 0;    ///< worker threads; 0: all cores
+  int spp = 1;        ///< samples per pixel, >= 1 (sample 0 at the centre)
+  int max_depth = 0;  ///< ray-tree depth, eye ray = 1; 0: the scene's (Tachyon raydepth), else 5
+  Aovs aovs;
+  Style style = Style::automatic;
+  ShadowCacheOptions cache;
+  /// Called from worker threads with the fraction done; must be thread-safe.
+  std::function<void(double)> progress;
+  /// Checked between tiles: once stop is requested, render() throws Cancelled.
+  std::stop_token stop;
+  /// The rows of the image this process holds, for the memory bound (a
+  /// rank's bands under mpirun): asked once the camera is placed, with the
+  /// image's height and Renderer::band_rows(). Null: the whole image.
+  std::function<MemoryShare(int height, int band_rows)> memory_share;
+};
+
+/// Rays traced, by kind.
+struct RayCounts {
+  uint64_t eye = 0, shadow = 0, reflected = 0, refracted = 0;
+  uint64_t shadow_cached = 0;  ///< shadow questions the cache answered
+  uint64_t cache_samples = 0;  ///< rays the cache traced to fill its cells
+  /// Rays traced through the acceleration structure.
+  uint64_t total() const { return eye + shadow + reflected + refracted + cache_samples; }
+};
+
+struct RenderStats {
+  RayCounts rays;
+  double build_seconds = 0;  ///< the scene's acceleration structure and the camera (Renderer)
+  double trace_seconds = 0;
+};
+
+/// One rendered image. colour: (H, W, 3) linear RGB; the requested AOVs,
+/// the others empty: albedo (H, W, 3), depth (H, W, 1), normal (H, W, 3),
+/// id (H, W, 1). A band (Renderer::render's rows) holds only its rows.
+struct Result {
+  Image colour, albedo, depth, normal, id;
+  RenderStats stats;
+  /// The shadow cache's line of the CLI's summary; empty without the cache.
+  std::string cache_summary;
+};
+
+struct RendererState;  // internal
+
+/// A scene built for one camera: validated, placed and built once, then
+/// rendered any number of times (whole, or in bands of rows). The camera is
+/// placed and the image's buffers checked against 80 % of this machine's
+/// memory (std::length_error naming both sizes) before the scene is built.
+/// Throws std::invalid_argument naming the option for a bad value or a
+/// camera that needs a viewpoint the scene lacks; SceneError for a bad
+/// display or calibration file.
+class HOLORAY_API Renderer {
+ public:
+  Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options = {});
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+
+  /// The image's size in pixels (a panel's pixels, not its subpixels).
+  int width() const;
+  int height() const;
+  /// Rows of one tile of work: bands of rows are best cut on multiples.
+  int band_rows() const;
+  /// What will be rendered, as `holoray render` prints it (one or two lines,
+  /// each ending in '\n').
+  std::string describe() const;
+  /// Zero-area polygons the scene's build left out.
+  size_t skipped_polygons() const;
+  /// The pixel-tracing style in use ("packet", "subaperture", ...).
+  const char* style_name() const;
+  /// Renders the image, or rows [rows[0], rows[1]) of it (pixels exactly as
+  /// in the whole image). Throws Cancelled when options.stop was requested.
+  Result render(std::optional<std::array<int, 2>> rows = std::nullopt) const;
+  const RenderStats& build_stats() const;
+
+ private:
+  std::unique_ptr<RendererState> state_;
+};
+
+/// Renderer(scene, camera, options).render().
+HOLORAY_API Result render(const Scene& scene, const Camera& camera, const RenderOptions& options = {});
+
+/// Installed memory in bytes; 0 when unknown (the bound on buffers).
+HOLORAY_API uint64_t physical_memory_bytes();
+
+}  // namespace holoray::api

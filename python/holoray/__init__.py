@@ -1,0 +1,94 @@
+"""holoray: integral images (elemental image arrays) from Python, numpy in and numpy out.
+
+    import holoray
+    scene = holoray.load_scene("examples/primitives.nff")
+    eia = holoray.render(scene, holoray.LensArray(lenses=(64, 64), pixels_per_lens=8)).colour
+    lf = holoray.light_field(eia, 8)        # (8, 8, 64, 64, 3): lf[v, u] is a sub-aperture view
+
+Shapes, units and frames are in each function's docstring and in
+__init__.pyi; the guide is docs/guide/python.md.
+"""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from ._holoray import (  # noqa: F401
+    Display,
+    LensArray,
+    LookingGlass,
+    Pinhole,
+    Quilt,
+    Result,
+    Scene,
+    SceneError,
+    __version__,
+    psnr,
+    read_image,
+    render,
+    write_image,
+)
+from . import _holoray
+
+__all__ = [
+    "Display", "LensArray", "LookingGlass", "Pinhole", "Quilt", "Result", "Scene", "SceneError",
+    "animate", "light_field", "load_scene", "psnr", "read_image", "render", "write_image",
+]
+
+
+def load_scene(path):
+    """NFF (.nff), Tachyon (.dat) or a mesh file through assimp (.obj, .gltf, .glb,
+    .ply, .stl, .3ds, .dae, .ac). Raises SceneError (file:line:col) for malformed
+    input, FileNotFoundError for a missing file."""
+    path = os.fspath(path)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(2, "no such scene file", path)
+    return _holoray.load_scene(path)
+
+
+def light_field(eia, pixels_per_lens):
+    """The 4D light field of a square-grid EIA: (H, W, C) or (H, W) ->
+    (P, P, Ny, Nx, C), angular axes first (v, u, then y, x), as plenpy and the
+    HCI toolboxes hold light fields. lf[v, u] is sub-aperture view (u, v): pixel
+    (u, v) of every elemental image, what `holoray subaperture --u u --v v` writes.
+    A view of `eia` where it is an array (no copy)."""
+    a = np.asarray(eia)
+    p = int(pixels_per_lens)
+    if p != pixels_per_lens or p < 1:
+        raise ValueError(f"pixels_per_lens: expected a whole number >= 1, got {pixels_per_lens!r}")
+    if a.ndim == 2:
+        a = a[:, :, None]
+    if a.ndim != 3:
+        raise ValueError(f"eia: expected an image (H, W) or (H, W, C), got shape {a.shape}")
+    h, w, c = a.shape
+    if h % p or w % p or h == 0 or w == 0:
+        raise ValueError(f"eia: a square grid of {p} px per lens needs a size that is a multiple of {p}, got {w}x{h}")
+    return a.reshape(h // p, p, w // p, p, c).transpose(1, 3, 0, 2, 4)
+
+
+def animate(shot_path, *, output=None, **options):
+    """Renders a shot (docs/shot-format.md) frame by frame, with the keyframe
+    reuse of `holoray animate`: yields (frame index, colour float32 (H, W, 3)
+    linear, report row dict). Options are the CLI's, underscored: method,
+    keyframe_interval (int or 'auto'), keyframe_motion, max_keyframe_interval,
+    reuse, fill, rebuild_above, reach, leak_check, threads, camera (Pinhole,
+    Display or LookingGlass), report (also trace in full: row['psnr']), cache,
+    encoding, frames ('A:B', N or (a, b)). output: a folder the frames are
+    also written to, as the CLI names them (frame_NNNN.png). The render runs
+    on its own thread, a frame or two ahead; Ctrl-C or leaving the loop stops it."""
+    shot_path = os.fspath(shot_path)
+    if not os.path.isfile(shot_path):
+        raise FileNotFoundError(2, "no such shot file", shot_path)
+    frames = _holoray._Animation(shot_path, options)
+    if output is not None:
+        output = os.fspath(output)
+        os.makedirs(output, exist_ok=True)
+    digits = max(4, len(str(frames.frame_count - 1)))
+    try:
+        for index, colour, row in frames:
+            if output is not None:
+                write_image(os.path.join(output, f"frame_{index:0{digits}d}.png"), colour, frames.encoding)
+            yield index, colour, row
+    finally:
+        frames.close()

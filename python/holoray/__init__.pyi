@@ -1,0 +1,128 @@
+"""holoray: integral images (elemental image arrays) from Python, numpy in and numpy out.
+
+Frames: every coordinate passed in is in the scene's world frame and units.
+Images are float32, linear, row 0 at the top, shaped (H, W, C).
+"""
+from __future__ import annotations
+
+import os
+from typing import Callable, Iterator, Mapping, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+ArrayLike = npt.ArrayLike
+PathLike = str | os.PathLike[str]
+
+class SceneError(ValueError):
+    """A malformed scene, shot, display or calibration file: str(e) is
+    'file:line:col: error: what was expected', the offending line and a caret."""
+    file: str
+    line: int
+    column: int
+
+class Scene:
+    """A scene: loaded from a file (load_scene) or built in code. Units and frame: the world's."""
+    def __init__(self) -> None: ...
+    def add_mesh(self, vertices: ArrayLike, faces: ArrayLike, *, normals: ArrayLike | None = None,
+                 uv: ArrayLike | None = None, colour: Sequence[float] = (0.8, 0.8, 0.8),
+                 texture: ArrayLike | None = None) -> int:
+        """Adds a triangle mesh; returns its object id (the 'id' AOV).
+
+        vertices (N, 3) float, world units; faces (M, 3) integer indices into
+        vertices, counter-clockwise seen from the front; normals (N, 3) float
+        (per vertex, else flat shading); uv (N, 2) float, v up from the
+        texture's bottom row; colour linear RGB; texture (H, W, 3|4) float
+        (linear, 0..1) or uint8 (sRGB codes), multiplied by colour.
+        Raises ValueError/TypeError naming the argument."""
+    def add_sphere(self, centre: Sequence[float], radius: float, *,
+                   colour: Sequence[float] = (0.8, 0.8, 0.8)) -> int:
+        """Adds an exact sphere (world units); returns its object id."""
+    def add_light(self, position: Sequence[float], colour: Sequence[float] = (1.0, 1.0, 1.0)) -> None:
+        """Adds a point light, no falloff; colour is its radiance on a white
+        surface facing it (docs/lights.md). A scene without lights gets a
+        headlight at the viewpoint, as mesh files do."""
+    def set_viewpoint(self, eye: Sequence[float], at: Sequence[float], up: Sequence[float],
+                      fov_deg: float) -> None:
+        """The viewpoint that places every camera, as NFF's 'v' (fov: vertical, degrees)."""
+    @property
+    def object_count(self) -> int: ...
+    @property
+    def light_count(self) -> int: ...
+    @property
+    def warnings(self) -> list[str]: ...
+
+def load_scene(path: PathLike) -> Scene:
+    """NFF, Tachyon (.dat) or a mesh file through assimp (OBJ, glTF, PLY, ...).
+    Raises SceneError (file:line:col), FileNotFoundError."""
+
+class LensArray:
+    """The integral camera (docs/camera-model.md), placed by the scene's viewpoint
+    as `holoray render` places it. EIA size: lenses x pixels_per_lens."""
+    def __init__(self, lenses: tuple[int, int] = (64, 64), pixels_per_lens: int = 8, grid: str = "square",
+                 fov_lens: float | None = None, mode: str = "orthoscopic", *, pitch: float | None = None,
+                 gap: float | None = None, rows: int | None = None) -> None: ...
+
+class Pinhole:
+    """The viewpoint's ordinary perspective view; resolution None: the scene's, else 512x512."""
+    def __init__(self, resolution: tuple[int, int] | None = None) -> None: ...
+
+class Quilt:
+    """A Looking Glass quilt of columns x rows sheared views (view 0 bottom left)."""
+    def __init__(self, columns: int, rows: int, view_resolution: tuple[int, int] = (420, 560),
+                 view_cone: float = 40.0) -> None: ...
+
+class Display:
+    """A physical panel described by a display file (docs/display-files.md)."""
+    def __init__(self, path: PathLike) -> None: ...
+
+class LookingGlass:
+    """A Looking Glass's native panel image from its calibration (visual.json)."""
+    def __init__(self, path: PathLike, views: int = 48) -> None: ...
+
+Camera = LensArray | Pinhole | Quilt | Display | LookingGlass
+
+class Result:
+    colour: np.ndarray
+    """float32 (H, W, 3), linear RGB."""
+    aovs: Mapping[str, np.ndarray]
+    """'albedo' float32 (H, W, 3); 'depth' float32 (H, W), the camera's line
+    parameter t, NaN for background; 'normal' float32 (H, W, 3), world frame,
+    facing the viewer; 'id' int32 (H, W), object id, -1 for background."""
+    stats: Mapping[str, Mapping[str, float]]
+    """{'rays': {'eye', 'shadow', 'reflected', 'refracted', 'total'},
+        'seconds': {'build', 'trace'}}"""
+    description: str
+    """What was rendered, as `holoray render` prints it."""
+
+def render(scene: Scene, camera: Camera, *, threads: int | None = None, spp: int = 1,
+           max_depth: int | None = None, aovs: Sequence[str] = (),
+           progress: Callable[[float], object] | None = None) -> Result:
+    """Renders scene through camera. Releases the GIL; Ctrl-C raises
+    KeyboardInterrupt within half a second; progress(fraction) is called on
+    the calling thread. Raises ValueError naming the argument, SceneError."""
+
+def light_field(eia: ArrayLike, pixels_per_lens: int) -> np.ndarray:
+    """(H, W, C) or (H, W) square-grid EIA -> (P, P, Ny, Nx, C) view:
+    lf[v, u] is sub-aperture view (u, v), as `holoray subaperture --u u --v v`."""
+
+def animate(shot_path: PathLike, *, output: PathLike | None = None, **options: object
+            ) -> Iterator[tuple[int, np.ndarray, dict[str, object]]]:
+    """Renders a shot (docs/shot-format.md) frame by frame with keyframe reuse:
+    yields (frame index, colour (H, W, 3) float32, report row). Options as
+    `holoray animate`'s, underscored: method, keyframe_interval, reuse, fill,
+    reach, threads, camera, report. output: a folder the frames are also
+    written to (frame_NNNN.png)."""
+
+def read_image(path: PathLike) -> np.ndarray:
+    """PNG, EXR, JPEG, ... as float32 (H, W, C), values as stored (8-bit codes / 255)."""
+
+def write_image(path: PathLike, array: ArrayLike, encoding: str = "linear") -> None:
+    """.png (8-bit; encoding 'linear' or 'srgb') or .exr (float); written to a
+    temporary name and renamed."""
+
+def psnr(a: ArrayLike, b: ArrayLike) -> float:
+    """PSNR in dB of two images of values in 0..1 nominal (8-bit scale, as
+    `holoray compare`); inf when equal."""

@@ -1,0 +1,227 @@
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cstdio>
+#include <string>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "holoray/render.hpp"
+#include "worker.hpp"
+
+namespace holoray::python {
+
+namespace {
+
+template <class T>
+T choice(const char* name, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
+  std::string names;
+  for (const auto& [n, v] : choices) {
+    if (value == n) return v;
+    names += (names.empty() ? "" : ", ") + std::string(n);
+  }
+  throw py::value_error(std::string(name) + ": expected one of " + names + ", got '" + value + "'");
+}
+
+std::array<int, 2> pair_of(const py::handle& h, const char* name) {
+  if (py::isinstance<py::int_>(h)) {
+    const int n = h.cast<int>();
+    return {n, n};
+  }
+  try {
+    const auto t = h.cast<std::array<int, 2>>();
+    return t;
+  } catch (const py::cast_error&) {
+    throw py::type_error(std::string(name) + ": expected two integers (x, y)");
+  }
+}
+
+struct PyResult {
+  py::array colour;
+  py::dict aovs, stats;
+  std::string description;
+};
+
+py::dict stats_dict(const api::RenderStats& s) {
+  py::dict rays, seconds, out;
+  rays["eye"] = s.rays.eye;
+  rays["shadow"] = s.rays.shadow;
+  rays["reflected"] = s.rays.reflected;
+  rays["refracted"] = s.rays.refracted;
+  rays["shadow_cached"] = s.rays.shadow_cached;
+  rays["cache_samples"] = s.rays.cache_samples;
+  rays["total"] = s.rays.total();
+  seconds["build"] = s.build_seconds;
+  seconds["trace"] = s.trace_seconds;
+  out["rays"] = rays;
+  out["seconds"] = seconds;
+  return out;
+}
+
+// The id AOV as int32 (it is held as float: exact up to 2^24 objects).
+py::array id_array(const api::Image& id) {
+  py::array_t<int32_t> out({static_cast<py::ssize_t>(id.height()), static_cast<py::ssize_t>(id.width())});
+  int32_t* dst = out.mutable_data();
+  for (size_t k = 0; k < id.size(); ++k) dst[k] = static_cast<int32_t>(id.data()[k]);
+  return out;
+}
+
+struct Rendered {
+  api::Result result;
+  std::string description;
+};
+
+}  // namespace
+
+api::Camera camera_of(const py::handle& c, const char* name) {
+  if (py::isinstance<api::LensArray>(c)) return c.cast<api::LensArray>();
+  if (py::isinstance<api::Pinhole>(c)) return c.cast<api::Pinhole>();
+  if (py::isinstance<api::Quilt>(c)) return c.cast<api::Quilt>();
+  if (py::isinstance<api::Display>(c)) return c.cast<api::Display>();
+  if (py::isinstance<api::LookingGlass>(c)) return c.cast<api::LookingGlass>();
+  throw py::type_error(std::string(name) + ": expected holoray.LensArray, Pinhole, Quilt, Display or LookingGlass, got " +
+                       std::string(py::str(py::type::of(c))));
+}
+
+void bind_cameras(py::module_& m) {
+  py::class_<api::LensArray>(m, "LensArray",
+                             "The integral camera, placed by the scene's viewpoint as `holoray render` places it. "
+                             "EIA size: lenses x pixels_per_lens (square grid).")
+      .def(py::init([](const py::handle& lenses, int pixels_per_lens, const std::string& grid, std::optional<double> fov_lens,
+                       const std::string& mode, std::optional<double> pitch, std::optional<double> gap, std::optional<int> rows) {
+             api::LensArray a;
+             const auto [nx, ny] = pair_of(lenses, "lenses");
+             if (nx < 1 || ny < 1)
+               throw py::value_error("lenses: expected at least 1x1, got " + std::to_string(nx) + "x" + std::to_string(ny));
+             if (pixels_per_lens < 1) throw py::value_error("pixels_per_lens: expected at least 1, got " + std::to_string(pixels_per_lens));
+             a.lenses_x = nx, a.lenses_y = ny;
+             a.pixels_per_lens = pixels_per_lens;
+             a.grid = choice<api::Grid>("grid", grid, {{"square", api::Grid::square}, {"hex", api::Grid::hex}, {"lenticular", api::Grid::lenticular}});
+             a.mode = choice<api::Mode>("mode", mode, {{"orthoscopic", api::Mode::orthoscopic}, {"pseudoscopic", api::Mode::pseudoscopic}});
+             if (fov_lens && gap) throw py::value_error("fov_lens: goes without gap (each sets the other)");
+             if (fov_lens && !(*fov_lens > 0 && *fov_lens < 180))
+               throw py::value_error("fov_lens: expected degrees in (0, 180), got " + std::to_string(*fov_lens));
+             if (pitch && !(*pitch > 0 && std::isfinite(*pitch))) throw py::value_error("pitch: expected a finite number > 0");
+             if (gap && !(*gap > 0 && std::isfinite(*gap))) throw py::value_error("gap: expected a finite number > 0");
+             if (rows && *rows < 1) throw py::value_error("rows: expected at least 1");
+             a.fov_lens_deg = fov_lens;
+             a.pitch = pitch;
+             a.gap = gap;
+             a.rows = rows.value_or(0);
+             return a;
+           }),
+           py::arg("lenses") = py::make_tuple(64, 64), py::arg("pixels_per_lens") = 8, py::arg("grid") = "square",
+           py::arg("fov_lens") = py::none(), py::arg("mode") = "orthoscopic", py::kw_only(), py::arg("pitch") = py::none(),
+           py::arg("gap") = py::none(), py::arg("rows") = py::none())
+      .def_property_readonly("lenses", [](const api::LensArray& a) { return py::make_tuple(a.lenses_x, a.lenses_y); })
+      .def_readonly("pixels_per_lens", &api::LensArray::pixels_per_lens)
+      .def("__repr__", [](const api::LensArray& a) {
+        return "holoray.LensArray(lenses=(" + std::to_string(a.lenses_x) + ", " + std::to_string(a.lenses_y) +
+               "), pixels_per_lens=" + std::to_string(a.pixels_per_lens) + ")";
+      });
+  py::class_<api::Pinhole>(m, "Pinhole", "The viewpoint's perspective view; resolution None: the scene's, else 512x512.")
+      .def(py::init([](const py::handle& resolution) {
+             api::Pinhole p;
+             if (!resolution.is_none()) {
+               const auto [w, h] = pair_of(resolution, "resolution");
+               if (w < 1 || h < 1 || w > 65536 || h > 65536) throw py::value_error("resolution: expected 1 to 65536 pixels each way");
+               p.width = w, p.height = h;
+             }
+             return p;
+           }),
+           py::arg("resolution") = py::none());
+  py::class_<api::Quilt>(m, "Quilt", "A Looking Glass quilt of columns x rows sheared views (view 0 bottom left).")
+      .def(py::init([](int columns, int rows, const py::handle& view_resolution, double view_cone) {
+             api::Quilt q;
+             if (columns < 1 || rows < 1 || int64_t{columns} * rows > 4096)
+               throw py::value_error("columns, rows: expected 1 to 4096 views in all");
+             const auto [w, h] = pair_of(view_resolution, "view_resolution");
+             if (w < 1 || h < 1 || w > 65536 || h > 65536) throw py::value_error("view_resolution: expected 1 to 65536 pixels each way");
+             if (!(view_cone >= 0 && view_cone <= 180)) throw py::value_error("view_cone: expected degrees in [0, 180]");
+             q.columns = columns, q.rows = rows, q.view_width = w, q.view_height = h, q.view_cone_deg = view_cone;
+             return q;
+           }),
+           py::arg("columns"), py::arg("rows"), py::arg("view_resolution") = py::make_tuple(420, 560), py::arg("view_cone") = 40.0);
+  py::class_<api::Display>(m, "Display", "A physical panel and its lens sheet, from a display file (TOML).")
+      .def(py::init([](const py::object& path) { return api::Display{py::str(path), std::nullopt}; }), py::arg("path"));
+  py::class_<api::LookingGlass>(m, "LookingGlass", "A Looking Glass's native panel image, from its calibration (visual.json).")
+      .def(py::init([](const py::object& path, int views) {
+             if (views < 1 || views > 4096) throw py::value_error("views: expected 1 to 4096");
+             return api::LookingGlass{py::str(path), views};
+           }),
+           py::arg("path"), py::arg("views") = 48);
+}
+
+void bind_render(py::module_& m) {
+  py::class_<PyResult>(m, "Result", "One rendered image: colour, AOVs, statistics.")
+      .def_readonly("colour", &PyResult::colour, "float32 (H, W, 3), linear RGB")
+      .def_readonly("aovs", &PyResult::aovs, "'albedo' (H, W, 3), 'depth' (H, W), 'normal' (H, W, 3), 'id' int32 (H, W)")
+      .def_readonly("stats", &PyResult::stats, "{'rays': {...}, 'seconds': {'build', 'trace'}}")
+      .def_readonly("description", &PyResult::description, "what was rendered, as `holoray render` prints it")
+      .def("__repr__", [](const PyResult& r) {
+        return "<holoray.Result " + std::string(py::str(r.colour.attr("shape"))) + ": " + r.description.substr(0, r.description.find('\n')) + ">";
+      });
+  m.def(
+      "render",
+      [](const api::Scene& scene, const py::handle& camera, std::optional<int> threads, int spp, std::optional<int> max_depth,
+         const std::vector<std::string>& aovs, const py::object& progress) {
+        api::RenderOptions o;
+        const api::Camera cam = camera_of(camera, "camera");
+        if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
+        if (max_depth && *max_depth < 1) throw py::value_error("max_depth: expected at least 1");
+        if (spp < 1) throw py::value_error("spp: expected at least 1 sample per pixel");
+        o.threads = threads.value_or(0);
+        o.spp = spp;
+        o.max_depth = max_depth.value_or(0);
+        for (const std::string& a : aovs) {
+          if (a == "albedo") o.aovs.albedo = true;
+          else if (a == "depth") o.aovs.depth = true;
+          else if (a == "normal") o.aovs.normal = true;
+          else if (a == "id") o.aovs.id = true;
+          else throw py::value_error("aovs: expected albedo, depth, normal or id, got '" + a + "'");
+        }
+        if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress: expected a callable");
+        // Progress crosses from the workers as a number: the callback runs
+        // on this thread, at the waits' slices.
+        Waker waker;
+        std::atomic<double> fraction{0};
+        if (!progress.is_none())
+          o.progress = [&](double f) {
+            double seen = fraction.load();
+            while (f > seen && !fraction.compare_exchange_weak(seen, f)) {
+            }
+            waker.wake();
+          };
+        // Its own handle on the scene: another Python thread changing it meanwhile changes a copy.
+        const api::Scene snapshot = scene;
+        double shown = 0;
+        auto tick = [&] {
+          const double f = fraction.load();
+          if (f > shown) progress(shown = f);
+        };
+        Rendered out = run_off_interpreter<Rendered>(
+            [&](std::stop_token stop) {
+              api::RenderOptions ro = o;
+              ro.stop = stop;
+              const api::Renderer r(snapshot, cam, ro);
+              return Rendered{r.render(), r.describe()};
+            },
+            waker, progress.is_none() ? std::function<void()>{} : std::function<void()>(tick));
+        PyResult res;
+        const api::Result& rr = out.result;
+        res.colour = image_to_numpy(rr.colour);
+        if (!rr.albedo.empty()) res.aovs["albedo"] = image_to_numpy(rr.albedo);
+        if (!rr.depth.empty()) res.aovs["depth"] = image_to_numpy(rr.depth, true);
+        if (!rr.normal.empty()) res.aovs["normal"] = image_to_numpy(rr.normal);
+        if (!rr.id.empty()) res.aovs["id"] = id_array(rr.id);
+        res.stats = stats_dict(rr.stats);
+        res.description = out.description;
+        return res;
+      },
+      py::arg("scene"), py::arg("camera"), py::kw_only(), py::arg("threads") = py::none(), py::arg("spp") = 1,
+      py::arg("max_depth") = py::none(), py::arg("aovs") = std::vector<std::string>{}, py::arg("progress") = py::none(),
+      "Renders scene through camera: Result. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
+      "progress(fraction) is called on the calling thread.");
+}
+
+}  // namespace holoray::python

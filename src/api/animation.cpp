@@ -1,0 +1,299 @@
+// The orchestration of an animated shot, once for every front end: the
+// options resolved into the tracing schedule (temporal/sequence.hpp), the
+// shot read, the keyframes placed, the frames' buffers checked against memory.
+#include <fmt/format.h>
+#include <oneapi/tbb/global_control.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <cmath>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "api/internal.hpp"
+#include "holoray/animate.hpp"
+#include "holoray/errors.hpp"
+#include "reuse/shadow_cache.hpp"
+#include "scene/mesh_reader.hpp"
+#include "shot/shot_reader.hpp"
+#include "temporal/keyframe_schedule.hpp"
+#include "temporal/point_image.hpp"
+#include "temporal/report.hpp"
+
+namespace holoray::api {
+
+namespace {
+
+template <class T>
+T pick(const char* option, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
+  std::string names;
+  for (const auto& [name, v] : choices) {
+    if (value == name) return v;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
+  }
+  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
+}
+
+ImageDifference from_api(const Difference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
+Difference to_api(const ImageDifference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
+
+// The CLI's --encoding auto: srgb for a mesh scene file, linear for NFF and Tachyon.
+holoray::Encoding encoding_for(const std::string& scene) {
+  std::string ext = std::filesystem::path(scene).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".nff" || ext == ".dat" ? holoray::Encoding::linear : holoray::Encoding::srgb;
+}
+
+}  // namespace
+
+double Difference::psnr() const { return from_api(*this).psnr_all(); }
+
+FrameRow to_api(const FrameReport& r) {
+  FrameRow o;
+  o.frame = r.frame;
+  o.keyframe = r.keyframe;
+  o.seconds = r.seconds;
+  o.reference_seconds = r.reference_seconds;
+  o.pixels = r.pixels;
+  o.reprojected = r.reprojected, o.missed = r.missed, o.leaks = r.leaks, o.rejected = r.rejected;
+  o.traced = r.traced, o.interpolated = r.interpolated;
+  o.rays = to_api(r.rays);
+  o.stage_seconds = {r.stages.splat, r.stages.merge, r.stages.leaks, r.stages.check, r.stages.fill};
+  if (r.difference) o.difference = to_api(*r.difference);
+  if (r.hold) o.hold = to_api(*r.hold);
+  o.rebuilt = r.rebuilt;
+  o.copied_from = r.copied_from;
+  return o;
+}
+
+FrameReport from_api(const FrameRow& o) {
+  FrameReport r;
+  r.frame = o.frame;
+  r.keyframe = o.keyframe;
+  r.seconds = o.seconds;
+  r.reference_seconds = o.reference_seconds;
+  r.pixels = o.pixels;
+  r.reprojected = o.reprojected, r.missed = o.missed, r.leaks = o.leaks, r.rejected = o.rejected;
+  r.traced = o.traced, r.interpolated = o.interpolated;
+  r.rays = {o.rays.eye, o.rays.shadow, o.rays.reflected, o.rays.refracted, o.rays.shadow_cached, o.rays.cache_samples};
+  r.stages = {o.stage_seconds[0], o.stage_seconds[1], o.stage_seconds[2], o.stage_seconds[3], o.stage_seconds[4]};
+  if (o.difference) r.difference = from_api(*o.difference);
+  if (o.hold) r.hold = from_api(*o.hold);
+  r.rebuilt = o.rebuilt;
+  r.copied_from = o.copied_from;
+  return r;
+}
+
+struct AnimationState {
+  AnimateOptions options;
+  SequenceOptions so;
+  std::unique_ptr<ShotFrames> shot;
+  std::unique_ptr<ShadowCache> cache;
+  Method method = Method::full;
+  std::string reuse;
+  FrameCameraDesc choice;
+  int width = 0, height = 0;
+  std::string describe, array_summary;
+};
+
+Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : state_(std::make_unique<AnimationState>()) {
+  AnimationState& s = *state_;
+  s.options = o;
+  SequenceOptions& so = s.so;
+  using Kind = FrameCameraDesc::Kind;
+  s.choice = o.camera ? frame_camera_desc(*o.camera) : FrameCameraDesc{};
+  const FrameCameraDesc& choice = s.choice;
+  if (choice.kind == Kind::quilt) throw std::invalid_argument("camera: a quilt is rendered as a still (render), not animated");
+  if (o.camera && choice.kind == Kind::integral)
+    throw std::invalid_argument("camera: the shot's [array] places the lens array; pass a pinhole, display or Looking Glass camera");
+  const bool pinhole = choice.kind == Kind::pinhole;
+  const bool glass = choice.kind == Kind::looking_glass;
+  const bool panel = glass || choice.kind == Kind::display;
+  const char* what = glass ? "looking glass" : "display";
+  s.method = o.method != Method::automatic ? o.method : pinhole || panel ? Method::full : Method::reverse;
+  so.method = s.method == Method::reverse ? holoray::Method::reverse
+              : s.method == Method::reproject ? holoray::Method::reproject
+                                              : holoray::Method::full;
+  if (pinhole && so.method != holoray::Method::full)
+    throw std::invalid_argument("camera pinhole: goes with method full (reuse works on elemental images)");
+  if (panel && so.method != holoray::Method::full)
+    throw std::invalid_argument(fmt::format("{}: goes with method full (reuse works on elemental images)", what));
+  if (panel && (o.reference || o.cache.enabled))
+    throw std::invalid_argument(fmt::format("{}: goes without the report and the cache (native panels are traced in full, without the cache)", what));
+  if (choice.kind != Kind::integral) so.frame_camera = choice;
+  if (pinhole && o.reference)
+    throw std::invalid_argument("report: goes with the integral camera (pinhole previews are traced in full)");
+  if (pinhole && o.cache.enabled)
+    throw std::invalid_argument("cache: goes with the integral camera (its cells are sized in lens pitches)");
+  s.reuse = !o.reuse.empty() ? o.reuse : so.method == holoray::Method::reverse ? "color" : "geometry";
+  if (so.method == holoray::Method::reverse)
+    so.reverse.reuse = pick<ReverseReuse>("reuse", s.reuse, {{"visibility", ReverseReuse::visibility}, {"color", ReverseReuse::color}});
+  else
+    so.reproject.reuse = pick<Reuse>("reuse", s.reuse, {{"geometry", Reuse::geometry}, {"color", Reuse::color}});
+  if (so.method == holoray::Method::full) s.reuse.clear();
+  so.reproject.reach = pick<Reach>("reach", o.reach, {{"near", Reach::near}, {"all", Reach::all}});
+  so.fill = pick<Fill>("fill", o.fill, {{"trace", Fill::trace}, {"interpolate", Fill::interpolate}});
+  so.reproject.detect_leaks = o.leak_check;
+  const bool auto_keys = o.keyframe_interval == 0;
+  if (o.keyframe_interval < 0)
+    throw std::invalid_argument(fmt::format("keyframe interval: must be a whole number of frames, at least 1 (0: placed by motion), got {}", o.keyframe_interval));
+  if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
+    throw std::invalid_argument(fmt::format("keyframe motion: must be a positive number of pixels, got {}", o.keyframe_motion));
+  if (o.max_keyframe_interval < 1)
+    throw std::invalid_argument(fmt::format("max keyframe interval: must be at least 1, got {}", o.max_keyframe_interval));
+  if (!(o.rebuild_above_percent >= 0 && o.rebuild_above_percent <= 100))
+    throw std::invalid_argument(fmt::format("rebuild above: expected a percent in [0, 100], got {}", o.rebuild_above_percent));
+  if (o.threads < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", o.threads));
+  if (!(o.cache.cell > 0) || !std::isfinite(o.cache.cell))
+    throw std::invalid_argument(fmt::format("cache cell: must be a positive number of lens pitches, got {}", o.cache.cell));
+  if (!(o.cache.memory_mib >= 0) || !std::isfinite(o.cache.memory_mib))
+    throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
+  so.max_interpolated_share = o.rebuild_above_percent / 100;
+  if (!auto_keys) so.keyframe_interval = o.keyframe_interval;
+  so.threads = o.threads;
+  so.reproject.threads = o.threads;
+  so.reference = o.reference;
+
+  s.shot = std::make_unique<ShotFrames>(read_shot_file(shot_path));
+  ShotFrames& shot = *s.shot;
+  so.encoding = o.encoding ? (*o.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
+                : shot.shot().objects.empty() ? holoray::Encoding::linear
+                                              : encoding_for(shot.shot().objects.front().scene);
+  const int frames = shot.frame_count();
+  if (o.frames) {
+    const auto [first, last] = *o.frames;
+    if (first < 0 || last < first || last >= frames)
+      throw std::invalid_argument(fmt::format("frames: the shot has frames 0 to {}, got {}:{}", frames - 1, first, last));
+  }
+  if (pinhole && so.frame_camera->width == 0) {
+    // The first scene's resolution, as every frame's (a path's viewpoints carry none).
+    auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
+                                  [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
+    so.frame_camera->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
+    so.frame_camera->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
+  }
+  if (auto_keys && so.method != holoray::Method::full)
+    so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
+  const holoray::LensArray first(shot.camera(0));
+  if (o.cache.enabled) {
+    holoray::ShadowCacheOptions co;
+    co.cell_size = o.cache.cell * first.desc().pitch;
+    co.memory_limit_bytes = static_cast<uint64_t>(o.cache.memory_mib * 1048576.0);
+    s.cache = std::make_unique<ShadowCache>(shot.scene(), co);
+    so.cache = s.cache.get();
+  }
+  // Two point images, two z-buffers and the frame (a panel: its samples,
+  // three per pixel, and the packed frame): refused before the first trace.
+  const int panel_w = !panel ? 0 : glass ? choice.calibration->width : choice.display->width;
+  const int panel_h = !panel ? 0 : glass ? choice.calibration->height : choice.display->height;
+  s.width = panel ? panel_w : pinhole ? so.frame_camera->width : first.width();
+  s.height = panel ? panel_h : pinhole ? so.frame_camera->height : first.height();
+  const uint64_t need = panel ? uint64_t(panel_w) * panel_h * (3 * 12 + 2 * 12)
+                              : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
+  const uint64_t have = physical_memory_bytes();
+  if (have && need > have / 10 * 8)
+    throw std::length_error(fmt::format("{}x{} frames need {:.2f} GiB while animating, more than 80% of this machine's {:.2f} GiB",
+                                        panel ? panel_w : first.width(), panel ? panel_h : first.height(), need / 1073741824.0,
+                                        have / 1073741824.0));
+  if (o.frames || o.done)
+    so.done = [this](int f) {
+      const AnimateOptions& opt = state_->options;
+      return (opt.frames && (f < (*opt.frames)[0] || f > (*opt.frames)[1])) || (opt.done && opt.done(f));
+    };
+  so.next_group = o.next_group;
+  so.stop = o.stop;
+
+  s.array_summary = fmt::format("{}x{} px, {} grid, {}x{} lenses x {} px, {}", first.width(), first.height(),
+                                to_string(first.desc().grid), first.lens_count_x(), first.lens_count_y(),
+                                first.desc().pixels_per_lens, to_string(first.desc().mode));
+  // What the CLI prints of the camera and the method.
+  std::string& d = s.describe;
+  if (choice.display)
+    d += fmt::format("panel      {}x{} px from {}, each frame's viewpoint\n", choice.display->width, choice.display->height,
+                     std::get<Display>(*o.camera).path);
+  else if (choice.calibration)
+    d += fmt::format("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
+                     choice.calibration->width, choice.calibration->height, std::get<LookingGlass>(*o.camera).path,
+                     choice.looking_glass_views);
+  else if (pinhole)
+    d += fmt::format("view       {}x{} px, pinhole, each frame's viewpoint\n", so.frame_camera->width, so.frame_camera->height);
+  else
+    d += fmt::format("EIA        {}\n", s.array_summary);
+  const std::string key_rule =
+      auto_keys ? fmt::format("{} keyframes placed by motion (at most {:g} px, {} frames apart)", so.keys.size(),
+                              o.keyframe_motion, o.max_keyframe_interval)
+                : fmt::format("keyframe every {}", o.keyframe_interval);
+  if (so.method == holoray::Method::reproject)
+    d += fmt::format("method     reproject: {}, reuse {}, fill {}, reach {}{}\n", key_rule, s.reuse, o.fill, o.reach,
+                     o.leak_check ? "" : ", no leak check");
+  else if (so.method == holoray::Method::reverse)
+    d += fmt::format("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, s.reuse);
+  else
+    d += "method     full ray tracing\n";
+}
+
+Animation::~Animation() = default;
+Animation::Animation(Animation&&) noexcept = default;
+Animation& Animation::operator=(Animation&&) noexcept = default;
+
+int Animation::frame_count() const { return state_->shot->frame_count(); }
+double Animation::fps() const { return state_->shot->shot().fps; }
+int Animation::width() const { return state_->width; }
+int Animation::height() const { return state_->height; }
+Method Animation::method() const { return state_->method; }
+std::string Animation::reuse() const { return state_->reuse; }
+std::string Animation::describe() const { return state_->describe; }
+std::string Animation::array_summary() const { return state_->array_summary; }
+Encoding Animation::encoding() const {
+  return state_->so.encoding == holoray::Encoding::srgb ? Encoding::srgb : Encoding::linear;
+}
+
+std::vector<int> Animation::keyframes() const {
+  if (state_->so.method == holoray::Method::full) return {};
+  return sequence_keyframes(frame_count(), state_->so);
+}
+
+std::vector<Animation::FileWarnings> Animation::warnings() const {
+  std::vector<FileWarnings> out;
+  std::set<std::string> seen;  // several shot objects may place the same file
+  for (const SceneDesc& d : state_->shot->scenes())
+    if (seen.insert(d.source).second) out.push_back({d.source, d.warnings, d.warning_count});
+  return out;
+}
+
+int Animation::object_count() const { return static_cast<int>(state_->shot->shot().objects.size()); }
+
+std::vector<std::array<int, 2>> Animation::groups() const {
+  std::vector<std::array<int, 2>> out;
+  for (const FrameGroup& g : frame_groups(frame_count(), state_->so)) out.push_back({g.first, g.last});
+  return out;
+}
+
+void Animation::run(const std::function<void(int, const Image&, const FrameRow&)>& emit) {
+  AnimationState& s = *state_;
+  std::unique_ptr<tbb::global_control> thread_cap;
+  if (s.options.threads > 0)
+    thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, s.options.threads);
+  render_sequence(*s.shot, s.so, [&](int f, const ImageBuffer& colour, const FrameReport& r) {
+    // The sequence keeps its frame buffer for the next frame: hand out a copy.
+    ImageBuffer copy = colour;
+    emit(f, detail::ImageAccess::wrap(std::move(copy)), to_api(r));
+  });
+}
+
+std::string report_markdown(const std::string& title, const std::vector<std::string>& lines, const std::vector<FrameRow>& rows) {
+  std::vector<FrameReport> reports;
+  for (const FrameRow& r : rows) reports.push_back(from_api(r));
+  return markdown_report(title, lines, reports);
+}
+
+RunTotals totals(const std::vector<FrameRow>& rows) {
+  std::vector<FrameReport> reports;
+  for (const FrameRow& r : rows) reports.push_back(from_api(r));
+  const RunSummary s = summarise(reports);
+  return {s.accelerated_seconds, s.full_seconds, s.saved_percent(), s.mean_psnr};
+}
+
+}  // namespace holoray::api

@@ -1,0 +1,89 @@
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "api/internal.hpp"
+#include "display/display_file.hpp"
+#include "display/looking_glass.hpp"
+
+namespace holoray::api {
+
+namespace {
+
+Vec3 vec(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+
+void place_explicitly(ArraySettings& s, const std::optional<Placement>& p) {
+  if (!p) return;
+  s.origin = vec(p->origin);
+  s.normal = vec(p->normal);
+  s.up = vec(p->up);
+}
+
+ArraySettings settings_of(const LensArray& a) {
+  ArraySettings s;
+  s.grid = a.grid == Grid::hex ? holoray::Grid::hex : a.grid == Grid::lenticular ? holoray::Grid::lenticular : holoray::Grid::square;
+  s.mode = a.mode == Mode::pseudoscopic ? RecordingMode::pseudoscopic : RecordingMode::orthoscopic;
+  if (a.lenses_x < 1 || a.lenses_y < 1)
+    throw std::invalid_argument(fmt::format("lenses: expected at least 1x1, got {}x{}", a.lenses_x, a.lenses_y));
+  if (a.pixels_per_lens < 1)
+    throw std::invalid_argument(fmt::format("pixels_per_lens: expected at least 1, got {}", a.pixels_per_lens));
+  if (a.rows < 0) throw std::invalid_argument(fmt::format("rows: expected at least 1 (0: the contract's), got {}", a.rows));
+  s.lenses_x = a.lenses_x;
+  s.lenses_y = a.lenses_y;
+  s.pixels_per_lens = a.pixels_per_lens;
+  s.rows = a.rows;
+  s.pitch = a.pitch;
+  s.gap = a.gap;
+  s.fov_lens_deg = a.fov_lens_deg;
+  s.view_distance = a.view_distance;
+  place_explicitly(s, a.placement);
+  return s;
+}
+
+}  // namespace
+
+FrameCameraDesc frame_camera_desc(const Camera& camera) {
+  using Kind = FrameCameraDesc::Kind;
+  FrameCameraDesc d;
+  if (const auto* a = std::get_if<LensArray>(&camera)) {
+    d.array = settings_of(*a);
+  } else if (const auto* p = std::get_if<Pinhole>(&camera)) {
+    if (p->width < 0 || p->height < 0 || (p->width == 0) != (p->height == 0) || p->width > 65536 || p->height > 65536)
+      throw std::invalid_argument(
+          fmt::format("resolution: expected 1 to 65536 pixels each way (or 0x0: the scene's), got {}x{}", p->width, p->height));
+    d.kind = Kind::pinhole;
+    d.width = p->width;
+    d.height = p->height;
+    d.tachyon_samples = p->tachyon_samples;
+  } else if (const auto* q = std::get_if<Quilt>(&camera)) {
+    if (q->columns < 1 || q->rows < 1 || int64_t{q->columns} * q->rows > 4096)
+      throw std::invalid_argument(fmt::format("quilt: expected 1 to 4096 views, got {}x{}", q->columns, q->rows));
+    if (q->view_width < 1 || q->view_height < 1 || q->view_width > 65536 || q->view_height > 65536)
+      throw std::invalid_argument(
+          fmt::format("view_resolution: expected 1 to 65536 pixels each way, got {}x{}", q->view_width, q->view_height));
+    if (!(q->view_cone_deg >= 0 && q->view_cone_deg <= 180))
+      throw std::invalid_argument(fmt::format("view_cone: expected degrees in [0, 180], got {}", q->view_cone_deg));
+    if (q->view >= q->columns * q->rows)
+      throw std::invalid_argument(fmt::format("view: a {}x{} quilt has views 0 to {}, got {}", q->columns, q->rows,
+                                              q->columns * q->rows - 1, q->view));
+    d.kind = Kind::quilt;
+    d.quilt.columns = q->columns;
+    d.quilt.rows = q->rows;
+    d.quilt.view_width = q->view_width;
+    d.quilt.view_height = q->view_height;
+    d.quilt.view_cone_deg = q->view_cone_deg;
+    d.quilt_view = q->view;
+  } else if (const auto* s = std::get_if<Display>(&camera)) {
+    d.kind = Kind::display;
+    d.display = read_display_file(s->path);
+    place_explicitly(d.array, s->placement);
+  } else if (const auto* g = std::get_if<LookingGlass>(&camera)) {
+    if (g->views < 1 || g->views > 4096) throw std::invalid_argument(fmt::format("views: expected 1 to 4096, got {}", g->views));
+    d.kind = Kind::looking_glass;
+    d.calibration = read_looking_glass(g->path);
+    d.looking_glass_views = g->views;
+  }
+  return d;
+}
+
+}  // namespace holoray::api

@@ -1,0 +1,238 @@
+// The orchestration of one still, once for every front end: the options
+// checked, the camera placed by the viewpoint, the buffers checked against
+// memory, the scene built, then rendered whole or in bands.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "api/internal.hpp"
+#include "holoray/errors.hpp"
+#include "holoray/render.hpp"
+#include "render/render_scene.hpp"
+#include "render/renderer.hpp"
+#include "reuse/shadow_cache.hpp"
+
+namespace holoray::api {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Kind = FrameCameraDesc::Kind;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+AovSet aov_set(const Aovs& a) { return {a.albedo, a.depth, a.normal, a.id}; }
+
+TraceStyle trace_style(Style s, const FrameCamera& camera) {
+  switch (s) {
+    case Style::packet: return TraceStyle::packet;
+    case Style::subaperture: return TraceStyle::subaperture;
+    case Style::horizontal: return TraceStyle::horizontal;
+    case Style::vertical: return TraceStyle::vertical;
+    case Style::automatic: break;
+  }
+  return camera.array ? preferred_style(camera.array->desc()) : TraceStyle::packet;
+}
+
+void check_options(const RenderOptions& o) {
+  if (o.spp < 1) throw std::invalid_argument(fmt::format("spp: expected at least 1 sample per pixel, got {}", o.spp));
+  if (o.threads < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", o.threads));
+  if (o.max_depth < 0 || o.max_depth > kDepthCap)
+    throw std::invalid_argument(fmt::format("max_depth: expected 1 to {} (0: the scene's), got {}", kDepthCap, o.max_depth));
+  if (!(o.cache.cell > 0) || !std::isfinite(o.cache.cell))
+    throw std::invalid_argument(fmt::format("cache cell: must be a positive number of lens pitches, got {}", o.cache.cell));
+  if (!(o.cache.memory_mib >= 0) || !std::isfinite(o.cache.memory_mib))
+    throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
+}
+
+// The CLI's summary of the camera (docs/guide/stills.md shows it).
+std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& camera, const Camera& public_camera) {
+  const int width = camera.width(), height = camera.height();
+  if (camera.glass)
+    return fmt::format("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
+                       width, height, std::get<LookingGlass>(public_camera).path, camera.glass->calibration().view_cone_deg);
+  if (camera.quilt) {
+    const QuiltDesc& q = camera.quilt->desc();
+    return fmt::format("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
+                       width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
+  }
+  if (choice.kind == Kind::quilt) {
+    const QuiltDesc& q = choice.quilt;
+    return fmt::format("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, choice.quilt_view,
+                       q.columns, q.rows, q.view_cone_deg);
+  }
+  if (choice.kind == Kind::pinhole)
+    return fmt::format("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
+                       camera.view->desc().fov_deg);
+  if (camera.panel) {
+    const DisplayDesc& d = *choice.display;
+    const DisplayGeometry& g = camera.panel->geometry();
+    return fmt::format("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
+                       d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
+                       d.samples_per_pixel() == 1 ? "one line" : "three lines", to_string(d.grid),
+                       d.slant_deg != 0 ? fmt::format(" slanted {:.4g} deg", d.slant_deg) : "", to_string(d.mode)) +
+           fmt::format("lenses     pitch {:.6g} mm ({:.6g} px across a row), gap {:.6g} mm; {:.6g} scene units per mm\n",
+                       d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
+  }
+  std::string out;
+  if (choice.display)
+    out += fmt::format("display    {}: whole pixels per lens, rendered as the EIA below\n", std::get<Display>(public_camera).path);
+  const holoray::LensArray& a = *camera.array;
+  const LensArrayDesc& d = a.desc();
+  out += fmt::format("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid), a.lens_count_x(),
+                     a.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
+  out += fmt::format("lenses     pitch {:.6g}, gap {:.6g}, field of view {:.4g} deg\n", d.pitch, d.gap, a.lens_fov_deg());
+  return out;
+}
+
+}  // namespace
+
+struct RendererState {
+  std::shared_ptr<const SceneData> scene;
+  Camera public_camera;
+  FrameCameraDesc choice;
+  FrameCamera camera;
+  std::unique_ptr<RenderScene> render_scene;
+  std::unique_ptr<ShadowCache> cache;
+  RenderOptions options;
+  TraceStyle style = TraceStyle::packet;
+  RenderStats build;
+};
+
+Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options)
+    : state_(std::make_unique<RendererState>()) {
+  RendererState& s = *state_;
+  const auto t_build = Clock::now();
+  check_options(options);
+  s.options = options;
+  s.scene = scene.data();
+  s.public_camera = camera;
+  s.choice = frame_camera_desc(camera);
+  if (s.choice.tachyon_samples && (s.choice.kind != Kind::pinhole || options.spp != 1))
+    throw std::invalid_argument("tachyon samples: go with the pinhole camera and one sample per pixel");
+  const SceneDesc& desc = s.scene->desc;
+  s.camera = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
+  const Aovs& a = options.aovs;
+  if ((s.camera.panel || s.camera.glass) && (a.albedo || a.depth || a.normal || a.id))
+    throw std::invalid_argument("aovs: not written for native panel images yet (colour only)");
+  if (options.cache.enabled && !s.camera.array)
+    throw std::invalid_argument("cache: goes with the integral camera (its cells are sized in lens pitches)");
+
+  // Refused before anything is allocated: the frame and its AOVs, the 8-bit
+  // or float copy made on output, and a panel's samples (three per pixel
+  // with subpixels), for the rows this process holds.
+  const int width = s.camera.width(), height = s.camera.height();
+  const MemoryShare share = options.memory_share ? options.memory_share(height, s.camera.array ? s.camera.array->desc().pixels_per_lens : 32)
+                                                 : MemoryShare{height, height, ""};
+  const int64_t held = share.held_rows, copied = share.copied_rows;
+  const int64_t samples = static_cast<int64_t>(s.camera.panel_samples_per_row()) * held;
+  const AovSet aovs = aov_set(a);
+  const uint64_t need = frame_bytes(held * width, aovs) + static_cast<uint64_t>(copied * width) * 12 + frame_bytes(samples, aovs);
+  const uint64_t have = physical_memory_bytes();
+  if (have && need > have / 10 * 8)
+    throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers{}, more than 80% of this machine's {:.2f} GiB",
+                                        width, height, need / 1073741824.0,
+                                        share.where,
+                                        have / 1073741824.0));
+
+  // A scene built in code without lights is lit as a mesh file is: by a
+  // headlight at its viewpoint.
+  if (desc.lights.empty() && desc.viewpoint && desc.source.empty()) {
+    auto lit = std::make_shared<SceneData>(*s.scene);
+    Light headlight;
+    headlight.position = desc.viewpoint->from;
+    headlight.headlight = true;
+    lit->desc.lights.push_back(headlight);
+    s.scene = std::move(lit);
+  }
+  s.render_scene = std::make_unique<RenderScene>(s.scene->desc);
+  if (options.max_depth != 0) s.render_scene->set_max_depth(options.max_depth);
+  // Mesh textures take the MIP level of what one pixel sees.
+  if (const auto angle = s.camera.pixel_angle()) s.render_scene->set_pixel_footprint(0, *angle);
+  if (options.cache.enabled) {
+    holoray::ShadowCacheOptions co;
+    co.cell_size = options.cache.cell * s.camera.array->desc().pitch;
+    co.memory_limit_bytes = static_cast<uint64_t>(options.cache.memory_mib * 1048576.0);
+    s.cache = std::make_unique<ShadowCache>(*s.render_scene, co);
+    s.render_scene->set_shadow_cache(s.cache.get());
+  }
+  s.style = trace_style(options.style, s.camera);
+  s.build.build_seconds = seconds_since(t_build);
+}
+
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+int Renderer::width() const { return state_->camera.width(); }
+int Renderer::height() const { return state_->camera.height(); }
+int Renderer::band_rows() const { return state_->camera.array ? state_->camera.array->desc().pixels_per_lens : 32; }
+size_t Renderer::skipped_polygons() const { return state_->render_scene->skipped_polygons(); }
+const RenderStats& Renderer::build_stats() const { return state_->build; }
+
+std::string Renderer::describe() const { return describe_camera(state_->choice, state_->camera, state_->public_camera); }
+
+const char* Renderer::style_name() const { return to_string(state_->style); }
+
+Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
+  const RendererState& s = *state_;
+  const std::stop_token stop = s.options.stop;
+  if (stop.stop_requested()) throw Cancelled();
+  holoray::RenderOptions ro;
+  ro.spp = s.options.spp;
+  ro.threads = s.options.threads;
+  ro.aovs = aov_set(s.options.aovs);
+  ro.style = s.style;
+  ro.rows = rows;
+  const std::function<void(double)>& progress = s.options.progress;
+  // Called after each tile: a stop request ends the render there (the
+  // tile schedule rethrows on the calling thread once every worker is out).
+  if (progress || stop.stop_possible())
+    ro.progress = [&](double f) {
+      if (stop.stop_requested()) throw Cancelled();
+      if (progress) progress(f);
+    };
+  holoray::RenderStats st;
+  FrameBuffers fb = render_through(*s.render_scene, s.camera, ro, st);
+  Result out;
+  out.colour = detail::ImageAccess::wrap(std::move(fb.colour));
+  if (!fb.albedo.empty()) out.albedo = detail::ImageAccess::wrap(std::move(fb.albedo));
+  if (!fb.depth.empty()) out.depth = detail::ImageAccess::wrap(std::move(fb.depth));
+  if (!fb.normal.empty()) out.normal = detail::ImageAccess::wrap(std::move(fb.normal));
+  if (!fb.id.empty()) out.id = detail::ImageAccess::wrap(std::move(fb.id));
+  out.stats.rays = to_api(st.rays);
+  out.stats.build_seconds = s.build.build_seconds;
+  out.stats.trace_seconds = st.trace_seconds;
+  if (s.cache) {
+    const ShadowCache& cache = *s.cache;
+    const holoray::RayCounts& r = st.rays;
+    const double q = static_cast<double>(std::max<uint64_t>(1, r.shadow_queries()));
+    const auto& cells = cache.cells();
+    out.cache_summary = fmt::format(
+        "cache      {} cells of {:.4g} units, {:.1f} MiB (bound {:g} MiB){}; shadow queries {}: {:.1f}% by cells, "
+        "{:.1f}% traced; {} sample rays\n",
+        cells.slot_count(), cells.cell_size(), cache.bytes() / 1048576.0, s.options.cache.memory_mib,
+        cells.uncovered_primitives() ? fmt::format(", {} primitives uncovered", cells.uncovered_primitives()) : "",
+        r.shadow_queries(), 100.0 * r.shadow_cached / q, 100.0 * r.shadow / q, r.cache_samples);
+  }
+  return out;
+}
+
+Result render(const Scene& scene, const Camera& camera, const RenderOptions& options) {
+  return Renderer(scene, camera, options).render();
+}
+
+uint64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) : 0;
+}
+
+api::RayCounts to_api(const holoray::RayCounts& r) {
+  return {r.eye, r.shadow, r.reflected, r.refracted, r.shadow_cached, r.cache_samples};
+}
+
+const char* version() { return HOLORAY_VERSION_STRING; }
+
+}  // namespace holoray::api
