@@ -1,6 +1,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -34,6 +35,23 @@ std::array<int, 2> pair_of(const py::handle& h, const char* name) {
   } catch (const py::cast_error&) {
     throw py::type_error(std::string(name) + ": expected two integers (x, y)");
   }
+}
+
+// A path (str or os.PathLike) to a file that exists; FileNotFoundError otherwise.
+std::string existing_file(const py::object& path, const char* name) {
+  const std::string p = py::str(py::module_::import("os").attr("fspath")(path));
+  if (!py::module_::import("os.path").attr("isfile")(p).cast<bool>()) {
+    PyErr_SetObject(PyExc_FileNotFoundError, py::make_tuple(2, std::string(name) + ": no such file", p).ptr());
+    throw py::error_already_set();
+  }
+  return p;
+}
+
+std::optional<api::Placement> placement_of(const py::handle& origin, const py::handle& normal, const py::handle& up) {
+  if (origin.is_none() && normal.is_none() && up.is_none()) return std::nullopt;
+  if (origin.is_none() || normal.is_none() || up.is_none())
+    throw py::value_error("origin, normal, up: give all three (an explicit placement), or none");
+  return api::Placement{vec3_of(origin, "origin"), vec3_of(normal, "normal"), vec3_of(up, "up")};
 }
 
 struct PyResult {
@@ -88,7 +106,9 @@ void bind_cameras(py::module_& m) {
                              "The integral camera, placed by the scene's viewpoint as `holoray render` places it. "
                              "EIA size: lenses x pixels_per_lens (square grid).")
       .def(py::init([](const py::handle& lenses, int pixels_per_lens, const std::string& grid, std::optional<double> fov_lens,
-                       const std::string& mode, std::optional<double> pitch, std::optional<double> gap, std::optional<int> rows) {
+                       const std::string& mode, std::optional<double> pitch, std::optional<double> gap, std::optional<int> rows,
+                       std::optional<double> view_distance, const py::handle& origin, const py::handle& normal,
+                       const py::handle& up) {
              api::LensArray a;
              const auto [nx, ny] = pair_of(lenses, "lenses");
              if (nx < 1 || ny < 1)
@@ -108,11 +128,16 @@ void bind_cameras(py::module_& m) {
              a.pitch = pitch;
              a.gap = gap;
              a.rows = rows.value_or(0);
+             if (view_distance && !(*view_distance > 0)) throw py::value_error("view_distance: expected a number > 0");
+             a.view_distance = view_distance.value_or(INFINITY);
+             a.placement = placement_of(origin, normal, up);
+             if (a.placement && !pitch) throw py::value_error("pitch: an explicit placement (origin, normal, up) needs the lens pitch");
              return a;
            }),
            py::arg("lenses") = py::make_tuple(64, 64), py::arg("pixels_per_lens") = 8, py::arg("grid") = "square",
            py::arg("fov_lens") = py::none(), py::arg("mode") = "orthoscopic", py::kw_only(), py::arg("pitch") = py::none(),
-           py::arg("gap") = py::none(), py::arg("rows") = py::none())
+           py::arg("gap") = py::none(), py::arg("rows") = py::none(), py::arg("view_distance") = py::none(),
+           py::arg("origin") = py::none(), py::arg("normal") = py::none(), py::arg("up") = py::none())
       .def_property_readonly("lenses", [](const api::LensArray& a) { return py::make_tuple(a.lenses_x, a.lenses_y); })
       .def_readonly("pixels_per_lens", &api::LensArray::pixels_per_lens)
       .def("__repr__", [](const api::LensArray& a) {
@@ -143,11 +168,12 @@ void bind_cameras(py::module_& m) {
            }),
            py::arg("columns"), py::arg("rows"), py::arg("view_resolution") = py::make_tuple(420, 560), py::arg("view_cone") = 40.0);
   py::class_<api::Display>(m, "Display", "A physical panel and its lens sheet, from a display file (TOML).")
-      .def(py::init([](const py::object& path) { return api::Display{py::str(path), std::nullopt}; }), py::arg("path"));
+      .def(py::init([](const py::object& path) { return api::Display{existing_file(path, "path"), std::nullopt}; }),
+           py::arg("path"));
   py::class_<api::LookingGlass>(m, "LookingGlass", "A Looking Glass's native panel image, from its calibration (visual.json).")
       .def(py::init([](const py::object& path, int views) {
              if (views < 1 || views > 4096) throw py::value_error("views: expected 1 to 4096");
-             return api::LookingGlass{py::str(path), views};
+             return api::LookingGlass{existing_file(path, "path"), views};
            }),
            py::arg("path"), py::arg("views") = 48);
 }

@@ -2,6 +2,7 @@
 // renders are checked against the CLI's files and against each other (a
 // mesh built in code against the same mesh read from a file, bands against
 // the whole image), its errors by type and position.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -56,7 +57,7 @@ TEST(Api, RenderGivesTheSameFloatsAsTheCliExr) {
   o.aovs.depth = true;
   const api::Result out = api::render(api::Scene::load(primitives()), small_array(), o);
   EXPECT_TRUE(same_samples(out.colour, api::read_image(dir.file("eia.exr"))));
-  const api::Image depth = api::read_image(dir.file("eia_depth.exr"));
+  const api::Image depth = api::read_image(dir.file("eia.depth.exr"));
   ASSERT_EQ(depth.channels(), 1);
   EXPECT_TRUE(same_samples(out.depth, depth));
 }

@@ -113,6 +113,9 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   if (s.choice.tachyon_samples && (s.choice.kind != Kind::pinhole || options.spp != 1))
     throw std::invalid_argument("tachyon samples: go with the pinhole camera and one sample per pixel");
   const SceneDesc& desc = s.scene->desc;
+  const auto* array = std::get_if<LensArray>(&camera);
+  if (desc.source.empty() && !desc.viewpoint && !(array && array->placement))
+    throw std::invalid_argument("camera: the scene has no viewpoint to place it by: call set_viewpoint(), or place the lens array explicitly");
   s.camera = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
   const Aovs& a = options.aovs;
   if ((s.camera.panel || s.camera.glass) && (a.albedo || a.depth || a.normal || a.id))
