@@ -4,7 +4,9 @@
 # system's folders on PATH, checks that /usr/bin/holoray runs (--version, a
 # small render of an installed example, an animation with --video, which loads
 # the FFmpeg module from /usr/lib/holoray), that the man page and the bash
-# completion are installed (the completion completing in bash), and removes
+# completion are installed (the completion completing in bash), that Debian's
+# python3 imports the module and renders with it, that examples/api builds
+# against the installed C++ package (find_package(holoray)), and removes
 # the package again (purged: nothing of it left), also when a check fails.
 # Usage: bash scripts/package_check.sh
 set -euo pipefail
@@ -50,4 +52,17 @@ completion=/usr/share/bash-completion/completions/holoray
 [ -f "$completion" ] || { echo "package_check: no $completion" >&2; exit 1; }
 got=$(bash -c ". $completion; COMP_WORDS=(holoray render --pix); COMP_CWORD=2; _holoray; echo \"\${COMPREPLY[*]}\"")
 [ "$got" = --pixels-per-lens ] || { echo "package_check: completion of 'holoray render --pix' gave '$got'" >&2; exit 1; }
+# The Python module, from Debian's python3 and nothing else on its path.
+/usr/bin/python3 -c "
+import holoray
+scene = holoray.load_scene('$examples/primitives.nff')
+eia = holoray.render(scene, holoray.LensArray(lenses=(8, 8), pixels_per_lens=4)).colour
+assert eia.shape == (32, 32, 3) and eia.max() > 0, eia.shape
+print('package_check: python3 renders', eia.shape, 'with holoray', holoray.__version__, 'from', holoray.__file__)
+"
+# The C++ API: the installed example project against the installed package.
+cmake -S "$examples/api" -B api-build -G Ninja >/dev/null
+cmake --build api-build
+./api-build/sweep_pitch "$examples/primitives.nff" .
+[ -s eia_8.png ] || { echo "package_check: the API example wrote no eia_8.png" >&2; exit 1; }
 echo "package_check: ${debs[0]} installs, runs from /usr and has its man page and completion"
