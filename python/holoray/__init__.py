@@ -25,9 +25,7 @@ from ._holoray import (  # noqa: F401
     SceneError,
     __version__,
     psnr,
-    read_image,
     render,
-    write_image,
 )
 from . import _holoray
 
@@ -45,6 +43,27 @@ def load_scene(path):
     if not os.path.isfile(path):
         raise FileNotFoundError(2, "no such scene file", path)
     return _holoray.load_scene(path)
+
+
+def read_image(path):
+    """PNG (8/16-bit), OpenEXR, JPEG, PPM/PGM, Targa, BMP, Radiance HDR as
+    float32 (H, W, C), values as stored (8-bit codes / 255, EXR floats), row 0
+    at the top; not copied on the way out. FileNotFoundError for a missing file."""
+    path = os.fspath(path)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(2, "no such image file", path)
+    return _holoray.read_image(path)
+
+
+def write_image(path, array, encoding="linear"):
+    """Writes an (H, W) or (H, W, C) array, C 1 to 4: .png (8-bit codes,
+    encoding 'linear' or 'srgb'; uint8 arrays are codes already) or .exr
+    (float32, linear). Written to a temporary name in the folder and renamed:
+    a failed write leaves nothing. ValueError for another extension."""
+    path = os.fspath(path)
+    if os.path.splitext(path)[1].lower() not in (".png", ".exr"):
+        raise ValueError(f"path: expected a .png or .exr file name, got {path!r}")
+    _holoray.write_image(path, array, encoding)
 
 
 def light_field(eia, pixels_per_lens):

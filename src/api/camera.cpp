@@ -5,6 +5,7 @@
 #include "api/internal.hpp"
 #include "display/display_file.hpp"
 #include "display/looking_glass.hpp"
+#include "holoray/errors.hpp"
 
 namespace holoray::api {
 
@@ -38,6 +39,19 @@ ArraySettings settings_of(const LensArray& a) {
   s.view_distance = a.view_distance;
   place_explicitly(s, a.placement);
   return s;
+}
+
+// A display or calibration file read by `read`: its errors are SceneErrors,
+// with a position where the reader knows one (syntax), without (a value).
+template <class Read>
+auto read_file(const std::string& path, Read&& read) {
+  try {
+    return read(path);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw SceneError(path, 0, 0, e.what(), e.what());
+  }
 }
 
 }  // namespace
@@ -75,12 +89,12 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.quilt_view = q->view;
   } else if (const auto* s = std::get_if<Display>(&camera)) {
     d.kind = Kind::display;
-    d.display = read_display_file(s->path);
+    d.display = read_file(s->path, read_display_file);
     place_explicitly(d.array, s->placement);
   } else if (const auto* g = std::get_if<LookingGlass>(&camera)) {
     if (g->views < 1 || g->views > 4096) throw std::invalid_argument(fmt::format("views: expected 1 to 4096, got {}", g->views));
     d.kind = Kind::looking_glass;
-    d.calibration = read_looking_glass(g->path);
+    d.calibration = read_file(g->path, read_looking_glass);
     d.looking_glass_views = g->views;
   }
   return d;

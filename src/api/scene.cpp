@@ -86,10 +86,15 @@ int Scene::add_mesh(const Mesh& m) {
     const size_t pixels = static_cast<size_t>(t.width) * t.height;
     img.rgb.resize(pixels * 3);
     if (t.channels == 4) img.alpha.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) {
-      for (int c = 0; c < 3; ++c) img.rgb[p * 3 + c] = t.codes[p * t.channels + c];
-      if (t.channels == 4) img.alpha[p] = t.codes[p * 4 + 3];
-    }
+    // A mesh's image maps hold their bottom row first (v up, as the mesh
+    // reader stores them); the texture's row 0 is its top.
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x) {
+        const size_t at = static_cast<size_t>(y) * t.width + x;
+        const size_t from = static_cast<size_t>(t.height - 1 - y) * t.width + x;
+        for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = t.codes[from * t.channels + c];
+        if (t.channels == 4) img.alpha[at] = t.codes[from * 4 + 3];
+      }
     d.images.push_back(std::move(img));
     TextureDesc tex;
     tex.kind = TextureDesc::Kind::uv_image;
