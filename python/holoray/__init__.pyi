@@ -60,13 +60,25 @@ def load_scene(path: PathLike) -> Scene:
 
 class LensArray:
     """The integral camera (docs/camera-model.md), placed by the scene's viewpoint
-    as `holoray render` places it. EIA size: lenses x pixels_per_lens."""
-    def __init__(self, lenses: tuple[int, int] = (64, 64), pixels_per_lens: int = 8, grid: str = "square",
+    as `holoray render` places it. lenses (x, y) or N; EIA size: lenses x
+    pixels_per_lens (square grid; lenticular: x only, rows tall). grid
+    'square', 'hex' or 'lenticular'; mode 'orthoscopic' or 'pseudoscopic';
+    fov_lens in degrees (default 20) or gap, pitch, in scene units.
+    origin, normal, up (world, all three, with pitch): an explicit placement
+    instead of the viewpoint's."""
+    def __init__(self, lenses: tuple[int, int] | int = (64, 64), pixels_per_lens: int = 8, grid: str = "square",
                  fov_lens: float | None = None, mode: str = "orthoscopic", *, pitch: float | None = None,
-                 gap: float | None = None, rows: int | None = None) -> None: ...
+                 gap: float | None = None, rows: int | None = None, view_distance: float | None = None,
+                 origin: Sequence[float] | None = None, normal: Sequence[float] | None = None,
+                 up: Sequence[float] | None = None) -> None: ...
+    @property
+    def lenses(self) -> tuple[int, int]: ...
+    @property
+    def pixels_per_lens(self) -> int: ...
 
 class Pinhole:
-    """The viewpoint's ordinary perspective view; resolution None: the scene's, else 512x512."""
+    """The viewpoint's ordinary perspective view; resolution (width, height),
+    None: the scene's, else 512x512."""
     def __init__(self, resolution: tuple[int, int] | None = None) -> None: ...
 
 class Quilt:
@@ -75,11 +87,13 @@ class Quilt:
                  view_cone: float = 40.0) -> None: ...
 
 class Display:
-    """A physical panel described by a display file (docs/display-files.md)."""
+    """A physical panel described by a display file (docs/display-files.md).
+    FileNotFoundError for a missing file; SceneError (at render) for a bad one."""
     def __init__(self, path: PathLike) -> None: ...
 
 class LookingGlass:
-    """A Looking Glass's native panel image from its calibration (visual.json)."""
+    """A Looking Glass's native panel image from its calibration (visual.json).
+    FileNotFoundError for a missing file; SceneError (at render) for a bad one."""
     def __init__(self, path: PathLike, views: int = 48) -> None: ...
 
 Camera = LensArray | Pinhole | Quilt | Display | LookingGlass
@@ -91,9 +105,9 @@ class Result:
     """'albedo' float32 (H, W, 3); 'depth' float32 (H, W), the camera's line
     parameter t, NaN for background; 'normal' float32 (H, W, 3), world frame,
     facing the viewer; 'id' int32 (H, W), object id, -1 for background."""
-    stats: Mapping[str, Mapping[str, float]]
-    """{'rays': {'eye', 'shadow', 'reflected', 'refracted', 'total'},
-        'seconds': {'build', 'trace'}}"""
+    stats: Mapping[str, Mapping[str, int | float]]
+    """{'rays': {'eye', 'shadow', 'reflected', 'refracted', 'shadow_cached',
+        'cache_samples', 'total'} (int), 'seconds': {'build', 'trace'} (float)}"""
     description: str
     """What was rendered, as `holoray render` prints it."""
 
@@ -105,23 +119,33 @@ def render(scene: Scene, camera: Camera, *, threads: int | None = None, spp: int
     the calling thread. Raises ValueError naming the argument, SceneError."""
 
 def light_field(eia: ArrayLike, pixels_per_lens: int) -> np.ndarray:
-    """(H, W, C) or (H, W) square-grid EIA -> (P, P, Ny, Nx, C) view:
-    lf[v, u] is sub-aperture view (u, v), as `holoray subaperture --u u --v v`."""
+    """(H, W, C) or (H, W) square-grid EIA -> (P, P, Ny, Nx, C) view (C = 1
+    for (H, W)): lf[v, u] is sub-aperture view (u, v), as `holoray
+    subaperture --u u --v v`. Not a copy. ValueError when H or W is not a
+    multiple of P."""
 
 def animate(shot_path: PathLike, *, output: PathLike | None = None, **options: object
             ) -> Iterator[tuple[int, np.ndarray, dict[str, object]]]:
     """Renders a shot (docs/shot-format.md) frame by frame with keyframe reuse:
     yields (frame index, colour (H, W, 3) float32, report row). Options as
-    `holoray animate`'s, underscored: method, keyframe_interval, reuse, fill,
-    reach, threads, camera, report. output: a folder the frames are also
-    written to (frame_NNNN.png)."""
+    `holoray animate`'s, underscored: method ('full', 'reproject', 'reverse'),
+    keyframe_interval (int or 'auto'), keyframe_motion, max_keyframe_interval,
+    reuse, fill, rebuild_above, reach, leak_check, threads, camera (Pinhole,
+    Display or LookingGlass), report (bool: also trace in full, row['psnr']),
+    cache (bool), encoding, frames ('A:B', N or (a, b)). The row: frame,
+    keyframe, seconds, reference_seconds, pixels, reprojected, missed, leaks,
+    rejected, traced, interpolated, rays, psnr, hold_psnr, copied_from,
+    rebuilt. output: a folder the frames are also written to, as the CLI
+    names them (frame_NNNN.png). TypeError for an unknown option."""
 
 def read_image(path: PathLike) -> np.ndarray:
-    """PNG, EXR, JPEG, ... as float32 (H, W, C), values as stored (8-bit codes / 255)."""
+    """PNG, EXR, JPEG, ... as float32 (H, W, C), values as stored (8-bit codes / 255).
+    FileNotFoundError for a missing file, RuntimeError for an unreadable one."""
 
 def write_image(path: PathLike, array: ArrayLike, encoding: str = "linear") -> None:
-    """.png (8-bit; encoding 'linear' or 'srgb') or .exr (float); written to a
-    temporary name and renamed."""
+    """.png (8-bit; encoding 'linear' or 'srgb'; uint8 arrays are codes) or .exr
+    (float); written to a temporary name and renamed. ValueError for another
+    extension or shape."""
 
 def psnr(a: ArrayLike, b: ArrayLike) -> float:
     """PSNR in dB of two images of values in 0..1 nominal (8-bit scale, as
