@@ -51,6 +51,16 @@ class FrameFiles {
   void write(const FrameBuffers& rows) {
     for (auto& [plane, writer] : files_) writer->write_rows(rows.*plane);
   }
+  /// The whole image, from the API's result (its buffers, not copies).
+  void write(const api::Result& r) {
+    using api::detail::ImageAccess;
+    for (auto& [plane, writer] : files_)
+      writer->write_rows(ImageAccess::buffer(plane == &FrameBuffers::colour   ? r.colour
+                                             : plane == &FrameBuffers::albedo ? r.albedo
+                                             : plane == &FrameBuffers::depth  ? r.depth
+                                             : plane == &FrameBuffers::normal ? r.normal
+                                                                              : r.id));
+  }
   void finish() {
     for (auto& [plane, writer] : files_) writer->finish();
   }
@@ -59,7 +69,8 @@ class FrameFiles {
   std::vector<std::pair<ImageBuffer FrameBuffers::*, std::unique_ptr<ImageWriter>>> files_;
 };
 
-// A rendered band's planes as the writers and the band exchange take them (shared, not copied).
+// A rendered band's planes as the band exchange takes them (copied: under
+// mpirun, where the network dwarfs the copy).
 FrameBuffers buffers_of(const api::Result& r) {
   using api::detail::ImageAccess;
   FrameBuffers fb;
@@ -337,7 +348,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       if (tty) std::fprintf(stderr, "\r             \r");
       const auto t_write = Clock::now();
       FrameFiles files(output, width, height, aovs, encoding);
-      files.write(buffers_of(result));
+      files.write(result);
       files.finish();
       write_s = seconds_since(t_write);
     }
