@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "api/pick.hpp"
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "holoray/render.hpp"
@@ -13,16 +14,6 @@
 namespace holoray::python {
 
 namespace {
-
-template <class T>
-T choice(const char* name, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
-  std::string names;
-  for (const auto& [n, v] : choices) {
-    if (value == n) return v;
-    names += (names.empty() ? "" : ", ") + std::string(n);
-  }
-  throw py::value_error(std::string(name) + ": expected one of " + names + ", got '" + value + "'");
-}
 
 std::array<int, 2> pair_of(const py::handle& h, const char* name) {
   if (py::isinstance<py::int_>(h)) {
@@ -116,8 +107,8 @@ void bind_cameras(py::module_& m) {
              if (pixels_per_lens < 1) throw py::value_error("pixels_per_lens: expected at least 1, got " + std::to_string(pixels_per_lens));
              a.lenses_x = nx, a.lenses_y = ny;
              a.pixels_per_lens = pixels_per_lens;
-             a.grid = choice<api::Grid>("grid", grid, {{"square", api::Grid::square}, {"hex", api::Grid::hex}, {"lenticular", api::Grid::lenticular}});
-             a.mode = choice<api::Mode>("mode", mode, {{"orthoscopic", api::Mode::orthoscopic}, {"pseudoscopic", api::Mode::pseudoscopic}});
+             a.grid = pick<api::Grid>("grid", grid, {{"square", api::Grid::square}, {"hex", api::Grid::hex}, {"lenticular", api::Grid::lenticular}});
+             a.mode = pick<api::Mode>("mode", mode, {{"orthoscopic", api::Mode::orthoscopic}, {"pseudoscopic", api::Mode::pseudoscopic}});
              if (fov_lens && gap) throw py::value_error("fov_lens: goes without gap (each sets the other)");
              if (fov_lens && !(*fov_lens > 0 && *fov_lens < 180))
                throw py::value_error("fov_lens: expected degrees in (0, 180), got " + std::to_string(*fov_lens));

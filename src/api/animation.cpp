@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "api/internal.hpp"
+#include "api/pick.hpp"
 #include "holoray/animate.hpp"
 #include "holoray/errors.hpp"
 #include "reuse/shadow_cache.hpp"
@@ -25,16 +26,6 @@
 namespace holoray::api {
 
 namespace {
-
-template <class T>
-T pick(const char* option, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
-  std::string names;
-  for (const auto& [name, v] : choices) {
-    if (value == name) return v;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
-  }
-  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
-}
 
 ImageDifference from_api(const Difference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
 Difference to_api(const ImageDifference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <utility>
 
+#include "api/pick.hpp"  // pick(), the choice among named values
 #include "camera/lens_array.hpp"
 #include "image/image_io.hpp"
 #include "math/vec.hpp"
@@ -41,17 +42,5 @@ Encoding parse_encoding(const std::string& text, const std::string& scene);
 std::optional<TraceStyle> parse_style(const std::string& text);
 /// Comma-separated subset of albedo,depth,normal,id.
 AovSet parse_aovs(const std::string& text);
-
-/// The value of `choices` named `value`; else std::invalid_argument
-/// "OPTION: expected one of A, B, got 'VALUE'".
-template <class T>
-T pick(const std::string& option, const std::string& value, std::initializer_list<std::pair<const char*, T>> choices) {
-  std::string names;
-  for (const auto& [name, v] : choices) {
-    if (value == name) return v;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
-  }
-  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
-}
 
 }  // namespace holoray::cli
