@@ -114,7 +114,9 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     throw std::invalid_argument("tachyon samples: go with the pinhole camera and one sample per pixel");
   const SceneDesc& desc = s.scene->desc;
   const auto* array = std::get_if<LensArray>(&camera);
-  if (desc.source.empty() && !desc.viewpoint && !(array && array->placement))
+  const auto* panel = std::get_if<Display>(&camera);
+  const bool placed = (array && array->placement) || (panel && panel->placement);
+  if (desc.source.empty() && !desc.viewpoint && !placed)
     throw std::invalid_argument("camera: the scene has no viewpoint to place it by: call set_viewpoint(), or place the lens array explicitly");
   s.camera = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
   const Aovs& a = options.aovs;
