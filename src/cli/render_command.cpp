@@ -167,8 +167,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->capture_default_str();
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  cmd->add_flag("--progress", o.progress_lines,
+                "Print the fraction traced to stderr as lines 'progress F' (F from 0 to 1, each percent once), for "
+                "programs that drive holoray (the Blender add-on)");
   lay_out_help(*cmd,
-               {{"Output", {"--output", "--aov", "--encoding", "--quiet"}},
+               {{"Output", {"--output", "--aov", "--encoding", "--quiet", "--progress"}},
                 {"Camera", {"--camera", "--resolution", "--sample-at", "--display", "--looking-glass", "--views", "--quilt",
                             "--view-cone", "--quilt-view"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
@@ -287,16 +290,20 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
         return api::MemoryShare{held, largest,
                                 held < height ? fmt::format(" on rank {} of {}", world.rank(), world.size()) : ""};
       };
-    const bool tty = !o.quiet && world.rank() == 0 && ::isatty(STDERR_FILENO);
+    const bool tty = !o.quiet && !o.progress_lines && world.rank() == 0 && ::isatty(STDERR_FILENO);
     std::mutex progress_mutex;
     int shown = -1;
-    if (tty)
+    if (tty || o.progress_lines)
       ropt.progress = [&](double f) {
-        std::unique_lock lock(progress_mutex, std::try_to_lock);
         const int pct = static_cast<int>(f * 100);
-        if (!lock.owns_lock() || pct == shown) return;
+        // Every percent for a program that reads them; a terminal's counter may skip one.
+        std::unique_lock lock(progress_mutex, std::defer_lock);
+        if (o.progress_lines) lock.lock();
+        else if (!lock.try_lock()) return;
+        if (o.progress_lines ? pct <= shown : pct == shown) return;
         shown = pct;
-        std::fprintf(stderr, "\rtracing %3d%%", pct);
+        if (o.progress_lines) std::fprintf(stderr, "progress %.2f\n", pct / 100.0);
+        else std::fprintf(stderr, "\rtracing %3d%%", pct);
         std::fflush(stderr);
       };
     const api::Renderer renderer(scene, camera, ropt);

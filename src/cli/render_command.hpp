@@ -27,6 +27,7 @@ struct RenderCommandOptions {
   int quilt_view = -1;                ///< --quilt-view K: only view K, as a plain image
   CacheCommandOptions cache;
   bool quiet = false;
+  bool progress_lines = false;  ///< --progress: `progress F` lines on stderr
 };
 
 /// Registers the subcommand and its options on `app`.

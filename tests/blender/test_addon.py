@@ -1,0 +1,120 @@
+"""The Blender add-on (blender/holoray_blender) in Debian's Blender, headless:
+the tests' scene (scene.py) is built and saved by case.py, then rendered as a
+user renders it, `blender -b scene.blend --addons holoray_blender -E HOLORAY
+-f 1`, with the holoray CLI found on PATH. Skipped where Blender is missing."""
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import time
+
+import numpy as np
+import pytest
+
+import holoray
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+BLENDER = shutil.which("blender")
+pytestmark = pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+
+
+def env(with_holoray=True):
+    e = dict(os.environ)
+    cli_dir = os.path.dirname(os.path.abspath(os.environ["HOLORAY_CLI"]))
+    path = [p for p in e.get("PATH", "").split(os.pathsep) if p and not os.path.isfile(os.path.join(p, "holoray"))]
+    e["PATH"] = os.pathsep.join(([cli_dir] if with_holoray else []) + path)
+    return e
+
+
+def build(case, tmp_path):
+    """Runs case.py in Blender: the saved scene, and its RESULT line."""
+    run = subprocess.run([BLENDER, "-b", "--factory-startup", "--python", os.path.join(HERE, "case.py"), "--", case,
+                          str(tmp_path)], env=env(), capture_output=True, text=True, timeout=300)
+    lines = [l for l in run.stdout.splitlines() if l.startswith("RESULT ")]
+    assert run.returncode == 0 and lines, run.stdout[-3000:] + run.stderr[-3000:]
+    return json.loads(lines[-1][len("RESULT "):])
+
+
+def render_args(tmp_path):
+    return [BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "-E", "HOLORAY",
+            "-o", str(tmp_path / "frame_####"), "-F", "OPEN_EXR", "-f", "1"]
+
+
+def render(tmp_path, with_holoray=True):
+    run = subprocess.run(render_args(tmp_path), env=env(with_holoray), capture_output=True, text=True, timeout=300)
+    return run.stdout + run.stderr
+
+
+def test_the_eia_has_the_size_asked_for(tmp_path):
+    assert build("eia", tmp_path)["resolution"] == [120, 80]  # 24x16 lenses x 5 px
+    log = render(tmp_path)
+    frame = holoray.read_image(tmp_path / "frame_0001.exr")
+    assert frame.shape[:2] == (80, 120), log
+    assert np.nanmax(frame[:, :, :3]) > 0.05, "the EIA is black"
+    assert "Traceback" not in log
+
+
+def test_the_array_stands_at_the_focus_distance_facing_the_camera(tmp_path):
+    # A plane square to the view at the focus distance: every lens's centre
+    # line meets it at the lens itself (line parameter t = 0).
+    r = build("facing_plane_wide", tmp_path)
+    assert r["lenses_hit"] == r["lenses"]
+    assert r["max_abs_t"] < 1e-5
+
+
+def test_the_array_spans_the_cameras_field_of_view(tmp_path):
+    # The plane 1.05 times the view's width covers every lens (above); 0.8
+    # times leaves the outer lenses of each side uncovered: 20 of 24 columns.
+    r = build("facing_plane_narrow", tmp_path)
+    assert r["edge_columns_hit"] == 0
+    assert r["lenses_hit"] == 20 * 16
+
+
+@pytest.mark.parametrize("case, message", [
+    ("no_camera", "Error: Cannot render, no camera"),
+    ("empty", "Error: holoray: the scene has nothing to render"),
+    ("no_binary", "Error: holoray: the holoray program was not found"),
+])
+def test_a_scene_that_cannot_render_gives_an_error_report_not_a_traceback(tmp_path, case, message):
+    build(case, tmp_path)
+    log = render(tmp_path, with_holoray=case != "no_binary")
+    assert message in log, log[-3000:]
+    assert "Traceback" not in log, log[-3000:]
+    assert not (tmp_path / "frame_0001.exr").exists()
+
+
+def holoray_processes(marker):
+    """PIDs of holoray processes whose command line holds `marker` (their temporary folder)."""
+    out = []
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                with open(f"/proc/{pid}/cmdline", "rb") as f:
+                    argv = f.read().split(b"\0")
+            except OSError:
+                continue
+            if argv and os.path.basename(argv[0]) == b"holoray" and any(marker in a for a in argv):
+                out.append(int(pid))
+    return out
+
+
+def test_a_cancelled_render_leaves_no_holoray_process(tmp_path):
+    build("large", tmp_path)
+    blender = subprocess.Popen(render_args(tmp_path), env=env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                               text=True)
+    try:
+        deadline = time.monotonic() + 60
+        while not holoray_processes(b"holoray-") and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert holoray_processes(b"holoray-"), "holoray never started"
+        time.sleep(0.3)
+        blender.send_signal(signal.SIGINT)  # Ctrl-C: Blender's break, what Esc is in the interface
+        blender.wait(timeout=30)
+    finally:
+        if blender.poll() is None:
+            blender.kill()
+    time.sleep(0.2)
+    assert holoray_processes(b"holoray-") == []
+    assert not list(tmp_path.glob("frame_*"))
