@@ -61,6 +61,54 @@ elif case in ("facing_plane_wide", "facing_plane_narrow"):
                                   "max_abs_t": float(np.abs(centres[finite]).max()) if finite.any() else None,
                                   "edge_columns_hit": int(finite[:, [0, -1]].sum())}), flush=True)
     raise SystemExit(0)
+elif case == "cycles":
+    # The add-on's pinhole view and the EIA's centre sub-aperture view, each
+    # with its albedo, beside Cycles' diffuse colour pass (DiffCol) of the same
+    # camera and of an orthographic camera where the array stands: written as
+    # EXRs for the test to compare.
+    import subprocess
+    import numpy as np
+    from holoray_blender import engine, export, placement
+    cam = sc.camera
+
+    def holoray_albedo(name, w, hgt, cameras):
+        sc.render.resolution_x, sc.render.resolution_y, sc.render.resolution_percentage = w, hgt, 100
+        gltf = export.export_gltf(out, sc, cam, cameras=cameras)
+        cmd, _ = engine.command(binary, sc, h, gltf, os.path.join(out, name + ".exr"), cam, w, hgt)
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def cycles_diffcol(name, w, hgt):
+        sc.render.engine = "CYCLES"
+        sc.cycles.samples = 4
+        sc.cycles.filter_width = 0.01  # each pixel sampled at its centre, as holoray's first sample
+        sc.cycles.use_denoising = False
+        sc.view_layers[0].use_pass_diffuse_color = True
+        sc.use_nodes = True
+        tree = sc.node_tree
+        tree.nodes.clear()
+        layers, composite = tree.nodes.new("CompositorNodeRLayers"), tree.nodes.new("CompositorNodeComposite")
+        tree.links.new(layers.outputs["DiffCol"], composite.inputs["Image"])
+        sc.render.resolution_x, sc.render.resolution_y, sc.render.resolution_percentage = w, hgt, 100
+        sc.render.image_settings.file_format = "OPEN_EXR"
+        sc.render.image_settings.color_depth = "32"
+        sc.render.filepath = os.path.join(out, name + ".exr")
+        bpy.ops.render.render(write_still=True)
+        sc.render.engine = "HOLORAY"
+        sc.use_nodes = False
+
+    h.aov_albedo = True
+    h.camera = "PINHOLE"
+    holoray_albedo("pinhole", 160, 120, True)
+    cycles_diffcol("pinhole_cycles", 160, 120)
+    h.camera = "INTEGRAL"
+    h.lenses_x, h.lenses_y, h.pixels_per_lens = 64, 48, 5
+    holoray_albedo("eia", 320, 240, False)
+    place = placement.array_placement(cam, 320 / 240)
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = place.width
+    cycles_diffcol("ortho_cycles", 64, 48)
+    print("RESULT " + json.dumps({"array_width": place.width}), flush=True)
+    raise SystemExit(0)
 elif case == "no_camera":
     bpy.data.objects.remove(sc.camera)
 elif case == "empty":

@@ -72,6 +72,28 @@ def test_the_array_spans_the_cameras_field_of_view(tmp_path):
     assert r["lenses_hit"] == 20 * 16
 
 
+def albedo_psnr(a, b):
+    """PSNR (dB, 8-bit scale) of two linear albedo images' RGB, clamped to 0..1."""
+    return holoray.psnr(np.clip(a[:, :, :3], 0, 1), np.clip(b[:, :, :3], 0, 1))
+
+
+def test_pinhole_matches_cycles_albedo(tmp_path):
+    build("cycles", tmp_path)
+    mine = holoray.read_image(tmp_path / "pinhole.albedo.exr")
+    cycles = holoray.read_image(tmp_path / "pinhole_cycles.exr")
+    assert mine.shape[:2] == cycles.shape[:2] == (120, 160)
+    assert albedo_psnr(mine, cycles) >= 30
+
+
+def test_the_eias_centre_view_matches_a_cycles_orthographic_view_at_the_array(tmp_path):
+    build("cycles", tmp_path)
+    eia = holoray.read_image(tmp_path / "eia.albedo.exr")
+    view = holoray.light_field(eia, 5)[2, 2]  # 5 px per lens: pixel (2, 2) is each lens's centre
+    cycles = holoray.read_image(tmp_path / "ortho_cycles.exr")
+    assert view.shape[:2] == cycles.shape[:2] == (48, 64)
+    assert albedo_psnr(view, cycles) >= 25
+
+
 @pytest.mark.parametrize("case, message", [
     ("no_camera", "Error: Cannot render, no camera"),
     ("empty", "Error: holoray: the scene has nothing to render"),
