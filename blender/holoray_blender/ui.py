@@ -33,6 +33,7 @@ class HOLORAY_PT_camera(bpy.types.Panel):
             layout.prop(s, "gap" if s.use_gap else "fov_lens")
             layout.prop(s, "mode")
             layout.label(text="The array stands at the camera's focus distance", icon="INFO")
+            layout.operator("holoray.render_animation", icon="RENDER_ANIMATION")
         elif s.camera == "QUILT":
             col = layout.column(align=True)
             col.prop(s, "quilt_columns")

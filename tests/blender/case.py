@@ -109,6 +109,15 @@ elif case == "cycles":
     cycles_diffcol("ortho_cycles", 64, 48)
     print("RESULT " + json.dumps({"array_width": place.width}), flush=True)
     raise SystemExit(0)
+elif case == "animation":
+    # The cube slides along x over frames 1 to 6; the output path is Blender's.
+    cube = next(o for o in sc.objects if o.name.startswith("Cube"))
+    sc.frame_start, sc.frame_end = 1, 6
+    for frame, x in ((1, -0.6), (6, 0.6)):
+        cube.location.x = x
+        cube.keyframe_insert("location", frame=frame)
+    sc.render.filepath = os.path.join(out, "render", "####")
+    sc.render.image_settings.file_format = "PNG"
 elif case == "no_camera":
     bpy.data.objects.remove(sc.camera)
 elif case == "empty":

@@ -107,6 +107,24 @@ def test_a_scene_that_cannot_render_gives_an_error_report_not_a_traceback(tmp_pa
     assert not (tmp_path / "frame_0001.exr").exists()
 
 
+def test_the_animation_operator_writes_the_frames_holoray_animate_writes_from_the_exported_shot(tmp_path):
+    build("animation", tmp_path)
+    run = subprocess.run([BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "--python-expr",
+                          "import bpy; bpy.ops.holoray.render_animation()"], env=env(), capture_output=True, text=True,
+                         timeout=300)
+    log = run.stdout + run.stderr
+    assert "Traceback" not in log, log[-3000:]
+    frames = sorted((tmp_path / "render").glob("*.png"))
+    assert [f.name for f in frames] == [f"{n:04d}.png" for n in range(1, 7)], log[-3000:]
+    shot = tmp_path / "render" / ".holoray" / "shot.toml"
+    ref = tmp_path / "ref"
+    subprocess.run([os.environ["HOLORAY_CLI"], "animate", str(shot), "-o", str(ref), "--frames", "1:6", "-q"], check=True)
+    for n, f in enumerate(frames, start=1):
+        assert f.read_bytes() == (ref / f"frame_{n:04d}.png").read_bytes(), f.name
+    first, last = holoray.read_image(frames[0]), holoray.read_image(frames[-1])
+    assert np.abs(first - last).max() > 0.1, "the cube did not move"
+
+
 def holoray_processes(marker):
     """PIDs of holoray processes whose command line holds `marker` (their temporary folder)."""
     out = []
