@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev        # Looking Glass calibration files (JSON)
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (build/python) and its pytest suite, against Debian's python3
   blender                   # the add-on's tests (tests/blender), headless: Debian's Blender, which embeds Debian's python3
+  xvfb                      # docs/blender/screenshots.sh: Blender's real interface, for the guide's pictures
   libopenmpi-dev openmpi-bin  # mpirun -np N holoray animate|render (optional in CMake; installed so the README's commands build it)
   clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
   hyperfine                 # bench/run_startup_deps.sh: start-up per library

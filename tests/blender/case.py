@@ -126,6 +126,8 @@ elif case == "empty":
             bpy.data.objects.remove(obj)
 elif case == "no_binary":
     pass  # rendered with a PATH that has no holoray
+elif case == "bench":
+    h.lenses_x, h.lenses_y, h.pixels_per_lens = 64, 64, 16  # 1024x1024 (bench/run_blender_bench.sh)
 elif case == "large":
     h.lenses_x, h.lenses_y, h.pixels_per_lens = 256, 192, 16  # 4096x3072: long enough to cancel
 else:

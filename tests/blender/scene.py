@@ -36,24 +36,29 @@ def material(name, colour=None, image=None):
     return mat
 
 
-def build(addon=True):
-    """The test scene, from an empty one; returns it."""
-    bpy.ops.wm.read_factory_settings(use_empty=True)
+def build(addon=True, fresh=True):
+    """The test scene, from an empty one (`fresh`: Blender's factory
+    settings; else the open file, emptied); returns it."""
+    if fresh:
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+    else:
+        for obj in list(bpy.data.objects):
+            bpy.data.objects.remove(obj)
     if addon:
         addon_utils.enable("holoray_blender", default_set=True, handle_error=None)
     scene = bpy.context.scene
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0, 0, 0.5))
-    cube = bpy.context.object
+    cube = bpy.context.view_layer.objects.active
     cube.rotation_euler = (0, 0, 0.5)
     cube.data.materials.append(material("cube", image=checker_image()))
     bpy.ops.mesh.primitive_plane_add(size=6.0, location=(0, 0, 0))
-    bpy.context.object.data.materials.append(material("floor", colour=(0.6, 0.6, 0.55)))
+    bpy.context.view_layer.objects.active.data.materials.append(material("floor", colour=(0.6, 0.6, 0.55)))
     bpy.ops.object.light_add(type="SUN", location=(3, -2, 5), rotation=(0.6, 0.2, 0.4))
-    bpy.context.object.data.energy = 3.0
+    bpy.context.view_layer.objects.active.data.energy = 3.0
     bpy.ops.object.light_add(type="POINT", location=(-2, -3, 3))
-    bpy.context.object.data.energy = 400.0
+    bpy.context.view_layer.objects.active.data.energy = 400.0
     bpy.ops.object.camera_add(location=(0, -5, 2.5), rotation=(1.18, 0, 0))
-    cam = bpy.context.object
+    cam = bpy.context.view_layer.objects.active
     cam.data.lens = 50
     cam.data.dof.focus_distance = 5.0
     scene.camera = cam
