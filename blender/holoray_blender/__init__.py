@@ -3,7 +3,8 @@ pinhole view, a Looking Glass quilt or a display's panel image, rendered by
 holoray (docs/guide/blender.md).
 
 Registers the render engine HOLORAY (F12, `blender -b f.blend -E HOLORAY -f 1`),
-the operator holoray.render_animation (a shot with keyframe reuse),
+the operators holoray.render_animation (a shot with keyframe reuse) and
+holoray.preview (the last render as a viewer sees it),
 its settings `scene.holoray` in the Render properties, and the add-on's
 preferences (the holoray binary). Blender's own glTF exporter hands the scene
 over; holoray renders it; the result comes back as the render result and its
@@ -28,13 +29,14 @@ if "bpy" in locals():  # reloaded (F8): take the modules' new code
     importlib.reload(engine)  # noqa: F821
     importlib.reload(ui)  # noqa: F821
     importlib.reload(animation)  # noqa: F821
+    importlib.reload(preview)  # noqa: F821
 
 import bpy
 
-from . import animation, engine, properties, ui
+from . import animation, engine, preview, properties, ui
 
 _classes = (properties.HolorayPreferences, properties.HoloraySettings, engine.HolorayRenderEngine,
-            animation.HOLORAY_OT_render_animation) + ui.classes
+            animation.HOLORAY_OT_render_animation, preview.HOLORAY_OT_preview) + ui.classes
 
 
 def register():

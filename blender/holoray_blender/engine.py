@@ -16,7 +16,7 @@ import time
 import bpy
 import numpy as np
 
-from . import export, placement
+from . import export, placement, preview
 from .properties import holoray_binary, image_size
 
 
@@ -143,6 +143,7 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
                 layer.passes[name].rect = np.ascontiguousarray(px[:, :channels])
         self.end_result(result)
         t3 = time.perf_counter()
+        preview.keep_last(output, s)  # for holoray.preview
         # What the add-on itself costs beside holoray's run (bench/run_blender_bench.sh reads it).
         print(f"holoray: {width}x{height}: export {t1 - t0:.3f} s, holoray {t2 - t1:.3f} s, "
               f"result {t3 - t2:.3f} s", flush=True)

@@ -34,6 +34,11 @@ class HOLORAY_PT_camera(bpy.types.Panel):
             layout.prop(s, "mode")
             layout.label(text="The array stands at the camera's focus distance", icon="INFO")
             layout.operator("holoray.render_animation", icon="RENDER_ANIMATION")
+        row = layout.row(align=True)
+        row.operator("holoray.preview", text="Centre view").kind = "CENTRE"
+        row.operator("holoray.preview", text="Every view").kind = "VIEWS"
+        if s.camera == "DISPLAY":
+            row.operator("holoray.preview", text="Eye").kind = "EYE"
         elif s.camera == "QUILT":
             col = layout.column(align=True)
             col.prop(s, "quilt_columns")

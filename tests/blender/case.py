@@ -118,6 +118,23 @@ elif case == "animation":
         cube.keyframe_insert("location", frame=frame)
     sc.render.filepath = os.path.join(out, "render", "####")
     sc.render.image_settings.file_format = "PNG"
+elif case == "preview":
+    # F12, then the centre-view preview: the EIA's lens-centre pixels.
+    import numpy as np
+    bpy.context.preferences.addons["holoray_blender"].preferences.binary = binary
+    sc.render.filepath = os.path.join(out, "eia.exr")
+    sc.render.image_settings.file_format = "OPEN_EXR"
+    sc.render.image_settings.color_depth = "32"
+    bpy.ops.render.render(write_still=True)
+    bpy.ops.holoray.preview(kind="CENTRE")
+    view = bpy.data.images["holoray preview"]
+    eia = bpy.data.images.load(os.path.join(out, "eia.exr"))
+    pixels = lambda img: np.array(img.pixels[:], dtype=np.float32).reshape(img.size[1], img.size[0], 4)
+    p = h.pixels_per_lens
+    centre = pixels(eia)[p // 2::p, p // 2::p, :3]
+    print("RESULT " + json.dumps({"size": list(view.size),
+                                  "max_difference": float(np.abs(pixels(view)[:, :, :3] - centre).max())}), flush=True)
+    raise SystemExit(0)
 elif case == "no_camera":
     bpy.data.objects.remove(sc.camera)
 elif case == "empty":

@@ -125,6 +125,12 @@ def test_the_animation_operator_writes_the_frames_holoray_animate_writes_from_th
     assert np.abs(first - last).max() > 0.1, "the cube did not move"
 
 
+def test_the_centre_view_preview_is_the_eias_lens_centre_pixels(tmp_path):
+    r = build("preview", tmp_path)
+    assert r["size"] == [24, 16]
+    assert r["max_difference"] < 1e-6
+
+
 def holoray_processes(marker):
     """PIDs of holoray processes whose command line holds `marker` (their temporary folder)."""
     out = []

@@ -1,0 +1,88 @@
+"""Seeing the last render without a display: the operator holoray.preview
+turns the last EIA (kept by the engine as last.exr in Blender's temporary
+folder) into the centre sub-aperture view, the grid of every sub-aperture
+view, or what an eye sees on the chosen display (`holoray subaperture`,
+`holoray views`, `holoray simulate`), loaded as the image "holoray preview"
+and shown in an image editor."""
+
+import json
+import os
+import subprocess
+
+import bpy
+
+from .properties import holoray_binary
+
+
+def last_render():
+    """(path of the last EIA or panel image, its settings) or None."""
+    path = os.path.join(bpy.app.tempdir, "holoray_last.exr")
+    info = path + ".json"
+    if not (os.path.isfile(path) and os.path.isfile(info)):
+        return None
+    with open(info) as f:
+        return path, json.load(f)
+
+
+def keep_last(output, settings):
+    """Called by the engine: keeps `output` and what it was made with."""
+    path = os.path.join(bpy.app.tempdir, "holoray_last.exr")
+    os.replace(output, path)
+    s = settings
+    with open(path + ".json", "w") as f:
+        json.dump({"camera": s.camera, "grid": s.grid.lower(), "pixels_per_lens": s.pixels_per_lens,
+                   "display_file": bpy.path.abspath(s.display_file) if s.display_file else ""}, f)
+
+
+class HOLORAY_OT_preview(bpy.types.Operator):
+    """Show the last holoray render as a viewer would see it, in the image editor"""
+
+    bl_idname = "holoray.preview"
+    bl_label = "Preview the last holoray render"
+
+    kind: bpy.props.EnumProperty(
+        name="Preview", default="CENTRE",
+        items=[("CENTRE", "Centre view", "The centre sub-aperture view: the scene seen straight through the array"),
+               ("VIEWS", "Every view", "Every sub-aperture view in a grid, view (u, v) at tile column u, row v"),
+               ("EYE", "Eye on the display", "What an eye 600 mm in front of the display sees (display camera)")])
+
+    def execute(self, context):
+        last = last_render()
+        if last is None:
+            self.report({"ERROR"}, "holoray: nothing rendered yet: render with holoray (F12) first")
+            return {"CANCELLED"}
+        path, info = last
+        binary = holoray_binary(context)
+        if binary is None:
+            self.report({"ERROR"}, "holoray: the holoray program was not found")
+            return {"CANCELLED"}
+        out = os.path.join(bpy.app.tempdir, f"holoray_preview_{self.kind.lower()}.exr")
+        p = str(info["pixels_per_lens"])
+        if self.kind == "EYE":
+            if info["camera"] != "DISPLAY":
+                self.report({"ERROR"}, "holoray: the eye's view needs the Display camera (a display file)")
+                return {"CANCELLED"}
+            cmd = [binary, "simulate", path, "--display", info["display_file"], "-o", out]
+        elif info["camera"] != "INTEGRAL":
+            self.report({"ERROR"}, "holoray: sub-aperture views are made from a lens array's EIA (camera: Lens array)")
+            return {"CANCELLED"}
+        elif self.kind == "CENTRE":
+            cmd = [binary, "subaperture", path, "--grid", info["grid"], "--pixels-per-lens", p, "-o", out]
+        else:
+            cmd = [binary, "views", path, "--grid", info["grid"], "--pixels-per-lens", p, "-o", out]
+        run = subprocess.run(cmd, capture_output=True, text=True)
+        if run.returncode != 0:
+            self.report({"ERROR"}, f"holoray: {run.stderr.strip()}")
+            return {"CANCELLED"}
+        old = bpy.data.images.get("holoray preview")
+        if old is not None:
+            bpy.data.images.remove(old)
+        img = bpy.data.images.load(out, check_existing=False)
+        img.name = "holoray preview"
+        img.pack()  # the file is temporary
+        for window in context.window_manager.windows:
+            for area in window.screen.areas:
+                if area.type == "IMAGE_EDITOR":
+                    area.spaces[0].image = img
+        self.report({"INFO"}, f"holoray: {img.size[0]}x{img.size[1]} preview in the image 'holoray preview'")
+        return {"FINISHED"}
