@@ -147,26 +147,33 @@ void bind_cameras(py::module_& m) {
            }),
            py::arg("resolution") = py::none());
   py::class_<api::Quilt>(m, "Quilt", "A Looking Glass quilt of columns x rows sheared views (view 0 bottom left).")
-      .def(py::init([](int columns, int rows, const py::handle& view_resolution, double view_cone) {
+      .def(py::init([](int columns, int rows, const py::handle& view_resolution, double view_cone,
+                       std::optional<double> focus_distance) {
              api::Quilt q;
              if (columns < 1 || rows < 1 || int64_t{columns} * rows > 4096)
                throw py::value_error("columns, rows: expected 1 to 4096 views in all");
              const auto [w, h] = pair_of(view_resolution, "view_resolution");
              if (w < 1 || h < 1 || w > 65536 || h > 65536) throw py::value_error("view_resolution: expected 1 to 65536 pixels each way");
              if (!(view_cone >= 0 && view_cone <= 180)) throw py::value_error("view_cone: expected degrees in [0, 180]");
+             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
+               throw py::value_error("focus_distance: expected a positive distance");
              q.columns = columns, q.rows = rows, q.view_width = w, q.view_height = h, q.view_cone_deg = view_cone;
+             q.focus_distance = focus_distance;
              return q;
            }),
-           py::arg("columns"), py::arg("rows"), py::arg("view_resolution") = py::make_tuple(420, 560), py::arg("view_cone") = 40.0);
+           py::arg("columns"), py::arg("rows"), py::arg("view_resolution") = py::make_tuple(420, 560), py::arg("view_cone") = 40.0,
+           py::kw_only(), py::arg("focus_distance") = py::none());
   py::class_<api::Display>(m, "Display", "A physical panel and its lens sheet, from a display file (TOML).")
       .def(py::init([](const py::object& path) { return api::Display{existing_file(path, "path"), std::nullopt}; }),
            py::arg("path"));
   py::class_<api::LookingGlass>(m, "LookingGlass", "A Looking Glass's native panel image, from its calibration (visual.json).")
-      .def(py::init([](const py::object& path, int views) {
+      .def(py::init([](const py::object& path, int views, std::optional<double> focus_distance) {
              if (views < 1 || views > 4096) throw py::value_error("views: expected 1 to 4096");
-             return api::LookingGlass{existing_file(path, "path"), views};
+             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
+               throw py::value_error("focus_distance: expected a positive distance");
+             return api::LookingGlass{existing_file(path, "path"), views, focus_distance};
            }),
-           py::arg("path"), py::arg("views") = 48);
+           py::arg("path"), py::arg("views") = 48, py::kw_only(), py::arg("focus_distance") = py::none());
 }
 
 void bind_render(py::module_& m) {

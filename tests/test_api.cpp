@@ -167,6 +167,28 @@ TEST(Api, AResultsSamplesOutliveTheResultWhileTheirStorageIsHeld) {
   EXPECT_EQ(std::memcmp(data, again.colour.data(), again.colour.size() * sizeof(float)), 0);  // ASan: not freed
 }
 
+TEST(Api, AQuiltsFocusDistanceIsTheViewpointsAtThatDistance) {
+  // The same viewpoint looking at a point 1 unit away, its quilt focused at
+  // 4, and one looking at a point 4 away: the same views, bit for bit.
+  api::Scene near, far;
+  for (api::Scene* s : {&near, &far}) {
+    s->add_sphere({0, 0, 0}, 1, {0.9, 0.4, 0.2});
+    s->add_sphere({1.2, 0.5, -2}, 0.7);
+    s->add_light({3, 4, 5});
+  }
+  near.set_viewpoint({0, 0, 4}, {0, 0, 3}, {0, 1, 0}, 40);
+  far.set_viewpoint({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 40);
+  api::Quilt q;
+  q.columns = 4, q.rows = 2, q.view_width = 24, q.view_height = 32;
+  const api::Result unfocused = api::render(near, q);
+  q.focus_distance = 4;
+  const api::Result focused = api::render(near, q);
+  q.focus_distance = std::nullopt;
+  const api::Result reference = api::render(far, q);
+  EXPECT_TRUE(same_samples(focused.colour, reference.colour));
+  EXPECT_FALSE(same_samples(unfocused.colour, reference.colour));  // the distance matters: the test can fail
+}
+
 TEST(Api, AnimationEmitsEveryFrameInOrderWithItsRow) {
   api::AnimateOptions o;
   o.frames = std::array<int, 2>{0, 5};

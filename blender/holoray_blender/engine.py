@@ -6,6 +6,7 @@ EXR files come back as the render result: colour into Combined, the AOVs
 into the passes Depth (holoray's line parameter t), Normal and DiffCol
 (albedo). Anything that goes wrong is a Blender error report."""
 
+import glob
 import os
 import shutil
 import subprocess
@@ -47,11 +48,13 @@ def command(binary, scene, settings, gltf, output, camera_object, width, height)
         cmd += ["--camera", "pinhole", "--resolution", f"{width}x{height}"]
     elif s.camera == "QUILT":
         cmd += ["--quilt", f"{s.quilt_columns}x{s.quilt_rows}", "--resolution", f"{s.view_width}x{s.view_height}",
-                "--view-cone", f"{s.view_cone:.9g}"]
+                "--view-cone", f"{s.view_cone:.9g}",
+                "--focus-distance", f"{placement.focus_distance(camera_object):.9g}"]
     elif s.camera == "DISPLAY":
         cmd += ["--display", bpy.path.abspath(s.display_file)]
     elif s.camera == "LOOKING_GLASS":
-        cmd += ["--looking-glass", bpy.path.abspath(s.calibration_file)]
+        cmd += ["--looking-glass", bpy.path.abspath(s.calibration_file),
+                "--focus-distance", f"{placement.focus_distance(camera_object):.9g}"]
     if s.max_depth:
         cmd += ["--max-depth", str(s.max_depth)]
     if s.threads:
@@ -93,7 +96,7 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
 
     def render(self, depsgraph):
         scene = depsgraph.scene
-        workdir = tempfile.mkdtemp(prefix="holoray-")
+        workdir = tempfile.mkdtemp(prefix="holoray-blender-")
         try:
             self._render(scene, workdir)
         except (HolorayError, placement.PlacementError) as e:
@@ -135,11 +138,13 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         t2 = time.perf_counter()
         result = self.begin_result(0, 0, width, height)
         layer = result.layers[0]
+        if s.camera == "QUILT":  # holoray names a quilt by its layout: out_qsCxRaA.exr
+            output = next(iter(glob.glob(os.path.join(workdir, "out_qs*.exr"))), output)
         # Blender's own reader straight into the layer (EXR to Combined, in C).
         layer.load_from_file(output)
         for aov, name, channels, _, _ in self._PASSES:
             if aov in aovs and name in layer.passes:
-                px = read_exr(os.path.join(workdir, f"out.{aov}.exr"), width, height)
+                px = read_exr(f"{os.path.splitext(output)[0]}.{aov}.exr", width, height)
                 layer.passes[name].rect = np.ascontiguousarray(px[:, :channels])
         self.end_result(result)
         t3 = time.perf_counter()

@@ -55,6 +55,9 @@ struct Quilt {
   int view_width = 420, view_height = 560;
   double view_cone_deg = 40;  ///< leftmost to rightmost view
   int view = -1;              ///< >= 0: only that view, as a plain image
+  /// The views' focal (zero-parallax) plane's distance from the viewpoint,
+  /// scene units; default: the viewpoint's |eye - at|.
+  std::optional<double> focus_distance;
 };
 
 /// A physical panel and its lens sheet (docs/display-files.md): its native
@@ -68,6 +71,7 @@ struct Display {
 struct LookingGlass {
   std::string path;
   int views = 48;  ///< the quilt the image is the continuous version of
+  std::optional<double> focus_distance;  ///< as Quilt's
 };
 
 using Camera = std::variant<LensArray, Pinhole, Quilt, Display, LookingGlass>;

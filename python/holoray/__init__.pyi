@@ -84,7 +84,9 @@ class Pinhole:
 class Quilt:
     """A Looking Glass quilt of columns x rows sheared views (view 0 bottom left)."""
     def __init__(self, columns: int, rows: int, view_resolution: tuple[int, int] = (420, 560),
-                 view_cone: float = 40.0) -> None: ...
+                 view_cone: float = 40.0, *, focus_distance: float | None = None) -> None:
+        """focus_distance: the views' focal (zero-parallax) plane's distance
+        from the viewpoint (scene units); None: the viewpoint's |eye - at|."""
 
 class Display:
     """A physical panel described by a display file (docs/display-files.md).
@@ -94,7 +96,7 @@ class Display:
 class LookingGlass:
     """A Looking Glass's native panel image from its calibration (visual.json).
     FileNotFoundError for a missing file; SceneError (at render) for a bad one."""
-    def __init__(self, path: PathLike, views: int = 48) -> None: ...
+    def __init__(self, path: PathLike, views: int = 48, *, focus_distance: float | None = None) -> None: ...
 
 Camera = LensArray | Pinhole | Quilt | Display | LookingGlass
 

@@ -87,6 +87,7 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.quilt.view_height = q->view_height;
     d.quilt.view_cone_deg = q->view_cone_deg;
     d.quilt_view = q->view;
+    d.focus_distance = q->focus_distance;
   } else if (const auto* s = std::get_if<Display>(&camera)) {
     d.kind = Kind::display;
     d.display = read_file(s->path, read_display_file);
@@ -96,6 +97,7 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.kind = Kind::looking_glass;
     d.calibration = read_file(g->path, read_looking_glass);
     d.looking_glass_views = g->views;
+    d.focus_distance = g->focus_distance;
   }
   return d;
 }

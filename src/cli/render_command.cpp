@@ -141,6 +141,10 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->check(in_range(0, 180, true, "degrees"))
       ->needs(quilt)
       ->capture_default_str();
+  cmd->add_option("--focus-distance", o.focus_distance,
+                  "With --quilt or --looking-glass: the views' focal (zero-parallax) plane, its distance from the "
+                  "viewpoint in scene units (default: the viewpoint's from-to-at distance)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says")
       ->check(in_range(0))
       ->needs(quilt);
@@ -173,7 +177,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   lay_out_help(*cmd,
                {{"Output", {"--output", "--aov", "--encoding", "--quiet", "--progress"}},
                 {"Camera", {"--camera", "--resolution", "--sample-at", "--display", "--looking-glass", "--views", "--quilt",
-                            "--view-cone", "--quilt-view"}},
+                            "--view-cone", "--quilt-view", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
                 {"Tracing", {"--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}}},
@@ -197,7 +201,10 @@ api::Camera camera_of(const RenderCommandOptions& o) {
   // whole pixels has them too: checked again once the camera is placed).
   if (cache_enabled(o.cache) && (pinhole || quilt || !v.looking_glass.empty()))
     throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
-  if (!v.looking_glass.empty()) return api::LookingGlass{v.looking_glass, v.looking_glass_views};
+  const std::optional<double> focus = std::isnan(o.focus_distance) ? std::nullopt : std::optional(o.focus_distance);
+  if (focus && v.looking_glass.empty() && !quilt)
+    throw std::invalid_argument("--focus-distance: goes with --quilt or --looking-glass (the views' focal plane)");
+  if (!v.looking_glass.empty()) return api::LookingGlass{v.looking_glass, v.looking_glass_views, focus};
   if (!v.display.empty()) return api::Display{v.display, placement_of(o.origin, o.normal, o.up)};
   if (quilt) {
     api::Quilt q;
@@ -208,6 +215,7 @@ api::Camera camera_of(const RenderCommandOptions& o) {
       throw std::invalid_argument(fmt::format("--quilt-view: a {}x{} quilt has views 0 to {}, got {}", q.columns, q.rows,
                                               q.columns * q.rows - 1, o.quilt_view));
     q.view = o.quilt_view;
+    q.focus_distance = focus;
     return q;
   }
   if (pinhole) {

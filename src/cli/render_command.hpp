@@ -24,6 +24,7 @@ struct RenderCommandOptions {
   std::string sample_at = "centre";   ///< --sample-at (pinhole)
   std::string quilt;                  ///< --quilt CxR: a Looking Glass quilt of C*R views
   double view_cone = 40;              ///< --view-cone DEG
+  double focus_distance = NAN;        ///< --focus-distance D (quilt, Looking Glass); NaN: not given
   int quilt_view = -1;                ///< --quilt-view K: only view K, as a plain image
   CacheCommandOptions cache;
   bool quiet = false;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "display/display_placement.hpp"
@@ -41,9 +42,15 @@ std::optional<double> FrameCamera::pixel_angle() const {
 FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<Viewpoint>& viewpoint,
                               const std::string& scene) {
   using Kind = FrameCameraDesc::Kind;
+  Viewpoint focused;  // the viewpoint, its `at` moved to the focus distance when one is given
   auto need_viewpoint = [&](const char* option, const char* what) -> const Viewpoint& {
     if (!viewpoint) throw std::invalid_argument(fmt::format("{}: '{}' has no viewpoint (NFF 'v'){}", option, scene, what));
-    return *viewpoint;
+    if (!d.focus_distance) return *viewpoint;
+    if (!(*d.focus_distance > 0) || !std::isfinite(*d.focus_distance))
+      throw std::invalid_argument(fmt::format("--focus-distance: expected a positive distance, got {}", *d.focus_distance));
+    focused = *viewpoint;
+    focused.at = focused.from + normalize(viewpoint->at - viewpoint->from) * *d.focus_distance;
+    return focused;
   };
   FrameCamera c;
   switch (d.kind) {

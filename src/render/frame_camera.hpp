@@ -38,6 +38,9 @@ struct FrameCameraDesc {
   std::optional<DisplayDesc> display;                  ///< display
   std::optional<LookingGlassCalibration> calibration;  ///< looking_glass
   int looking_glass_views = kDefaultLookingGlassViews; ///< looking_glass: the quilt it is the continuous version of
+  /// quilt, looking_glass: the focal plane's distance from the viewpoint (the
+  /// views' zero-parallax plane); nullopt: the viewpoint's |from - at|.
+  std::optional<double> focus_distance;
 };
 
 /// A FrameCameraDesc placed: exactly one camera is set. A display whose

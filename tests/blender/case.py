@@ -135,6 +135,9 @@ elif case == "preview":
     print("RESULT " + json.dumps({"size": list(view.size),
                                   "max_difference": float(np.abs(pixels(view)[:, :, :3] - centre).max())}), flush=True)
     raise SystemExit(0)
+elif case == "quilt":
+    h.camera = "QUILT"
+    h.quilt_columns, h.quilt_rows, h.view_width, h.view_height = 4, 2, 60, 80
 elif case == "no_camera":
     bpy.data.objects.remove(sc.camera)
 elif case == "empty":

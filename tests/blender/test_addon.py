@@ -56,6 +56,14 @@ def test_the_eia_has_the_size_asked_for(tmp_path):
     assert "Traceback" not in log
 
 
+def test_a_quilt_has_its_views_size_times_its_layout(tmp_path):
+    assert build("quilt", tmp_path)["resolution"] == [240, 160]  # 4x2 views of 60x80
+    log = render(tmp_path)
+    frame = holoray.read_image(tmp_path / "frame_0001.exr")
+    assert frame.shape[:2] == (160, 240), log[-3000:]
+    assert "Traceback" not in log
+
+
 def test_the_array_stands_at_the_focus_distance_facing_the_camera(tmp_path):
     # A plane square to the view at the focus distance: every lens's centre
     # line meets it at the lens itself (line parameter t = 0).
@@ -152,9 +160,9 @@ def test_a_cancelled_render_leaves_no_holoray_process(tmp_path):
                                text=True)
     try:
         deadline = time.monotonic() + 60
-        while not holoray_processes(b"holoray-") and time.monotonic() < deadline:
+        while not holoray_processes(b"holoray-blender-") and time.monotonic() < deadline:
             time.sleep(0.05)
-        assert holoray_processes(b"holoray-"), "holoray never started"
+        assert holoray_processes(b"holoray-blender-"), "holoray never started"
         time.sleep(0.3)
         blender.send_signal(signal.SIGINT)  # Ctrl-C: Blender's break, what Esc is in the interface
         blender.wait(timeout=30)
@@ -162,5 +170,5 @@ def test_a_cancelled_render_leaves_no_holoray_process(tmp_path):
         if blender.poll() is None:
             blender.kill()
     time.sleep(0.2)
-    assert holoray_processes(b"holoray-") == []
+    assert holoray_processes(b"holoray-blender-") == []
     assert not list(tmp_path.glob("frame_*"))
