@@ -12,6 +12,7 @@ import os
 import re
 import shutil
 import subprocess
+import threading
 
 import bpy
 
@@ -65,16 +66,58 @@ class HOLORAY_OT_render_animation(bpy.types.Operator):
 
     def execute(self, context):
         try:
-            self._run(context)
+            self._prepare(context)
+            if bpy.app.background:  # no event loop: run to the end here
+                self._run_blocking(context)
+                self._finish(context)
+                return {"FINISHED"}
         except (HolorayError, placement.PlacementError) as e:
             self.report({"ERROR"}, f"holoray: {e}")
             return {"CANCELLED"}
         except Exception as e:  # noqa: BLE001 - a report, never a traceback in the user's face
             self.report({"ERROR"}, f"holoray: {type(e).__name__}: {e}")
             return {"CANCELLED"}
+        # In the interface: holoray runs while Blender stays responsive; the
+        # progress bar follows its frames and Esc stops it between frames
+        # (holoray animate's SIGTERM), leaving every finished frame for --resume.
+        self._start()
+        self._frame = None
+        self._timer = context.window_manager.event_timer_add(0.2, window=context.window)
+        context.window_manager.progress_begin(self._first, self._last)
+        context.window_manager.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        wm = context.window_manager
+        if event.type == "ESC":
+            self._proc.terminate()
+            self._proc.wait()
+            self._end(context)
+            self.report({"WARNING"}, "holoray: stopped; the finished frames stay, and the next run resumes after them")
+            return {"CANCELLED"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        if self._frame is not None:
+            wm.progress_update(self._frame)
+        if self._proc.poll() is None:
+            return {"PASS_THROUGH"}
+        self._reader.join()
+        self._end(context)
+        try:
+            if self._proc.returncode != 0:
+                raise HolorayError(self._err.strip() or f"holoray animate exited with status {self._proc.returncode}")
+            self._finish(context)
+        except Exception as e:  # noqa: BLE001
+            self.report({"ERROR"}, f"holoray: {e}")
+            return {"CANCELLED"}
         return {"FINISHED"}
 
-    def _run(self, context):
+    def _end(self, context):
+        context.window_manager.event_timer_remove(self._timer)
+        context.window_manager.progress_end()
+
+    def _prepare(self, context):
+        """Checks the scene, exports it, writes the shot: the command in self._cmd."""
         scene = context.scene
         s = scene.holoray
         if s.camera != "INTEGRAL":
@@ -87,46 +130,57 @@ class HOLORAY_OT_render_animation(bpy.types.Operator):
             raise HolorayError("the holoray program was not found: set its path in the add-on's preferences or put it on PATH")
         for line in export.not_exported(scene):
             self.report({"WARNING"}, f"holoray: {line}")
-        out_dir = os.path.dirname(bpy.path.abspath(scene.render.frame_path(frame=scene.frame_start)))
-        work = os.path.join(out_dir, ".holoray")
-        frames_dir = os.path.join(work, "frames")
-        os.makedirs(frames_dir, exist_ok=True)
-        first = 0 if self.video else scene.frame_start
-        last = scene.frame_end
+        self._out_dir = os.path.dirname(bpy.path.abspath(scene.render.frame_path(frame=scene.frame_start)))
+        work = os.path.join(self._out_dir, ".holoray")
+        self._frames_dir = os.path.join(work, "frames")
+        os.makedirs(self._frames_dir, exist_ok=True)
+        self._first = 0 if self.video else scene.frame_start
+        self._last = scene.frame_end
         fps = scene.render.fps / scene.render.fps_base
         export.export_gltf(work, scene, camera_object, animations=True)
         shot = os.path.join(work, "shot.toml")
         with open(shot, "w") as f:
-            f.write(shot_text(scene, camera_object, first, last, fps))
+            f.write(shot_text(scene, camera_object, self._first, self._last, fps))
         exr = scene.render.image_settings.file_format in ("OPEN_EXR", "OPEN_EXR_MULTILAYER")
-        cmd = [binary, "animate", shot, "-o", frames_dir, "--resume", "--format", "exr" if exr else "png"]
-        if first > 0:
-            cmd += ["--frames", f"{first}:{last}"]
+        self._ext = "exr" if exr else "png"
+        cmd = [binary, "animate", shot, "-o", self._frames_dir, "--resume", "--format", self._ext]
+        if self._first > 0:
+            cmd += ["--frames", f"{self._first}:{self._last}"]
         if self.video:
-            cmd += ["--video", os.path.join(out_dir, "holoray.mkv")]
+            cmd += ["--video", os.path.join(self._out_dir, "holoray.mkv")]
         if s.threads:
             cmd += ["--threads", str(s.threads)]
-        wm = context.window_manager
-        wm.progress_begin(first, last)
-        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        try:
-            for line in proc.stdout:
+        self._cmd = cmd
+
+    def _start(self):
+        """Starts holoray animate; a thread follows its frames and keeps its errors."""
+        self._proc = subprocess.Popen(self._cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self._err = ""
+
+        def read():
+            for line in self._proc.stdout:
                 m = re.match(r"frame\s+(\d+)", line)
                 if m:
-                    wm.progress_update(int(m.group(1)))
-            err = proc.stderr.read()
-            proc.wait()
-        finally:
-            if proc.poll() is None:
-                proc.terminate()
-                proc.wait()
-            wm.progress_end()
-        if proc.returncode != 0:
-            raise HolorayError(err.strip() or f"holoray animate exited with status {proc.returncode}")
-        ext = "exr" if exr else "png"
-        digits = max(4, len(str(last)))
-        for f in range(scene.frame_start, last + 1):
-            src = os.path.join(frames_dir, f"frame_{f:0{digits}d}.{ext}")
-            dst = os.path.splitext(bpy.path.abspath(scene.render.frame_path(frame=f)))[0] + "." + ext
+                    self._frame = int(m.group(1))
+            self._err = self._proc.stderr.read()
+
+        self._reader = threading.Thread(target=read, daemon=True)
+        self._reader.start()
+
+    def _run_blocking(self, context):
+        self._frame = None
+        self._start()
+        self._proc.wait()
+        self._reader.join()
+        if self._proc.returncode != 0:
+            raise HolorayError(self._err.strip() or f"holoray animate exited with status {self._proc.returncode}")
+
+    def _finish(self, context):
+        """Copies holoray's frames to Blender's output path."""
+        scene = context.scene
+        digits = max(4, len(str(self._last)))
+        for f in range(scene.frame_start, self._last + 1):
+            src = os.path.join(self._frames_dir, f"frame_{f:0{digits}d}.{self._ext}")
+            dst = os.path.splitext(bpy.path.abspath(scene.render.frame_path(frame=f)))[0] + "." + self._ext
             shutil.copyfile(src, dst)
-        self.report({"INFO"}, f"holoray: {last - scene.frame_start + 1} frames in {out_dir}")
+        self.report({"INFO"}, f"holoray: {self._last - scene.frame_start + 1} frames in {self._out_dir}")
