@@ -136,16 +136,18 @@ void bind_cameras(py::module_& m) {
                "), pixels_per_lens=" + std::to_string(a.pixels_per_lens) + ")";
       });
   py::class_<api::Pinhole>(m, "Pinhole", "The viewpoint's perspective view; resolution None: the scene's, else 512x512.")
-      .def(py::init([](const py::handle& resolution) {
+      .def(py::init([](const py::handle& resolution, const std::array<double, 2>& shift) {
              api::Pinhole p;
              if (!resolution.is_none()) {
                const auto [w, h] = pair_of(resolution, "resolution");
                if (w < 1 || h < 1 || w > 65536 || h > 65536) throw py::value_error("resolution: expected 1 to 65536 pixels each way");
                p.width = w, p.height = h;
              }
+             if (!std::isfinite(shift[0]) || !std::isfinite(shift[1])) throw py::value_error("shift: expected two finite numbers");
+             p.shift_x = shift[0], p.shift_y = shift[1];
              return p;
            }),
-           py::arg("resolution") = py::none());
+           py::arg("resolution") = py::none(), py::kw_only(), py::arg("shift") = std::array<double, 2>{0, 0});
   py::class_<api::Quilt>(m, "Quilt", "A Looking Glass quilt of columns x rows sheared views (view 0 bottom left).")
       .def(py::init([](int columns, int rows, const py::handle& view_resolution, double view_cone,
                        std::optional<double> focus_distance) {

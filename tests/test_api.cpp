@@ -189,6 +189,39 @@ TEST(Api, AQuiltsFocusDistanceIsTheViewpointsAtThatDistance) {
   EXPECT_FALSE(same_samples(unfocused.colour, reference.colour));  // the distance matters: the test can fail
 }
 
+TEST(Api, APinholesLensShiftMovesItsWindowOverTheSameImagePlane) {
+  // Shifted right by 10 pixels and up by 6, a 40x30 view is columns 20 to
+  // 59 and rows 0 to 29 of a centred 60x42 view with pixels of the same size
+  // (its field of view widened to 42 rows): the window slides over one plane.
+  api::Scene s;
+  s.add_sphere({0, 0, 0}, 1, {0.9, 0.4, 0.2});
+  s.add_sphere({1.5, 0.8, -2}, 0.7);
+  s.set_viewpoint({0, 0, 6}, {0, 0, 0}, {0, 1, 0}, 30);
+  const double pixel = 2 * std::tan(30 * M_PI / 360) / 30;  // the 40x30 view's pixel on the plane at 1
+  api::Pinhole shifted;
+  shifted.width = 40, shifted.height = 30;
+  const double larger = pixel * 40;
+  shifted.shift_x = 10 * pixel / larger, shifted.shift_y = 6 * pixel / larger;
+  api::RenderOptions o;
+  o.aovs.depth = true;
+  const api::Result a = api::render(s, shifted, o);
+  api::Scene wide = s;
+  wide.set_viewpoint({0, 0, 6}, {0, 0, 0}, {0, 1, 0}, 2 * std::atan(pixel * 42 / 2) * 180 / M_PI);
+  api::Pinhole big;
+  big.width = 60, big.height = 42;
+  const api::Result b = api::render(wide, big, o);
+  int hits = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const float ta = *a.depth.at(x, y), tb = *b.depth.at(x + 20, y + 0);
+      ASSERT_EQ(std::isnan(ta), std::isnan(tb)) << x << "," << y;
+      if (std::isnan(ta)) continue;
+      EXPECT_NEAR(ta, tb, 1e-4) << x << "," << y;
+      ++hits;
+    }
+  EXPECT_GT(hits, 100);
+}
+
 TEST(Api, AnimationEmitsEveryFrameInOrderWithItsRow) {
   api::AnimateOptions o;
   o.frames = std::array<int, 2>{0, 5};

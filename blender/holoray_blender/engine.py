@@ -45,7 +45,9 @@ def command(binary, scene, settings, gltf, output, camera_object, width, height)
             cmd += ["--rows", str(s.lenticular_rows)]
         cmd += ["--gap", f"{s.gap:.9g}"] if s.use_gap else ["--fov-lens", f"{s.fov_lens:.9g}"]
     elif s.camera == "PINHOLE":
-        cmd += ["--camera", "pinhole", "--resolution", f"{width}x{height}"]
+        cam = camera_object.data
+        cmd += ["--camera", "pinhole", "--resolution", f"{width}x{height}",
+                "--shift", f"{cam.shift_x:.9g},{cam.shift_y:.9g}"]
     elif s.camera == "QUILT":
         cmd += ["--quilt", f"{s.quilt_columns}x{s.quilt_rows}", "--resolution", f"{s.view_width}x{s.view_height}",
                 "--view-cone", f"{s.view_cone:.9g}",

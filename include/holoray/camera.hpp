@@ -46,6 +46,9 @@ struct Pinhole {
   int width = 0, height = 0;
   /// One sample at each pixel's upper-right corner, where Tachyon samples.
   bool tachyon_samples = false;
+  /// Lens shift: the window moved right and up by these fractions of its
+  /// larger side (Blender's shift_x and shift_y).
+  double shift_x = 0, shift_y = 0;
 };
 
 /// A Looking Glass quilt: columns x rows sheared views on the viewpoint's

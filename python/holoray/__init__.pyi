@@ -79,7 +79,9 @@ class LensArray:
 class Pinhole:
     """The viewpoint's ordinary perspective view; resolution (width, height),
     None: the scene's, else 512x512."""
-    def __init__(self, resolution: tuple[int, int] | None = None) -> None: ...
+    def __init__(self, resolution: tuple[int, int] | None = None, *, shift: tuple[float, float] = (0.0, 0.0)) -> None:
+        """shift: lens shift, the window moved right and up by these fractions
+        of its larger side (as a Blender camera's shift_x, shift_y)."""
 
 class Quilt:
     """A Looking Glass quilt of columns x rows sheared views (view 0 bottom left)."""

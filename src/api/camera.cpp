@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "api/internal.hpp"
@@ -69,6 +70,10 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.width = p->width;
     d.height = p->height;
     d.tachyon_samples = p->tachyon_samples;
+    if (!std::isfinite(p->shift_x) || !std::isfinite(p->shift_y))
+      throw std::invalid_argument(fmt::format("shift: expected finite fractions of the larger side, got {}, {}", p->shift_x, p->shift_y));
+    d.shift_x = p->shift_x;
+    d.shift_y = p->shift_y;
   } else if (const auto* q = std::get_if<Quilt>(&camera)) {
     if (q->columns < 1 || q->rows < 1 || int64_t{q->columns} * q->rows > 4096)
       throw std::invalid_argument(fmt::format("quilt: expected 1 to 4096 views, got {}x{}", q->columns, q->rows));

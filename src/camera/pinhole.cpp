@@ -14,8 +14,8 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
   if (length(desc.at - desc.from) == 0)
     throw std::invalid_argument(fmt::format("the pinhole camera looks nowhere: from and at are the same point ({}, {}, {})",
                                             desc.from.x, desc.from.y, desc.from.z));
-  if (!std::isfinite(desc.shift_x))
-    throw std::invalid_argument(fmt::format("the view's window shift must be finite, got {}", desc.shift_x));
+  if (!std::isfinite(desc.shift_x) || !std::isfinite(desc.shift_y))
+    throw std::invalid_argument(fmt::format("the view's window shift must be finite, got {}, {}", desc.shift_x, desc.shift_y));
   if (!(desc.fov_deg > 0 && desc.fov_deg < 180))
     throw std::invalid_argument(fmt::format("the field of view must be between 0 and 180 degrees, got {}", desc.fov_deg));
   if (desc.width < 1 || desc.height < 1 || static_cast<int64_t>(desc.width) * desc.height > (int64_t{1} << 30))
@@ -35,7 +35,7 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
 PixelLine PinholeCamera::line(int i, int j, double u, double v) const {
   // The image plane at distance 1 in front of the eye, centred on d.
   const double x = (i + u + (desc_.sample_u - 0.5) - 0.5 * desc_.width) * pixel_ + desc_.shift_x;
-  const double y = (0.5 * desc_.height - (j + v + (desc_.sample_v - 0.5))) * pixel_;
+  const double y = (0.5 * desc_.height - (j + v + (desc_.sample_v - 0.5))) * pixel_ + desc_.shift_y;
   return {desc_.from, normalize(frame_.to_world_dir({x, y, -1}))};
 }
 
@@ -43,7 +43,7 @@ bool PinholeCamera::project(const Vec3& p_world, PanelHit& out) const {
   const Vec3 q = frame_.to_local_point(p_world);
   if (!(q.z < 0)) return false;  // behind or beside the eye
   const double fi = (q.x / -q.z - desc_.shift_x) / pixel_ + 0.5 * desc_.width - (desc_.sample_u - 0.5);
-  const double fj = 0.5 * desc_.height - q.y / -q.z / pixel_ - (desc_.sample_v - 0.5);
+  const double fj = 0.5 * desc_.height - (q.y / -q.z - desc_.shift_y) / pixel_ - (desc_.sample_v - 0.5);
   if (!(fi >= 0 && fi < desc_.width && fj >= 0 && fj < desc_.height)) return false;
   const int i = static_cast<int>(fi), j = static_cast<int>(fj);
   out = {i, j, fi - i, fj - j, length(q)};

@@ -40,6 +40,9 @@ struct PinholeDesc {
   /// quilt (quilt_camera.hpp) shifts its eye sideways and its window back,
   /// so that every view shares one focal plane (a sheared frustum).
   double shift_x = 0;
+  /// The window moved up by this much on the same plane (a camera's vertical
+  /// lens shift, as Blender's shift_y).
+  double shift_y = 0;
 };
 
 /// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,

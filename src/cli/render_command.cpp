@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 #include "api/internal.hpp"
 #include "cli/option_parsing.hpp"
@@ -99,6 +101,20 @@ api::LensArray lens_array_of(const RenderCommandOptions& o) {
   return a;
 }
 
+// --shift X,Y: two finite numbers.
+std::pair<double, double> parse_shift(const std::string& text) {
+  const auto comma = text.find(',');
+  try {
+    size_t a = 0, b = 0;
+    if (comma == std::string::npos) throw std::invalid_argument("");
+    const double x = std::stod(text.substr(0, comma), &a), y = std::stod(text.substr(comma + 1), &b);
+    if (a != comma || b != text.size() - comma - 1 || !std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("");
+    return {x, y};
+  } catch (const std::exception&) {
+    throw std::invalid_argument(fmt::format("--shift: expected X,Y (two finite numbers), got '{}'", text));
+  }
+}
+
 // A CLI11 check of an X,Y,Z option.
 CLI::Validator vec3(const char* option) {
   return parsed_by([option](const std::string& t) { parse_vec3(option, t); }, "X,Y,Z");
@@ -116,6 +132,8 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--sample-at", o.sample_at, "With --camera pinhole: where in each pixel its single sample lies: centre, or tachyon (the upper-right corner, where Tachyon samples; for pixel-for-pixel comparisons)")
       ->check(one_of({"centre", "tachyon"}))
       ->capture_default_str();
+  cmd->add_option("--shift", o.shift, "With --camera pinhole: lens shift X,Y, the view's window moved right and up by these fractions of its larger side (as a Blender camera's shift)")
+      ->check(parsed_by([](const std::string& t) { parse_shift(t); }, "X,Y"));
   CLI::Option* array_options[] = {
       cmd->add_option("--grid", o.grid, "Lens grid")->check(one_of({"square", "hex", "lenticular"}))->capture_default_str(),
       cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")
@@ -176,7 +194,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                 "programs that drive holoray (the Blender add-on)");
   lay_out_help(*cmd,
                {{"Output", {"--output", "--aov", "--encoding", "--quiet", "--progress"}},
-                {"Camera", {"--camera", "--resolution", "--sample-at", "--display", "--looking-glass", "--views", "--quilt",
+                {"Camera", {"--camera", "--resolution", "--sample-at", "--shift", "--display", "--looking-glass", "--views", "--quilt",
                             "--view-cone", "--quilt-view", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
@@ -218,10 +236,12 @@ api::Camera camera_of(const RenderCommandOptions& o) {
     q.focus_distance = focus;
     return q;
   }
+  if (!o.shift.empty() && !pinhole) throw std::invalid_argument("--shift: goes with --camera pinhole (a lens shift)");
   if (pinhole) {
     api::Pinhole p;
     if (!v.resolution.empty()) parse_resolution(v.resolution, p.width, p.height);
     p.tachyon_samples = o.sample_at == "tachyon";
+    if (!o.shift.empty()) std::tie(p.shift_x, p.shift_y) = parse_shift(o.shift);
     return p;
   }
   return lens_array_of(o);

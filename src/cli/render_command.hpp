@@ -22,6 +22,7 @@ struct RenderCommandOptions {
   std::string origin, normal, up;
   CameraOptions view;                 ///< --camera, --resolution, --display, --looking-glass, --views
   std::string sample_at = "centre";   ///< --sample-at (pinhole)
+  std::string shift;                  ///< --shift X,Y (pinhole lens shift)
   std::string quilt;                  ///< --quilt CxR: a Looking Glass quilt of C*R views
   double view_cone = 40;              ///< --view-cone DEG
   double focus_distance = NAN;        ///< --focus-distance D (quilt, Looking Glass); NaN: not given

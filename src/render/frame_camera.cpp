@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "display/display_placement.hpp"
@@ -73,6 +75,10 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       const int h = d.width > 0 ? d.height : vp.yres > 0 ? vp.yres : 512;
       PinholeDesc pd = view_of(vp, w, h);
       if (d.tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
+      // The window's larger side on the image plane at distance 1.
+      const double larger = 2 * std::tan(pd.fov_deg * std::numbers::pi / 360) * std::max(1.0, double(w) / h);
+      pd.shift_x = d.shift_x * larger;
+      pd.shift_y = d.shift_y * larger;
       c.view.emplace(pd);
       break;
     }

@@ -33,6 +33,9 @@ struct FrameCameraDesc {
   /// resolution, else 512x512.
   int width = 0, height = 0;
   bool tachyon_samples = false;  ///< pinhole: one sample at each pixel's upper-right corner, where Tachyon samples
+  /// pinhole: the window moved right and up by these fractions of its larger
+  /// side (a camera's lens shift, Blender's convention).
+  double shift_x = 0, shift_y = 0;
   QuiltDesc quilt;               ///< quilt: its layout, cone and one view's size
   int quilt_view = -1;           ///< quilt: >= 0 renders that view alone, as a pinhole view
   std::optional<DisplayDesc> display;                  ///< display

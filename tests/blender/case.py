@@ -97,6 +97,7 @@ elif case == "cycles":
         sc.use_nodes = False
 
     h.aov_albedo = True
+    cam.data.shift_x, cam.data.shift_y = 0.06, -0.04  # a lens shift: both framings follow it
     h.camera = "PINHOLE"
     holoray_albedo("pinhole", 160, 120, True)
     cycles_diffcol("pinhole_cycles", 160, 120)

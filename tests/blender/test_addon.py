@@ -85,7 +85,7 @@ def albedo_psnr(a, b):
     return holoray.psnr(np.clip(a[:, :, :3], 0, 1), np.clip(b[:, :, :3], 0, 1))
 
 
-def test_pinhole_matches_cycles_albedo(tmp_path):
+def test_pinhole_matches_cycles_albedo_with_a_lens_shift(tmp_path):
     build("cycles", tmp_path)
     mine = holoray.read_image(tmp_path / "pinhole.albedo.exr")
     cycles = holoray.read_image(tmp_path / "pinhole_cycles.exr")
@@ -93,7 +93,7 @@ def test_pinhole_matches_cycles_albedo(tmp_path):
     assert albedo_psnr(mine, cycles) >= 30
 
 
-def test_the_eias_centre_view_matches_a_cycles_orthographic_view_at_the_array(tmp_path):
+def test_the_eias_centre_view_matches_a_cycles_orthographic_view_at_the_array_with_a_lens_shift(tmp_path):
     build("cycles", tmp_path)
     eia = holoray.read_image(tmp_path / "eia.albedo.exr")
     view = holoray.light_field(eia, 5)[2, 2]  # 5 px per lens: pixel (2, 2) is each lens's centre
