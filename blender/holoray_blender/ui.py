@@ -4,8 +4,8 @@ when the render engine is holoray."""
 import bpy
 
 
-class HOLORAY_PT_camera(bpy.types.Panel):
-    bl_label = "holoray"
+class _RenderPanel:
+    """Where holoray's panels go: the Render properties, with holoray as the engine."""
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     bl_context = "render"
@@ -14,6 +14,10 @@ class HOLORAY_PT_camera(bpy.types.Panel):
     @classmethod
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES
+
+
+class HOLORAY_PT_camera(_RenderPanel, bpy.types.Panel):
+    bl_label = "holoray"
 
     def draw(self, context):
         s = context.scene.holoray
@@ -52,17 +56,9 @@ class HOLORAY_PT_camera(bpy.types.Panel):
             layout.prop(s, "calibration_file")
 
 
-class HOLORAY_PT_tracing(bpy.types.Panel):
+class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
     bl_label = "Tracing"
     bl_parent_id = "HOLORAY_PT_camera"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "render"
-    COMPAT_ENGINES = {"HOLORAY"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES
 
     def draw(self, context):
         s = context.scene.holoray
