@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
+#include <cstring>
 #include <filesystem>
 
 #include "image/image_io.hpp"
@@ -37,6 +38,25 @@ TEST(Cli, RendersPngWithAovsAndReportsRays) {
   // The centre pixel of the centre lens looks straight at the sphere.
   EXPECT_EQ(*id.at(8 * 5 + 2, 6 * 5 + 2), 0.0f);
   EXPECT_EQ(*id.at(0, 0), -1.0f);
+}
+
+// --exr-compression reaches the image and every AOV file, and changes no value.
+TEST(Cli, ExrCompressionAppliesToTheImageAndItsAovsAndKeepsTheirValues) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.nff"), kScene);
+  const std::string base = "render " + dir.file("s.nff") + " --lenses 16x12 --pixels-per-lens 5 --aov albedo,depth,normal,id -q";
+  ASSERT_EQ(test::run_cli(base + " -o " + dir.file("zip.exr")).status, 0);
+  const auto r = test::run_cli(base + " --exr-compression none -o " + dir.file("none.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* plane : {"", ".albedo", ".depth", ".normal", ".id"}) {
+    const std::string none = dir.file(std::string("none") + plane + ".exr"), zip = dir.file(std::string("zip") + plane + ".exr");
+    const auto info = test::run_shell("oiiotool --info -v '" + none + "'");
+    EXPECT_NE(info.output.find("compression: \"none\""), std::string::npos) << plane << info.output;
+    const ImageBuffer a = read_image(none), b = read_image(zip);
+    ASSERT_EQ(a.data.size(), b.data.size()) << plane;
+    EXPECT_EQ(std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)), 0) << plane;
+    EXPECT_LT(fs::file_size(zip), fs::file_size(none)) << plane;
+  }
 }
 
 TEST(Cli, MalformedSceneGivesFileLineColAndNoOutput) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -259,6 +260,26 @@ TEST(ImageFormats, ExrFloatsAndChannelNamesAreTheSameForAnIndependentDecoder) {
     const char* names = channels == 1 ? "channel list: Y\n" : channels == 3 ? "channel list: R, G, B\n" : "channel list: R, G, B, A\n";
     EXPECT_NE(info.output.find(names), std::string::npos) << info.output;
     EXPECT_NE(info.output.find("compression: \"zip\""), std::string::npos) << info.output;
+  }
+}
+
+// Every --exr-compression is lossless (NaN, negatives and huge values come
+// back bit for bit) and names itself in the header an independent reader sees.
+TEST(ImageFormats, EveryExrCompressionIsLosslessAndNamedInTheHeader) {
+  test::TempDir dir;
+  ImageBuffer img = pattern(37, 21, 4);
+  img.data[3] = NAN;
+  img.data[4] = -2.5e7f;
+  for (const auto& [c, name] : {std::pair{ExrCompression::none, "none"}, {ExrCompression::rle, "rle"},
+                                {ExrCompression::zips, "zips"}, {ExrCompression::zip, "zip"},
+                                {ExrCompression::piz, "piz"}}) {
+    const std::string file = dir.file(std::string(name) + ".exr");
+    write_image(file, img, Encoding::linear, c);
+    const ImageBuffer back = read_image(file);
+    ASSERT_EQ(back.data.size(), img.data.size()) << name;
+    EXPECT_EQ(std::memcmp(back.data.data(), img.data.data(), img.data.size() * sizeof(float)), 0) << name;
+    const auto info = test::run_shell("oiiotool --info -v '" + file + "'");
+    EXPECT_NE(info.output.find(std::string("compression: \"") + name + "\""), std::string::npos) << info.output;
   }
 }
 

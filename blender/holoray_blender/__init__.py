@@ -7,8 +7,8 @@ the operators holoray.render_animation (a shot with keyframe reuse) and
 holoray.preview (the last render as a viewer sees it),
 its settings `scene.holoray` in the Render properties, and the add-on's
 preferences (the holoray binary). Blender's own glTF exporter hands the scene
-over; holoray renders it; the result comes back as the render result and its
-passes.
+over; holoray renders it (its Python module in Blender's process, else the
+program); the result comes back as the render result and its passes.
 """
 
 bl_info = {
@@ -26,6 +26,8 @@ if "bpy" in locals():  # reloaded (F8): take the modules' new code
     import importlib
 
     importlib.reload(properties)  # noqa: F821
+    importlib.reload(job)  # noqa: F821
+    importlib.reload(inprocess)  # noqa: F821
     importlib.reload(engine)  # noqa: F821
     importlib.reload(ui)  # noqa: F821
     importlib.reload(animation)  # noqa: F821
@@ -33,7 +35,7 @@ if "bpy" in locals():  # reloaded (F8): take the modules' new code
 
 import bpy
 
-from . import animation, engine, preview, properties, ui
+from . import animation, engine, inprocess, job, preview, properties, ui
 
 _classes = (properties.HolorayPreferences, properties.HoloraySettings, engine.HolorayRenderEngine,
             animation.HOLORAY_OT_render_animation, preview.HOLORAY_OT_preview) + ui.classes

@@ -1,15 +1,20 @@
 """The render engine HOLORAY: F12, Ctrl-F12 and `blender -b f.blend -E HOLORAY
 -f 1` render the scene through holoray. The scene is exported with Blender's
-glTF exporter into a temporary folder, `holoray render` traces it (its
-`progress` lines drive Blender's progress bar; Esc ends the process), and its
-EXR files come back as the render result: colour into Combined, the AOVs
-into the passes Depth (holoray's line parameter t), Normal and DiffCol
-(albedo). Anything that goes wrong is a Blender error report."""
+glTF exporter into a temporary folder and traced one of two ways
+(`scene.holoray.backend`): by holoray's Python module in Blender's own
+process, its arrays going straight into the render result (where the module
+loads: the default), or by `holoray render`, whose `progress` lines drive the
+progress bar and whose EXR files Blender reads back. Colour goes into
+Combined, the AOVs into the passes Depth (holoray's line parameter t),
+Normal and DiffCol (albedo). Esc stops either (the process ends, or the
+module's render stops after its current tile). Anything that goes wrong is a
+Blender error report."""
 
 import glob
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -17,7 +22,7 @@ import time
 import bpy
 import numpy as np
 
-from . import export, placement, preview
+from . import export, inprocess, job, placement, preview
 from .properties import holoray_binary, image_size
 
 
@@ -25,46 +30,17 @@ class HolorayError(Exception):
     """A reason the render cannot be made, for the error report."""
 
 
-def _fmt(v):
-    return ",".join(f"{x:.9g}" for x in v)
+class _Stopped(Exception):
+    """Esc during an in-process render: raised from its progress callback."""
 
 
 def command(binary, scene, settings, gltf, output, camera_object, width, height):
-    """The `holoray render` command line for these settings."""
-    cmd = [binary, "render", gltf, "-o", output, "-q", "--progress"]
-    s = settings
-    if s.camera == "INTEGRAL":
-        p = s.pixels_per_lens
-        lenses_y = s.lenses_y if s.grid != "LENTICULAR" else 1
-        place = placement.array_placement(camera_object, width / height, s.mode == "PSEUDOSCOPIC")
-        cmd += ["--grid", s.grid.lower(), "--lenses", f"{s.lenses_x}x{lenses_y}", "--pixels-per-lens", str(p),
-                "--mode", s.mode.lower(),
-                "--origin", _fmt(placement.to_gltf(place.origin)), "--normal", _fmt(placement.to_gltf(place.normal)),
-                "--up", _fmt(placement.to_gltf(place.up)), "--pitch", f"{place.width / s.lenses_x:.9g}"]
-        if s.grid == "LENTICULAR":
-            cmd += ["--rows", str(s.lenticular_rows)]
-        cmd += ["--gap", f"{s.gap:.9g}"] if s.use_gap else ["--fov-lens", f"{s.fov_lens:.9g}"]
-    elif s.camera == "PINHOLE":
-        cam = camera_object.data
-        cmd += ["--camera", "pinhole", "--resolution", f"{width}x{height}",
-                "--shift", f"{cam.shift_x:.9g},{cam.shift_y:.9g}"]
-    elif s.camera == "QUILT":
-        cmd += ["--quilt", f"{s.quilt_columns}x{s.quilt_rows}", "--resolution", f"{s.view_width}x{s.view_height}",
-                "--view-cone", f"{s.view_cone:.9g}",
-                "--focus-distance", f"{placement.focus_distance(camera_object):.9g}"]
-    elif s.camera == "DISPLAY":
-        cmd += ["--display", bpy.path.abspath(s.display_file)]
-    elif s.camera == "LOOKING_GLASS":
-        cmd += ["--looking-glass", bpy.path.abspath(s.calibration_file),
-                "--focus-distance", f"{placement.focus_distance(camera_object):.9g}"]
-    if s.max_depth:
-        cmd += ["--max-depth", str(s.max_depth)]
-    if s.threads:
-        cmd += ["--threads", str(s.threads)]
-    aovs = [name for name, on in (("albedo", s.aov_albedo), ("depth", s.aov_depth), ("normal", s.aov_normal)) if on]
-    if aovs and s.camera not in ("DISPLAY", "LOOKING_GLASS"):
-        cmd += ["--aov", ",".join(aovs)]
-    return cmd, aovs
+    """The `holoray render` command line for these settings, and the AOVs it writes."""
+    j = job.spec(scene, settings, camera_object, width, height)
+    # Uncompressed: the files are read once and deleted, and ZIP took holoray
+    # as long as the trace (bench/blender_results.md).
+    cmd = [binary, "render", gltf, "-o", output, "-q", "--progress", "--exr-compression", "none"] + job.cli_args(j)
+    return cmd, j["aovs"]
 
 
 def read_exr(path, width, height):
@@ -122,7 +98,12 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         if not any(o.type in ("MESH", "CURVE", "SURFACE", "META", "FONT") and not o.hide_render for o in scene.objects):
             raise HolorayError("the scene has nothing to render: no mesh, curve or text object renders")
         binary = holoray_binary(bpy.context)
-        if binary is None:
+        module = inprocess.find_module(binary) if s.backend != "PROGRAM" else None
+        if s.backend == "MODULE" and module is None:
+            raise HolorayError("holoray's Python module does not load in Blender's Python "
+                               f"{sys.version_info.major}.{sys.version_info.minor}: install holoray's package, "
+                               "or choose the program as the way to run holoray")
+        if module is None and binary is None:
             raise HolorayError("the holoray program was not found: set its path in the add-on's preferences "
                                "(Edit > Preferences > Add-ons > holoray) or put it on PATH")
         for line in export.not_exported(scene):
@@ -130,13 +111,25 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         self.update_stats("holoray", "exporting the scene (glTF)")
         t0 = time.perf_counter()
         gltf = export.export_gltf(workdir, scene, camera_object, cameras=s.camera != "INTEGRAL")
-        output = os.path.join(workdir, "out.exr")
-        cmd, aovs = command(binary, scene, s, gltf, output, camera_object, width, height)
         self.update_stats("holoray", "tracing")
         t1 = time.perf_counter()
+        if module is not None:
+            done = self._render_in_process(module, gltf, scene, camera_object, width, height, t0, t1)
+        else:
+            done = self._render_program(binary, gltf, workdir, scene, camera_object, width, height, t0, t1)
+        if done:  # what the add-on itself costs beside holoray's run (bench/run_blender_bench.sh reads it)
+            (t0, t1, t2, t3), way = done
+            print(f"holoray: {width}x{height}: export {t1 - t0:.3f} s, holoray {t2 - t1:.3f} s, "
+                  f"result {t3 - t2:.3f} s ({way})", flush=True)
+
+    def _render_program(self, binary, gltf, workdir, scene, camera_object, width, height, t0, t1):
+        """`holoray render` into EXR files, read back by Blender's reader."""
+        s = scene.holoray
+        output = os.path.join(workdir, "out.exr")
+        cmd, aovs = command(binary, scene, s, gltf, output, camera_object, width, height)
         self._run(cmd)
         if self.test_break():
-            return
+            return None
         t2 = time.perf_counter()
         result = self.begin_result(0, 0, width, height)
         layer = result.layers[0]
@@ -151,9 +144,47 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         self.end_result(result)
         t3 = time.perf_counter()
         preview.keep_last(output, s)  # for holoray.preview
-        # What the add-on itself costs beside holoray's run (bench/run_blender_bench.sh reads it).
-        print(f"holoray: {width}x{height}: export {t1 - t0:.3f} s, holoray {t2 - t1:.3f} s, "
-              f"result {t3 - t2:.3f} s", flush=True)
+        return (t0, t1, t2, t3), "program"
+
+    def _render_in_process(self, hr, gltf, scene, camera_object, width, height, t0, t1):
+        """holoray's Python module in this process: its arrays into the passes."""
+        s = scene.holoray
+        j = job.spec(scene, s, camera_object, width, height)
+
+        def progress(fraction):
+            self.update_progress(fraction)
+            if self.test_break():
+                raise _Stopped
+
+        try:
+            res, warnings = inprocess.render(hr, gltf, j, progress)
+        except _Stopped:
+            return None
+        except (hr.SceneError, ValueError, RuntimeError, OSError) as e:
+            raise HolorayError(str(e)) from None
+        if self.test_break():
+            return None
+        for w in warnings:
+            self.report({"WARNING"}, f"holoray: {w}")
+        t2 = time.perf_counter()
+        colour = res.colour
+        if colour.shape[:2] != (height, width):
+            raise HolorayError(f"holoray made a {colour.shape[1]}x{colour.shape[0]} image, the render is {width}x{height}")
+        result = self.begin_result(0, 0, width, height)
+        layer = result.layers[0]
+        # Blender's rows go bottom up; its float arrays take a (pixels, channels) buffer whole.
+        rgba = np.empty((height, width, 4), dtype=np.float32)
+        rgba[:, :, :3] = colour[::-1]
+        rgba[:, :, 3] = 1
+        layer.passes["Combined"].rect.foreach_set(rgba.reshape(-1, 4))
+        for aov, name, channels, _, _ in self._PASSES:
+            if aov in res.aovs and name in layer.passes:
+                px = np.ascontiguousarray(res.aovs[aov][::-1], dtype=np.float32).reshape(-1, channels)
+                layer.passes[name].rect.foreach_set(px)
+        self.end_result(result)
+        t3 = time.perf_counter()
+        preview.keep_last_image(colour, hr.write_image, s)  # for holoray.preview, written when it asks
+        return (t0, t1, t2, t3), "module"
 
     def _run(self, cmd):
         """Runs holoray, following its progress; Esc (test_break) ends it."""

@@ -3,7 +3,9 @@ instances, what renders), written by Blender's own glTF exporter
 (Principled BSDF as glTF PBR, image textures, lights as
 KHR_lights_punctual), and a list of what does not survive the trip."""
 
+import contextlib
 import os
+import sys
 
 import bpy
 
@@ -79,7 +81,7 @@ def export_gltf(directory, scene, camera_object, cameras=False, animations=False
         windows = bpy.context.window_manager.windows
         if bpy.context.window is None and len(windows):
             override["window"] = windows[0]
-        with bpy.context.temp_override(**override):
+        with bpy.context.temp_override(**override), _bytecode_cache():
             result = _export(path, cameras, animations)
     finally:
         for obj in hidden:
@@ -95,3 +97,25 @@ def _export(path, cameras, animations):
             export_current_frame=True,
             use_active_scene=True, export_apply=True, export_lights=True, export_cameras=cameras,
             export_animations=animations, export_yup=True, export_extras=False)
+
+
+def _cache_dir():
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "holoray", "blender-bytecode")
+
+
+@contextlib.contextmanager
+def _bytecode_cache():
+    """Blender runs with sys.dont_write_bytecode, so every Blender process
+    compiled the glTF exporter's modules from source on its first export:
+    55 ms of the first render's 73 ms export (bench/blender_results.md).
+    While the exporter runs, Python writes and reads their bytecode under
+    the user's cache folder (sys.pycache_prefix), never beside Blender's
+    own files; Python checks each file against its source's mtime, so an
+    upgraded Blender recompiles. An unwritable folder only means no cache."""
+    saved = sys.dont_write_bytecode, sys.pycache_prefix
+    sys.dont_write_bytecode, sys.pycache_prefix = False, _cache_dir()
+    try:
+        yield
+    finally:
+        sys.dont_write_bytecode, sys.pycache_prefix = saved

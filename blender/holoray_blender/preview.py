@@ -14,9 +14,19 @@ import bpy
 from .properties import holoray_binary
 
 
+# The last in-process render, (image, write_image), until a preview asks for
+# its file: writing it after every render would cost what the module saves.
+_unwritten = None
+
+
 def last_render():
     """(path of the last EIA or panel image, its settings) or None."""
+    global _unwritten
     path = os.path.join(bpy.app.tempdir, "holoray_last.exr")
+    if _unwritten is not None:
+        image, write = _unwritten
+        write(path, image)
+        _unwritten = None
     info = path + ".json"
     if not (os.path.isfile(path) and os.path.isfile(info)):
         return None
@@ -24,14 +34,30 @@ def last_render():
         return path, json.load(f)
 
 
-def keep_last(output, settings):
-    """Called by the engine: keeps `output` and what it was made with."""
-    path = os.path.join(bpy.app.tempdir, "holoray_last.exr")
-    os.replace(output, path)
-    s = settings
+def _keep_settings(path, s):
     with open(path + ".json", "w") as f:
         json.dump({"camera": s.camera, "grid": s.grid.lower(), "pixels_per_lens": s.pixels_per_lens,
                    "display_file": bpy.path.abspath(s.display_file) if s.display_file else ""}, f)
+
+
+def keep_last(output, settings):
+    """Called by the engine after a program render: keeps `output` and what it was made with."""
+    global _unwritten
+    _unwritten = None
+    path = os.path.join(bpy.app.tempdir, "holoray_last.exr")
+    os.replace(output, path)
+    _keep_settings(path, settings)
+
+
+def keep_last_image(image, write_image, settings):
+    """Called by the engine after an in-process render: `image` (H, W, 3),
+    written by write_image(path, image) when a preview first needs it."""
+    global _unwritten
+    path = os.path.join(bpy.app.tempdir, "holoray_last.exr")
+    if os.path.exists(path):
+        os.remove(path)
+    _unwritten = (image, write_image)
+    _keep_settings(path, settings)
 
 
 class HOLORAY_OT_preview(bpy.types.Operator):

@@ -105,6 +105,11 @@ class HoloraySettings(bpy.types.PropertyGroup):
     calibration_file: StringProperty(name="Calibration", subtype="FILE_PATH", update=follow_camera)
     max_depth: IntProperty(name="Ray depth", default=0, min=0, max=16, description="0: 5, holoray's default")
     threads: IntProperty(name="Threads", default=0, min=0, description="0: all cores")
+    backend: EnumProperty(
+        name="Run holoray", default="AUTO",
+        items=[("AUTO", "Automatic", "holoray's Python module inside Blender where it loads, else the holoray program"),
+               ("MODULE", "Python module", "holoray's Python module inside Blender: no files written or read back"),
+               ("PROGRAM", "Program", "The holoray program (the add-on's preferences, else PATH), through EXR files")])
     aov_albedo: BoolProperty(name="Albedo", default=False)
     aov_depth: BoolProperty(name="Depth", default=False)
     aov_normal: BoolProperty(name="Normal", default=False)

@@ -66,6 +66,7 @@ class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(s, "max_depth")
         layout.prop(s, "threads")
+        layout.prop(s, "backend")
         col = layout.column(heading="Passes")
         col.prop(s, "aov_albedo")
         col.prop(s, "aov_depth")

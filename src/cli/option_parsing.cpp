@@ -68,6 +68,12 @@ Encoding parse_encoding(const std::string& text) {
   throw std::invalid_argument(fmt::format("--encoding: expected linear or srgb, got '{}'", text));
 }
 
+ExrCompression parse_exr_compression(const std::string& text) {
+  return pick<ExrCompression>("--exr-compression", text,
+                              {{"zip", ExrCompression::zip}, {"zips", ExrCompression::zips}, {"piz", ExrCompression::piz},
+                               {"rle", ExrCompression::rle}, {"none", ExrCompression::none}});
+}
+
 Encoding parse_encoding(const std::string& text, const std::string& scene) {
   if (text != "auto") {
     if (text == "linear" || text == "srgb") return parse_encoding(text);

@@ -37,6 +37,8 @@ Encoding parse_encoding(const std::string& text);
 /// writes its linear values as codes, and comparisons with tachyon-nox and
 /// POV-Ray read them so). Throws std::invalid_argument for other text.
 Encoding parse_encoding(const std::string& text, const std::string& scene);
+/// "zip", "zips", "piz", "rle" or "none" (--exr-compression).
+ExrCompression parse_exr_compression(const std::string& text);
 /// "auto" (nullopt: preferred_style decides), "subaperture", "packet",
 /// "horizontal" or "vertical" (--style).
 std::optional<TraceStyle> parse_style(const std::string& text);

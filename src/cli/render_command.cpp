@@ -37,11 +37,11 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 // whole in one process, as the bands arrive under mpirun.
 class FrameFiles {
  public:
-  FrameFiles(const std::string& output, int width, int height, const AovSet& aovs, Encoding encoding) {
+  FrameFiles(const std::string& output, int width, int height, const AovSet& aovs, Encoding encoding, ExrCompression exr) {
     const std::string ext = std::filesystem::path(output).extension().string().substr(1);
     const FrameBuffers shape = allocate_frame(width, 1, aovs);  // each plane's channels
     auto add = [&](ImageBuffer FrameBuffers::*plane, const std::string& path, Encoding enc) {
-      files_.emplace_back(plane, std::make_unique<ImageWriter>(path, width, height, (shape.*plane).channels, enc));
+      files_.emplace_back(plane, std::make_unique<ImageWriter>(path, width, height, (shape.*plane).channels, enc, exr));
     };
     add(&FrameBuffers::colour, output, encoding);
     if (aovs.albedo) add(&FrameBuffers::albedo, aov_path(output, "albedo", ext), encoding);
@@ -188,12 +188,17 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->check(one_of({"auto", "linear", "srgb"}))
       ->capture_default_str();
   add_cache_options(*cmd, o.cache);
+  cmd->add_option("--exr-compression", o.exr_compression,
+                  "Lossless compression of .exr files (the image and its AOVs); none is the largest and the fastest to "
+                  "write and read")
+      ->check(one_of({"zip", "zips", "piz", "rle", "none"}))
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("--progress", o.progress_lines,
                 "Print the fraction traced to stderr as lines 'progress F' (F from 0 to 1, each percent once), for "
                 "programs that drive holoray (the Blender add-on)");
   lay_out_help(*cmd,
-               {{"Output", {"--output", "--aov", "--encoding", "--quiet", "--progress"}},
+               {{"Output", {"--output", "--aov", "--encoding", "--exr-compression", "--quiet", "--progress"}},
                 {"Camera", {"--camera", "--resolution", "--sample-at", "--shift", "--display", "--looking-glass", "--views", "--quilt",
                             "--view-cone", "--quilt-view", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
@@ -278,6 +283,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
   try {
     // Everything the user typed is checked before the scene is read.
     const Encoding encoding = parse_encoding(o.encoding, o.scene);
+    const ExrCompression exr = parse_exr_compression(o.exr_compression);
     const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
     const std::optional<TraceStyle> style = parse_style(o.style);
     const api::Camera camera = camera_of(o);
@@ -366,7 +372,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       result.stats.build_seconds = renderer.build_stats().build_seconds;
       const auto t_gather = Clock::now();
       std::optional<FrameFiles> files;
-      if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding);
+      if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding, exr);
       cluster::stream_bands(world, bands, mine, width, aovs, [&](const RowBand&, const FrameBuffers& b) { files->write(b); },
                             band_bytes);
       if (files) files->finish();
@@ -382,7 +388,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       result = renderer.render();
       if (tty) std::fprintf(stderr, "\r             \r");
       const auto t_write = Clock::now();
-      FrameFiles files(output, width, height, aovs, encoding);
+      FrameFiles files(output, width, height, aovs, encoding, exr);
       files.write(result);
       files.finish();
       write_s = seconds_since(t_write);

@@ -30,6 +30,7 @@ struct RenderCommandOptions {
   CacheCommandOptions cache;
   bool quiet = false;
   bool progress_lines = false;  ///< --progress: `progress F` lines on stderr
+  std::string exr_compression = "zip";  ///< --exr-compression
 };
 
 /// Registers the subcommand and its options on `app`.

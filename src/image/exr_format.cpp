@@ -43,6 +43,17 @@ int exr_threads() {
   return n;
 }
 
+Imf::Compression imf_compression(ExrCompression c) {
+  switch (c) {
+    case ExrCompression::none: return Imf::NO_COMPRESSION;
+    case ExrCompression::rle: return Imf::RLE_COMPRESSION;
+    case ExrCompression::zips: return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::zip: return Imf::ZIP_COMPRESSION;
+    case ExrCompression::piz: return Imf::PIZ_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
+
 template <class F>
 auto rethrow(F&& f) {
   try {
@@ -56,12 +67,12 @@ auto rethrow(F&& f) {
 
 class ExrOutput final : public ScanlineOutput {
  public:
-  ExrOutput(const std::string& path, int w, int h, int channels)
+  ExrOutput(const std::string& path, int w, int h, int channels, ExrCompression compression)
       : width_(w), channels_(channels), out_(path, std::ios::binary | std::ios::trunc) {
     if (!out_) throw std::runtime_error(std::strerror(errno));
     stream_ = std::make_unique<Imf::StdOFStream>(out_, path.c_str());
     Imf::Header header(w, h);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = imf_compression(compression);
     for (int c = 0; c < channels; ++c) header.channels().insert(channel_name(c, channels), Imf::Channel(Imf::FLOAT));
     file_ = std::make_unique<Imf::OutputFile>(*stream_, header, exr_threads());
   }
@@ -113,8 +124,9 @@ std::vector<std::string> ordered_channels(const Imf::ChannelList& list) {
 
 }  // namespace
 
-std::unique_ptr<ScanlineOutput> open_exr(const std::string& file, int width, int height, int channels) {
-  return rethrow([&] { return std::make_unique<ExrOutput>(file, width, height, channels); });
+std::unique_ptr<ScanlineOutput> open_exr(const std::string& file, int width, int height, int channels,
+                                         ExrCompression compression) {
+  return rethrow([&] { return std::make_unique<ExrOutput>(file, width, height, channels, compression); });
 }
 
 Header exr_header(const std::string& file) {

@@ -50,10 +50,11 @@ PngCompression default_png_compression();
 std::unique_ptr<ScanlineOutput> open_png(const std::string& file, int width, int height, int channels, Encoding encoding,
                                          PngCompression compression = default_png_compression());
 
-/// 32-bit float OpenEXR, ZIP compression (16 scanlines a block), channels
-/// named as OpenImageIO names them (1: Y; 2..4: R, G, B, A; then channelN),
-/// so files written before and after the change read the same.
-std::unique_ptr<ScanlineOutput> open_exr(const std::string& file, int width, int height, int channels);
+/// 32-bit float OpenEXR, compressed as asked (ZIP: 16 scanlines a block),
+/// channels named as OpenImageIO names them (1: Y; 2..4: R, G, B, A; then
+/// channelN), so files written before and after the change read the same.
+std::unique_ptr<ScanlineOutput> open_exr(const std::string& file, int width, int height, int channels,
+                                         ExrCompression compression = ExrCompression::zip);
 
 /// What a reader finds in a header, before any pixel is allocated.
 struct Header {

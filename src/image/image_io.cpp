@@ -114,7 +114,8 @@ fs::path temporary_for(const std::string& path, const std::string& ext) {
 
 }  // namespace
 
-ImageWriter::ImageWriter(const std::string& path, int width, int height, int channels, Encoding encoding)
+ImageWriter::ImageWriter(const std::string& path, int width, int height, int channels, Encoding encoding,
+                         ExrCompression exr)
     : open_(std::make_unique<Open>()) {
   Open& o = *open_;
   o.path = path;
@@ -126,7 +127,7 @@ ImageWriter::ImageWriter(const std::string& path, int width, int height, int cha
   o.width = width, o.height = height, o.channels = channels;
   try {
     o.out = ext == ".png" ? formats::open_png(o.tmp.string(), width, height, channels, encoding)
-                          : formats::open_exr(o.tmp.string(), width, height, channels);
+                          : formats::open_exr(o.tmp.string(), width, height, channels, exr);
   } catch (const std::runtime_error& e) {
     o.fail(e.what());
   }
@@ -168,8 +169,8 @@ void ImageWriter::finish() {
   open_.reset();
 }
 
-void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding) {
-  ImageWriter writer(path, image.width, image.height, image.channels, encoding);
+void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding, ExrCompression exr) {
+  ImageWriter writer(path, image.width, image.height, image.channels, encoding, exr);
   writer.write_rows(image);
   writer.finish();
 }

@@ -18,6 +18,12 @@ namespace holoray {
 /// How linear values become 8-bit codes in PNG output.
 enum class Encoding { linear, srgb };
 
+/// OpenEXR's lossless compressions, by OpenEXR's names. zip (16-row blocks)
+/// is the default; none writes a 1024x1024 EIA with three AOVs in a third
+/// of zip's time (0.09 s against 0.25 s on 2 cores) at about twice the size:
+/// for files read once and deleted, such as the Blender add-on's.
+enum class ExrCompression { none, rle, zips, zip, piz };
+
 /// 8-bit code of a linear value v (in 0..1 nominal): floor(255*e(v) + 0.5)
 /// clamped to 0..255, where e is the identity (linear) or the sRGB transfer
 /// function (IEC 61966-2-1). NaN gives 0.
@@ -35,7 +41,8 @@ void encode_8bit_here(const float* values, size_t count, uint8_t* codes, Encodin
 /// encoded as above) or `.exr` (32-bit float, linear). Throws
 /// std::runtime_error naming the path and reason (unknown extension, folder
 /// missing or not writable, disk full); the destination is then untouched.
-void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding = Encoding::linear);
+void write_image(const std::string& path, const ImageBuffer& image, Encoding encoding = Encoding::linear,
+                 ExrCompression exr = ExrCompression::zip);
 
 /// An image file written band by band, top to bottom, as write_image writes
 /// it whole (same format, encoding and bytes): a giant EIA gathered from MPI
@@ -45,7 +52,8 @@ void write_image(const std::string& path, const ImageBuffer& image, Encoding enc
 /// std::logic_error for rows that do not fit or a finish() before the last row.
 class ImageWriter {
  public:
-  ImageWriter(const std::string& path, int width, int height, int channels, Encoding encoding = Encoding::linear);
+  ImageWriter(const std::string& path, int width, int height, int channels, Encoding encoding = Encoding::linear,
+              ExrCompression exr = ExrCompression::zip);
   ~ImageWriter();
   ImageWriter(const ImageWriter&) = delete;
   ImageWriter& operator=(const ImageWriter&) = delete;

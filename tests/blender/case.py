@@ -146,11 +146,18 @@ elif case == "empty":
         if obj.type == "MESH":
             bpy.data.objects.remove(obj)
 elif case == "no_binary":
-    pass  # rendered with a PATH that has no holoray
+    h.backend = "PROGRAM"  # rendered with a PATH that has no holoray
+elif case == "both_ways":
+    # Every pass, for the test to render once in Blender's process and once
+    # through the program (backend set from the command line).
+    h.aov_albedo = h.aov_depth = h.aov_normal = True
+    sc.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
+    sc.render.image_settings.color_depth = "32"
 elif case == "bench":
     h.lenses_x, h.lenses_y, h.pixels_per_lens = 64, 64, 16  # 1024x1024 (bench/run_blender_bench.sh)
-elif case == "large":
+elif case in ("large", "large_module"):
     h.lenses_x, h.lenses_y, h.pixels_per_lens = 256, 192, 16  # 4096x3072: long enough to cancel
+    h.backend = "PROGRAM" if case == "large" else "MODULE"
 else:
     raise SystemExit(f"unknown case {case}")
 

@@ -25,7 +25,8 @@ def material(name, colour=None, image=None):
     mat.use_nodes = True
     bsdf = mat.node_tree.nodes["Principled BSDF"]
     bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Specular"].default_value = 0.0
+    # Blender 4 renamed the Principled BSDF's "Specular" to "Specular IOR Level".
+    bsdf.inputs["Specular" if "Specular" in bsdf.inputs else "Specular IOR Level"].default_value = 0.0
     if colour is not None:
         bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
     if image is not None:

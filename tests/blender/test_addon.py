@@ -37,13 +37,16 @@ def build(case, tmp_path):
     return json.loads(lines[-1][len("RESULT "):])
 
 
-def render_args(tmp_path):
-    return [BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "-E", "HOLORAY",
-            "-o", str(tmp_path / "frame_####"), "-F", "OPEN_EXR", "-f", "1"]
+def render_args(tmp_path, backend=None, fmt="OPEN_EXR"):
+    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend set first when given."""
+    expr = ["--python-expr", f"import bpy; bpy.context.scene.holoray.backend = '{backend}'"] if backend else []
+    return [BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "-E", "HOLORAY"] + expr + [
+        "-o", str(tmp_path / "frame_####"), "-F", fmt, "-f", "1"]
 
 
-def render(tmp_path, with_holoray=True):
-    run = subprocess.run(render_args(tmp_path), env=env(with_holoray), capture_output=True, text=True, timeout=300)
+def render(tmp_path, with_holoray=True, backend=None, fmt="OPEN_EXR"):
+    run = subprocess.run(render_args(tmp_path, backend, fmt), env=env(with_holoray), capture_output=True, text=True,
+                         timeout=300)
     return run.stdout + run.stderr
 
 
@@ -54,6 +57,28 @@ def test_the_eia_has_the_size_asked_for(tmp_path):
     assert frame.shape[:2] == (80, 120), log
     assert np.nanmax(frame[:, :, :3]) > 0.05, "the EIA is black"
     assert "Traceback" not in log
+
+
+def test_the_module_in_blenders_process_and_the_program_give_the_same_render_result(tmp_path):
+    # Colour and every pass: the arrays set straight into the render result
+    # and the EXRs Blender reads back hold the same values, up to the last
+    # bit that Blender's colour conversions move (reading the program's EXRs,
+    # writing the frame: a 1.0 alpha comes out 0.99999994).
+    build("both_ways", tmp_path)
+    results = {}
+    for backend in ("MODULE", "PROGRAM"):
+        log = render(tmp_path, backend=backend, fmt="OPEN_EXR_MULTILAYER")
+        assert f"({backend.lower()})" in log and "Traceback" not in log, log[-3000:]
+        results[backend] = holoray.read_image(tmp_path / "frame_0001.exr")
+        (tmp_path / "frame_0001.exr").unlink()
+    module, program = results["MODULE"], results["PROGRAM"]
+    # OpenEXR lists channels by name: Combined.A, B, G, R, Depth.Z, DiffCol.B, G, R, Normal.X, Y, Z.
+    assert module.shape == program.shape == (80, 120, 11)
+    assert np.array_equal(np.isnan(module), np.isnan(program))  # background depth
+    both = ~np.isnan(module)
+    assert np.abs(module[both] - program[both]).max() <= 1.2e-7 * max(1.0, np.abs(program[both]).max())
+    assert (module[:, :, 0] == 1).all()  # alpha: the module's way sets it, Blender keeps it
+    assert np.isfinite(module[:, :, 1:4]).all() and module[:, :, 1:4].max() > 0.05
 
 
 def test_a_quilt_has_its_views_size_times_its_layout(tmp_path):
@@ -152,6 +177,29 @@ def holoray_processes(marker):
             if argv and os.path.basename(argv[0]) == b"holoray" and any(marker in a for a in argv):
                 out.append(int(pid))
     return out
+
+
+def test_a_cancelled_in_process_render_stops_and_writes_no_frame(tmp_path):
+    build("large_module", tmp_path)
+    blender = subprocess.Popen(render_args(tmp_path), env=env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                               text=True)
+    log = []
+    try:
+        for line in blender.stdout:  # Blender prints the engine's stats lines headless
+            log.append(line)
+            if "tracing" in line:
+                blender.send_signal(signal.SIGINT)  # Ctrl-C: Blender's break, what Esc is in the interface
+                break
+        log += blender.stdout.readlines()
+        blender.wait(timeout=30)
+    finally:
+        if blender.poll() is None:
+            blender.kill()
+    text = "".join(log)
+    assert "tracing" in text, text[-3000:]
+    assert "Traceback" not in text, text[-3000:]
+    assert "(module)" not in text, "the render finished: " + text[-3000:]
+    assert not list(tmp_path.glob("frame_*"))
 
 
 def test_a_cancelled_render_leaves_no_holoray_process(tmp_path):
