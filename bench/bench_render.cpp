@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "camera/placement.hpp"
 #include "render/renderer.hpp"
@@ -384,6 +385,188 @@ void BM_ShadowRaysSorted(benchmark::State& state, const std::string& name, int l
   state.counters["rays"] = benchmark::Counter(static_cast<double>(rays * state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// The Morton code of `p` on a 1024^3 grid over `b` (30 bits).
+uint32_t morton30(const Vec3& p, const Bounds3& b) {
+  auto cell = [](double v, double lo, double hi) {
+    return static_cast<uint32_t>(std::clamp((v - lo) / (hi - lo), 0.0, 1.0) * 1023);
+  };
+  auto spread = [](uint32_t v) {  // 10 bits to every third bit
+    v = (v | v << 16) & 0x030000FFu;
+    v = (v | v << 8) & 0x0300F00Fu;
+    v = (v | v << 4) & 0x030C30C3u;
+    return (v | v << 2) & 0x09249249u;
+  };
+  return spread(cell(p.x, b.lo.x, b.hi.x)) | spread(cell(p.y, b.lo.y, b.hi.y)) << 1 | spread(cell(p.z, b.lo.z, b.hi.z)) << 2;
+}
+
+// A wavefront's shadow stage, timed whole: the frame's shadow rays taken in
+// windows of about `window` rays in the renderer's order (lens by lens), each
+// window keyed by light and the Morton code of the origin, sorted, gathered
+// into packets of one light and traced (rtcOccluded16). Windows go to the
+// threads as tiles do. What window a wave needs for the sorted order to pay
+// for its own sort: against BM_ShadowRays, the same rays in today's packets.
+void BM_ShadowRaysWindowed(benchmark::State& state, const std::string& name, int lenses, int64_t window) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  const KindRays& k = kind_rays(name, lenses);
+  const AccelScene& accel = fixture(name, lenses).scene->accel();
+  const Bounds3 b = fixture(name, lenses).scene->bounds();
+  // Window boundaries in packets.
+  std::vector<size_t> starts{0};
+  int64_t in_window = 0;
+  for (size_t p = 0; p < k.shadow.size(); ++p) {
+    in_window += std::count(k.shadow[p].active, k.shadow[p].active + kPacketSize, true);
+    if (in_window >= window) {
+      starts.push_back(p + 1);
+      in_window = 0;
+    }
+  }
+  if (starts.back() != k.shadow.size()) starts.push_back(k.shadow.size());
+  const int64_t windows = static_cast<int64_t>(starts.size()) - 1;
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, windows, 1), [&](const tbb::blocked_range<int64_t>& r) {
+      thread_local std::vector<std::pair<uint64_t, const Ray*>> keyed;
+      for (int64_t w = r.begin(); w != r.end(); ++w) {
+        keyed.clear();
+        for (size_t p = starts[static_cast<size_t>(w)]; p < starts[static_cast<size_t>(w) + 1]; ++p)
+          for (int l = 0; l < kPacketSize; ++l)
+            if (k.shadow[p].active[l])
+              keyed.emplace_back(static_cast<uint64_t>(k.shadow_light[p]) << 32 | morton30(k.shadow[p].rays[l].org, b),
+                                 &k.shadow[p].rays[l]);
+        std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        RayPacket packet;
+        bool blocked[kPacketSize];
+        int n = 0;
+        for (size_t i = 0; i <= keyed.size(); ++i) {
+          if (n == kPacketSize || (n > 0 && (i == keyed.size() || keyed[i].first >> 32 != keyed[i - 1].first >> 32))) {
+            std::fill(packet.active + n, packet.active + kPacketSize, false);
+            accel.occluded(packet, blocked);
+            benchmark::DoNotOptimize(blocked);
+            n = 0;
+          }
+          if (i == keyed.size()) break;
+          packet.rays[n] = *keyed[i].second;
+          packet.active[n++] = true;
+        }
+      }
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(k.shadow_rays * state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["windows"] = static_cast<double>(windows);
+}
+
+// The frame's shadow rays as a wave would hold them: one array per
+// coordinate in float (origins as Embree takes them), in the renderer's
+// order, each with its 32-bit sort key (light in the top 3 bits, then the
+// Morton code of the origin on a 512^3 grid). Built once, untimed, as
+// today's packets are for BM_ShadowRays.
+struct ShadowSoA {
+  std::vector<float> ox, oy, oz, dx, dy, dz, tfar;
+  std::vector<uint32_t> key;
+  std::vector<int64_t> window_starts;
+};
+
+const ShadowSoA& shadow_soa(const std::string& name, int lenses, int64_t window) {
+  static std::map<std::tuple<std::string, int, int64_t>, ShadowSoA> cache;
+  std::erase_if(cache, [&](const auto& e) { return std::get<0>(e.first) != name; });
+  auto it = cache.find({name, lenses, window});
+  if (it != cache.end()) return it->second;
+  ShadowSoA& a = cache[{name, lenses, window}];
+  const KindRays& k = kind_rays(name, lenses);
+  const Bounds3 b = fixture(name, lenses).scene->bounds();
+  for (size_t p = 0; p < k.shadow.size(); ++p)
+    for (int l = 0; l < kPacketSize; ++l) {
+      if (!k.shadow[p].active[l]) continue;
+      const Ray& r = k.shadow[p].rays[l];
+      a.ox.push_back(static_cast<float>(r.org.x)), a.oy.push_back(static_cast<float>(r.org.y));
+      a.oz.push_back(static_cast<float>(r.org.z)), a.dx.push_back(static_cast<float>(r.dir.x));
+      a.dy.push_back(static_cast<float>(r.dir.y)), a.dz.push_back(static_cast<float>(r.dir.z));
+      a.tfar.push_back(static_cast<float>(r.tfar));
+      a.key.push_back(static_cast<uint32_t>(k.shadow_light[p]) << 27 | morton30(r.org, b) >> 3);
+    }
+  const int64_t n = static_cast<int64_t>(a.key.size());
+  for (int64_t s = 0; s < n; s += window) a.window_starts.push_back(s);
+  a.window_starts.push_back(n);
+  return a;
+}
+
+// The shadow stage of a wave with a cheaper sort: per window, the rays'
+// indices sorted by their 32-bit keys with an LSD radix sort (3 passes of 10
+// bits), then gathered straight into Embree's 16-wide layout (ShadowPacket)
+// and traced. Timed: the sort, the gather, the trace.
+void BM_ShadowRaysRadix(benchmark::State& state, const std::string& name, int lenses, int64_t window) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  const ShadowSoA& a = shadow_soa(name, lenses, window);
+  const AccelScene& accel = fixture(name, lenses).scene->accel();
+  const int64_t windows = static_cast<int64_t>(a.window_starts.size()) - 1;
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, windows, 1), [&](const tbb::blocked_range<int64_t>& r) {
+      thread_local std::vector<uint32_t> idx, tmp;
+      for (int64_t w = r.begin(); w != r.end(); ++w) {
+        const int64_t s0 = a.window_starts[static_cast<size_t>(w)], n = a.window_starts[static_cast<size_t>(w) + 1] - s0;
+        idx.resize(static_cast<size_t>(n));
+        tmp.resize(static_cast<size_t>(n));
+        for (int64_t i = 0; i < n; ++i) idx[static_cast<size_t>(i)] = static_cast<uint32_t>(i);
+        const uint32_t* key = a.key.data() + s0;
+        for (int shift = 0; shift < 30; shift += 10) {
+          uint32_t count[1025] = {};
+          for (int64_t i = 0; i < n; ++i) ++count[(key[idx[static_cast<size_t>(i)]] >> shift & 1023) + 1];
+          for (int c = 0; c < 1024; ++c) count[c + 1] += count[c];
+          for (int64_t i = 0; i < n; ++i) {
+            const uint32_t v = idx[static_cast<size_t>(i)];
+            tmp[count[key[v] >> shift & 1023]++] = v;
+          }
+          idx.swap(tmp);
+        }
+        ShadowPacket packet;
+        bool blocked[kPacketSize];
+        int m = 0;
+        for (int64_t i = 0; i <= n; ++i) {
+          const bool end = i == n;
+          if (m == kPacketSize || (m > 0 && (end || key[idx[static_cast<size_t>(i)]] >> 27 != key[idx[static_cast<size_t>(i - 1)]] >> 27))) {
+            for (int l = m; l < kPacketSize; ++l) packet.valid[l] = 0;
+            accel.occluded(packet, blocked);
+            benchmark::DoNotOptimize(blocked);
+            m = 0;
+          }
+          if (end) break;
+          const size_t v = static_cast<size_t>(s0) + idx[static_cast<size_t>(i)];
+          const float org[3] = {a.ox[v], a.oy[v], a.oz[v]};
+          packet.set(m++, org, Vec3{a.dx[v], a.dy[v], a.dz[v]}, a.tfar[v], true);
+        }
+      }
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(a.key.size() * state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// The same SoA rays in the renderer's order, unsorted, gathered into
+// ShadowPacket 16 at a time and traced: BM_ShadowRaysRadix's baseline with
+// the same layout, so that only the order differs.
+void BM_ShadowRaysSoA(benchmark::State& state, const std::string& name, int lenses) {
+  if (!have_scenes()) return state.SkipWithError("no ../shared/scenes");
+  const ShadowSoA& a = shadow_soa(name, lenses, 65536);
+  const AccelScene& accel = fixture(name, lenses).scene->accel();
+  const int64_t n = static_cast<int64_t>(a.key.size());
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, (n + 15) / 16, 256), [&](const tbb::blocked_range<int64_t>& r) {
+      ShadowPacket packet;
+      bool blocked[kPacketSize];
+      for (int64_t p = r.begin(); p != r.end(); ++p) {
+        int m = 0;
+        for (int64_t i = p * 16; i < std::min(n, p * 16 + 16); ++i) {
+          const size_t v = static_cast<size_t>(i);
+          const float org[3] = {a.ox[v], a.oy[v], a.oz[v]};
+          packet.set(m++, org, Vec3{a.dx[v], a.dy[v], a.dz[v]}, a.tfar[v], true);
+        }
+        for (int l = m; l < kPacketSize; ++l) packet.valid[l] = 0;
+        accel.occluded(packet, blocked);
+        benchmark::DoNotOptimize(blocked);
+      }
+    });
+  }
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(n * state.iterations()), benchmark::Counter::kIsRate);
+}
+
 // Mirror rays alone, as the renderer traces them: one by one, incoherent,
 // each hit refined in double (AccelScene::intersect).
 void BM_MirrorRays(benchmark::State& state, const std::string& name, int lenses) {
@@ -454,6 +637,16 @@ const int registered = [] {
       reg(kind + "eye", BM_IntegralPrimary, TraceStyle::packet, lenses)->Iterations(3)->Repetitions(3);
       reg(kind + "shadow", BM_ShadowRays, lenses)->Iterations(3)->Repetitions(3);
       reg(kind + "shadow_sorted", BM_ShadowRaysSorted, lenses)->Iterations(3)->Repetitions(3);
+      if (lenses == 128)  // the wave's window, by measurement (issue 43)
+        for (const int64_t window : {4096, 16384, 65536, 262144, 1048576})
+          reg(kind + "shadow_window" + std::to_string(window), BM_ShadowRaysWindowed, lenses, window)
+              ->Iterations(3)->Repetitions(3);
+      if (lenses == 128) {
+        reg(kind + "shadow_soa", BM_ShadowRaysSoA, lenses)->Iterations(3)->Repetitions(3);
+        for (const int64_t window : {4096, 16384, 65536, 262144, 1048576})
+          reg(kind + "shadow_radix" + std::to_string(window), BM_ShadowRaysRadix, lenses, window)
+              ->Iterations(3)->Repetitions(3);
+      }
       reg(kind + "mirror", BM_MirrorRays, lenses)->Iterations(3)->Repetitions(3);
     }
     reg("EmbreeRaw", BM_EmbreeRaw)->Iterations(3)->Repetitions(3);
