@@ -104,6 +104,11 @@ TEST(ImageIo, ExrRoundTripIsExactFloat) {
   }
 }
 
+TEST(ImageIo, DefaultEncodingIsLinearForNffAndTachyonScenesAndSrgbForMeshes) {
+  for (const char* scene : {"a.nff", "dir/b.NFF", "room.dat", "x.Dat"}) EXPECT_EQ(default_encoding(scene), Encoding::linear) << scene;
+  for (const char* scene : {"truck.gltf", "m.glb", "m.OBJ", "m.ply", "noext"}) EXPECT_EQ(default_encoding(scene), Encoding::srgb) << scene;
+}
+
 TEST(ImageIo, FailedWriteLeavesNothingBehind) {
   test::TempDir dir;
   const ImageBuffer img(2, 2, 3);

@@ -5,8 +5,6 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <algorithm>
-#include <cctype>
-#include <filesystem>
 #include <cmath>
 #include <memory>
 #include <set>
@@ -16,6 +14,7 @@
 #include "api/pick.hpp"
 #include "holoray/animate.hpp"
 #include "holoray/errors.hpp"
+#include "image/image_io.hpp"
 #include "reuse/shadow_cache.hpp"
 #include "scene/mesh_reader.hpp"
 #include "shot/shot_reader.hpp"
@@ -29,13 +28,6 @@ namespace {
 
 ImageDifference from_api(const Difference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
 Difference to_api(const ImageDifference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
-
-// The CLI's --encoding auto: srgb for a mesh scene file, linear for NFF and Tachyon.
-holoray::Encoding encoding_for(const std::string& scene) {
-  std::string ext = std::filesystem::path(scene).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".nff" || ext == ".dat" ? holoray::Encoding::linear : holoray::Encoding::srgb;
-}
 
 }  // namespace
 
@@ -151,7 +143,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   ShotFrames& shot = *s.shot;
   so.encoding = o.encoding ? (*o.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
                 : shot.shot().objects.empty() ? holoray::Encoding::linear
-                                              : encoding_for(shot.shot().objects.front().scene);
+                                              : default_encoding(shot.shot().objects.front().scene);
   const int frames = shot.frame_count();
   if (o.frames) {
     const auto [first, last] = *o.frames;

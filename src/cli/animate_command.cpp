@@ -173,7 +173,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     if (pinhole && cache_enabled(o.cache))
       throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
     if (glass) {
-      ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views};
+      ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views, std::nullopt};  // the viewpoint's focus
     } else if (panel) {
       ao.camera = api::Display{o.view.display, std::nullopt};
     } else if (pinhole) {

@@ -2,11 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -79,9 +76,7 @@ Encoding parse_encoding(const std::string& text, const std::string& scene) {
     if (text == "linear" || text == "srgb") return parse_encoding(text);
     throw std::invalid_argument(fmt::format("--encoding: expected auto, linear or srgb, got '{}'", text));
   }
-  std::string ext = std::filesystem::path(scene).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".nff" || ext == ".dat" ? Encoding::linear : Encoding::srgb;
+  return default_encoding(scene);
 }
 
 std::optional<TraceStyle> parse_style(const std::string& text) {

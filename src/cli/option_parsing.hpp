@@ -31,11 +31,7 @@ Grid parse_grid(const std::string& text);
 /// "linear" or "srgb" (--encoding).
 Encoding parse_encoding(const std::string& text);
 /// --encoding of render and animate: "linear", "srgb" or "auto", which is
-/// srgb for a mesh scene file (glTF, OBJ, ...: its colours are linear
-/// light, and Blender's and every glTF viewer's images are sRGB-encoded)
-/// and linear for NFF and Tachyon scenes (`scene`'s extension; Tachyon
-/// writes its linear values as codes, and comparisons with tachyon-nox and
-/// POV-Ray read them so). Throws std::invalid_argument for other text.
+/// default_encoding(scene). Throws std::invalid_argument for other text.
 Encoding parse_encoding(const std::string& text, const std::string& scene);
 /// "zip", "zips", "piz", "rle" or "none" (--exr-compression).
 ExrCompression parse_exr_compression(const std::string& text);

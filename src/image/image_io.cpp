@@ -24,6 +24,11 @@ float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::p
 
 }  // namespace
 
+Encoding default_encoding(const std::string& scene_path) {
+  const std::string ext = lower_extension(scene_path);
+  return ext == ".nff" || ext == ".dat" ? Encoding::linear : Encoding::srgb;
+}
+
 std::string lower_extension(const std::string& path) {
   std::string e = fs::path(path).extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -117,6 +117,13 @@ ImageBuffer as_rgb(const ImageBuffer& image);
 /// True for the extensions write_image accepts (".png", ".exr", any case).
 bool is_supported_output(const std::string& path);
 
+/// The encoding a scene file's 8-bit images get unless told (--encoding
+/// auto): srgb for a mesh scene (glTF, OBJ, ...: its colours are linear
+/// light, and Blender's and every glTF viewer's images are sRGB-encoded),
+/// linear for NFF and Tachyon scenes (Tachyon writes its linear values as
+/// codes, and comparisons with tachyon-nox and POV-Ray read them so).
+Encoding default_encoding(const std::string& scene_path);
+
 /// `<stem>.<aov>.<ext>` beside `path` (e.g. out.png, depth, exr -> out.depth.exr).
 std::string aov_path(const std::string& path, const std::string& aov, const std::string& ext);
 
