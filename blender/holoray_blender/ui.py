@@ -38,11 +38,6 @@ class HOLORAY_PT_camera(_RenderPanel, bpy.types.Panel):
             layout.prop(s, "mode")
             layout.label(text="The array stands at the camera's focus distance", icon="INFO")
             layout.operator("holoray.render_animation", icon="RENDER_ANIMATION")
-        row = layout.row(align=True)
-        row.operator("holoray.preview", text="Centre view").kind = "CENTRE"
-        row.operator("holoray.preview", text="Every view").kind = "VIEWS"
-        if s.camera == "DISPLAY":
-            row.operator("holoray.preview", text="Eye").kind = "EYE"
         elif s.camera == "QUILT":
             col = layout.column(align=True)
             col.prop(s, "quilt_columns")
@@ -54,6 +49,11 @@ class HOLORAY_PT_camera(_RenderPanel, bpy.types.Panel):
             layout.prop(s, "display_file")
         elif s.camera == "LOOKING_GLASS":
             layout.prop(s, "calibration_file")
+        row = layout.row(align=True)
+        row.operator("holoray.preview", text="Centre view").kind = "CENTRE"
+        row.operator("holoray.preview", text="Every view").kind = "VIEWS"
+        if s.camera == "DISPLAY":
+            row.operator("holoray.preview", text="Eye").kind = "EYE"
 
 
 class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):

@@ -136,6 +136,38 @@ elif case == "preview":
     print("RESULT " + json.dumps({"size": list(view.size),
                                   "max_difference": float(np.abs(pixels(view)[:, :, :3] - centre).max())}), flush=True)
     raise SystemExit(0)
+elif case == "panel":
+    # What the holoray panel shows for each camera: its draw() on a layout
+    # that records the settings it is asked to show.
+    from holoray_blender import ui
+
+    class Layout:
+        def __init__(self, shown):
+            self.shown, self.use_property_split = shown, False
+
+        def prop(self, data, name, **kw):
+            self.shown.append(name)
+
+        def column(self, **kw):
+            return self
+
+        row = column
+
+        def label(self, **kw):
+            pass
+
+        def operator(self, name, **kw):
+            self.shown.append(name)
+            return type("Op", (), {})()
+
+    shown = {}
+    for cam in ("INTEGRAL", "PINHOLE", "QUILT", "DISPLAY", "LOOKING_GLASS"):
+        h.camera = cam
+        shown[cam] = []
+        panel = type("Panel", (), {"layout": Layout(shown[cam])})()
+        ui.HOLORAY_PT_camera.draw(panel, bpy.context)
+    print("RESULT " + json.dumps(shown), flush=True)
+    raise SystemExit(0)
 elif case == "quilt":
     h.camera = "QUILT"
     h.quilt_columns, h.quilt_rows, h.view_width, h.view_height = 4, 2, 60, 80

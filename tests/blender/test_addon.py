@@ -81,6 +81,18 @@ def test_the_module_in_blenders_process_and_the_program_give_the_same_render_res
     assert np.isfinite(module[:, :, 1:4]).all() and module[:, :, 1:4].max() > 0.05
 
 
+def test_the_panel_shows_each_cameras_own_settings(tmp_path):
+    shown = build("panel", tmp_path)
+    assert {"grid", "lenses_x", "lenses_y", "pixels_per_lens", "fov_lens", "mode"} <= set(shown["INTEGRAL"])
+    assert {"quilt_columns", "quilt_rows", "view_width", "view_height", "view_cone"} <= set(shown["QUILT"])
+    assert "display_file" in shown["DISPLAY"]
+    assert "calibration_file" in shown["LOOKING_GLASS"]
+    own = {"INTEGRAL": "grid", "QUILT": "quilt_columns", "DISPLAY": "display_file", "LOOKING_GLASS": "calibration_file"}
+    for cam, names in shown.items():
+        assert names[0] == "camera" and "holoray.preview" in names, cam
+        assert not (set(own.values()) - {own.get(cam)}) & set(names), cam  # no other camera's settings
+
+
 def test_a_quilt_has_its_views_size_times_its_layout(tmp_path):
     assert build("quilt", tmp_path)["resolution"] == [240, 160]  # 4x2 views of 60x80
     log = render(tmp_path)
