@@ -43,6 +43,13 @@ def command(binary, scene, settings, gltf, output, camera_object, width, height)
     return cmd, j["aovs"]
 
 
+def _fill(render_pass, px):
+    """A pass's pixels from (pixels, channels) values, Blender's rows bottom up.
+    foreach_set takes the buffer whole: 2 ms for 1024x1024 RGBA, where
+    assigning `rect` converts value by value (336 ms)."""
+    render_pass.rect.foreach_set(np.ascontiguousarray(px, dtype=np.float32))
+
+
 def read_exr(path, width, height):
     """An EXR holoray wrote, as Blender's bottom-up float rows: (height * width, channels)."""
     img = bpy.data.images.load(path, check_existing=False)
@@ -140,7 +147,7 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         for aov, name, channels, _, _ in self._PASSES:
             if aov in aovs and name in layer.passes:
                 px = read_exr(f"{os.path.splitext(output)[0]}.{aov}.exr", width, height)
-                layer.passes[name].rect = np.ascontiguousarray(px[:, :channels])
+                _fill(layer.passes[name], px[:, :channels])
         self.end_result(result)
         t3 = time.perf_counter()
         preview.keep_last(output, s)  # for holoray.preview
@@ -176,11 +183,10 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         rgba = np.empty((height, width, 4), dtype=np.float32)
         rgba[:, :, :3] = colour[::-1]
         rgba[:, :, 3] = 1
-        layer.passes["Combined"].rect.foreach_set(rgba.reshape(-1, 4))
+        _fill(layer.passes["Combined"], rgba.reshape(-1, 4))
         for aov, name, channels, _, _ in self._PASSES:
             if aov in res.aovs and name in layer.passes:
-                px = np.ascontiguousarray(res.aovs[aov][::-1], dtype=np.float32).reshape(-1, channels)
-                layer.passes[name].rect.foreach_set(px)
+                _fill(layer.passes[name], res.aovs[aov][::-1].reshape(-1, channels))
         self.end_result(result)
         t3 = time.perf_counter()
         preview.keep_last_image(colour, hr.write_image, s)  # for holoray.preview, written when it asks
