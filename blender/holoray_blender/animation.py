@@ -16,7 +16,7 @@ import threading
 
 import bpy
 
-from . import export, placement
+from . import export, job, placement
 from .engine import HolorayError
 from .properties import holoray_binary
 
@@ -27,26 +27,23 @@ def _v(v):
 
 def shot_text(scene, camera_object, first, last, fps):
     """The shot file: the array's settings and its placement at every frame."""
-    s = scene.holoray
-    lenses_y = s.lenses_y if s.grid != "LENTICULAR" else 1
-    lines = [f"frames = {last + 1}", f"fps = {fps:.9g}", "", "[array]", f'grid = "{s.grid.lower()}"',
-             f'mode = "{s.mode.lower()}"', f"lenses = [{s.lenses_x}, {lenses_y}]", f"pixels_per_lens = {s.pixels_per_lens}"]
-    if s.grid == "LENTICULAR":
-        lines.append(f"rows = {s.lenticular_rows}")
-    lines.append(f"gap = {s.gap:.9g}" if s.use_gap else f"fov_lens = {s.fov_lens:.9g}")
-    lines += ["", "[camera]", 'interpolation = "linear"']
     width_px, height_px = scene.render.resolution_x, scene.render.resolution_y
+    a = job.spec(scene, scene.holoray, camera_object, width_px, height_px)  # the lens array, as F12 renders it
+    lines = [f"frames = {last + 1}", f"fps = {fps:.9g}", "", "[array]", f'grid = "{a["grid"]}"',
+             f'mode = "{a["mode"]}"', "lenses = [{}, {}]".format(*a["lenses"]), f"pixels_per_lens = {a['pixels_per_lens']}"]
+    if a["rows"] is not None:
+        lines.append(f"rows = {a['rows']}")
+    lines.append(f"gap = {a['gap']:.9g}" if a["gap"] is not None else f"fov_lens = {a['fov_lens']:.9g}")
+    lines += ["", "[camera]", 'interpolation = "linear"']
     current = scene.frame_current
     try:
         for f in range(first, last + 1):
             scene.frame_set(f)
-            m = camera_object.matrix_world
-            forward = (m.to_3x3().normalized() @ placement.Vector((0, 0, -1))).normalized()
-            up = (m.to_3x3().normalized() @ placement.Vector((0, 1, 0))).normalized()
+            forward, up, _ = placement.camera_axes(camera_object)
             d = placement.focus_distance(camera_object)
             width, _ = placement.frame_size(camera_object, d, width_px / height_px)
             angle = math.degrees(2 * math.atan(width / 2 / d))
-            eye = m.translation
+            eye = camera_object.matrix_world.translation
             lines += ["[[camera.key]]", f"frame = {f}", f"from = {_v(eye)}", f"at = {_v(eye + forward * d)}",
                       f"up = {_v(up)}", f"angle = {angle:.9g}"]
     finally:

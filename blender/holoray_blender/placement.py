@@ -61,12 +61,15 @@ def frame_size(camera_object, distance, aspect):
     return (span, span / aspect) if fit == "HORIZONTAL" else (span * aspect, span)
 
 
+def camera_axes(camera_object):
+    """The camera's forward, up and right unit vectors (Blender world)."""
+    m = camera_object.matrix_world.to_3x3().normalized()
+    return tuple((m @ Vector(v)).normalized() for v in ((0, 0, -1), (0, 1, 0), (1, 0, 0)))
+
+
 def array_placement(camera_object, aspect, pseudoscopic=False):
     """The lens array for `camera_object`, an image of `aspect` (width / height)."""
-    m = camera_object.matrix_world.to_3x3().normalized()
-    forward = (m @ Vector((0, 0, -1))).normalized()
-    up = (m @ Vector((0, 1, 0))).normalized()
-    right = (m @ Vector((1, 0, 0))).normalized()
+    forward, up, right = camera_axes(camera_object)
     d = focus_distance(camera_object)
     width, height = frame_size(camera_object, d, aspect)
     cam = camera_object.data
