@@ -39,11 +39,14 @@ def shot_text(scene, camera_object, first, last, fps):
     try:
         for f in range(first, last + 1):
             scene.frame_set(f)
-            forward, up, _ = placement.camera_axes(camera_object)
+            forward, up, right = placement.camera_axes(camera_object)
             d = placement.focus_distance(camera_object)
-            width, _ = placement.frame_size(camera_object, d, width_px / height_px)
+            width, height = placement.frame_size(camera_object, d, width_px / height_px)
             angle = math.degrees(2 * math.atan(width / 2 / d))
-            eye = camera_object.matrix_world.translation
+            # A shot places the array at `at`, facing `from`: a lens shift
+            # moves both, so that the array stands where F12 puts it.
+            cam, larger = camera_object.data, max(width, height)
+            eye = camera_object.matrix_world.translation + right * (cam.shift_x * larger) + up * (cam.shift_y * larger)
             lines += ["[[camera.key]]", f"frame = {f}", f"from = {_v(eye)}", f"at = {_v(eye + forward * d)}",
                       f"up = {_v(up)}", f"angle = {angle:.9g}"]
     finally:

@@ -136,6 +136,27 @@ elif case == "preview":
     print("RESULT " + json.dumps({"size": list(view.size),
                                   "max_difference": float(np.abs(pixels(view)[:, :, :3] - centre).max())}), flush=True)
     raise SystemExit(0)
+elif case == "shot_placement":
+    # The shot operator's array against F12's, with a lens shift: the first
+    # key's `at` is the array's centre, `from` lies along its normal, and
+    # its field of view spans the array's width.
+    import re
+    import numpy as np
+    from holoray_blender import animation, job
+    sc.camera.data.shift_x, sc.camera.data.shift_y = 0.06, -0.04
+    w, hgt = sc.render.resolution_x, sc.render.resolution_y
+    a = job.spec(sc, h, sc.camera, w, hgt)
+    text = animation.shot_text(sc, sc.camera, 1, 1, 24)
+    vec = lambda key: np.array([float(x) for x in re.search(key + r" = \[([^]]*)\]", text).group(1).split(",")])
+    eye, at = vec("from"), vec("at")
+    d = np.linalg.norm(eye - at)
+    angle = float(re.search(r"angle = ([\d.eE+-]+)", text).group(1))
+    width = 2 * d * np.tan(np.radians(angle) / 2)
+    print("RESULT " + json.dumps({
+        "centre": float(np.abs(at - np.array(a["origin"])).max()),
+        "normal": float(np.abs((eye - at) / d - np.array(a["normal"])).max()),
+        "width": float(abs(width - a["pitch"] * a["lenses"][0]))}), flush=True)
+    raise SystemExit(0)
 elif case == "panel":
     # What the holoray panel shows for each camera: its draw() on a layout
     # that records the settings it is asked to show.

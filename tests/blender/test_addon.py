@@ -81,6 +81,11 @@ def test_the_module_in_blenders_process_and_the_program_give_the_same_render_res
     assert np.isfinite(module[:, :, 1:4]).all() and module[:, :, 1:4].max() > 0.05
 
 
+def test_the_shot_operators_array_is_the_one_f12_renders_with_a_lens_shift(tmp_path):
+    r = build("shot_placement", tmp_path)
+    assert r["centre"] < 1e-6 and r["normal"] < 1e-6 and r["width"] < 1e-6, r
+
+
 def test_the_panel_shows_each_cameras_own_settings(tmp_path):
     shown = build("panel", tmp_path)
     assert {"grid", "lenses_x", "lenses_y", "pixels_per_lens", "fov_lens", "mode"} <= set(shown["INTEGRAL"])
