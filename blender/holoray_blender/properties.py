@@ -3,6 +3,7 @@ preferences (where holoray is). The render resolution follows the camera:
 lenses x pixels per lens for an EIA, the quilt's views, the panel's size."""
 
 import json
+import math
 import os
 import shutil
 import tomllib
@@ -45,6 +46,8 @@ def image_size(settings):
         p = settings.pixels_per_lens
         if settings.grid == "LENTICULAR":
             return settings.lenses_x * p, settings.lenticular_rows
+        if settings.grid == "HEX":  # rows of hexagons sqrt(3)/2 apart (docs/camera-model.md), rounded as holoray does
+            return settings.lenses_x * p, math.floor(settings.lenses_y * p * math.sqrt(3) / 2 + 0.5)
         return settings.lenses_x * p, settings.lenses_y * p
     if settings.camera == "QUILT":
         return settings.quilt_columns * settings.view_width, settings.quilt_rows * settings.view_height

@@ -189,6 +189,8 @@ elif case == "panel":
         ui.HOLORAY_PT_camera.draw(panel, bpy.context)
     print("RESULT " + json.dumps(shown), flush=True)
     raise SystemExit(0)
+elif case == "hex":
+    h.grid = "HEX"
 elif case == "quilt":
     h.camera = "QUILT"
     h.quilt_columns, h.quilt_rows, h.view_width, h.view_height = 4, 2, 60, 80

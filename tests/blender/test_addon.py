@@ -98,6 +98,14 @@ def test_the_panel_shows_each_cameras_own_settings(tmp_path):
         assert not (set(own.values()) - {own.get(cam)}) & set(names), cam  # no other camera's settings
 
 
+def test_a_hex_eia_has_the_size_holoray_makes(tmp_path):
+    # 24x16 lenses x 5 px: 16 rows of hexagons sqrt(3)/2 lens apart, 69 px (`holoray render --grid hex` says 120x69).
+    assert build("hex", tmp_path)["resolution"] == [120, 69]
+    log = render(tmp_path)
+    assert "Error: holoray" not in log and "Traceback" not in log, log[-3000:]
+    assert holoray.read_image(tmp_path / "frame_0001.exr").shape[:2] == (69, 120)
+
+
 def test_a_quilt_has_its_views_size_times_its_layout(tmp_path):
     assert build("quilt", tmp_path)["resolution"] == [240, 160]  # 4x2 views of 60x80
     log = render(tmp_path)
