@@ -539,12 +539,11 @@ void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCohe
 static_assert(sizeof(RTCRay16) == offsetof(ShadowPacket, valid) && offsetof(ShadowPacket, tfar) == offsetof(RTCRay16, tfar) &&
               offsetof(ShadowPacket, flags) == offsetof(RTCRay16, flags));
 
-void AccelScene::occluded(const ShadowPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
+void AccelScene::occluded(ShadowPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
   RTCIntersectContext ctx = occlusion_context(coherence, impl_->instanced);
-  alignas(64) RTCRay16 ray;
-  std::memcpy(&ray, &p, sizeof ray);
-  rtcOccluded16(p.valid, impl_->scene, &ctx, &ray);
-  for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.valid[k] != 0 && ray.tfar[k] == -INFINITY;
+  static_assert(alignof(ShadowPacket) >= alignof(RTCRay16));
+  rtcOccluded16(p.valid, impl_->scene, &ctx, reinterpret_cast<RTCRay16*>(&p));
+  for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.valid[k] != 0 && p.tfar[k] == -INFINITY;
 }
 
 bool AccelScene::intersect_primitive(const Ray& r, uint32_t group, PrimKind kind, uint32_t prim, Hit& hit) const {

@@ -183,7 +183,9 @@ class AccelScene {
                 RayCoherence coherence = RayCoherence::coherent) const;
   /// occluded() for the lanes of `packet` with valid[k] set; blocked[k] is
   /// false for the others. Same traversal and coherence rule as above.
-  void occluded(const ShadowPacket& packet, bool blocked[kPacketSize],
+  /// Embree traces the packet in place (no copy): a blocked lane's tfar
+  /// comes back as -infinity.
+  void occluded(ShadowPacket& packet, bool blocked[kPacketSize],
                 RayCoherence coherence = RayCoherence::coherent) const;
   /// The ray against one primitive only, exactly (no BVH; for checking a
   /// reprojected point, temporal/). Triangles count as hit when the

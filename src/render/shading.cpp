@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "render/gltf_brdf.hpp"
+#include "render/light_batch.hpp"
 #include "reuse/shadow_cache.hpp"
 
 namespace holoray {
@@ -673,6 +674,48 @@ void shade_point_light(const RenderScene& scene, const bool hit[kPacketSize], co
       colours[k] += light_contribution(f[k], sps[k], light, Vec3{ux[k], uy[k], uz[k]}, 1.0), mark_lit(k, l);
 }
 
+// The lanes of a packet for its point lights of unit falloff: as an
+// NffLanes batch when every hit lane's material is NFF's (true), else as
+// LaneGeometry for shade_point_light (false).
+bool gather_lanes(const bool hit[kPacketSize], const SurfacePoint sps[kPacketSize],
+                  const HitFrame f[kPacketSize], NffLanes& batch, LaneGeometry& lanes) {
+  for (int k = 0; k < kPacketSize; ++k)
+    if (hit[k] && f[k].m->model != ShadingModel::nff) {
+      lanes.gather(hit, sps, f);
+      return false;
+    }
+  for (int k = 0; k < kPacketSize; ++k) {
+    if (!hit[k]) {
+      batch.clear(k);
+      continue;
+    }
+    const Material& m = *f[k].m;
+    batch.set(k, sps[k].position, f[k].ns, f[k].above, f[k].view, f[k].colour * m.kd, m.ks, m.shine);
+  }
+  return true;
+}
+
+// One point light of unit falloff (NFF's) for a packet of NFF materials
+// without the shadow cache, as a float batch (light_batch.hpp).
+template <class MarkLit>
+void shade_nff_light(const RenderScene& scene, const NffLanes& batch, size_t l, RayCounts& counts,
+                     Vec3 colours[kPacketSize], MarkLit&& mark_lit) {
+  const PointLight& light = scene.lights()[l];
+  ShadowPacket shadows;
+  NffLightRays rays;
+  const int cast = nff_shadow_rays(batch, light.position, scene.epsilon(), shadows, rays);
+  if (cast == 0) return;
+  counts.shadow += static_cast<uint64_t>(cast);
+  bool blocked[kPacketSize];
+  scene.accel().occluded(shadows, blocked);
+  bool seen[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k) {
+    seen[k] = shadows.valid[k] != 0 && !blocked[k];
+    if (seen[k]) mark_lit(k, l);
+  }
+  add_nff_light(batch, rays, seen, light.intensity, colours);
+}
+
 }  // namespace
 
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
@@ -708,14 +751,16 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
   bool blocked[kPacketSize];
   double falloff[kPacketSize];
   const auto& lights = scene.lights();
-  LaneGeometry lanes;  // gathered for the first NFF light
-  bool gathered = false;
+  LaneGeometry lanes;  // gathered for the first point light of unit falloff
+  NffLanes batch;      // the same, when every lane's material is NFF's
+  enum { not_yet, double_lanes, float_batch } gathered = not_yet;
   // One light's lanes; `Unit` as shadow_ray's.
   auto shade_light = [&]<bool Unit>(size_t l, std::bool_constant<Unit>) {
     if constexpr (Unit) {
       if (!cached) {
-        if (!gathered) lanes.gather(hit, sps, f), gathered = true;
-        shade_point_light(scene, hit, lanes, sps, f, l, counts, colours, mark_lit);
+        if (gathered == not_yet) gathered = gather_lanes(hit, sps, f, batch, lanes) ? float_batch : double_lanes;
+        if (gathered == float_batch) shade_nff_light(scene, batch, l, counts, colours, mark_lit);
+        else shade_point_light(scene, hit, lanes, sps, f, l, counts, colours, mark_lit);
         return;
       }
     }
