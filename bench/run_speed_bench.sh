@@ -126,6 +126,9 @@ print()
 # 4. cycle shares
 PERF_HZ = 2000  # perf's samples per second of one thread's CPU time
 
+# The executables' own names (a BASE_BIN may be called anything): their
+# samples are holoray's.
+own = {os.path.basename(new), os.path.basename(base)}
 def shares(binary, f, view=None, seconds=False):
     """The whole command's cycles by component: % of perf's samples, or
     CPU seconds (`seconds`). `view`: the camera options (default: the EIA)."""
@@ -140,7 +143,7 @@ def shares(binary, f, view=None, seconds=False):
         if not m:
             continue
         pct, dso = (int(m.group(2)) / PERF_HZ if seconds else float(m.group(1))), m.group(3)
-        key = ("embree" if "embree" in dso else "holoray" if dso == "holoray" else "loader" if dso.startswith("ld-linux")
+        key = ("embree" if "embree" in dso else "holoray" if dso in own else "loader" if dso.startswith("ld-linux")
                else "kernel" if "kernel" in dso else "libc" if dso.startswith("libc.") else "zlib" if dso.startswith("libz") else "other")
         got[key] += pct
     return got
@@ -170,7 +173,7 @@ for s in scenes:
 print()
 
 # 6. the floor under the Tachyon ratios
-targets = {"teapot_s6": 2.5, "gears_s4": 1.0}
+targets = {"teapot_s6": 3.0, "gears_s4": 1.2}  # issue 43's
 pinhole = ["--camera", "pinhole", "--resolution", "2048x2048"]
 def total_rays(view, f):
     return int(re.search(r"total (\d+)", wall([new, "render", f] + view + ["-o", f"{tmp}/r.png"])[1]).group(1))
