@@ -212,7 +212,7 @@ struct SecondaryRays {
 
 // The mirror ray off the hit (the true normal where the interpolated one
 // would send it into the surface).
-Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
+[[gnu::always_inline]] inline Ray mirror_ray_of(const Ray& ray, const HitFrame& f) {
   Vec3 r = reflect(ray.dir, f.ns);
   if (dot(r, f.ng) <= 0) r = reflect(ray.dir, f.ng);
   return Ray{f.above, normalize(r), 0, INFINITY};
@@ -245,33 +245,46 @@ inline bool may_cast_secondary(const Material& m) {
   return m.model == ShadingModel::gltf || m.ks > 0 || m.transmittance > 0;
 }
 
-SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
+// The mirror ray of an NFF or blinn_phong material (Ks > 0), weighted Ks:
+// false when it casts none. Written into `out` (no temporary: a packet's
+// lanes are filled in place).
+[[gnu::always_inline]] inline bool nff_mirror(const Ray& ray, const HitFrame& f, Ray& out, Vec3& weight) {
   const Material& m = *f.m;
-  if (m.model == ShadingModel::gltf) [[unlikely]]
+  if (!(m.ks > 0)) return false;
+  out = mirror_ray_of(ray, f);
+  weight = Vec3{m.ks, m.ks, m.ks};
+  return true;
+}
+
+// The transmitted ray of an NFF or blinn_phong material (T > 0), weighted T:
+// refracted by Snell's law, or on total internal reflection (`reflects`) a
+// second mirror ray; false when it casts none.
+[[gnu::always_inline]] inline bool nff_transmit(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp,
+                                                const HitFrame& f, Ray& out, Vec3& weight, bool& reflects) {
+  const Material& m = *f.m;
+  if (!(m.transmittance > 0)) return false;
+  weight = Vec3{m.transmittance, m.transmittance, m.transmittance};
+  // Entering when the ray meets the outward (winding) side.
+  const double eta = f.front ? 1.0 / m.ior : m.ior;
+  const double cos_i = dot(f.view, f.ns);
+  const double k = 1 - eta * eta * (1 - cos_i * cos_i);
+  reflects = k < 0;
+  if (reflects) {
+    out = mirror_ray_of(ray, f);
+    return true;
+  }
+  Vec3 dir = normalize(ray.dir * eta + f.ns * (eta * cos_i - std::sqrt(k)));
+  if (dot(dir, f.ng) >= 0) dir = ray.dir;  // shading normal bent it back out: go straight through
+  out = Ray{sp.position - f.ng * scene.epsilon(), dir, 0, INFINITY};
+  return true;
+}
+
+SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
+  if (f.m->model == ShadingModel::gltf) [[unlikely]]
     return gltf_secondary_rays(scene, ray, sp, f);
   SecondaryRays s;
-  auto mirror_ray = [&] { return mirror_ray_of(ray, f); };
-  if (m.ks > 0) {
-    s.mirror = true;
-    s.mirror_ray = mirror_ray();
-    s.mirror_weight = Vec3{m.ks, m.ks, m.ks};
-  }
-  if (m.transmittance > 0) {
-    s.transmit = true;
-    s.transmit_weight = Vec3{m.transmittance, m.transmittance, m.transmittance};
-    // Entering when the ray meets the outward (winding) side.
-    const double eta = f.front ? 1.0 / m.ior : m.ior;
-    const double cos_i = dot(f.view, f.ns);
-    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
-    if (k < 0) {
-      s.transmit_reflects = true;
-      s.transmit_ray = mirror_ray();
-    } else {
-      Vec3 dir = normalize(ray.dir * eta + f.ns * (eta * cos_i - std::sqrt(k)));
-      if (dot(dir, f.ng) >= 0) dir = ray.dir;  // shading normal bent it back out: go straight through
-      s.transmit_ray = Ray{sp.position - f.ng * scene.epsilon(), dir, 0, INFINITY};
-    }
-  }
+  s.mirror = nff_mirror(ray, f, s.mirror_ray, s.mirror_weight);
+  s.transmit = nff_transmit(scene, ray, sp, f, s.transmit_ray, s.transmit_weight, s.transmit_reflects);
   return s;
 }
 
@@ -546,9 +559,6 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
   bool any = false;
   for (int k = 0; k < kPacketSize; ++k) any |= hit[k] && may_cast_secondary(*f[k].m);
   if (!any) return;
-  SecondaryRays s[kPacketSize];
-  for (int k = 0; k < kPacketSize; ++k)
-    if (hit[k]) s[k] = secondary_rays(scene, rays.rays[k], sps[k], f[k]);
   RayPacket next;
   Vec3 weight[kPacketSize];
   auto flush = [&] {
@@ -571,20 +581,34 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
     for (int k = 0; k < kPacketSize; ++k)
       if (next.active[k]) colours[k] += mul(seen[k], weight[k]);
   };
+  // Each lane's rays are written straight into the packet, the mirror rays
+  // first (copying whole SecondaryRays records stalled on store forwarding:
+  // teapot_s6 spent 4 % of its cycles there). A glTF lane's come from
+  // gltf_secondary_rays, asked once per pass.
   for (int k = 0; k < kPacketSize; ++k) {
-    next.active[k] = hit[k] && s[k].mirror;
-    if (!next.active[k]) continue;
-    ++counts.reflected;
-    next.rays[k] = s[k].mirror_ray;
-    weight[k] = s[k].mirror_weight;
+    next.active[k] = false;
+    if (!hit[k]) continue;
+    if (f[k].m->model == ShadingModel::gltf) [[unlikely]] {
+      const SecondaryRays g = gltf_secondary_rays(scene, rays.rays[k], sps[k], f[k]);
+      if ((next.active[k] = g.mirror)) next.rays[k] = g.mirror_ray, weight[k] = g.mirror_weight;
+    } else {
+      next.active[k] = nff_mirror(rays.rays[k], f[k], next.rays[k], weight[k]);
+    }
+    counts.reflected += next.active[k];
   }
   flush();
   for (int k = 0; k < kPacketSize; ++k) {
-    next.active[k] = hit[k] && s[k].transmit;
-    if (!next.active[k]) continue;
-    ++(s[k].transmit_reflects ? counts.reflected : counts.refracted);
-    next.rays[k] = s[k].transmit_ray;
-    weight[k] = s[k].transmit_weight;
+    next.active[k] = false;
+    if (!hit[k]) continue;
+    bool reflects = false;
+    if (f[k].m->model == ShadingModel::gltf) [[unlikely]] {
+      const SecondaryRays g = gltf_secondary_rays(scene, rays.rays[k], sps[k], f[k]);
+      if ((next.active[k] = g.transmit)) next.rays[k] = g.transmit_ray, weight[k] = g.transmit_weight;
+      reflects = g.transmit_reflects;
+    } else {
+      next.active[k] = nff_transmit(scene, rays.rays[k], sps[k], f[k], next.rays[k], weight[k], reflects);
+    }
+    if (next.active[k]) ++(reflects ? counts.reflected : counts.refracted);
   }
   flush();
 }
