@@ -33,7 +33,7 @@ struct HitFrame {
   bool front;  // the ray met the outward (winding) side
 };
 
-HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
+[[gnu::always_inline]] inline HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
   HitFrame f;
   f.m = sp.material;
   f.colour = sp.colour;
