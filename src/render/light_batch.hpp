@@ -8,8 +8,10 @@
 // where N.L <= 0 or the light lies on the surface. In float, where the
 // single-ray path (shade(Ray)) is in double: the two agree to the image
 // budget (at least 60 dB, tests/test_render.cpp), not bit for bit. Each
-// lane's arithmetic is its own, so a lane's colour never depends on which
-// other pixels share its packet (any tile order, thread or rank count).
+// lane's arithmetic is its own (no sum across lanes), and packets are cut
+// from the image's layout, so the image is the same for any tile order,
+// thread count or rank count. (libmvec, like libm, picks its kernel by the
+// processor: machines of different kinds may differ in a last bit.)
 #pragma once
 
 #include "accel/accel_scene.hpp"

@@ -28,7 +28,9 @@ struct AovSet {
 };
 
 /// How the pixels of one elemental image are traced (issue 4, paper §6).
-/// The image never depends on it (RenderStyles tests); only the speed does.
+/// What each pixel sees never depends on it, nor do the AOVs; the packet
+/// styles shade NFF's direct light in float (light_batch.hpp), the single-ray
+/// ones in double: colours within the image budget, 60 dB (RenderStyles tests).
 enum class TraceStyle {
   packet,       ///< 16-ray packets of 4x4 pixels of one lens (rtcIntersect16, coherent); shadow rays as packets
   subaperture,  ///< 16-ray packets of one pixel (u, v) of 4x4 neighbouring lenses: parallel rays (square grid) from a
@@ -99,8 +101,9 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
 /// render_pixel() for up to kPacketSize pixels px[k] (k < n), any pixels
 /// (4x4 of one lens, or one of each of 4x4 lenses), traced as packets:
 /// colours[k], and primary[k] /
-/// surface[k] when given. Same result as render_pixel() per pixel whenever
-/// Embree's packet and single-ray kernels agree. With `parts` (spp must be
+/// surface[k] when given. The same primary hits and surfaces as
+/// render_pixel() per pixel whenever Embree's packet and single-ray kernels
+/// agree, and colours within the image budget (shade(RayPacket)). With `parts` (spp must be
 /// 1), parts[k] gets what the rays of lane k's shading found (ShadeParts;
 /// zero for background lanes): the keyframes of reverse reprojection.
 void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,

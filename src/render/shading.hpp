@@ -50,8 +50,12 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
 /// (rtcOccluded16). The mirror rays of the lanes, then their transmitted
 /// rays, go as one packet (rtcIntersect16, incoherent) when they are nearly
 /// parallel, and their hits are shaded as a packet one level deeper; else
-/// one by one. Each lane gives the same bits as shade() on its own, as long
-/// as the packet and single-ray kernels agree on every ray.
+/// one by one. When every hit lane's material is NFF's and the scene has
+/// no shadow cache, each point light of unit falloff is shaded as a float
+/// batch (light_batch.hpp): a lane's colour is then shade()'s to the image
+/// budget (60 dB), not to the bit; otherwise each lane gives the same bits as
+/// shade() on its own, as long as the packet and single-ray kernels agree
+/// on every ray.
 /// With `parts`, parts[k] also gets what lane k's rays found (ShadeParts).
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
