@@ -725,9 +725,8 @@ bool gather_lanes(const bool hit[kPacketSize], const SurfacePoint sps[kPacketSiz
 
 // One point light of unit falloff (NFF's) for a packet of NFF materials
 // without the shadow cache, as a float batch (light_batch.hpp).
-template <class MarkLit>
 void shade_nff_light(const RenderScene& scene, const NffLanes& batch, size_t l, RayCounts& counts,
-                     Vec3 colours[kPacketSize], MarkLit&& mark_lit) {
+                     Vec3 colours[kPacketSize], ShadeParts parts[]) {
   const PointLight& light = scene.lights()[l];
   ShadowPacket shadows;
   NffLightRays rays;
@@ -737,11 +736,10 @@ void shade_nff_light(const RenderScene& scene, const NffLanes& batch, size_t l, 
   bool blocked[kPacketSize];
   scene.accel().occluded(shadows, blocked);
   bool seen[kPacketSize];
-  for (int k = 0; k < kPacketSize; ++k) {
-    seen[k] = shadows.valid[k] != 0 && !blocked[k];
-    if (seen[k]) mark_lit(k, l);
-  }
+  for (int k = 0; k < kPacketSize; ++k) seen[k] = (shadows.valid[k] != 0) & !blocked[k];
   add_nff_light(batch, rays, seen, light.intensity, colours);
+  if (parts && l < kMaxPartLights)
+    for (int k = 0; k < kPacketSize; ++k) parts[k].lit |= static_cast<uint32_t>(seen[k]) << l;
 }
 
 }  // namespace
@@ -787,7 +785,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     if constexpr (Unit) {
       if (!cached) {
         if (gathered == not_yet) gathered = gather_lanes(hit, sps, f, batch, lanes) ? float_batch : double_lanes;
-        if (gathered == float_batch) shade_nff_light(scene, batch, l, counts, colours, mark_lit);
+        if (gathered == float_batch) shade_nff_light(scene, batch, l, counts, colours, parts);
         else shade_point_light(scene, hit, lanes, sps, f, l, counts, colours, mark_lit);
         return;
       }
