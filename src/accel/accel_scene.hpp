@@ -156,6 +156,10 @@ class AccelScene {
 
   /// Nearest hit in (tnear, tfar); false when none.
   bool intersect(const Ray& ray, Hit& hit, RayCoherence coherence = RayCoherence::incoherent) const;
+  /// intersect() with Embree's float answer kept: t, barycentrics and the
+  /// normalised geometric normal as Embree gives them, no double
+  /// refinement (secondary rays, within the image budget).
+  bool intersect_unrefined(const Ray& ray, Hit& hit) const;
   /// Any hit in (tnear, tfar) (shadow rays).
   bool occluded(const Ray& ray) const;
   /// intersect() for every active lane at once (rtcIntersect16); found[k] is
@@ -163,7 +167,7 @@ class AccelScene {
   /// them, so a lane gives the same Hit as intersect() whenever Embree's packet
   /// and single-ray kernels pick the same primitive (all but exact ties).
   void intersect(const RayPacket& packet, Hit hits[kPacketSize], bool found[kPacketSize],
-                 RayCoherence coherence = RayCoherence::incoherent) const;
+                 RayCoherence coherence = RayCoherence::incoherent, bool refined = true) const;
   /// intersect() without the refinement: raw[k] where found[k].
   void intersect_raw(const RayPacket& packet, RawHit raw[kPacketSize], bool found[kPacketSize],
                      RayCoherence coherence = RayCoherence::incoherent) const;
@@ -223,7 +227,7 @@ class AccelScene {
   /// Embree's hit record (ids, float normal and barycentrics, float t) into a
   /// refined Hit; shared by the single-ray and the packet queries.
   void resolve(const Ray& ray, unsigned geom_id, unsigned inst_id, unsigned prim_id, const float ng[3], float u,
-               float v, float t, Hit& hit) const;
+               float v, float t, Hit& hit, bool refined = true) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

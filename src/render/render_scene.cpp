@@ -207,6 +207,9 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
                          &m.specular_texture})
         if (*index >= 0) *index += texture_base;
       has_tachyon_ |= m.model == ShadingModel::tachyon;
+      only_plain_nff_ &= m.model == ShadingModel::nff && m.texture < 0 && m.emission_texture < 0 &&
+                         m.metal_rough_texture < 0 && m.normal_texture < 0 && m.alpha_texture < 0 &&
+                         m.specular_texture < 0;
       has_tachyon_transparency_ |= m.model == ShadingModel::tachyon && m.transmittance > 0;
       materials_.push_back(m);
     }

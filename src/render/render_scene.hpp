@@ -154,6 +154,10 @@ class RenderScene {
   /// Whether a Tachyon material lets light through (opacity < 1): then
   /// Tachyon's shadow rays are filtered through it instead of blocked.
   bool has_tachyon_transparency() const { return has_tachyon_transparency_; }
+  /// Whether every material is NFF's without a texture: then nothing in the
+  /// shading of a secondary hit reads more than its point and normal to
+  /// float precision, and secondary rays take Embree's hits unrefined.
+  bool only_plain_nff() const { return only_plain_nff_; }
   /// Light a mesh surface gives off at `sp`, seen from `distance` along
   /// the ray (Material::emission times its texture); zero for most.
   Vec3 emission(const SurfacePoint& sp, double distance) const;
@@ -236,7 +240,7 @@ class RenderScene {
   std::vector<PointLight> lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased
-  bool has_tachyon_ = false, has_tachyon_transparency_ = false;
+  bool has_tachyon_ = false, has_tachyon_transparency_ = false, only_plain_nff_ = true;
   std::optional<FogDesc> fog_;
   double finite_scale_ = 0;  // epsilon's scale without planes and lights' spheres (0: the scene has neither)
   Vec3 ambient_, background_;

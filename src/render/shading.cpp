@@ -530,7 +530,7 @@ void trace_packet(const RenderScene& scene, const RayPacket& rays, int depth, Ra
                   Vec3 colours[kPacketSize]) {
   Hit hits[kPacketSize];
   bool found[kPacketSize] = {};
-  scene.accel().intersect(rays, hits, found, RayCoherence::coherent);
+  scene.accel().intersect(rays, hits, found, RayCoherence::coherent, !scene.only_plain_nff());
   SurfacePoint sps[kPacketSize];
   bool any = false;
   for (int k = 0; k < kPacketSize; ++k) {
@@ -540,6 +540,15 @@ void trace_packet(const RenderScene& scene, const RayPacket& rays, int depth, Ra
     any |= found[k];
   }
   if (any) shade(scene, rays, found, sps, depth, counts, colours);
+}
+
+// trace() for a packet's secondary ray: in a scene of plain NFF materials
+// with Embree's float hit (RenderScene::only_plain_nff).
+Vec3 trace_secondary(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts) {
+  if (!scene.only_plain_nff()) return trace(scene, ray, depth, counts);
+  Hit hit;
+  if (!scene.accel().intersect_unrefined(ray, hit)) return scene.background();
+  return shade(scene, ray, scene.surface(ray, hit), depth, counts);
 }
 
 // A packet of secondary rays is traced as a packet only when its rays are
@@ -577,7 +586,7 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
       if (next.active[k]) spread = std::fmin(spread, dot(next.rays[k].dir, mean));
     if (n < kMinCoherentLanes || spread < kMinCoherentCos) {
       for (int k = 0; k < kPacketSize; ++k)
-        if (next.active[k]) colours[k] += mul(trace(scene, next.rays[k], depth + 1, counts), weight[k]);
+        if (next.active[k]) colours[k] += mul(trace_secondary(scene, next.rays[k], depth + 1, counts), weight[k]);
       return;
     }
     Vec3 seen[kPacketSize];
