@@ -48,14 +48,14 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
 /// shade() for the lanes of a packet with hit[k] set, into colours[k] (other
 /// lanes untouched). The shadow rays toward each light go as one packet
 /// (rtcOccluded16). The mirror rays of the lanes, then their transmitted
-/// rays, go as one packet (rtcIntersect16, incoherent) when they are nearly
-/// parallel, and their hits are shaded as a packet one level deeper; else
-/// one by one. When every hit lane's material is NFF's and the scene has
+/// rays, go as one packet (rtcIntersect16, Embree's coherent traversal) when
+/// they are nearly parallel, and their hits are shaded as a packet one level
+/// deeper; else one by one. In a scene of plain NFF materials
+/// (RenderScene::only_plain_nff) their triangle hits are Embree's float ones,
+/// unrefined. When every hit lane's material is NFF's and the scene has
 /// no shadow cache, each point light of unit falloff is shaded as a float
 /// batch (light_batch.hpp): a lane's colour is then shade()'s to the image
-/// budget (60 dB), not to the bit; otherwise each lane gives the same bits as
-/// shade() on its own, as long as the packet and single-ray kernels agree
-/// on every ray.
+/// budget (60 dB), not to the bit; so are the secondary rays' answers.
 /// With `parts`, parts[k] also gets what lane k's rays found (ShadeParts).
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
