@@ -441,21 +441,7 @@ void AccelScene::resolve(const Ray& r, unsigned geom_id, unsigned inst_id, unsig
   hit.p_object = g.identity ? r.org + r.dir * hit.t : g.to_object.point(r.org) + g.to_object.dir(r.dir) * hit.t;
 }
 
-bool AccelScene::intersect_unrefined(const Ray& r, Hit& hit) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRayHit rh;
-  rh.ray = to_rtc_ray(r);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  const float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
-  resolve(r, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, ng, rh.hit.u, rh.hit.v, rh.ray.tfar, hit, false);
-  return true;
-}
-
-bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence) const {
+bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence, bool refined) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   if (coherence == RayCoherence::coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -466,7 +452,7 @@ bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence) const
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
-  resolve(r, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, ng, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
+  resolve(r, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, ng, rh.hit.u, rh.hit.v, rh.ray.tfar, hit, refined);
   return true;
 }
 

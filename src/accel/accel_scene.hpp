@@ -154,18 +154,19 @@ class AccelScene {
   /// The geometry of one group, in its object space (as built).
   const GeometryGroup& geometry(uint32_t group) const { return groups_[group].geo; }
 
-  /// Nearest hit in (tnear, tfar); false when none.
-  bool intersect(const Ray& ray, Hit& hit, RayCoherence coherence = RayCoherence::incoherent) const;
-  /// intersect() with Embree's float answer kept: t, barycentrics and the
-  /// normalised geometric normal as Embree gives them, no double
-  /// refinement (secondary rays, within the image budget).
-  bool intersect_unrefined(const Ray& ray, Hit& hit) const;
+  /// Nearest hit in (tnear, tfar); false when none. Refined in double; with
+  /// `refined` false a triangle hit keeps Embree's float answer (t,
+  /// barycentrics, the normalised geometric normal: secondary rays, within
+  /// the image budget), while spheres and cones keep their double hits.
+  bool intersect(const Ray& ray, Hit& hit, RayCoherence coherence = RayCoherence::incoherent,
+                 bool refined = true) const;
   /// Any hit in (tnear, tfar) (shadow rays).
   bool occluded(const Ray& ray) const;
   /// intersect() for every active lane at once (rtcIntersect16); found[k] is
   /// false for inactive lanes. Hits are refined exactly as intersect() refines
   /// them, so a lane gives the same Hit as intersect() whenever Embree's packet
-  /// and single-ray kernels pick the same primitive (all but exact ties).
+  /// and single-ray kernels pick the same primitive (all but exact ties);
+  /// `refined` as for one ray.
   void intersect(const RayPacket& packet, Hit hits[kPacketSize], bool found[kPacketSize],
                  RayCoherence coherence = RayCoherence::incoherent, bool refined = true) const;
   /// intersect() without the refinement: raw[k] where found[k].

@@ -545,9 +545,8 @@ void trace_packet(const RenderScene& scene, const RayPacket& rays, int depth, Ra
 // trace() for a packet's secondary ray: in a scene of plain NFF materials
 // with Embree's float hit (RenderScene::only_plain_nff).
 Vec3 trace_secondary(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts) {
-  if (!scene.only_plain_nff()) return trace(scene, ray, depth, counts);
   Hit hit;
-  if (!scene.accel().intersect_unrefined(ray, hit)) return scene.background();
+  if (!scene.accel().intersect(ray, hit, RayCoherence::incoherent, !scene.only_plain_nff())) return scene.background();
   return shade(scene, ray, scene.surface(ray, hit), depth, counts);
 }
 
