@@ -119,6 +119,34 @@ TEST_P(ProjectionRoundTrip, PointsOnAPixelLineProjectBackToThatPixel) {
   }
 }
 
+// The reprojections' lookup: a point seen along a pixel's own line direction
+// is recorded by that pixel, at the line's parameter (through the lens the
+// line crosses, found without a search over lenses).
+TEST_P(ProjectionRoundTrip, PointsSeenAlongAPixelLineProjectAlongItToThatPixel) {
+  const auto [grid, mode] = GetParam();
+  const LensArray cam(make_desc(grid, mode));
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> pi(0, cam.width() - 1), pj(0, cam.height() - 1);
+  std::uniform_real_distribution<double> off(0.01, 0.99), tt(0.2, 8);
+  for (int n = 0; n < 2000; ++n) {
+    const int i = pi(rng), j = pj(rng);
+    const double u = off(rng), v = off(rng);
+    const double t = (mode == RecordingMode::orthoscopic && n % 2) ? -tt(rng) : tt(rng);
+    const PixelLine l = cam.line_local(i, j, u, v);
+    PanelHit h;
+    LensIndex lens;
+    ASSERT_TRUE(cam.project_along(l.origin + l.dir * t, l.dir * 3.0, h, &lens)) << "pixel " << i << "," << j;
+    EXPECT_EQ(h.i, i);
+    EXPECT_EQ(h.j, j);
+    EXPECT_EQ(lens, cam.lens_of_pixel(i, j));
+    EXPECT_NEAR(h.u, u, 1e-9);
+    EXPECT_NEAR(h.v, v, 1e-9);
+    EXPECT_NEAR(h.t, t, 1e-9 * std::fabs(t) + 1e-12);
+  }
+  PanelHit h;
+  EXPECT_FALSE(cam.project_along({0.1, 0.2, 1}, {1, 0, 0}, h));  // parallel to the array: crosses it nowhere
+}
+
 INSTANTIATE_TEST_SUITE_P(AllGridsAndModes, ProjectionRoundTrip,
                          ::testing::Combine(::testing::Values(Grid::square, Grid::hex, Grid::lenticular),
                                             ::testing::Values(RecordingMode::orthoscopic, RecordingMode::pseudoscopic)),

@@ -51,6 +51,7 @@ LensArray::LensArray(const LensArrayDesc& d) : desc_(d) {
   width_ = static_cast<int>(w);
   height_ = static_cast<int>(h);
   s_ = d.pitch / d.pixels_per_lens;
+  inv_s_ = 1 / s_;
   half_w_ = width_ * s_ / 2;
   half_h_ = height_ * s_ / 2;
   row_step_ = d.pitch * kSqrt3 / 2;
@@ -96,20 +97,6 @@ LensIndex LensArray::hex_lens_of_pixel(int i, int j) const {
     }
   }
   return best;
-}
-
-Vec3 LensArray::lens_centre_local(LensIndex l) const {
-  const double pitch = desc_.pitch;
-  const double half_array_w = desc_.lenses_x * pitch / 2;
-  switch (desc_.grid) {
-    case Grid::square:
-      return {(l.x + 0.5) * pitch - half_array_w, desc_.lenses_y * pitch / 2 - (l.y + 0.5) * pitch, 0};
-    case Grid::hex:
-      return {(l.x + 0.5 + ((l.y & 1) ? 0.5 : 0.0)) * pitch - half_array_w, half_h_ - pitch / 2 - l.y * row_step_, 0};
-    case Grid::lenticular:
-      return {(l.x + 0.5) * pitch - half_array_w, 0, 0};
-  }
-  return {};
 }
 
 Vec3 LensArray::panel_point_local(int i, int j, double u, double v) const {
@@ -179,10 +166,29 @@ void LensArray::project_local(const Vec3& x, std::vector<PanelHit>& out) const {
       if (project_through(x, LensIndex{lx, ly}, h)) out.push_back(h);
 }
 
+namespace {
+// floor(v) clamped to [0, n - 1] (NaN: 0). Truncation is floor once v > 0;
+// std::floor is a call-free instruction only from SSE4.1 on.
+inline int clamped_index(double v, int n) {
+  if (!(v > 0)) return 0;
+  return v < n - 1 ? static_cast<int>(v) : n - 1;
+}
+}  // namespace
+
 LensIndex LensArray::lens_near(const Vec3& p_local) const {
-  const int i = static_cast<int>(std::clamp(std::floor((p_local.x + half_w_) / s_), 0.0, width_ - 1.0));
-  const int j = static_cast<int>(std::clamp(std::floor((half_h_ - p_local.y) / s_), 0.0, height_ - 1.0));
-  return lens_of_pixel(i, j);
+  return lens_of_pixel(clamped_index((p_local.x + half_w_) * inv_s_, width_),
+                       clamped_index((half_h_ - p_local.y) * inv_s_, height_));
+}
+
+bool LensArray::project_along(const Vec3& x, const Vec3& d, PanelHit& out, LensIndex* lens_out) const {
+  if (d.z == 0) return false;
+  const LensIndex lens = lens_near(x - d * (x.z / d.z));
+  LensIndex landed{-1, -1};
+  if (!project_through(x, lens, out, &landed) &&
+      (landed.x < 0 || landed == lens || !project_through(x, landed, out)))
+    return false;
+  if (lens_out) *lens_out = landed;  // project_through sets it to the lens it succeeded through
+  return true;
 }
 
 bool LensArray::project_through(const Vec3& x, LensIndex lens, PanelHit& out, LensIndex* landing_lens) const {
@@ -200,7 +206,7 @@ bool LensArray::project_through(const Vec3& x, LensIndex lens, PanelHit& out, Le
     px = c.x + (c.x - x.x) * sc;
     py = c.y + (c.y - x.y) * sc;
   }
-  const double fi = (px + half_w_) / s_, fj = (half_h_ - py) / s_;
+  const double fi = (px + half_w_) * inv_s_, fj = (half_h_ - py) * inv_s_;
   if (!(fi >= 0 && fi < width_ && fj >= 0 && fj < height_)) {
     if (landing_lens && std::isfinite(fi) && std::isfinite(fj)) {
       const int ci = static_cast<int>(std::clamp(fi, 0.0, width_ - 1.0));

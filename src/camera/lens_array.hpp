@@ -94,7 +94,20 @@ class LensArray final : public Camera {
     return hex_lens_of_pixel(i, j) == lens;
   }
   /// Lens centre c in the array frame (z = 0). Lenticular: (c_x, 0, 0).
-  Vec3 lens_centre_local(LensIndex l) const;
+  /// Inline: every reprojection lookup asks for one or two.
+  Vec3 lens_centre_local(LensIndex l) const {
+    const double pitch = desc_.pitch;
+    const double half_array_w = desc_.lenses_x * pitch / 2;
+    switch (desc_.grid) {
+      case Grid::square:
+        return {(l.x + 0.5) * pitch - half_array_w, desc_.lenses_y * pitch / 2 - (l.y + 0.5) * pitch, 0};
+      case Grid::hex:
+        return {(l.x + 0.5 + ((l.y & 1) ? 0.5 : 0.0)) * pitch - half_array_w, half_h_ - pitch / 2 - l.y * row_step_, 0};
+      case Grid::lenticular:
+        return {(l.x + 0.5) * pitch - half_array_w, 0, 0};
+    }
+    return {};
+  }
   /// Panel point p of pixel (i, j) at offset (u, v) in the pixel, array frame (z = -gap).
   Vec3 panel_point_local(int i, int j, double u = 0.5, double v = 0.5) const;
 
@@ -125,6 +138,14 @@ class LensArray final : public Camera {
   /// The lens whose elemental image holds the panel pixel under an
   /// array-frame point (z ignored; clamped to the array).
   LensIndex lens_near(const Vec3& p_local) const;
+  /// The pixel that records array-frame point `x_local` seen along direction
+  /// `d_local` (array frame, any length, d.z != 0): project_through the lens
+  /// near where the line through the point along d crosses the array, else
+  /// through the lens its projection landed in. There the point lands at the
+  /// same place in the elemental image as where a pixel looking along d saw
+  /// it (the reprojections' lookup, once per hit). `lens` (optional) gets
+  /// the lens it was recorded through. False where neither lens records it.
+  bool project_along(const Vec3& x_local, const Vec3& d_local, PanelHit& out, LensIndex* lens = nullptr) const;
   /// Row-major lens number, lx + ly * lens_count_x().
   int lens_number(LensIndex l) const { return l.x + l.y * lens_count_x(); }
 
@@ -135,6 +156,7 @@ class LensArray final : public Camera {
   LensArrayDesc desc_;
   int width_ = 0, height_ = 0;
   double s_ = 0;           // pixel pitch
+  double inv_s_ = 0;       // 1 / s_: the reprojection's lookups divide by s_ once per hit
   double half_w_ = 0, half_h_ = 0;  // W*s/2, H*s/2
   double row_step_ = 0;    // hex: pitch*sqrt(3)/2
   double reach_x_ = 0, reach_y_ = 0;  // max |p - c| per axis over the panel (scene units)

@@ -102,12 +102,8 @@ class Splatter {
       const auto& m = key_to_local_;
       const Vec3 dir{m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z, m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
                      m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z};
-      if (dir.z == 0) return;
-      const LensIndex lens = cam_.lens_near(x - dir * (x.z / dir.z));
       PanelHit ph;
-      LensIndex landed{-1, -1};
-      if (cam_.project_through(x, lens, ph, &landed)) landings.push_back(ph);
-      else if (landed.x >= 0 && !(landed == lens) && cam_.project_through(x, landed, ph)) landings.push_back(ph);
+      if (cam_.project_along(x, dir, ph)) landings.push_back(ph);
     }
     const int W = cam_.width();
     for (const PanelHit& l : landings) {

@@ -134,13 +134,7 @@ class PointImageLookup {
     const Vec3 x = kf.to_local_point(p);
     const Vec3 dl = kf.to_local_dir(d);
     if (!(dl.z > 0)) return kNone;
-    // The keyframe lens that looks at x along d: where that line crosses the array.
-    const LensIndex lens = kc.lens_near(x - dl * (x.z / dl.z));
-    LensIndex landed{-1, -1};
-    if (!kc.project_through(x, lens, ph, &landed) &&
-        (landed.x < 0 || landed == lens || !kc.project_through(x, landed, ph)))
-      return kNone;
-    if (landing) *landing = landed;  // project_through sets it to the lens it succeeded through
+    if (!kc.project_along(x, dl, ph, landing)) return kNone;
     const size_t idx = static_cast<size_t>(ph.j) * kc.width() + ph.i;
     return same_surface(key, idx, hit.object, ph.t) ? idx : kNone;
   }
