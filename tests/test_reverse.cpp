@@ -27,6 +27,13 @@ size_t hits_of(const PointImage& key) {
   return n;
 }
 
+// The keyframe's object id per pixel, as a frame holds them.
+std::vector<int32_t> objects_of(const PointImage& key) {
+  std::vector<int32_t> ids;
+  for (const PointImage::Seen& s : key.seen) ids.push_back(s.object);
+  return ids;
+}
+
 float max_difference(const FloatSamples& a, const FloatSamples& b) {
   float d = 0;
   for (size_t k = 0; k < a.size(); ++k) d = std::fmax(d, std::fabs(a[k] - b[k]));
@@ -187,23 +194,24 @@ TEST(AccelRawHits, ResolvedRawHitsAreIntersectsHits) {
   EXPECT_GT(compared, 1000u);
 }
 
-// The keyframe's object ids (what the same-surface tests read) are the
-// objects its records hit, -1 for background.
+// The keyframe's object ids and depths (what the same-surface tests read)
+// are the objects its records hit, -1 for background, at the records' t.
 TEST(ReverseReprojection, KeyframeObjectIdsAreTheObjectsItsRecordsHit) {
   const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
   const RenderScene scene(desc);
   RenderStats stats;
   const PointImage key = trace_point_image(scene, LensArray(camera_at(desc, {})), 0, ReverseReuse::color, 0, stats);
-  ASSERT_EQ(key.object.size(), key.hits.size());
+  ASSERT_EQ(key.seen.size(), key.hits.size());
   size_t background = 0;
   for (size_t p = 0; p < key.hits.size(); ++p) {
     const PrimaryHit& h = key.hits[p];
     if (h.status != PrimaryHit::kHit) {
-      EXPECT_EQ(key.object[p], -1);
+      EXPECT_EQ(key.seen[p].object, -1);
       ++background;
       continue;
     }
-    EXPECT_EQ(key.object[p], scene.object_of(h.group, static_cast<PrimKind>(h.kind), h.prim));
+    EXPECT_EQ(key.seen[p].object, scene.object_of(h.group, static_cast<PrimKind>(h.kind), h.prim));
+    EXPECT_EQ(key.seen[p].t, h.t);
   }
   EXPECT_GT(background, 0u);
   EXPECT_LT(background, key.hits.size());
@@ -224,7 +232,7 @@ TEST(ReverseReprojection, AHoldIsItsKeyframeExactlyAndTracesNothing) {
     const PointImage key = trace_point_image(scene, LensArray(cam), 0, reuse, 0, stats);
     const ReprojectedFrame hold = reverse_reproject(scene, LensArray(cam), 1, &key, nullptr, ReverseOptions{reuse});
     EXPECT_EQ(hold.colour.data, key.colour.data);
-    EXPECT_EQ(hold.object, key.object);
+    EXPECT_EQ(hold.object, objects_of(key));
     EXPECT_EQ(hold.rays.total(), 0u);
     // A copy of the keyframe: every pixel taken from it, the background too.
     EXPECT_EQ(hold.copied_from, 0);
@@ -273,7 +281,7 @@ TEST(ReverseReprojection, LockedOffShotCopiesTheElementalImagesNoMovingObjectRea
   EXPECT_EQ(fast.object, slow.object);
   EXPECT_GT(fast.rays.eye, 0u);                   // the lenses that see the ball trace
   EXPECT_LT(fast.rays.eye, slow.rays.eye / 2);    // most are copied
-  EXPECT_NE(fast.object, key.object);             // and the ball moved in the image
+  EXPECT_NE(fast.object, objects_of(key));            // and the ball moved in the image
   }
 }
 

@@ -3,9 +3,9 @@
 // object's own space so it follows the object's motion, the depth t along the
 // pixel line) and the shaded colour.
 //
-// Memory: 36 bytes per pixel (PrimaryHit 24 + RGB float 12), 40 with the
-// reverse reprojection's object ids; a 2048x2048 EIA takes 144 (160) MiB per
-// keyframe, and reprojection holds two.
+// Memory: 36 bytes per pixel (PrimaryHit 24 + RGB float 12), 44 with the
+// reverse reprojection's object ids and depths; a 2048x2048 EIA takes 144
+// (176) MiB per keyframe, and reprojection holds two.
 #pragma once
 
 #include <vector>
@@ -35,11 +35,18 @@ struct PointImage {
   /// W*H, what each pixel's shading rays found (reverse reprojection with
   /// ReverseReuse::visibility); empty otherwise.
   std::vector<ShadeParts> parts;
-  /// W*H, the object id each pixel saw (-1 background), for the reverse
-  /// reprojection's same-surface tests (four per reused hit; reading it is
-  /// cheaper than RenderScene::object_of); required there (a keyframe
+  /// What the reverse reprojection's same-surface test reads of a pixel:
+  /// the object id it saw (-1 background) and its line parameter t (as
+  /// hits[p].t). One 8-byte record, so a lookup's four neighbours cost one
+  /// cache line a row (reading the 24-byte hits and a separate id array
+  /// were a lookup's cache misses), and no RenderScene::object_of.
+  struct Seen {
+    int32_t object = -1;
+    float t = 0;
+  };
+  /// W*H, row-major; required by the reverse reprojection (a keyframe
   /// without is refused), empty in the forward reprojection's keyframes.
-  std::vector<int32_t> object;
+  std::vector<Seen> seen;
 
   static constexpr size_t kBytesPerPixel = sizeof(PrimaryHit) + 3 * sizeof(float);
 

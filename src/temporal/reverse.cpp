@@ -142,8 +142,8 @@ class PointImageLookup {
   // Keyframe pixel idx saw object `object` at line parameter t (within
   // same_surface_ footprints).
   bool same_surface(const Key& key, size_t idx, int object, double t) const {
-    const PrimaryHit& rec = key.image->hits[idx];
-    return key.image->object[idx] == object && object >= 0 &&
+    const PointImage::Seen& rec = key.image->seen[idx];
+    return rec.object == object && object >= 0 &&
            std::fabs(rec.t - t) <= same_surface_ * key.footprint * std::fabs(t) + tiny_;
   }
 
@@ -231,9 +231,9 @@ void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse
   if (k->to_world.size() != groups || k->pose.size() != groups || k->bounds.size() != groups)
     throw std::invalid_argument(fmt::format("the point image of frame {} has {} transforms for {} scene groups",
                                             k->frame, k->to_world.size(), groups));
-  if (k->object.size() != pixels)
+  if (k->seen.size() != pixels)
     throw std::invalid_argument(
-        fmt::format("the point image of frame {} has {} object ids for {} pixels", k->frame, k->object.size(), pixels));
+        fmt::format("the point image of frame {} has {} object ids for {} pixels", k->frame, k->seen.size(), pixels));
   if (reuse == ReverseReuse::visibility && k->parts.size() != pixels)
     throw std::invalid_argument(fmt::format(
         "the point image of frame {} has {} shading records for {} pixels: trace it for visibility reuse", k->frame,
@@ -283,8 +283,8 @@ class ShadeQueue {
 // traced (as a traced eye ray that met nothing would).
 void take_pixel(ReprojectedFrame& out, const PointImage& key, size_t p) {
   std::copy_n(key.colour.data.data() + 3 * p, 3, out.colour.data.data() + 3 * p);
-  out.object[p] = key.object[p];
-  if (key.object[p] >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
+  out.object[p] = key.seen[p].object;
+  if (key.seen[p].object >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
 }
 
 // Frame setup shared by keyframes and reprojected frames.
@@ -461,7 +461,7 @@ const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, 
   const AccelScene& accel = scene.accel();
   for (const PointImage* k : {prev, next}) {
     if (!k || !(k->camera.desc() == camera.desc()) || k->to_world.size() != accel.group_count() ||
-        k->object.size() != k->hits.size())
+        k->seen.size() != k->hits.size())
       continue;
     bool still = true;
     for (size_t g = 0; g < k->to_world.size() && still; ++g) {
@@ -476,7 +476,7 @@ const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, 
 
 ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
   ReprojectedFrame out = blank_frame(camera);
-  for (size_t p = 0; p < key.object.size(); ++p) take_pixel(out, key, p);
+  for (size_t p = 0; p < key.seen.size(); ++p) take_pixel(out, key, p);
   // The background too is the keyframe's: nothing in this frame was traced.
   std::fill(out.status.begin(), out.status.end(), PixelStatus::reprojected);
   out.copied_from = key.frame;
@@ -493,7 +493,8 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
                           !scene.has_tachyon_materials();
   ReprojectedFrame traced = trace_keyframe(scene, camera, key.hits, want_parts ? &key.parts : nullptr, threads);
   key.colour = std::move(traced.colour);
-  key.object = std::move(traced.object);
+  key.seen.resize(traced.object.size());
+  for (size_t p = 0; p < key.seen.size(); ++p) key.seen[p] = {traced.object[p], key.hits[p].t};
   key.record_groups(scene.accel());
   stats.rays = traced.rays;
   stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
