@@ -331,13 +331,14 @@ ReprojectedFrame trace_keyframe(const RenderScene& scene, const LensArray& camer
     each_packet([&](const PixelXY* px, int k) {
       Vec3 c[kPacketSize];
       PrimaryHit ph[kPacketSize];
-      SurfacePoint sp[kPacketSize];
       ShadeParts sh[kPacketSize];
-      render_packet(scene, camera, px, k, 1, counts, c, ph, sp, parts ? sh : nullptr);
+      // The object from the hit record, not from a copy of 16 surface points.
+      render_packet(scene, camera, px, k, 1, counts, c, ph, nullptr, parts ? sh : nullptr);
       for (int l = 0; l < k; ++l) {
         const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
         store(out.colour, p, c[l]);
-        if (ph[l].status == PrimaryHit::kHit) out.object[p] = sp[l].object;
+        if (ph[l].status == PrimaryHit::kHit)
+          out.object[p] = scene.object_of(ph[l].group, static_cast<PrimKind>(ph[l].kind), ph[l].prim);
         hits[p] = ph[l];
         if (parts) (*parts)[p] = sh[l];
       }
