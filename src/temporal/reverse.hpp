@@ -15,8 +15,9 @@
 // 2. Only the shading is reused. The hit is moved to each keyframe's time by
 //    its object's transforms (object space, as the point image records it)
 //    and projected through the keyframe's integral camera into the lens that
-//    looks along the pixel's own line direction (contract, property 2): the
-//    keyframe pixel that saw this surface point from the nearest direction.
+//    looks along the pixel's own line direction (contract, property 2;
+//    LensArray::project_along): the keyframe pixel that saw this surface
+//    point from the nearest direction.
 // 3. That keyframe pixel is used when it saw the same object at the same
 //    depth along its line (within ReverseOptions::same_surface pixel
 //    footprints); else the other keyframe is tried; else the hit is shaded
