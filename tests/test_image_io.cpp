@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "image/formats.hpp"
 #include "image/image_io.hpp"
+#include "image/srgb_code.hpp"
 #include "test_util.hpp"
 
 using namespace holoray;
@@ -54,6 +56,35 @@ TEST(Encode8Bit, SrgbUsesTheStandardTransferFunction) {
   EXPECT_EQ(encode_8bit(1.0f, Encoding::srgb), 255);
   EXPECT_EQ(encode_8bit(0.18f, Encoding::srgb), 118);  // 1.055 * 0.18^(1/2.4) - 0.055 = 0.4614
   EXPECT_EQ(encode_8bit(0.002f, Encoding::srgb), 7);   // linear segment: 12.92 * 0.002 * 255 = 6.59
+}
+
+// The table's codes are the formula's wherever the formula's code never
+// decreases as v grows; only within a few ULPs of a step could a wiggle of
+// pow() turn a code back, so every float within 4096 ULPs of each step is
+// checked, and the steps are where the formula says.
+TEST(SrgbCode, EqualsTheFormulaAtEveryFloatNearEveryStep) {
+  for (int c = 1; c <= 255; ++c) {
+    const float step = srgb_code_step(c);
+    ASSERT_GE(srgb_code_by_formula(step), c);
+    ASSERT_LT(srgb_code_by_formula(std::nextafter(step, -1.0f)), c);
+    const uint32_t bits = std::bit_cast<uint32_t>(step);
+    for (uint32_t b = bits - 4096; b <= bits + 4096; ++b) {
+      const float v = std::bit_cast<float>(b);
+      ASSERT_EQ(srgb_code(v), srgb_code_by_formula(v)) << "v = " << v << " near the step to " << c;
+    }
+  }
+}
+
+TEST(SrgbCode, EqualsTheFormulaOnSpecialAndRandomValues) {
+  std::vector<float> v = {NAN, -NAN, INFINITY, -INFINITY, -0.0f, 0.0f, 1.0f, std::nextafter(1.0f, 0.0f), 2.0f,
+                          -1e-30f, 1e-45f, 1e30f, 0.0031308f, std::nextafter(0.0031308f, 1.0f)};
+  uint32_t state = 777;
+  for (int k = 0; k < 1000000; ++k) {
+    state = state * 1664525u + 1013904223u;
+    v.push_back(static_cast<float>(state >> 8) / static_cast<float>(1 << 24) * 1.2f - 0.1f);
+    v.push_back(std::bit_cast<float>(state & 0x3f7fffffu));  // any float in [0, 1), tiny ones included
+  }
+  for (float x : v) ASSERT_EQ(srgb_code(x), srgb_code_by_formula(x)) << x;
 }
 
 TEST(Encode8Bit, ManyAtOnceGiveTheCodesOfOneAtATime) {

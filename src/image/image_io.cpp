@@ -2,6 +2,7 @@
 
 #include "image/formats.hpp"
 #include "image/parallel_each.hpp"
+#include "image/srgb_code.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -17,12 +18,6 @@
 namespace holoray {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
-
-}  // namespace
 
 Encoding default_encoding(const std::string& scene_path) {
   const std::string ext = lower_extension(scene_path);
@@ -45,9 +40,9 @@ ImageBuffer as_rgb(const ImageBuffer& image) {
 }
 
 uint8_t encode_8bit(float v, Encoding encoding) {
+  if (encoding == Encoding::srgb) return srgb_code(v);
   if (std::isnan(v)) return 0;
-  const float e = encoding == Encoding::srgb ? srgb_oetf(std::clamp(v, 0.0f, 1.0f)) : v;
-  const double code = std::floor(255.0 * static_cast<double>(e) + 0.5);
+  const double code = std::floor(255.0 * static_cast<double>(v) + 0.5);
   return static_cast<uint8_t>(std::clamp(code, 0.0, 255.0));
 }
 
@@ -67,7 +62,7 @@ void encode_linear(const float* v, size_t n, uint8_t* out) {
 void encode_8bit_here(const float* values, size_t count, uint8_t* codes, Encoding encoding) {
   if (encoding == Encoding::linear) encode_linear(values, count, codes);
   else
-    for (size_t k = 0; k < count; ++k) codes[k] = encode_8bit(values[k], encoding);
+    for (size_t k = 0; k < count; ++k) codes[k] = srgb_code(values[k]);
 }
 
 void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding) {
