@@ -54,6 +54,29 @@ MipMap::MipMap(const ImageMap& image) : alpha_(image.alpha) {
     const Level& a = levels_.back();
     Level b{std::max(1, a.width >> 1), std::max(1, a.height >> 1), 1, {}};
     b.rgb.resize(size_t(b.width) * b.height * 3);
+    if (image.srgb && a.width > 1 && a.height > 1) {
+      // The general loop below for this, the usual case, without its edge
+      // clamps: the same four sums in the same order, the same codes.
+      const float* lin = decode_table(true);
+      for (int y = 0; y < b.height; ++y) {
+        const unsigned char* r0 = &a.rgb[size_t(std::min(2 * y, a.height - 1)) * a.width * 3];
+        const unsigned char* r1 = &a.rgb[size_t(std::min(2 * y + 1, a.height - 1)) * a.width * 3];
+        unsigned char* out = &b.rgb[size_t(y) * b.width * 3];
+        for (int x = 0; x < b.width; ++x) {
+          const size_t x0 = size_t(std::min(2 * x, a.width - 1)) * 3, x1 = size_t(std::min(2 * x + 1, a.width - 1)) * 3;
+          for (int c = 0; c < 3; ++c) {
+            float sum = 0;
+            sum += lin[r0[x0 + c]];
+            sum += lin[r0[x1 + c]];
+            sum += lin[r1[x0 + c]];
+            sum += lin[r1[x1 + c]];
+            out[3 * x + c] = encode_8bit(sum / 4.0f, Encoding::srgb);
+          }
+        }
+      }
+      levels_.push_back(std::move(b));
+      continue;
+    }
     // Tachyon's DecimateImage: the mean of 2x2 texels, truncated to 8 bits
     // (a 1-texel-wide image averages pairs along its length).
     for (int y = 0; y < b.height; ++y)
@@ -199,7 +222,13 @@ Vec3 texture_colour(const TextureDesc& tex, const MipMap* mip, const Vec3& base,
 namespace {
 
 // Texel index i of an axis of n texels under a wrap mode (glTF 2.0 §5.26).
-int wrap_index(int i, int n, TextureWrap mode) {
+// Folded coordinates (fold) put i in [-1, 2n]: inside the texture every mode
+// gives i itself, and one period on, repeat and mirror need no division (the
+// general case's two integer divisions per index were most of a bilinear
+// fetch: eight indices per level, two levels per MIP-blended sample).
+inline int wrap_index(int i, int n, TextureWrap mode) {
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) [[likely]] return i;
+  if (i >= n && i < 2 * n && mode != TextureWrap::clamp) return mode == TextureWrap::repeat ? i - n : 2 * n - 1 - i;
   switch (mode) {
     case TextureWrap::clamp: return std::clamp(i, 0, n - 1);
     case TextureWrap::mirror: {

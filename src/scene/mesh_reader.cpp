@@ -434,7 +434,13 @@ class MeshReader {
     img.rgb.resize(size_t(img.width) * img.height * 3);
     const bool alpha = raw.channels == 2 || raw.channels == 4;
     if (alpha) img.alpha.resize(size_t(img.width) * img.height);
-    auto code = [](float v) { return static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+    // lround of the scaled value: half away from zero, which for x >= 0 is
+    // the floor of x + 1/2 taken in double (exact there, where float's sum
+    // could round up); lround was a libm call per channel. NaN gives 0.
+    auto code = [](float v) {
+      const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
+      return static_cast<unsigned char>(x >= 0 ? static_cast<int>(static_cast<double>(x) + 0.5) : 0);
+    };
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
         const size_t at = size_t(y) * img.width + x;
