@@ -39,6 +39,9 @@ struct PointLight {
   /// A point light whose intensity reaches every point whole (NFF's): the
   /// shading skips the falloff.
   bool unit_falloff = true;
+  /// cos(fall_start) and cos(fall_end), computed once where the light is
+  /// built (RenderScene), not once per shadow ray.
+  double cos_fall_start = 1, cos_fall_end = 1;
 };
 
 /// Where a ray met a surface, resolved for shading.
