@@ -273,13 +273,16 @@ TEST(RenderStyles, EveryStyleSeesTheSameSurfacesAndShadesWithinTheImageBudget) {
 // NFF examples and Tachyon's Room, as a 48x48-lens EIA of 8 px through the
 // scene's own viewpoint, traced in packets
 // (float direct light) against single rays (double) keep at least 60 dB.
-TEST(RenderStyles, PacketsKeepTheImageBudgetOnTheSpdAndTachyonScenes) {
+TEST(RenderStyles, PacketsKeepTheImageBudgetOnTheSpdTachyonAndGltfScenes) {
   if (!test::have_shared_scenes()) GTEST_SKIP() << "no ../shared/scenes";
   std::vector<std::string> files;
   for (const char* name : {"balls_s2", "gears_s2", "mount_s2", "rings_s2", "teapot_s2", "tetra_s3", "tree_s2"})
     files.push_back(test::shared_dir() + "/scenes/nff/" + name + ".nff");
   for (const char* name : {"primitives.nff", "room.nff"}) files.push_back(test::source_dir() + "/examples/" + name);
   files.push_back(test::shared_dir() + "/scenes/tachyon/room.dat");
+  // glTF's float batch: point, spot and directional lights, metals, textures, alpha.
+  for (const char* name : {"lit_spheres.gltf", "mapped_plane.gltf", "masked_leaf.gltf", "textured_box.gltf"})
+    files.push_back(test::source_dir() + "/tests/data/blender/" + name);
   for (const std::string& file : files) {
     SCOPED_TRACE(file);
     const SceneDesc desc = read_scene_file(file);

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "render/gltf_brdf.hpp"
+#include "render/gltf_batch.hpp"
 #include "render/light_batch.hpp"
 #include "reuse/shadow_cache.hpp"
 
@@ -762,6 +763,25 @@ void shade_nff_light(const RenderScene& scene, const NffLanes& batch, size_t l, 
     for (int k = 0; k < kPacketSize; ++k) parts[k].lit |= static_cast<uint32_t>(seen[k]) << l;
 }
 
+// One light (can_batch) for a packet of glTF materials without the shadow
+// cache, as a float batch (gltf_batch.hpp).
+void shade_gltf_light(const RenderScene& scene, const GltfLanes& batch, size_t l, RayCounts& counts,
+                      Vec3 colours[kPacketSize], ShadeParts parts[]) {
+  const PointLight& light = scene.lights()[l];
+  ShadowPacket shadows;
+  GltfLightRays rays;
+  const int cast = gltf_shadow_rays(batch, light, scene.epsilon(), shadows, rays);
+  if (cast == 0) return;
+  counts.shadow += static_cast<uint64_t>(cast);
+  bool blocked[kPacketSize];
+  scene.accel().occluded(shadows, blocked);
+  bool seen[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k) seen[k] = (shadows.valid[k] != 0) & !blocked[k];
+  add_gltf_light(batch, rays, seen, light.intensity, colours);
+  if (parts && l < kMaxPartLights)
+    for (int k = 0; k < kPacketSize; ++k) parts[k].lit |= static_cast<uint32_t>(seen[k]) << l;
+}
+
 }  // namespace
 
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
@@ -833,8 +853,21 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
       if (shadows.active[k] && !blocked[k])
         colours[k] += light_contribution(f[k], sps[k], lights[l], shadows.rays[k].dir, falloff[k]), mark_lit(k, l);
   };
+  // Every hit lane glTF's (no shadow cache): the lights go as float batches.
+  bool gltf_packet = !cached, any_hit = false;
+  for (int k = 0; k < kPacketSize; ++k)
+    if (hit[k]) gltf_packet &= f[k].m->model == ShadingModel::gltf, any_hit = true;
+  gltf_packet &= any_hit;
+  GltfLanes gltf_lanes;
+  if (gltf_packet)
+    for (int k = 0; k < kPacketSize; ++k) {
+      if (hit[k]) gltf_lanes.set(k, sps[k].position, f[k].ns, f[k].above, f[k].view, gltf_surface(f[k], sps[k]),
+                                 f[k].m->transmittance);
+      else gltf_lanes.clear(k);
+    }
   for (size_t l = 0; l < lights.size(); ++l) {
-    if (lights[l].unit_falloff) shade_light(l, std::true_type{});
+    if (gltf_packet && can_batch(lights[l])) shade_gltf_light(scene, gltf_lanes, l, counts, colours, parts);
+    else if (lights[l].unit_falloff) shade_light(l, std::true_type{});
     else shade_light(l, std::false_type{});
   }
   if (!parts) {
