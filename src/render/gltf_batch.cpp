@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <immintrin.h>
+
 namespace holoray {
 
 void GltfLanes::set(int k, const Vec3& p, const Vec3& n, const Vec3& above, const Vec3& view, const GltfSurface& s,
@@ -32,87 +34,131 @@ void GltfLanes::clear(int k) {
 
 bool can_batch(const PointLight& light) { return light.kind != LightKind::spot || light.smooth_cone; }
 
+namespace {
+inline __m128 load(const float* p, int k) { return _mm_load_ps(p + k); }
+inline __m128 select(__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
+inline __m128 clamp01(__m128 v) { return _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f)); }
+inline __m128 dot3(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+  return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+}
+}  // namespace
+
+// Four lanes per SSE instruction, every lane's every term computed and the
+// lanes' answers selected (GCC left the same loops scalar: the selects of
+// light kinds and clamps read to it as control flow).
 int gltf_shadow_rays(const GltfLanes& g, const PointLight& light, double eps, ShadowPacket& s, GltfLightRays& out) {
   const bool directional = light.kind == LightKind::directional;
-  const float lx = static_cast<float>(light.position.x), ly = static_cast<float>(light.position.y),
-              lz = static_cast<float>(light.position.z);
+  const __m128 lx = _mm_set1_ps(static_cast<float>(light.position.x)), ly = _mm_set1_ps(static_cast<float>(light.position.y)),
+               lz = _mm_set1_ps(static_cast<float>(light.position.z));
   // Toward a directional light: -direction, the same for every lane.
-  const float dlx = static_cast<float>(-light.direction.x), dly = static_cast<float>(-light.direction.y),
-              dlz = static_cast<float>(-light.direction.z);
-  const float e = static_cast<float>(eps);
+  const __m128 dlx = _mm_set1_ps(static_cast<float>(-light.direction.x)),
+               dly = _mm_set1_ps(static_cast<float>(-light.direction.y)),
+               dlz = _mm_set1_ps(static_cast<float>(-light.direction.z));
+  const __m128 e = _mm_set1_ps(static_cast<float>(eps)), zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
   // light_falloff()'s terms: attenuation where it is not 1, the range
   // window, glTF's smooth spot cone.
   const bool attenuated = light.kc != 1 || light.kl != 0 || light.kq != 0;
-  const float kc = static_cast<float>(light.kc), kl = static_cast<float>(light.kl), kq = static_cast<float>(light.kq);
-  const float inv_range = light.range > 0 ? static_cast<float>(1 / light.range) : 0;
+  const __m128 kc = _mm_set1_ps(static_cast<float>(light.kc)), kl = _mm_set1_ps(static_cast<float>(light.kl)),
+               kq = _mm_set1_ps(static_cast<float>(light.kq));
+  const bool ranged = light.range > 0;
+  const __m128 inv_range = _mm_set1_ps(ranged ? static_cast<float>(1 / light.range) : 0.0f);
   const bool spot = light.kind == LightKind::spot;
-  const float ax = static_cast<float>(light.direction.x), ay = static_cast<float>(light.direction.y),
-              az = static_cast<float>(light.direction.z);
-  const float cos_outer = static_cast<float>(light.cos_fall_end);
-  const float inv_cone = static_cast<float>(1 / std::fmax(1e-3, light.cos_fall_start - light.cos_fall_end));
+  const __m128 ax = _mm_set1_ps(static_cast<float>(light.direction.x)), ay = _mm_set1_ps(static_cast<float>(light.direction.y)),
+               az = _mm_set1_ps(static_cast<float>(light.direction.z));
+  const __m128 cos_outer = _mm_set1_ps(static_cast<float>(light.cos_fall_end));
+  const __m128 inv_cone = _mm_set1_ps(static_cast<float>(1 / std::fmax(1e-3, light.cos_fall_start - light.cos_fall_end)));
+  const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
   int cast = 0;
-  for (int k = 0; k < kPacketSize; ++k) {
-    const float dx = lx - g.px[k], dy = ly - g.py[k], dz = lz - g.pz[k];
-    const float dist = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const float inv = 1.0f / dist;
-    const float ux = directional ? dlx : dx * inv, uy = directional ? dly : dy * inv, uz = directional ? dlz : dz * inv;
-    const float ndl = g.nx[k] * ux + g.ny[k] * uy + g.nz[k] * uz;
-    float falloff = 1;
+  for (int k = 0; k < kPacketSize; k += 4) {
+    __m128 ux = dlx, uy = dly, uz = dlz, falloff = one, tfar = _mm_set1_ps(INFINITY);
+    __m128 valid = _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(g.hit + k)));
     if (!directional) {
-      if (attenuated) falloff = 1.0f / (kc + (kl + kq * dist) * dist);
-      const float x = dist * inv_range, x2 = x * x;
-      const float w = std::clamp(1 - x2 * x2, 0.0f, 1.0f);
-      falloff *= inv_range > 0 ? w * w : 1.0f;
-      const float t = std::clamp((-(ax * ux + ay * uy + az * uz) - cos_outer) * inv_cone, 0.0f, 1.0f);
-      falloff *= spot ? t * t : 1.0f;
+      const __m128 dx = _mm_sub_ps(lx, load(g.px, k)), dy = _mm_sub_ps(ly, load(g.py, k)), dz = _mm_sub_ps(lz, load(g.pz, k));
+      const __m128 dist = _mm_sqrt_ps(dot3(dx, dy, dz, dx, dy, dz));
+      const __m128 inv = _mm_div_ps(one, dist);
+      ux = _mm_mul_ps(dx, inv), uy = _mm_mul_ps(dy, inv), uz = _mm_mul_ps(dz, inv);
+      if (attenuated) falloff = _mm_div_ps(one, _mm_add_ps(kc, _mm_mul_ps(_mm_add_ps(kl, _mm_mul_ps(kq, dist)), dist)));
+      if (ranged) {
+        const __m128 x = _mm_mul_ps(dist, inv_range), x2 = _mm_mul_ps(x, x);
+        const __m128 w = clamp01(_mm_sub_ps(one, _mm_mul_ps(x2, x2)));
+        falloff = _mm_mul_ps(falloff, _mm_mul_ps(w, w));
+      }
+      if (spot) {
+        const __m128 cos_a = _mm_sub_ps(zero, dot3(ax, ay, az, ux, uy, uz));
+        const __m128 t = clamp01(_mm_mul_ps(_mm_sub_ps(cos_a, cos_outer), inv_cone));
+        falloff = _mm_mul_ps(falloff, _mm_mul_ps(t, t));
+      }
+      valid = _mm_and_ps(valid, _mm_cmpgt_ps(dist, e));
+      tfar = _mm_sub_ps(dist, e);
     }
-    const bool ok = g.hit[k] != 0 && (directional || dist > e) && ndl > 0 && falloff > 0;
-    out.ux[k] = ux, out.uy[k] = uy, out.uz[k] = uz, out.n_dot_l[k] = ndl, out.falloff[k] = falloff;
-    s.org_x[k] = g.ox[k], s.org_y[k] = g.oy[k], s.org_z[k] = g.oz[k], s.tnear[k] = 0, s.time[k] = 0;
-    s.dir_x[k] = ux, s.dir_y[k] = uy, s.dir_z[k] = uz;
-    s.tfar[k] = directional ? INFINITY : dist - e;
-    s.mask[k] = ~0u, s.id[k] = static_cast<unsigned>(k), s.flags[k] = 0;
-    s.valid[k] = ok ? -1 : 0;
-    cast += ok;
+    const __m128 ndl = dot3(load(g.nx, k), load(g.ny, k), load(g.nz, k), ux, uy, uz);
+    // In front of the surface and lit at all (a NaN casts nothing).
+    valid = _mm_and_ps(valid, _mm_and_ps(_mm_cmpgt_ps(ndl, zero), _mm_cmpgt_ps(falloff, zero)));
+    _mm_store_ps(out.ux + k, ux), _mm_store_ps(out.uy + k, uy), _mm_store_ps(out.uz + k, uz);
+    _mm_store_ps(out.n_dot_l + k, ndl), _mm_store_ps(out.falloff + k, falloff);
+    _mm_store_ps(s.org_x + k, load(g.ox, k)), _mm_store_ps(s.org_y + k, load(g.oy, k)), _mm_store_ps(s.org_z + k, load(g.oz, k));
+    _mm_store_ps(s.tnear + k, zero), _mm_store_ps(s.time + k, zero);
+    _mm_store_ps(s.dir_x + k, ux), _mm_store_ps(s.dir_y + k, uy), _mm_store_ps(s.dir_z + k, uz);
+    _mm_storeu_ps(s.tfar + k, tfar);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.mask + k), _mm_set1_epi32(-1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.id + k), _mm_add_epi32(lane, _mm_set1_epi32(k)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.flags + k), _mm_setzero_si128());
+    _mm_store_si128(reinterpret_cast<__m128i*>(s.valid + k), _mm_castps_si128(valid));
+    // Bits set in a 4-bit mask (no POPCNT in the baseline instruction set).
+    cast += (0x4332322132212110ull >> (4 * _mm_movemask_ps(valid))) & 0xf;
   }
   return cast;
 }
 
 void add_gltf_light(const GltfLanes& g, const GltfLightRays& r, const bool seen[kPacketSize], const Vec3& intensity,
                     Vec3 colours[kPacketSize]) {
-  constexpr float kPi = std::numbers::pi_v<float>;
-  alignas(16) float tr[kPacketSize], tg[kPacketSize], tb[kPacketSize];
-  for (int k = 0; k < kPacketSize; ++k) {
-    const float ux = r.ux[k], uy = r.uy[k], uz = r.uz[k], nx = g.nx[k], ny = g.ny[k], nz = g.nz[k];
-    const float ndl = r.n_dot_l[k], ndv = g.n_dot_v[k], a2 = g.a2[k];
-    // H = normalize(L + V).
-    float hx = ux + g.vx[k], hy = uy + g.vy[k], hz = uz + g.vz[k];
-    const float inv_h = 1.0f / std::sqrt(hx * hx + hy * hy + hz * hz);
-    hx *= inv_h, hy *= inv_h, hz *= inv_h;
-    const float ndh_raw = nx * hx + ny * hy + nz * hz;
-    const float vdh = std::fabs(g.vx[k] * hx + g.vy[k] * hy + g.vz[k] * hz);
-    // (N.H)^2 (a^2 - 1) + 1 as sin^2 + cos^2 a^2, the sine from N x H;
-    // N.H clamped at 0 as gltf_direct clamps it (the denominator is then 1).
-    const float cx = ny * hz - nz * hy, cy = nz * hx - nx * hz, cz = nx * hy - ny * hx;
-    const float sin2 = cx * cx + cy * cy + cz * cz;
-    const float d_denom = ndh_raw > 0 ? sin2 + ndh_raw * ndh_raw * a2 : 1.0f;
-    const float d = a2 / (kPi * d_denom * d_denom);
-    const float vis = 1.0f / ((ndl + std::sqrt(a2 + (1 - a2) * ndl * ndl)) * (ndv + std::sqrt(a2 + (1 - a2) * ndv * ndv)));
-    const float spec_pi = d * vis * kPi;
-    const float m1 = 1 - std::min(vdh, 1.0f), m2 = m1 * m1, w = m2 * m2 * m1;
-    const float f_d = g.f0[k] + (1 - g.f0[k]) * w;
-    const float m = g.metallic[k];
-    const float scale = r.falloff[k] * g.cover[k] * ndl;
-    const float keep = (1 - f_d) * g.diffuse[k] * (1 - m), spec_d = f_d * spec_pi * (1 - m), spec_m = spec_pi * m;
-    // dielectric (1 - m) + metal m, the metal's Fresnel c + (1 - c) w per channel.
-    tr[k] = scale * (g.br[k] * keep + spec_d + (g.br[k] + (1 - g.br[k]) * w) * spec_m);
-    tg[k] = scale * (g.bg[k] * keep + spec_d + (g.bg[k] + (1 - g.bg[k]) * w) * spec_m);
-    tb[k] = scale * (g.bb[k] * keep + spec_d + (g.bb[k] + (1 - g.bb[k]) * w) * spec_m);
-  }
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), pi = _mm_set1_ps(std::numbers::pi_v<float>);
   const float ir = static_cast<float>(intensity.x), ig = static_cast<float>(intensity.y),
               ib = static_cast<float>(intensity.z);
-  for (int k = 0; k < kPacketSize; ++k)
-    if (seen[k]) colours[k] += Vec3{ir * tr[k], ig * tg[k], ib * tb[k]};
+  for (int k = 0; k < kPacketSize; k += 4) {
+    if (!(seen[k] | seen[k + 1] | seen[k + 2] | seen[k + 3])) continue;
+    const __m128 ux = load(r.ux, k), uy = load(r.uy, k), uz = load(r.uz, k);
+    const __m128 nx = load(g.nx, k), ny = load(g.ny, k), nz = load(g.nz, k);
+    const __m128 vx = load(g.vx, k), vy = load(g.vy, k), vz = load(g.vz, k);
+    const __m128 ndl = load(r.n_dot_l, k), ndv = load(g.n_dot_v, k), a2 = load(g.a2, k);
+    // H = normalize(L + V).
+    __m128 hx = _mm_add_ps(ux, vx), hy = _mm_add_ps(uy, vy), hz = _mm_add_ps(uz, vz);
+    const __m128 inv_h = _mm_div_ps(one, _mm_sqrt_ps(dot3(hx, hy, hz, hx, hy, hz)));
+    hx = _mm_mul_ps(hx, inv_h), hy = _mm_mul_ps(hy, inv_h), hz = _mm_mul_ps(hz, inv_h);
+    const __m128 ndh = dot3(nx, ny, nz, hx, hy, hz);
+    const __m128 vdh = _mm_andnot_ps(_mm_set1_ps(-0.0f), dot3(vx, vy, vz, hx, hy, hz));
+    // (N.H)^2 (a^2 - 1) + 1 as sin^2 + cos^2 a^2, the sine from N x H;
+    // N.H clamped at 0 as gltf_direct clamps it (the denominator is then 1).
+    const __m128 cx = _mm_sub_ps(_mm_mul_ps(ny, hz), _mm_mul_ps(nz, hy)),
+                 cy = _mm_sub_ps(_mm_mul_ps(nz, hx), _mm_mul_ps(nx, hz)),
+                 cz = _mm_sub_ps(_mm_mul_ps(nx, hy), _mm_mul_ps(ny, hx));
+    const __m128 peak = _mm_add_ps(dot3(cx, cy, cz, cx, cy, cz), _mm_mul_ps(_mm_mul_ps(ndh, ndh), a2));
+    const __m128 d_denom = select(_mm_cmpgt_ps(ndh, zero), peak, one);
+    const __m128 d = _mm_div_ps(a2, _mm_mul_ps(pi, _mm_mul_ps(d_denom, d_denom)));
+    // Smith's V = 1 / ((N.L + sqrt(a2 + (1 - a2) N.L^2)) (N.V + sqrt(a2 + (1 - a2) N.V^2))).
+    const __m128 rest = _mm_sub_ps(one, a2);
+    const __m128 gl = _mm_add_ps(ndl, _mm_sqrt_ps(_mm_add_ps(a2, _mm_mul_ps(rest, _mm_mul_ps(ndl, ndl)))));
+    const __m128 gv = _mm_add_ps(ndv, _mm_sqrt_ps(_mm_add_ps(a2, _mm_mul_ps(rest, _mm_mul_ps(ndv, ndv)))));
+    const __m128 spec_pi = _mm_div_ps(_mm_mul_ps(d, pi), _mm_mul_ps(gl, gv));
+    // Schlick's (1 - |V.H|)^5.
+    const __m128 m1 = _mm_sub_ps(one, _mm_min_ps(vdh, one)), m2 = _mm_mul_ps(m1, m1);
+    const __m128 w = _mm_mul_ps(_mm_mul_ps(m2, m2), m1);
+    const __m128 f0 = load(g.f0, k), f_d = _mm_add_ps(f0, _mm_mul_ps(_mm_sub_ps(one, f0), w));
+    const __m128 m = load(g.metallic, k), dielectric = _mm_sub_ps(one, m);
+    const __m128 scale = _mm_mul_ps(_mm_mul_ps(load(r.falloff, k), load(g.cover, k)), ndl);
+    const __m128 keep = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(one, f_d), load(g.diffuse, k)), dielectric);
+    const __m128 spec_d = _mm_mul_ps(_mm_mul_ps(f_d, spec_pi), dielectric), spec_m = _mm_mul_ps(spec_pi, m);
+    // dielectric (1 - m) + metal m, the metal's Fresnel c + (1 - c) w per channel.
+    auto channel = [&](const float* base) {
+      const __m128 c = load(base, k);
+      const __m128 f_m = _mm_add_ps(c, _mm_mul_ps(_mm_sub_ps(one, c), w));
+      return _mm_mul_ps(scale, _mm_add_ps(_mm_add_ps(_mm_mul_ps(c, keep), spec_d), _mm_mul_ps(f_m, spec_m)));
+    };
+    alignas(16) float tr[4], tg[4], tb[4];
+    _mm_store_ps(tr, channel(g.br)), _mm_store_ps(tg, channel(g.bg)), _mm_store_ps(tb, channel(g.bb));
+    for (int j = 0; j < 4; ++j)
+      if (seen[k + j]) colours[k + j] += Vec3{ir * tr[j], ig * tg[j], ib * tb[j]};
+  }
 }
 
 }  // namespace holoray

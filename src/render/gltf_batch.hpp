@@ -2,8 +2,7 @@
 // one float batch (issue 43, "glTF materials alike"): the lanes gathered once
 // as one array per coordinate, each light's shadow rays built straight into
 // Embree's 16-wide layout, and the metallic-roughness BRDF (gltf_brdf.hpp,
-// the specification's Appendix B) evaluated across the lanes in loops the
-// compiler turns into SSE.
+// the specification's Appendix B) evaluated four lanes per SSE instruction.
 //
 // Lights: points and spots with their attenuation and range window, glTF's
 // smooth spot cone, directional lights (shading.cpp's light_falloff and
