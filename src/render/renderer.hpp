@@ -29,8 +29,9 @@ struct AovSet {
 
 /// How the pixels of one elemental image are traced (issue 4, paper §6).
 /// What each pixel sees never depends on it, nor do the AOVs; the packet
-/// styles shade NFF's direct light in float (light_batch.hpp), the single-ray
-/// ones in double: colours within the image budget, 60 dB (RenderStyles tests).
+/// styles shade NFF's and glTF's direct light in float (light_batch.hpp,
+/// gltf_batch.hpp), the single-ray ones in double: colours within the image
+/// budget, 60 dB (RenderStyles tests).
 enum class TraceStyle {
   packet,       ///< 16-ray packets of 4x4 pixels of one lens (rtcIntersect16, coherent); shadow rays as packets
   subaperture,  ///< 16-ray packets of one pixel (u, v) of 4x4 neighbouring lenses: parallel rays (square grid) from a

@@ -54,8 +54,9 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
 /// (RenderScene::only_plain_nff) their triangle hits are Embree's float ones,
 /// unrefined. When every hit lane's material is NFF's and the scene has
 /// no shadow cache, each point light of unit falloff is shaded as a float
-/// batch (light_batch.hpp): a lane's colour is then shade()'s to the image
-/// budget (60 dB), not to the bit; so are the secondary rays' answers.
+/// batch (light_batch.hpp); when every one is glTF's, every light but
+/// Tachyon's linear spot (gltf_batch.hpp): a lane's colour is then shade()'s
+/// to the image budget (60 dB), not to the bit; so are the secondary rays' answers.
 /// With `parts`, parts[k] also gets what lane k's rays found (ShadeParts).
 void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
