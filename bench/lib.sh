@@ -23,3 +23,13 @@ nothing_median() {
   done
   printf %.3f "$(median < "$tmp/nothing")"
 }
+# Sets BASE_BIN, unless given, to a Release holoray built from commit $1 in
+# a scratch worktree, removed (with $tmp) on exit.
+build_baseline() {
+  [[ -n ${BASE_BIN:-} ]] && return
+  git worktree add -f --detach "$tmp/base" "$1" >/dev/null 2>&1
+  cmake -S "$tmp/base" -B "$tmp/base/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOLORAY_TESTS=OFF -DHOLORAY_BENCH=OFF >/dev/null
+  cmake --build "$tmp/base/build" --target holoray-cli >/dev/null
+  BASE_BIN=$tmp/base/build/holoray
+  trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1; rm -rf "$tmp"' EXIT
+}

@@ -21,13 +21,7 @@ cd "$(dirname "$0")/.."
 source bench/lib.sh
 command -v perf >/dev/null || { echo "run_mesh_bench.sh: 'perf' is missing" >&2; exit 1; }
 base_commit=${BASE:-2288f75}
-if [[ -z ${BASE_BIN:-} ]]; then
-  git worktree add -f --detach "$tmp/base" "$base_commit" >/dev/null 2>&1
-  cmake -S "$tmp/base" -B "$tmp/base/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOLORAY_TESTS=OFF -DHOLORAY_BENCH=OFF >/dev/null
-  cmake --build "$tmp/base/build" --target holoray-cli >/dev/null
-  BASE_BIN=$tmp/base/build/holoray
-  trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1; rm -rf "$tmp"' EXIT
-fi
+build_baseline "$base_commit"
 python3 - "$bin" "$BASE_BIN" "$base_commit" "$tmp" "$ROUNDS" "$(machine)" "$(git rev-parse --short HEAD)" \
   > "$tmp/mesh_results.md" <<'PY'
 import os, re, statistics, subprocess, sys, time

@@ -29,13 +29,7 @@ for tool in tachyon perf python3; do
   command -v "$tool" >/dev/null || { echo "run_speed_bench.sh: '$tool' is missing" >&2; exit 1; }
 done
 base_commit=${BASE:-e5b5ca3}
-if [[ -z ${BASE_BIN:-} ]]; then
-  git worktree add -f --detach "$tmp/base" "$base_commit" >/dev/null 2>&1
-  cmake -S "$tmp/base" -B "$tmp/base/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOLORAY_TESTS=OFF -DHOLORAY_BENCH=OFF >/dev/null
-  cmake --build "$tmp/base/build" --target holoray-cli >/dev/null
-  BASE_BIN=$tmp/base/build/holoray
-  trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1; rm -rf "$tmp"' EXIT
-fi
+build_baseline "$base_commit"
 python3 - "$bin" "$BASE_BIN" "$base_commit" "$shared" "$tmp" "$ROUNDS" "$(machine)" "$(git rev-parse --short HEAD)" \
   > "$tmp/speed_results.md" <<'PY'
 import os, re, statistics, subprocess, sys, time

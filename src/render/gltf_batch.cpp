@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include <immintrin.h>
+#include "render/lane_simd.hpp"
 
 namespace holoray {
 
@@ -34,13 +34,12 @@ void GltfLanes::clear(int k) {
 
 bool can_batch(const PointLight& light) { return light.kind != LightKind::spot || light.smooth_cone; }
 
+using lanes::dot3;
+using lanes::load;
+using lanes::select;
+
 namespace {
-inline __m128 load(const float* p, int k) { return _mm_load_ps(p + k); }
-inline __m128 select(__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
 inline __m128 clamp01(__m128 v) { return _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f)); }
-inline __m128 dot3(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
-  return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
-}
 }  // namespace
 
 // Four lanes per SSE instruction, every lane's every term computed and the
@@ -67,7 +66,6 @@ int gltf_shadow_rays(const GltfLanes& g, const PointLight& light, double eps, Sh
                az = _mm_set1_ps(static_cast<float>(light.direction.z));
   const __m128 cos_outer = _mm_set1_ps(static_cast<float>(light.cos_fall_end));
   const __m128 inv_cone = _mm_set1_ps(static_cast<float>(1 / std::fmax(1e-3, light.cos_fall_start - light.cos_fall_end)));
-  const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
   int cast = 0;
   for (int k = 0; k < kPacketSize; k += 4) {
     __m128 ux = dlx, uy = dly, uz = dlz, falloff = one, tfar = _mm_set1_ps(INFINITY);
@@ -96,16 +94,7 @@ int gltf_shadow_rays(const GltfLanes& g, const PointLight& light, double eps, Sh
     valid = _mm_and_ps(valid, _mm_and_ps(_mm_cmpgt_ps(ndl, zero), _mm_cmpgt_ps(falloff, zero)));
     _mm_store_ps(out.ux + k, ux), _mm_store_ps(out.uy + k, uy), _mm_store_ps(out.uz + k, uz);
     _mm_store_ps(out.n_dot_l + k, ndl), _mm_store_ps(out.falloff + k, falloff);
-    _mm_store_ps(s.org_x + k, load(g.ox, k)), _mm_store_ps(s.org_y + k, load(g.oy, k)), _mm_store_ps(s.org_z + k, load(g.oz, k));
-    _mm_store_ps(s.tnear + k, zero), _mm_store_ps(s.time + k, zero);
-    _mm_store_ps(s.dir_x + k, ux), _mm_store_ps(s.dir_y + k, uy), _mm_store_ps(s.dir_z + k, uz);
-    _mm_storeu_ps(s.tfar + k, tfar);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.mask + k), _mm_set1_epi32(-1));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.id + k), _mm_add_epi32(lane, _mm_set1_epi32(k)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.flags + k), _mm_setzero_si128());
-    _mm_store_si128(reinterpret_cast<__m128i*>(s.valid + k), _mm_castps_si128(valid));
-    // Bits set in a 4-bit mask (no POPCNT in the baseline instruction set).
-    cast += (0x4332322132212110ull >> (4 * _mm_movemask_ps(valid))) & 0xf;
+    cast += lanes::store_shadow_rays(s, k, load(g.ox, k), load(g.oy, k), load(g.oz, k), ux, uy, uz, tfar, valid);
   }
   return cast;
 }

@@ -1,14 +1,12 @@
 #include "render/light_batch.hpp"
 
-#include <immintrin.h>
+#include "render/lane_simd.hpp"
 
 // glibc's vector powf (libmvec, the SSE ABI: four lanes), the function GCC
 // calls for powf in a vectorised loop.
 extern "C" __m128 _ZGVbN4vv_powf(__m128 x, __m128 y);
 
 namespace holoray {
-
-static_assert(kPacketSize % 4 == 0);
 
 void NffLanes::set(int k, const Vec3& p, const Vec3& n, const Vec3& above, const Vec3& view, const Vec3& kd_colour,
                    double ks_, double shine_) {
@@ -28,16 +26,13 @@ void NffLanes::clear(int k) {
   hit[k] = 0;
 }
 
-namespace {
-inline __m128 load(const float* p, int k) { return _mm_load_ps(p + k); }
-inline __m128 select(__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
-}  // namespace
+using lanes::load;
+using lanes::select;
 
 int nff_shadow_rays(const NffLanes& g, const Vec3& light, double eps, ShadowPacket& s, NffLightRays& out) {
   const __m128 lx = _mm_set1_ps(static_cast<float>(light.x)), ly = _mm_set1_ps(static_cast<float>(light.y)),
                lz = _mm_set1_ps(static_cast<float>(light.z)), e = _mm_set1_ps(static_cast<float>(eps));
   const __m128 zero = _mm_setzero_ps();
-  const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
   int cast = 0;
   for (int k = 0; k < kPacketSize; k += 4) {
     const __m128 dx = _mm_sub_ps(lx, load(g.px, k)), dy = _mm_sub_ps(ly, load(g.py, k)), dz = _mm_sub_ps(lz, load(g.pz, k));
@@ -51,16 +46,8 @@ int nff_shadow_rays(const NffLanes& g, const Vec3& light, double eps, ShadowPack
                                     _mm_and_ps(_mm_cmpgt_ps(dist, e), _mm_cmpgt_ps(ndl, zero)));
     _mm_store_ps(out.ux + k, ux), _mm_store_ps(out.uy + k, uy), _mm_store_ps(out.uz + k, uz);
     _mm_store_ps(out.n_dot_l + k, ndl);
-    _mm_store_ps(s.org_x + k, load(g.ox, k)), _mm_store_ps(s.org_y + k, load(g.oy, k)), _mm_store_ps(s.org_z + k, load(g.oz, k));
-    _mm_store_ps(s.tnear + k, zero), _mm_store_ps(s.time + k, zero);
-    _mm_store_ps(s.dir_x + k, ux), _mm_store_ps(s.dir_y + k, uy), _mm_store_ps(s.dir_z + k, uz);
-    _mm_storeu_ps(s.tfar + k, _mm_sub_ps(dist, e));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.mask + k), _mm_set1_epi32(-1));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.id + k), _mm_add_epi32(lane, _mm_set1_epi32(k)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.flags + k), _mm_setzero_si128());
-    _mm_store_si128(reinterpret_cast<__m128i*>(s.valid + k), _mm_castps_si128(valid));
-    // Bits set in a 4-bit mask (no POPCNT in the baseline instruction set).
-    cast += (0x4332322132212110ull >> (4 * _mm_movemask_ps(valid))) & 0xf;
+    cast += lanes::store_shadow_rays(s, k, load(g.ox, k), load(g.oy, k), load(g.oz, k), ux, uy, uz, _mm_sub_ps(dist, e),
+                                     valid);
   }
   return cast;
 }

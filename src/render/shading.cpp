@@ -744,40 +744,29 @@ bool gather_lanes(const bool hit[kPacketSize], const SurfacePoint sps[kPacketSiz
   return true;
 }
 
-// One point light of unit falloff (NFF's) for a packet of NFF materials
-// without the shadow cache, as a float batch (light_batch.hpp).
-void shade_nff_light(const RenderScene& scene, const NffLanes& batch, size_t l, RayCounts& counts,
-                     Vec3 colours[kPacketSize], ShadeParts parts[]) {
+// One light for a packet's lanes gathered as a float batch, without the
+// shadow cache: NFF's point lights of unit falloff (NffLanes,
+// light_batch.hpp) or glTF's lights that can_batch() (GltfLanes,
+// gltf_batch.hpp). The shadow rays go as one packet; the lanes it reaches
+// get the light's term and, with `parts`, its bit.
+template <class Lanes>
+void shade_batched_light(const RenderScene& scene, const Lanes& batch, size_t l, RayCounts& counts,
+                         Vec3 colours[kPacketSize], ShadeParts parts[]) {
+  constexpr bool nff = std::is_same_v<Lanes, NffLanes>;
   const PointLight& light = scene.lights()[l];
   ShadowPacket shadows;
-  NffLightRays rays;
-  const int cast = nff_shadow_rays(batch, light.position, scene.epsilon(), shadows, rays);
+  std::conditional_t<nff, NffLightRays, GltfLightRays> rays;
+  int cast;
+  if constexpr (nff) cast = nff_shadow_rays(batch, light.position, scene.epsilon(), shadows, rays);
+  else cast = gltf_shadow_rays(batch, light, scene.epsilon(), shadows, rays);
   if (cast == 0) return;
   counts.shadow += static_cast<uint64_t>(cast);
   bool blocked[kPacketSize];
   scene.accel().occluded(shadows, blocked);
   bool seen[kPacketSize];
   for (int k = 0; k < kPacketSize; ++k) seen[k] = (shadows.valid[k] != 0) & !blocked[k];
-  add_nff_light(batch, rays, seen, light.intensity, colours);
-  if (parts && l < kMaxPartLights)
-    for (int k = 0; k < kPacketSize; ++k) parts[k].lit |= static_cast<uint32_t>(seen[k]) << l;
-}
-
-// One light (can_batch) for a packet of glTF materials without the shadow
-// cache, as a float batch (gltf_batch.hpp).
-void shade_gltf_light(const RenderScene& scene, const GltfLanes& batch, size_t l, RayCounts& counts,
-                      Vec3 colours[kPacketSize], ShadeParts parts[]) {
-  const PointLight& light = scene.lights()[l];
-  ShadowPacket shadows;
-  GltfLightRays rays;
-  const int cast = gltf_shadow_rays(batch, light, scene.epsilon(), shadows, rays);
-  if (cast == 0) return;
-  counts.shadow += static_cast<uint64_t>(cast);
-  bool blocked[kPacketSize];
-  scene.accel().occluded(shadows, blocked);
-  bool seen[kPacketSize];
-  for (int k = 0; k < kPacketSize; ++k) seen[k] = (shadows.valid[k] != 0) & !blocked[k];
-  add_gltf_light(batch, rays, seen, light.intensity, colours);
+  if constexpr (nff) add_nff_light(batch, rays, seen, light.intensity, colours);
+  else add_gltf_light(batch, rays, seen, light.intensity, colours);
   if (parts && l < kMaxPartLights)
     for (int k = 0; k < kPacketSize; ++k) parts[k].lit |= static_cast<uint32_t>(seen[k]) << l;
 }
@@ -825,7 +814,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
     if constexpr (Unit) {
       if (!cached) {
         if (gathered == not_yet) gathered = gather_lanes(hit, sps, f, batch, lanes) ? float_batch : double_lanes;
-        if (gathered == float_batch) shade_nff_light(scene, batch, l, counts, colours, parts);
+        if (gathered == float_batch) shade_batched_light(scene, batch, l, counts, colours, parts);
         else shade_point_light(scene, hit, lanes, sps, f, l, counts, colours, mark_lit);
         return;
       }
@@ -866,7 +855,7 @@ void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kP
       else gltf_lanes.clear(k);
     }
   for (size_t l = 0; l < lights.size(); ++l) {
-    if (gltf_packet && can_batch(lights[l])) shade_gltf_light(scene, gltf_lanes, l, counts, colours, parts);
+    if (gltf_packet && can_batch(lights[l])) shade_batched_light(scene, gltf_lanes, l, counts, colours, parts);
     else if (lights[l].unit_falloff) shade_light(l, std::true_type{});
     else shade_light(l, std::false_type{});
   }
