@@ -428,9 +428,8 @@ class MeshReader {
   // 8-bit RGB codes, row 0 at the bottom (v up, as the texture coordinates),
   // and the alpha of grey+alpha and RGBA images (their last channel).
   static void to_image_map(const ImageBuffer& raw, ImageMap& img) {
-    const ImageBuffer rgb = as_rgb(raw);
-    img.width = rgb.width;
-    img.height = rgb.height;
+    img.width = raw.width;
+    img.height = raw.height;
     img.rgb.resize(size_t(img.width) * img.height * 3);
     const bool alpha = raw.channels == 2 || raw.channels == 4;
     if (alpha) img.alpha.resize(size_t(img.width) * img.height);
@@ -441,12 +440,17 @@ class MeshReader {
       const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
       return static_cast<unsigned char>(x >= 0 ? static_cast<int>(static_cast<double>(x) + 0.5) : 0);
     };
+    // Channel c of the RGB codes is the image's channel min(c, last), as_rgb
+    // takes it, read in place: as_rgb's copy of a 2048x2048 texture was 48 MiB
+    // of fresh pages.
+    const int last = raw.channels - 1;
+    const int ch[3] = {0, std::min(1, last), std::min(2, last)};
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
         const size_t at = size_t(y) * img.width + x;
-        const float* p = rgb.at(x, img.height - 1 - y);
-        for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = code(p[c]);
-        if (alpha) img.alpha[at] = code(raw.at(x, img.height - 1 - y)[raw.channels - 1]);
+        const float* p = raw.at(x, img.height - 1 - y);
+        for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = code(p[ch[c]]);
+        if (alpha) img.alpha[at] = code(p[last]);
       }
   }
 
