@@ -355,6 +355,33 @@ TEST(ImageFormats, EveryReadFormatGivesTheIndependentDecodersValues) {
   }
 }
 
+// read_image_codes: an 8-bit PNG's or a JPEG's codes are read_image's
+// values times 255, exactly; other images are left to read_image.
+TEST(ImageFormats, CodesAreTheValuesTimes255ForEightBitPngAndJpeg) {
+  test::TempDir dir;
+  write_image(dir.file("src.png"), pattern(11, 6, 3));
+  write_image(dir.file("grey.png"), pattern(11, 6, 1));
+  for (const char* made : {"src.png -o a.jpg", "src.png --ch R,G,B,A=0.5 -o rgba.png", "src.png -d uint16 -o w.png",
+                           "src.png -d half -o h.exr", "src.png -o a.ppm"}) {
+    const auto r = test::run_shell("cd '" + dir.path.string() + "' && oiiotool " + made);
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  for (const char* f : {"src.png", "grey.png", "rgba.png", "a.jpg"}) {
+    ImageHeader h;
+    const auto codes = read_image_codes(dir.file(f), &h);
+    ASSERT_TRUE(codes.has_value()) << f;
+    const ImageBuffer img = read_image(dir.file(f));
+    EXPECT_EQ(codes->width, img.width) << f;
+    EXPECT_EQ(codes->height, img.height) << f;
+    EXPECT_EQ(codes->channels, img.channels) << f;
+    EXPECT_EQ(h.channels, img.channels) << f;
+    ASSERT_EQ(codes->codes.size(), img.data.size()) << f;
+    for (size_t k = 0; k < img.data.size(); ++k)
+      ASSERT_EQ(static_cast<float>(codes->codes[k]) * (1.0f / 255.0f), img.data[k]) << f << " value " << k;
+  }
+  for (const char* f : {"w.png", "h.exr", "a.ppm"}) EXPECT_FALSE(read_image_codes(dir.file(f)).has_value()) << f;
+}
+
 // A PNG whose header claims 100000 x 100000 pixels: refused
 // from the header, before 120 GB of pixels are allocated.
 TEST(ImageFormats, AbsurdSizesAreRefusedFromTheHeader) {
@@ -371,6 +398,12 @@ TEST(ImageFormats, AbsurdSizesAreRefusedFromTheHeader) {
   try {
     read_image(dir.file("huge.png"));
     ADD_FAILURE() << "read";
+  } catch (const ImageReadError& e) {
+    EXPECT_EQ(e.reason(), "100000x100000 pixels, 3 channels (at most 1073741824 pixels)");
+  }
+  try {
+    read_image_codes(dir.file("huge.png"));
+    ADD_FAILURE() << "read as codes";
   } catch (const ImageReadError& e) {
     EXPECT_EQ(e.reason(), "100000x100000 pixels, 3 channels (at most 1073741824 pixels)");
   }

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,10 +69,12 @@ std::string detect(const std::string& file);
 
 Header png_header(const std::string& file);
 ImageBuffer read_png(const std::string& file);  ///< 8- or 16-bit codes scaled to 0..1, palettes expanded
+std::optional<ImageCodes> read_png_codes(const std::string& file);  ///< read_png's 8-bit codes; nullopt for 16-bit
 Header exr_header(const std::string& file);
 ImageBuffer read_exr(const std::string& file);  ///< first part; R, G, B, A first, other channels after in file order
 Header jpeg_header(const std::string& file);
 ImageBuffer read_jpeg(const std::string& file);  ///< grey or RGB, libjpeg's default (accurate integer) decoding
+ImageCodes read_jpeg_codes(const std::string& file);  ///< read_jpeg's codes
 Header stb_header(const std::string& file, const std::string& format);
 ImageBuffer read_stb(const std::string& file, const std::string& format);  ///< PNM (binary), Targa, BMP, Radiance HDR, rows from the top
 

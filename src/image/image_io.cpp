@@ -236,6 +236,15 @@ formats::Header header_by_format(const std::string& path, const std::string& for
 ImageReadError::ImageReadError(const std::string& path, const std::string& reason)
     : std::runtime_error(fmt::format("cannot read image '{}': {}", path, reason)), reason_(reason) {}
 
+namespace {
+// Absurd sizes are refused before anything is allocated.
+void refuse_absurd(const std::string& path, const ImageHeader& h) {
+  if (h.width < 1 || h.height < 1 || h.channels < 1 || int64_t{h.width} * h.height > kMaxImagePixels)
+    throw ImageReadError(path, fmt::format("{}x{} pixels, {} channels (at most {} pixels)", h.width, h.height, h.channels,
+                                           kMaxImagePixels));
+}
+}  // namespace
+
 ImageHeader read_image_header(const std::string& path) {
   try {
     std::error_code ec;
@@ -251,14 +260,25 @@ ImageHeader read_image_header(const std::string& path) {
 ImageBuffer read_image(const std::string& path, ImageHeader* header) {
   const ImageHeader h = read_image_header(path);
   if (header) *header = h;
-  if (h.width < 1 || h.height < 1 || h.channels < 1 || int64_t{h.width} * h.height > kMaxImagePixels)
-    throw ImageReadError(path, fmt::format("{}x{} pixels, {} channels (at most {} pixels)", h.width, h.height, h.channels,
-                                           kMaxImagePixels));
+  refuse_absurd(path, h);
   try {
     if (h.format == "png") return formats::read_png(path);
     if (h.format == "openexr") return formats::read_exr(path);
     if (h.format == "jpeg") return formats::read_jpeg(path);
     return formats::read_stb(path, h.format);
+  } catch (const std::runtime_error& e) {
+    throw ImageReadError(path, e.what());
+  }
+}
+
+std::optional<ImageCodes> read_image_codes(const std::string& path, ImageHeader* header) {
+  const ImageHeader h = read_image_header(path);
+  if (header) *header = h;
+  if (h.format != "png" && h.format != "jpeg") return std::nullopt;
+  refuse_absurd(path, h);
+  try {
+    if (h.format == "png") return formats::read_png_codes(path);
+    return formats::read_jpeg_codes(path);
   } catch (const std::runtime_error& e) {
     throw ImageReadError(path, e.what());
   }

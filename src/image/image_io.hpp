@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -107,6 +108,17 @@ ImageHeader read_image_header(const std::string& path);
 /// corrupt, more than kMaxImagePixels). `header`, when given, gets what
 /// read_image_header says (the format, say), without reading it twice.
 ImageBuffer read_image(const std::string& path, ImageHeader* header = nullptr);
+
+/// An image's 8-bit codes, rows from the top, channels interleaved, as the
+/// file holds them: read_image's values times 255 (v = code / 255 there),
+/// without the float image (a 2048x2048 RGB texture is 48 MiB of floats).
+struct ImageCodes {
+  int width = 0, height = 0, channels = 0;
+  std::vector<uint8_t> codes;
+};
+/// read_image's codes for an 8-bit PNG or a JPEG; nullopt for every other
+/// image (read it with read_image). Throws as read_image; `header` as there.
+std::optional<ImageCodes> read_image_codes(const std::string& path, ImageHeader* header = nullptr);
 
 /// The extension of `path`, dot included, in lower case ("a/B.PNG" -> ".png").
 std::string lower_extension(const std::string& path);

@@ -87,14 +87,20 @@ Header jpeg_header(const std::string& file) {
   return header_of(d);
 }
 
-ImageBuffer read_jpeg(const std::string& file) {
+ImageCodes read_jpeg_codes(const std::string& file) {
   Decoder d(file);
   const Header h = header_of(d);
   const size_t row_bytes = size_t(h.width) * size_t(h.channels);
-  std::vector<JSAMPLE> pixels(row_bytes * size_t(h.height));
-  if (!decode(&d, pixels.data(), row_bytes)) d.fail();
-  ImageBuffer img(h.width, h.height, h.channels);
-  for (size_t k = 0; k < pixels.size(); ++k) img.data[k] = static_cast<float>(pixels[k]) * (1.0f / 255.0f);
+  ImageCodes out{h.width, h.height, h.channels, std::vector<uint8_t>(row_bytes * size_t(h.height))};
+  static_assert(sizeof(JSAMPLE) == 1);
+  if (!decode(&d, reinterpret_cast<JSAMPLE*>(out.codes.data()), row_bytes)) d.fail();
+  return out;
+}
+
+ImageBuffer read_jpeg(const std::string& file) {
+  const ImageCodes c = read_jpeg_codes(file);
+  ImageBuffer img(c.width, c.height, c.channels);
+  for (size_t k = 0; k < c.codes.size(); ++k) img.data[k] = static_cast<float>(c.codes[k]) * (1.0f / 255.0f);
   return img;
 }
 

@@ -230,27 +230,50 @@ Header png_header(const std::string& file) {
           channels, "png"};
 }
 
-ImageBuffer read_png(const std::string& file) {
+namespace {
+
+// The rows as libpng expands them (read_setup): 8- or 16-bit codes.
+struct PngRows {
+  int width = 0, height = 0, channels = 0;
+  bool wide = false;  // 16-bit, big-endian
+  std::vector<png_byte> bytes;
+};
+
+PngRows decode_png(const std::string& file) {
   Reader r(file);
-  int channels = 0;
-  if (!read_setup(r.png, r.info, r.file.f, &channels)) r.fail();
-  const int w = static_cast<int>(png_get_image_width(r.png, r.info));
-  const int h = static_cast<int>(png_get_image_height(r.png, r.info));
-  const bool wide = png_get_bit_depth(r.png, r.info) == 16;
+  PngRows out;
+  if (!read_setup(r.png, r.info, r.file.f, &out.channels)) r.fail();
+  out.width = static_cast<int>(png_get_image_width(r.png, r.info));
+  out.height = static_cast<int>(png_get_image_height(r.png, r.info));
+  out.wide = png_get_bit_depth(r.png, r.info) == 16;
   const size_t row_bytes = png_get_rowbytes(r.png, r.info);
-  std::vector<png_byte> bytes(row_bytes * size_t(h));
-  std::vector<png_bytep> rows(static_cast<size_t>(h));
-  for (int y = 0; y < h; ++y) rows[size_t(y)] = bytes.data() + row_bytes * size_t(y);
+  out.bytes.resize(row_bytes * size_t(out.height));
+  std::vector<png_bytep> rows(static_cast<size_t>(out.height));
+  for (int y = 0; y < out.height; ++y) rows[size_t(y)] = out.bytes.data() + row_bytes * size_t(y);
   if (!read_rows(r.png, r.info, rows.data())) r.fail();
+  return out;
+}
+
+}  // namespace
+
+ImageBuffer read_png(const std::string& file) {
+  const PngRows p = decode_png(file);
   // Codes times the reciprocal, as OpenImageIO converts: images read before
   // and after the change hold the same floats.
-  ImageBuffer img(w, h, channels);
+  ImageBuffer img(p.width, p.height, p.channels);
   const size_t n = img.data.size();
-  if (wide)
+  const std::vector<png_byte>& bytes = p.bytes;
+  if (p.wide)
     for (size_t k = 0; k < n; ++k) img.data[k] = static_cast<float>((bytes[2 * k] << 8) | bytes[2 * k + 1]) * (1.0f / 65535.0f);
   else
     for (size_t k = 0; k < n; ++k) img.data[k] = static_cast<float>(bytes[k]) * (1.0f / 255.0f);
   return img;
+}
+
+std::optional<ImageCodes> read_png_codes(const std::string& file) {
+  PngRows p = decode_png(file);
+  if (p.wide) return std::nullopt;
+  return ImageCodes{p.width, p.height, p.channels, std::move(p.bytes)};
 }
 
 }  // namespace holoray::formats

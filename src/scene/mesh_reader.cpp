@@ -372,6 +372,12 @@ class MeshReader {
         std::replace(slashed.begin(), slashed.end(), '\\', '/');
         if (!std::filesystem::exists(file) && slashed != path)
           file = std::filesystem::path(out_.source).parent_path() / slashed;
+        // 8-bit PNGs and JPEGs (most textures) straight as codes; the rest as floats.
+        if (auto codes = read_image_codes(file.string(), &header)) {
+          codes_to_image_map(*codes, img);
+          img.srgb = colour;
+          return img;
+        }
         raw = read_image(file.string(), &header);
       }
       to_image_map(raw, img);
@@ -452,6 +458,27 @@ class MeshReader {
         for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = code(p[ch[c]]);
         if (alpha) img.alpha[at] = code(p[last]);
       }
+  }
+
+  // to_image_map() of an 8-bit image read as codes: code(c / 255) is c, so
+  // the codes are copied (rows flipped, channels as as_rgb takes them).
+  static void codes_to_image_map(const ImageCodes& raw, ImageMap& img) {
+    img.width = raw.width;
+    img.height = raw.height;
+    img.rgb.resize(size_t(img.width) * img.height * 3);
+    const bool alpha = raw.channels == 2 || raw.channels == 4;
+    if (alpha) img.alpha.resize(size_t(img.width) * img.height);
+    const int last = raw.channels - 1;
+    const int ch[3] = {0, std::min(1, last), std::min(2, last)};
+    for (int y = 0; y < img.height; ++y) {
+      const uint8_t* row = raw.codes.data() + size_t(img.height - 1 - y) * img.width * raw.channels;
+      for (int x = 0; x < img.width; ++x) {
+        const size_t at = size_t(y) * img.width + x;
+        const uint8_t* p = row + size_t(x) * raw.channels;
+        for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = p[ch[c]];
+        if (alpha) img.alpha[at] = p[last];
+      }
+    }
   }
 
   // 8x8 squares of magenta and dark grey: a missing texture stands out.
