@@ -361,10 +361,9 @@ class MeshReader {
     ImageMap img;
     img.path = path;
     try {
-      ImageBuffer raw;
       ImageHeader header;
       if (const aiTexture* e = s_.GetEmbeddedTexture(path.c_str())) {
-        raw = read_embedded(*e, header);
+        read_embedded(*e, header, img);
       } else {
         std::filesystem::path file = std::filesystem::path(out_.source).parent_path() / path;
         // Files written on Windows name their images with backslashes (".\\wood.jpg").
@@ -372,15 +371,8 @@ class MeshReader {
         std::replace(slashed.begin(), slashed.end(), '\\', '/');
         if (!std::filesystem::exists(file) && slashed != path)
           file = std::filesystem::path(out_.source).parent_path() / slashed;
-        // 8-bit PNGs and JPEGs (most textures) straight as codes; the rest as floats.
-        if (auto codes = read_image_codes(file.string(), &header)) {
-          codes_to_image_map(*codes, img);
-          img.srgb = colour;
-          return img;
-        }
-        raw = read_image(file.string(), &header);
+        read_texture_file(file.string(), header, img);
       }
-      to_image_map(raw, img);
       img.srgb = colour && header.format != "openexr" && header.format != "hdr";
     } catch (const std::exception& e) {
       const auto* read_error = dynamic_cast<const ImageReadError*>(&e);
@@ -392,22 +384,30 @@ class MeshReader {
     return img;
   }
 
-  // An embedded image: raw texels (assimp's BGRA), or a compressed file
-  // (PNG, JPEG) read through the same readers as files on disk, from a
-  // temporary copy (the readers take paths).
-  static ImageBuffer read_embedded(const aiTexture& t, ImageHeader& header) {
+  // A texture file into `img`: 8-bit PNGs and JPEGs (most textures) as
+  // their codes, the rest through the float image.
+  static void read_texture_file(const std::string& file, ImageHeader& header, ImageMap& img) {
+    if (auto codes = read_image_codes(file, &header)) codes_to_image_map(*codes, img);
+    else to_image_map(read_image(file, &header), img);
+  }
+
+  // An embedded image into `img`: raw texels (assimp's BGRA), or a
+  // compressed file (PNG, JPEG) read as files on disk are, from a temporary
+  // copy (the readers take paths).
+  static void read_embedded(const aiTexture& t, ImageHeader& header, ImageMap& img) {
     if (t.mHeight > 0) {
       if (int64_t{t.mWidth} * t.mHeight > kMaxImagePixels)
         throw std::runtime_error(fmt::format("{}x{} texels (at most {})", t.mWidth, t.mHeight, kMaxImagePixels));
-      ImageBuffer raw(static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 4);
-      for (unsigned y = 0; y < t.mHeight; ++y)
-        for (unsigned x = 0; x < t.mWidth; ++x) {
-          const aiTexel& c = t.pcData[y * t.mWidth + x];
-          float* o = raw.at(static_cast<int>(x), static_cast<int>(y));
-          o[0] = c.r / 255.0f, o[1] = c.g / 255.0f, o[2] = c.b / 255.0f, o[3] = c.a / 255.0f;
-        }
-      header = {static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 4, "raw"};
-      return raw;
+      ImageCodes raw{static_cast<int>(t.mWidth), static_cast<int>(t.mHeight), 4,
+                     std::vector<uint8_t>(size_t{t.mWidth} * t.mHeight * 4)};
+      for (size_t k = 0; k < size_t{t.mWidth} * t.mHeight; ++k) {
+        const aiTexel& c = t.pcData[k];
+        uint8_t* o = &raw.codes[4 * k];
+        o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
+      }
+      header = {raw.width, raw.height, 4, "raw"};
+      codes_to_image_map(raw, img);
+      return;
     }
     const std::filesystem::path tmp =
         std::filesystem::temp_directory_path() /
@@ -425,7 +425,7 @@ class MeshReader {
       }
     } remove{tmp};
     try {
-      return read_image(tmp.string(), &header);
+      read_texture_file(tmp.string(), header, img);
     } catch (const ImageReadError& e) {
       throw std::runtime_error(e.reason());
     }
