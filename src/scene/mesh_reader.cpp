@@ -432,53 +432,51 @@ class MeshReader {
   }
 
   // 8-bit RGB codes, row 0 at the bottom (v up, as the texture coordinates),
-  // and the alpha of grey+alpha and RGBA images (their last channel).
-  static void to_image_map(const ImageBuffer& raw, ImageMap& img) {
-    img.width = raw.width;
-    img.height = raw.height;
-    img.rgb.resize(size_t(img.width) * img.height * 3);
-    const bool alpha = raw.channels == 2 || raw.channels == 4;
-    if (alpha) img.alpha.resize(size_t(img.width) * img.height);
-    // lround of the scaled value: half away from zero, which for x >= 0 is
-    // the floor of x + 1/2 taken in double (exact there, where float's sum
-    // could round up); lround was a libm call per channel. NaN gives 0.
-    auto code = [](float v) {
-      const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
-      return static_cast<unsigned char>(x >= 0 ? static_cast<int>(static_cast<double>(x) + 0.5) : 0);
-    };
-    // Channel c of the RGB codes is the image's channel min(c, last), as_rgb
-    // takes it, read in place: as_rgb's copy of a 2048x2048 texture was 48 MiB
-    // of fresh pages.
-    const int last = raw.channels - 1;
+  // and the alpha of grey+alpha and RGBA images (their last channel), from a
+  // width x height image of `channels` whose texel (x, y), rows from the top,
+  // starts at texel(x, y); code(v) turns one of its values into a code.
+  // Channel c of the RGB codes is the image's channel min(c, last), as
+  // as_rgb takes it, read in place (as_rgb's copy of a 2048x2048 texture was
+  // 48 MiB of fresh pages).
+  template <class Texel, class Code>
+  static void fill_image_map(int width, int height, int channels, Texel texel, Code code, ImageMap& img) {
+    img.width = width;
+    img.height = height;
+    img.rgb.resize(size_t(width) * height * 3);
+    const bool alpha = channels == 2 || channels == 4;
+    if (alpha) img.alpha.resize(size_t(width) * height);
+    const int last = channels - 1;
     const int ch[3] = {0, std::min(1, last), std::min(2, last)};
-    for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) {
-        const size_t at = size_t(y) * img.width + x;
-        const float* p = raw.at(x, img.height - 1 - y);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t at = size_t(y) * width + x;
+        const auto* p = texel(x, height - 1 - y);
         for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = code(p[ch[c]]);
         if (alpha) img.alpha[at] = code(p[last]);
       }
   }
 
+  // A float image's codes: lround of the scaled value, half away from zero,
+  // which for x >= 0 is the floor of x + 1/2 taken in double (exact there,
+  // where float's sum could round up; lround was a libm call per channel).
+  // NaN gives 0.
+  static void to_image_map(const ImageBuffer& raw, ImageMap& img) {
+    fill_image_map(
+        raw.width, raw.height, raw.channels, [&](int x, int y) { return raw.at(x, y); },
+        [](float v) {
+          const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
+          return static_cast<unsigned char>(x >= 0 ? static_cast<int>(static_cast<double>(x) + 0.5) : 0);
+        },
+        img);
+  }
+
   // to_image_map() of an 8-bit image read as codes: code(c / 255) is c, so
-  // the codes are copied (rows flipped, channels as as_rgb takes them).
+  // the codes are copied.
   static void codes_to_image_map(const ImageCodes& raw, ImageMap& img) {
-    img.width = raw.width;
-    img.height = raw.height;
-    img.rgb.resize(size_t(img.width) * img.height * 3);
-    const bool alpha = raw.channels == 2 || raw.channels == 4;
-    if (alpha) img.alpha.resize(size_t(img.width) * img.height);
-    const int last = raw.channels - 1;
-    const int ch[3] = {0, std::min(1, last), std::min(2, last)};
-    for (int y = 0; y < img.height; ++y) {
-      const uint8_t* row = raw.codes.data() + size_t(img.height - 1 - y) * img.width * raw.channels;
-      for (int x = 0; x < img.width; ++x) {
-        const size_t at = size_t(y) * img.width + x;
-        const uint8_t* p = row + size_t(x) * raw.channels;
-        for (int c = 0; c < 3; ++c) img.rgb[at * 3 + c] = p[ch[c]];
-        if (alpha) img.alpha[at] = p[last];
-      }
-    }
+    fill_image_map(
+        raw.width, raw.height, raw.channels,
+        [&](int x, int y) { return raw.codes.data() + (size_t(y) * raw.width + x) * raw.channels; },
+        [](uint8_t v) { return v; }, img);
   }
 
   // 8x8 squares of magenta and dark grey: a missing texture stands out.
