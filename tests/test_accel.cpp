@@ -1,10 +1,13 @@
-// AccelScene's shadow packets (rtcOccluded16, coherent traversal where the
-// scene allows it), as RayPackets and as ShadowPackets filled lane by lane,
-// against its single-ray occlusion test, in a static scene and in one whose
-// geometry is an instance.
+// AccelScene's packets against its single rays: the shadow packets
+// (rtcOccluded16, coherent traversal where the scene allows it), as
+// RayPackets and as ShadowPackets filled lane by lane, in a static scene and
+// in one whose geometry is an instance; and the refined hits of an
+// intersection packet (triangles of unmoved groups refined two lanes at a
+// time), bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "accel/accel_scene.hpp"
 #include "math/transform.hpp"
@@ -85,6 +88,51 @@ TEST(ShadowPackets, AgreeWithSingleRaysInAnInstancedMovedScene) {
   AccelScene accel(std::move(groups));
   accel.set_transforms({Affine::translate(Vec3{0.1, 0.05, 0.2}) * Affine::rotate_axis(2, 10)});
   expect_packets_agree_with_single_rays(accel);
+}
+
+// Rays fanning down from above the occluders (a lens's eye rays): each
+// packet lane's refined hit has the single ray's bits, whether its triangle
+// was refined in a pair (an unmoved group), alone (the packet's odd one
+// out), or through an instance's transform (the moved group), and spheres.
+TEST(IntersectPackets, RefinedHitsEqualSingleRaysBitForBit) {
+  std::vector<GeometryGroup> groups;
+  groups.push_back(occluders(false));
+  groups.push_back(occluders(true));
+  AccelScene accel(std::move(groups));
+  accel.set_transforms({Affine{}, Affine::translate(Vec3{0.3, 0.1, -0.4}) * Affine::rotate_axis(2, 25)});
+  int compared = 0, triangles = 0;
+  for (int row = 0; row < 30; ++row)
+    for (int col = 0; col < 30; col += 4) {
+      RayPacket packet;
+      const Vec3 eye{0.1 * (col - 15), 0.1 * (row - 15), 6};
+      for (int k = 0; k < kPacketSize; ++k) {
+        const Vec3 target{-2 + 0.13 * (col + k % 4), -2 + 0.13 * row + 0.03 * (k / 4), 0};
+        packet.rays[k] = Ray{eye, (target - eye) / length(target - eye), 0, INFINITY};
+        packet.active[k] = (k * 3 + row) % 11 != 0;
+      }
+      Hit hits[kPacketSize];
+      bool found[kPacketSize];
+      accel.intersect(packet, hits, found, RayCoherence::coherent);
+      for (int k = 0; k < kPacketSize; ++k) {
+        Hit one;
+        const bool single = packet.active[k] && accel.intersect(packet.rays[k], one);
+        ASSERT_EQ(found[k], single) << "row " << row << ", column " << col << ", lane " << k;
+        if (!single) continue;
+        const Hit& h = hits[k];
+        ASSERT_EQ(h.kind, one.kind);
+        ASSERT_EQ(h.group, one.group);
+        ASSERT_EQ(h.prim, one.prim);
+        for (const auto& [a, b] : {std::pair{&h.t, &one.t}, std::pair{&h.u, &one.u}, std::pair{&h.v, &one.v}})
+          ASSERT_EQ(std::memcmp(a, b, sizeof *a), 0) << "row " << row << ", column " << col << ", lane " << k;
+        ASSERT_EQ(std::memcmp(&h.ng, &one.ng, sizeof h.ng), 0) << "row " << row << ", column " << col << ", lane " << k;
+        ASSERT_EQ(std::memcmp(&h.p_object, &one.p_object, sizeof h.p_object), 0);
+        ++compared;
+        triangles += h.kind == PrimKind::triangle && h.group == 0;
+      }
+    }
+  // Pairs of unmoved triangles, and the other kinds, were all compared.
+  EXPECT_GT(triangles, 200);
+  EXPECT_GT(compared, triangles + 100);
 }
 
 }  // namespace

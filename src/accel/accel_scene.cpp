@@ -1,6 +1,7 @@
 #include "accel/accel_scene.hpp"
 
 #include <embree3/rtcore.h>
+#include <emmintrin.h>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -426,11 +427,16 @@ void AccelScene::resolve(const Ray& r, unsigned geom_id, unsigned inst_id, unsig
                          float u, float v, float t, Hit& hit, bool refined) const {
   primitive_of(RawHit{geom_id, inst_id, prim_id, {}, 0, 0, 0}, hit.group, hit.kind, hit.prim);
   const Group& g = groups_[hit.group];
-  // Embree's normal is in object space; used only if the double refinement fails.
-  const Vec3 ng_obj = normalize(Vec3{ng[0], ng[1], ng[2]});
-  hit.ng = g.identity ? ng_obj : g.to_world.normal(ng_obj);
-  hit.u = u;
-  hit.v = v;
+  // The refinement of a triangle sets its t, barycentrics and normal
+  // whatever the ray; that of a sphere or cone keeps Embree's normal (object
+  // space) and t where it finds no root.
+  const bool refine_triangle = refined && hit.kind == PrimKind::triangle;
+  if (!refine_triangle) {
+    const Vec3 ng_obj = normalize(Vec3{ng[0], ng[1], ng[2]});
+    hit.ng = g.identity ? ng_obj : g.to_world.normal(ng_obj);
+    hit.u = u;
+    hit.v = v;
+  }
   // Spheres and cones keep their double-precision hit (their callbacks
   // computed it; a float one measured 75 dB on balls_s4's sphereflake).
   if (refined || hit.kind != PrimKind::triangle) {
@@ -502,14 +508,98 @@ void AccelScene::intersect_raw(const RayPacket& p, RawHit raw[kPacketSize], bool
   }
 }
 
+namespace {
+
+// Two lanes of a double across an SSE2 register: lane 0 low.
+struct Pair {
+  __m128d x, y, z;
+};
+inline __m128d mul(__m128d a, __m128d b) { return _mm_mul_pd(a, b); }
+inline __m128d add(__m128d a, __m128d b) { return _mm_add_pd(a, b); }
+inline __m128d sub(__m128d a, __m128d b) { return _mm_sub_pd(a, b); }
+inline __m128d dot(const Pair& a, const Pair& b) { return add(add(mul(a.x, b.x), mul(a.y, b.y)), mul(a.z, b.z)); }
+inline Pair cross(const Pair& a, const Pair& b) {
+  return {sub(mul(a.y, b.z), mul(a.z, b.y)), sub(mul(a.z, b.x), mul(a.x, b.z)), sub(mul(a.x, b.y), mul(a.y, b.x))};
+}
+inline Pair pair_of(const Vec3& a, const Vec3& b) { return {_mm_set_pd(b.x, a.x), _mm_set_pd(b.y, a.y), _mm_set_pd(b.z, a.z)}; }
+inline double lane(__m128d v, int l) { return l == 0 ? _mm_cvtsd_f64(v) : _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); }
+
+}  // namespace
+
+void AccelScene::refine_triangle_pair(const Ray* const r[2], const float t_guess[2], Hit* const hit[2]) const {
+  Vec3 v0[2], v1[2], v2[2];
+  for (int l = 0; l < 2; ++l) {
+    const TriangleData& tri = groups_[hit[l]->group].geo.triangles;
+    const uint32_t* idx = &tri.indices[3 * size_t{hit[l]->prim}];
+    auto vtx = [&](int k) {
+      const float* p = &tri.positions[3 * size_t{idx[k]}];
+      return Vec3{p[0], p[1], p[2]};
+    };
+    v0[l] = vtx(0), v1[l] = vtx(1), v2[l] = vtx(2);
+  }
+  // refine()'s triangle case for two lanes, in its operations and order.
+  const Pair o = pair_of(r[0]->org, r[1]->org), d = pair_of(r[0]->dir, r[1]->dir);
+  const Pair a = pair_of(v0[0], v0[1]), b = pair_of(v1[0], v1[1]), c = pair_of(v2[0], v2[1]);
+  const Pair e1{sub(b.x, a.x), sub(b.y, a.y), sub(b.z, a.z)}, e2{sub(c.x, a.x), sub(c.y, a.y), sub(c.z, a.z)};
+  const Pair m = cross(e1, e2);
+  const __m128d len = _mm_sqrt_pd(dot(m, m)), zero = _mm_setzero_pd();
+  // normalize(): m * (1 / len) where len > 0, else m.
+  const __m128d inv = _mm_div_pd(_mm_set1_pd(1.0), len), positive = _mm_cmpgt_pd(len, zero);
+  auto unit = [&](__m128d v) { return _mm_or_pd(_mm_and_pd(positive, mul(v, inv)), _mm_andnot_pd(positive, v)); };
+  const Pair n{unit(m.x), unit(m.y), unit(m.z)};
+  const __m128d dn = dot(d, n);
+  const Pair w{sub(a.x, o.x), sub(a.y, o.y), sub(a.z, o.z)};
+  // A ray in the triangle's plane keeps Embree's t.
+  const __m128d edge_on = _mm_cmpeq_pd(dn, zero);
+  const __m128d t = _mm_or_pd(_mm_andnot_pd(edge_on, _mm_div_pd(dot(w, n), dn)),
+                              _mm_and_pd(edge_on, _mm_set_pd(t_guess[1], t_guess[0])));
+  const Pair p{add(o.x, mul(d.x, t)), add(o.y, mul(d.y, t)), add(o.z, mul(d.z, t))};
+  const __m128d area = dot(m, n);
+  const Pair q{sub(p.x, a.x), sub(p.y, a.y), sub(p.z, a.z)};
+  const __m128d u = _mm_div_pd(dot(cross(q, e2), n), area), v = _mm_div_pd(dot(cross(e1, q), n), area);
+  for (int l = 0; l < 2; ++l) {
+    Hit& h = *hit[l];
+    h.t = lane(t, l);
+    h.u = lane(u, l);
+    h.v = lane(v, l);
+    h.p_object = {lane(p.x, l), lane(p.y, l), lane(p.z, l)};
+    h.ng = {lane(n.x, l), lane(n.y, l), lane(n.z, l)};
+  }
+}
+
 void AccelScene::intersect(const RayPacket& p, Hit hits[kPacketSize], bool found[kPacketSize],
                            RayCoherence coherence, bool refined) const {
   RawHit raw[kPacketSize];
   intersect_raw(p, raw, found, coherence);
-  for (int k = 0; k < kPacketSize; ++k)
-    if (found[k])
-      resolve(p.rays[k], raw[k].geom_id, raw[k].inst_id, raw[k].prim_id, raw[k].ng, raw[k].u, raw[k].v, raw[k].t,
-              hits[k], refined);
+  // Triangles of groups placed by the identity (the eye rays' usual hits)
+  // are refined two lanes at a time, bit for bit refine(); the others one
+  // by one.
+  int pending = -1;
+  for (int k = 0; k < kPacketSize; ++k) {
+    if (!found[k]) continue;
+    Hit& h = hits[k];
+    if (refined) {
+      primitive_of(raw[k], h.group, h.kind, h.prim);
+      if (h.kind == PrimKind::triangle && groups_[h.group].identity) {
+        if (pending < 0) {
+          pending = k;
+          continue;
+        }
+        const Ray* r[2] = {&p.rays[pending], &p.rays[k]};
+        const float t[2] = {raw[pending].t, raw[k].t};
+        Hit* const two[2] = {&hits[pending], &h};
+        refine_triangle_pair(r, t, two);
+        pending = -1;
+        continue;
+      }
+    }
+    resolve(p.rays[k], raw[k].geom_id, raw[k].inst_id, raw[k].prim_id, raw[k].ng, raw[k].u, raw[k].v, raw[k].t, h,
+            refined);
+  }
+  if (pending >= 0) {
+    const RawHit& r = raw[pending];
+    resolve(p.rays[pending], r.geom_id, r.inst_id, r.prim_id, r.ng, r.u, r.v, r.t, hits[pending], refined);
+  }
 }
 
 void AccelScene::primitive_of(const RawHit& raw, uint32_t& group, PrimKind& kind, uint32_t& prim) const {

@@ -225,6 +225,10 @@ class AccelScene {
     uint64_t pose = 0;
   };
   bool refine(const Group& g, const Ray& ray, bool strict, double t_guess, Hit& hit) const;
+  /// refine() (not strict) of two triangle hits in groups placed by the
+  /// identity, two lanes per SSE2 instruction: the same bits. Each hit's
+  /// group and prim are set; t_guess is Embree's t.
+  void refine_triangle_pair(const Ray* const ray[2], const float t_guess[2], Hit* const hit[2]) const;
   /// Embree's hit record (ids, float normal and barycentrics, float t) into a
   /// refined Hit; shared by the single-ray and the packet queries.
   void resolve(const Ray& ray, unsigned geom_id, unsigned inst_id, unsigned prim_id, const float ng[3], float u,

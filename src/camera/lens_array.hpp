@@ -44,6 +44,14 @@ struct LensArrayDesc {
   friend bool operator==(const LensArrayDesc&, const LensArrayDesc&) = default;
 };
 
+/// Up to kLaneCount pixel lines (world), one array per coordinate: what a
+/// packet's eye rays are generated and clipped from (LensArray::lines).
+struct PixelLineLanes {
+  static constexpr int kLaneCount = 16;
+  alignas(16) double ox[kLaneCount], oy[kLaneCount], oz[kLaneCount];
+  alignas(16) double dx[kLaneCount], dy[kLaneCount], dz[kLaneCount];
+};
+
 /// Lens index: column lx from the left, row ly from the top.
 struct LensIndex {
   int x = 0, y = 0;
@@ -116,11 +124,14 @@ class LensArray final : public Camera {
   PixelLine line_local(int i, int j, double u = 0.5, double v = 0.5) const;
   /// The pixel's line in the world frame.
   PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const override;
-  /// line() for n pixels (i[k], j[k]) at offsets (u[k], v[k]): out[k] equals
-  /// line(i[k], j[k], u[k], v[k]) bit for bit, but a lens's centre is
-  /// computed once for a run of pixels under the same lens (a packet of one
-  /// elemental image, issue 4), not once per pixel.
-  void lines(const int i[], const int j[], const double u[], const double v[], int n, PixelLine out[]) const;
+  /// line() for n <= PixelLineLanes::kLaneCount pixels (i[k], j[k]) at
+  /// offsets (u[k], v[k]), one array per coordinate (world): lane k equals
+  /// line(i[k], j[k], u[k], v[k]) bit for bit. A lens's centre is computed
+  /// once for a run of pixels under the same lens (a packet of one elemental
+  /// image, issue 4), and the directions two lanes per SSE2 instruction in
+  /// line()'s operations and order (x86-64's baseline has no fused
+  /// multiply-add to change a bit). Throws std::invalid_argument for more lanes.
+  void lines(const int i[], const int j[], const double u[], const double v[], int n, PixelLineLanes& out) const;
 
   /// Forward projection (contract, property 2): every pixel whose line passes
   /// through the world point, one per lens whose elemental image contains it,
