@@ -51,6 +51,32 @@ TEST(Encode8Bit, LinearIsFloorOf255vPlusHalfClamped) {
   EXPECT_EQ(encode_8bit(NAN, Encoding::linear), 0);
 }
 
+// The batch (four values per SSE2 pass, then a scalar tail) gives each
+// value the single-value formula's code: every 997th float between -0.01 and
+// 1.01 (every code step, both sides of each half), infinities, NaN and
+// huge values, at odd counts so that the tail runs too.
+TEST(Encode8Bit, LinearBatchEqualsTheFormulaValueByValue) {
+  std::vector<float> values;
+  for (float v = -0.01f; v < 1.01f;) {
+    values.push_back(v);
+    uint32_t bits;
+    std::memcpy(&bits, &v, 4);
+    bits = v < 0 ? bits - 997 : bits + 997;
+    if (v < 0 && bits < 0x80000000u) bits = 0;
+    std::memcpy(&v, &bits, 4);
+  }
+  for (const float k : {0.5f, 1.5f, 127.5f, 254.5f})
+    for (const float d : {-1e-6f, 0.0f, 1e-6f}) values.push_back((k + d) / 255);
+  for (const float v : {INFINITY, -INFINITY, NAN, -NAN, 1e30f, -1e30f, -0.0f}) values.push_back(v);
+  ASSERT_GT(values.size(), size_t{1000000});
+  for (const size_t n : {values.size(), values.size() - 1, size_t{3}}) {
+    std::vector<uint8_t> codes(n);
+    encode_8bit_here(values.data(), n, codes.data(), Encoding::linear);
+    for (size_t k = 0; k < n; ++k)
+      ASSERT_EQ(codes[k], encode_8bit(values[k], Encoding::linear)) << "value " << values[k] << " of " << n;
+  }
+}
+
 TEST(Encode8Bit, SrgbUsesTheStandardTransferFunction) {
   EXPECT_EQ(encode_8bit(0.0f, Encoding::srgb), 0);
   EXPECT_EQ(encode_8bit(1.0f, Encoding::srgb), 255);

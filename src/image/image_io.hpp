@@ -30,8 +30,8 @@ enum class ExrCompression { none, rle, zips, zip, piz };
 /// function (IEC 61966-2-1). NaN gives 0.
 uint8_t encode_8bit(float v, Encoding encoding);
 
-/// encode_8bit of `count` values, the same codes; the linear case runs as
-/// vector code (255 v + 1/2 is exact in double, so truncation after
+/// encode_8bit of `count` values, the same codes; the linear case runs four
+/// values per SSE2 pass (255 v + 1/2 is exact in double, so truncation after
 /// clamping is the floor) and large runs on every core.
 void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding);
 /// The same on the calling thread alone: for callers already running as
