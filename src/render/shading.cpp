@@ -667,6 +667,14 @@ Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoin
   return colour;
 }
 
+void shade_secondary(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+                     const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
+  HitFrame f[kPacketSize];
+  for (int k = 0; k < kPacketSize; ++k)
+    if (hit[k]) f[k] = frame_of(scene, rays.rays[k], sps[k]);
+  add_secondary(scene, rays, hit, sps, f, depth, counts, colours);
+}
+
 namespace {
 
 // What every light's shadow rays need of a packet's lanes, one array per

@@ -44,6 +44,12 @@ Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& s
 /// The terms of shade() that the mirror and refraction rays bring at `sp`
 /// hit by `ray` at ray-tree `depth` (Ks*I_reflected + T*I_transmitted).
 Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
+/// shade_secondary() for the lanes of a packet with hit[k] set, added to
+/// colours[k]: their mirror rays, then their transmitted rays, each set
+/// traced as one packet when nearly parallel and else one by one, as
+/// shade()'s packets trace them (to the image budget, not to the bit).
+void shade_secondary(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+                     const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]);
 
 /// shade() for the lanes of a packet with hit[k] set, into colours[k] (other
 /// lanes untouched). The shadow rays toward each light go as one packet

@@ -96,9 +96,12 @@ class PointImageLookup {
   // The colour of an eye-ray hit from the keyframes with visibility reuse,
   // true when they have it: `ray` the eye ray, `line_dir` the pixel's line
   // direction (world, unit, toward the viewer's side of the array); rays
-  // traced go to `counts`. (Colour reuse: filtered_colour.)
+  // traced go to `counts`. Where the light of the mirror and refraction
+  // rays changes around the keyframe pixel, `colour` gets the local terms
+  // alone and `secondary` is set: the caller traces those rays, packets of
+  // them at a time. (Colour reuse: filtered_colour.)
   bool find(const Ray& ray, const Vec3& line_dir, const Hit& hit, const SurfacePoint& sp, RayCounts& counts,
-            Vec3& colour) const {
+            Vec3& colour, bool& secondary) const {
     for (const Key& key : keys_) {
       if (!key.image || key.anything_moved) continue;
       PanelHit ph;
@@ -109,8 +112,8 @@ class PointImageLookup {
       bool secondary_detail = false;
       edges(key, idx, shadow_edges, secondary_detail);
       colour = shade_local(scene_, ray, sp, parts.lit, shadow_edges, counts);
-      colour += secondary_detail ? shade_secondary(scene_, ray, sp, 1, counts)
-                                 : Vec3{parts.secondary[0], parts.secondary[1], parts.secondary[2]};
+      secondary = secondary_detail;
+      if (!secondary) colour += Vec3{parts.secondary[0], parts.secondary[1], parts.secondary[2]};
       return true;
     }
     return false;
@@ -249,14 +252,20 @@ void store(ImageBuffer& image, size_t p, const Vec3& c) {
 // a tile and shaded 16 at a time: shading (shadow, mirror and refraction
 // rays) runs as packets whose cost hardly depends on how many lanes are
 // active, so shading the leftover lanes of each packet where they stand
-// would cost nearly a full frame's shading whatever the reuse.
+// would cost nearly a full frame's shading whatever the reuse. A queue of
+// `secondary_only` lanes traces only their mirror and refraction rays and
+// adds that light to the colour each was pushed with (visibility reuse's
+// local terms): off a flat mirror they are a coherent packet, which one by
+// one cost the teapot shot more than tracing the frame in full.
 class ShadeQueue {
  public:
-  void push(const Ray& ray, const SurfacePoint& sp, size_t pixel) {
+  explicit ShadeQueue(bool secondary_only = false) : secondary_only_(secondary_only) {}
+  void push(const Ray& ray, const SurfacePoint& sp, size_t pixel, const Vec3& base = {}) {
     rays_.rays[n_] = ray;
     rays_.active[n_] = true;
     sp_[n_] = sp;
     pixel_[n_] = pixel;
+    base_[n_] = base;
     ++n_;
   }
   bool full() const { return n_ == kPacketSize; }
@@ -265,16 +274,23 @@ class ShadeQueue {
     bool hit[kPacketSize] = {};
     std::fill(hit, hit + n_, true);
     Vec3 c[kPacketSize];
-    shade(scene, rays_, hit, sp_, 1, counts, c);
-    for (int l = 0; l < n_; ++l) store(colour, pixel_[l], c[l]);
+    if (secondary_only_) {
+      shade_secondary(scene, rays_, hit, sp_, 1, counts, c);
+      for (int l = 0; l < n_; ++l) store(colour, pixel_[l], base_[l] + c[l]);
+    } else {
+      shade(scene, rays_, hit, sp_, 1, counts, c);
+      for (int l = 0; l < n_; ++l) store(colour, pixel_[l], c[l]);
+    }
     rays_ = RayPacket{};
     n_ = 0;
   }
 
  private:
+  bool secondary_only_;
   RayPacket rays_;
   SurfacePoint sp_[kPacketSize];
   size_t pixel_[kPacketSize] = {};
+  Vec3 base_[kPacketSize];
   int n_ = 0;
 };
 
@@ -364,7 +380,7 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
   // object can reach are the keyframe's (PointImageLookup::lens_unchanged).
   const PointImage* same = copy && reuse == ReverseReuse::color ? lookup.same_camera_image() : nullptr;
   out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
-    ShadeQueue queue;
+    ShadeQueue queue, secondary_queue(true);
     // Per tile, not per packet: constructing them costs (as EyePacket is).
     PrimaryRay primary[kPacketSize];
     RayPacket rays;
@@ -437,11 +453,17 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
         const Ray& ray = rays.rays[l];
         out.object[p] = sps[l].object;
         Vec3 c;
+        bool secondary = false;
         if (reuse == ReverseReuse::visibility &&
-            lookup.find(ray, ray.dir * primary[l].t_sign, hits[l], sps[l], counts, c)) {
-          store(out.colour, p, c);
+            lookup.find(ray, ray.dir * primary[l].t_sign, hits[l], sps[l], counts, c, secondary)) {
           out.status[p] = PixelStatus::reprojected;
           out.received[p] = 1;
+          if (!secondary) {
+            store(out.colour, p, c);
+            continue;
+          }
+          secondary_queue.push(ray, sps[l], p, c);
+          if (secondary_queue.full()) secondary_queue.flush(scene, counts, out.colour);
           continue;
         }
         queue.push(ray, sps[l], p);
@@ -449,6 +471,7 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
       }
     });
     queue.flush(scene, counts, out.colour);
+    secondary_queue.flush(scene, counts, out.colour);
   });
   return out;
 }
