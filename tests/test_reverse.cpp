@@ -120,6 +120,32 @@ TEST(ReverseReprojection, CameraMotionVisibilityReuseReaches40dB) {
   EXPECT_GT(quality[1], quality[0]);
 }
 
+// A keyframe traced for visibility reuse carries each pixel's edges,
+// computed once; a keyframe without them has them computed at every
+// lookup. Both give the same frame, and the record flags edges somewhere
+// (shadow and mirror edges of primitives.nff) and not everywhere.
+TEST(ReverseReprojection, KeyframeEdgesComputedOnceEqualEdgesPerLookup) {
+  const SceneDesc desc = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  RenderStats stats;
+  const PointImage key = trace_point_image(scene, LensArray(camera_at(desc, {})), 0, ReverseReuse::visibility, 0, stats);
+  ASSERT_EQ(key.edges.size(), key.parts.size());
+  size_t shadow = 0, secondary = 0;
+  for (const PointImage::Edges& e : key.edges) shadow += e.shadow != 0, secondary += e.secondary;
+  EXPECT_GT(shadow, 0u);
+  EXPECT_GT(secondary, 0u);
+  EXPECT_LT(shadow + secondary, hits_of(key));
+  PointImage bare = key;
+  bare.edges.clear();
+  const LensArray moved(camera_at(desc, {0.5, 0, 0.25}));
+  const ReverseOptions opt{ReverseReuse::visibility};
+  const ReprojectedFrame with = reverse_reproject(scene, moved, 1, &key, nullptr, opt);
+  const ReprojectedFrame without = reverse_reproject(scene, moved, 1, &bare, nullptr, opt);
+  EXPECT_EQ(with.colour.data, without.colour.data);
+  EXPECT_EQ(with.status, without.status);
+  EXPECT_EQ(with.rays.shadow, without.rays.shadow);
+}
+
 // An object and the camera translated together see the object as the
 // keyframe did: colour reuse maps every hit back through the object's
 // transforms onto its own keyframe pixel. Visibility reuse refuses (a moved

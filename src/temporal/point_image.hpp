@@ -4,8 +4,9 @@
 // pixel line) and the shaded colour.
 //
 // Memory: 36 bytes per pixel (PrimaryHit 24 + RGB float 12), 44 with the
-// reverse reprojection's object ids and depths; a 2048x2048 EIA takes 144
-// (176) MiB per keyframe, and reprojection holds two.
+// reverse reprojection's object ids and depths, 68 with its visibility
+// reuse's shading records (16) and edges (8); a 2048x2048 EIA takes 144
+// (176, 272) MiB per keyframe, and reprojection holds two.
 #pragma once
 
 #include <vector>
@@ -35,6 +36,17 @@ struct PointImage {
   /// W*H, what each pixel's shading rays found (reverse reprojection with
   /// ReverseReuse::visibility); empty otherwise.
   std::vector<ShadeParts> parts;
+  /// Where a pixel's shading may cross an edge (its neighbours in its
+  /// elemental image on the same primitive disagree, temporal/reverse.cpp):
+  /// the lights whose visibility changes there, and whether the light of
+  /// its mirror and refraction rays does. 8 bytes.
+  struct Edges {
+    uint32_t shadow = 0;
+    bool secondary = false;
+  };
+  /// W*H beside `parts`, computed once when the keyframe is traced (reverse
+  /// reprojection looks each pixel up from up to 14 frames); may be empty.
+  std::vector<Edges> edges;
   /// What the reverse reprojection's same-surface test reads of a pixel:
   /// the object id it saw (-1 background) and its line parameter t (as
   /// hits[p].t). One 8-byte record, so a lookup's four neighbours cost one

@@ -40,6 +40,36 @@ struct EyeHit {
   int object = -1;
 };
 
+// Where keyframe pixel idx and its 8 neighbours in the same elemental
+// image on the same primitive disagree, an edge may cross the pixel's own
+// point: `shadow` gets the lights whose visibility changes (their shadow
+// rays are traced), `secondary` whether the light of the mirror and
+// refraction rays changes by more than kSecondaryStep (they are traced).
+constexpr float kSecondaryStep = 1.0f / 255;
+PointImage::Edges pixel_edges(const PointImage& key, size_t idx) {
+  PointImage::Edges e;
+  const LensArray& kc = key.camera;
+  const int W = kc.width(), H = kc.height();
+  const int i = static_cast<int>(idx % W), j = static_cast<int>(idx / W);
+  const LensIndex lens = kc.lens_of_pixel(i, j);
+  const ShadeParts& own_parts = key.parts[idx];
+  const PrimaryHit& own = key.hits[idx];
+  bool secondary = false;
+  for (int dj = -1; dj <= 1; ++dj)
+    for (int di = -1; di <= 1; ++di) {
+      const int ni = i + di, nj = j + dj;
+      if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H || !kc.pixel_in_lens(ni, nj, lens)) continue;
+      const size_t q = static_cast<size_t>(nj) * W + ni;
+      const PrimaryHit& h = key.hits[q];
+      if (h.status != PrimaryHit::kHit || h.prim != own.prim || h.group != own.group || h.kind != own.kind) continue;
+      const ShadeParts& p = key.parts[q];
+      e.shadow |= p.lit ^ own_parts.lit;
+      for (int c = 0; c < 3; ++c) secondary |= std::fabs(p.secondary[c] - own_parts.secondary[c]) > kSecondaryStep;
+    }
+  e.secondary = secondary;
+  return e;
+}
+
 // Answers the hits of a reprojected frame from its keyframes. Called from
 // worker threads: const and thread-safe.
 class PointImageLookup {
@@ -108,11 +138,11 @@ class PointImageLookup {
       const size_t idx = locate(key, line_dir, {sp.position, hit.group, sp.object}, ph);
       if (idx == kNone) continue;
       const ShadeParts& parts = key.image->parts[idx];
-      uint32_t shadow_edges = 0;
-      bool secondary_detail = false;
-      edges(key, idx, shadow_edges, secondary_detail);
-      colour = shade_local(scene_, ray, sp, parts.lit, shadow_edges, counts);
-      secondary = secondary_detail;
+      // Computed once per keyframe pixel where the keyframe was traced for
+      // visibility reuse (up to 14 frames look each pixel up); else here.
+      const PointImage::Edges e = key.image->edges.empty() ? pixel_edges(*key.image, idx) : key.image->edges[idx];
+      colour = shade_local(scene_, ray, sp, parts.lit, e.shadow, counts);
+      secondary = e.secondary;
       if (!secondary) colour += Vec3{parts.secondary[0], parts.secondary[1], parts.secondary[2]};
       return true;
     }
@@ -188,33 +218,6 @@ class PointImageLookup {
       return true;
     }
     return false;
-  }
-
-  // Where keyframe pixel idx and its 8 neighbours in the same elemental
-  // image on the same primitive disagree, an edge may cross the pixel's own
-  // point: `shadow` gets the lights whose visibility changes (their shadow
-  // rays are traced), `secondary` whether the light of the mirror and
-  // refraction rays changes by more than kSecondaryStep (they are traced).
-  static constexpr float kSecondaryStep = 1.0f / 255;
-  void edges(const Key& key, size_t idx, uint32_t& shadow, bool& secondary) const {
-    const LensArray& kc = key.image->camera;
-    const int W = kc.width(), H = kc.height();
-    const int i = static_cast<int>(idx % W), j = static_cast<int>(idx / W);
-    const LensIndex lens = kc.lens_of_pixel(i, j);
-    const ShadeParts& own_parts = key.image->parts[idx];
-    const PrimaryHit& own = key.image->hits[idx];
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int di = -1; di <= 1; ++di) {
-        const int ni = i + di, nj = j + dj;
-        if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H || !kc.pixel_in_lens(ni, nj, lens))
-          continue;
-        const size_t q = static_cast<size_t>(nj) * W + ni;
-        const PrimaryHit& h = key.image->hits[q];
-        if (h.status != PrimaryHit::kHit || h.prim != own.prim || h.group != own.group || h.kind != own.kind) continue;
-        const ShadeParts& p = key.image->parts[q];
-        shadow |= p.lit ^ own_parts.lit;
-        for (int c = 0; c < 3; ++c) secondary |= std::fabs(p.secondary[c] - own_parts.secondary[c]) > kSecondaryStep;
-      }
   }
 
   const RenderScene& scene_;
@@ -512,7 +515,7 @@ ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
 PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
                              int threads, RenderStats& stats) {
   const auto start = std::chrono::steady_clock::now();
-  PointImage key{frame, camera, {}, {}, {}, {}, {}, {}, {}};
+  PointImage key{frame, camera, {}, {}, {}, {}, {}, {}, {}, {}};
   const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights &&
                           !scene.has_tachyon_materials();
   ReprojectedFrame traced = trace_keyframe(scene, camera, key.hits, want_parts ? &key.parts : nullptr, threads);
@@ -520,6 +523,19 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
   key.seen.resize(traced.object.size());
   for (size_t p = 0; p < key.seen.size(); ++p) key.seen[p] = {traced.object[p], key.hits[p].t};
   key.record_groups(scene.accel());
+  if (want_parts) {
+    key.edges.resize(key.parts.size());
+    const int W = camera.width();
+    const ElementalTiles tiles(camera, TileOrder::row_major, 0, -1, 1);
+    for_each_tile(tiles, threads, [&](int t) {
+      const TileRect r = tiles.rect(t);
+      for (int j = r.y0; j < r.y1; ++j)
+        for (int i = r.x0; i < r.x1; ++i) {
+          const size_t p = static_cast<size_t>(j) * W + i;
+          if (key.hits[p].status == PrimaryHit::kHit) key.edges[p] = pixel_edges(key, p);
+        }
+    });
+  }
   stats.rays = traced.rays;
   stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return key;

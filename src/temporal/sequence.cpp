@@ -166,7 +166,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     Traced t = trace_frame(shot, f, true, opt.threads);
     FrameReport report = keyframe_report(f, t.buffers.colour, t.stats, t.seconds);
     auto image = std::make_unique<PointImage>(
-        PointImage{f, t.camera, std::move(t.buffers.primary), std::move(t.buffers.colour), {}, {}, {}, {}, {}});
+        PointImage{f, t.camera, std::move(t.buffers.primary), std::move(t.buffers.colour), {}, {}, {}, {}, {}, {}});
     image->record_groups(shot.scene().accel());
     return std::pair{std::move(image), std::move(report)};
   };
