@@ -103,19 +103,26 @@ void store_pixel(FrameBuffers& fb, const AovSet& aovs, int i, int j, const Vec3&
 
 namespace {
 
+// The primary ray along the line o + t d, which crosses the scene box
+// (grown by `margin`) over [t0, t1]; false when it cannot meet the scene.
+inline bool primary_over(const Vec3& o, const Vec3& d, double t0, double t1, double margin, RecordingMode mode,
+                         PrimaryRay& out) {
+  if (mode == RecordingMode::orthoscopic) {
+    const double start = t1 + margin;
+    out = PrimaryRay{Ray{o + d * start, -d, 0, start - t0 + margin}, start, -1};
+    return true;
+  }
+  if (t1 <= 0) return false;
+  out = PrimaryRay{Ray{o, d, std::fmax(0.0, t0 - margin), t1 + margin}, 0, 1};
+  return true;
+}
+
 // The primary ray along `line`, clipped to `box` (the scene bounds grown by
 // `margin`); false when the line cannot meet the scene.
 inline bool clip_primary(const PixelLine& line, const Bounds3& box, double margin, RecordingMode mode, PrimaryRay& out) {
   double t0, t1;
-  if (!intersect_line_box(line.origin, line.dir, box, t0, t1)) return false;
-  if (mode == RecordingMode::orthoscopic) {
-    const double start = t1 + margin;
-    out = PrimaryRay{Ray{line.origin + line.dir * start, -line.dir, 0, start - t0 + margin}, start, -1};
-    return true;
-  }
-  if (t1 <= 0) return false;
-  out = PrimaryRay{Ray{line.origin, line.dir, std::fmax(0.0, t0 - margin), t1 + margin}, 0, 1};
-  return true;
+  return intersect_line_box(line.origin, line.dir, box, t0, t1) &&
+         primary_over(line.origin, line.dir, t0, t1, margin, mode, out);
 }
 
 Bounds3 grown(const Bounds3& bounds, double margin) {
@@ -204,19 +211,9 @@ void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin,
   double t0[kPacketSize], t1[kPacketSize];
   bool hit[kPacketSize];
   clip_lanes(lines, n, grown(bounds, margin), t0, t1, hit);
-  // clip_primary() from here on, lane by lane.
-  const bool ortho = camera.desc().mode == RecordingMode::orthoscopic;
-  for (int l = 0; l < n; ++l) {
-    ok[l] = hit[l] && (ortho || t1[l] > 0);
-    if (!ok[l]) continue;
-    const Vec3 o{lines.ox[l], lines.oy[l], lines.oz[l]}, d{lines.dx[l], lines.dy[l], lines.dz[l]};
-    if (ortho) {
-      const double start = t1[l] + margin;
-      out[l] = PrimaryRay{Ray{o + d * start, -d, 0, start - t0[l] + margin}, start, -1};
-    } else {
-      out[l] = PrimaryRay{Ray{o, d, std::fmax(0.0, t0[l] - margin), t1[l] + margin}, 0, 1};
-    }
-  }
+  for (int l = 0; l < n; ++l)
+    ok[l] = hit[l] && primary_over(Vec3{lines.ox[l], lines.oy[l], lines.oz[l]}, Vec3{lines.dx[l], lines.dy[l], lines.dz[l]},
+                                   t0[l], t1[l], margin, camera.desc().mode, out[l]);
 }
 
 Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
