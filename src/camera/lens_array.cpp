@@ -141,16 +141,13 @@ void LensArray::lines(const int i[], const int j[], const double u[], const doub
   for (int k = 0; k < n; ++k) {
     // A square lens's own pixels skip lens_of_pixel's two integer
     // divisions (a sixth of the eye rays' generation).
-    if (square && lens.x >= 0 && pixel_in_lens(i[k], j[k], lens)) {
-      cx[k] = c.x, cy[k] = c.y;
-      out.ox[k] = c_world.x, out.oy[k] = c_world.y, out.oz[k] = c_world.z;
-      continue;
-    }
-    const LensIndex l = lens_of_pixel(i[k], j[k]);
-    if (!(l == lens)) {
-      lens = l;
-      c = lens_centre_local(l);
-      c_world = desc_.frame.to_world_point(c);
+    if (!(square && lens.x >= 0 && pixel_in_lens(i[k], j[k], lens))) {
+      const LensIndex l = lens_of_pixel(i[k], j[k]);
+      if (!(l == lens)) {
+        lens = l;
+        c = lens_centre_local(l);
+        c_world = desc_.frame.to_world_point(c);
+      }
     }
     cx[k] = c.x, cy[k] = c.y;
     out.ox[k] = c_world.x, out.oy[k] = c_world.y, out.oz[k] = c_world.z;
