@@ -1,7 +1,8 @@
 #include "accel/accel_scene.hpp"
 
+#include "math/vec_pair.hpp"
+
 #include <embree3/rtcore.h>
-#include <emmintrin.h>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -508,24 +509,6 @@ void AccelScene::intersect_raw(const RayPacket& p, RawHit raw[kPacketSize], bool
   }
 }
 
-namespace {
-
-// Two lanes of a double across an SSE2 register: lane 0 low.
-struct Pair {
-  __m128d x, y, z;
-};
-inline __m128d mul(__m128d a, __m128d b) { return _mm_mul_pd(a, b); }
-inline __m128d add(__m128d a, __m128d b) { return _mm_add_pd(a, b); }
-inline __m128d sub(__m128d a, __m128d b) { return _mm_sub_pd(a, b); }
-inline __m128d dot(const Pair& a, const Pair& b) { return add(add(mul(a.x, b.x), mul(a.y, b.y)), mul(a.z, b.z)); }
-inline Pair cross(const Pair& a, const Pair& b) {
-  return {sub(mul(a.y, b.z), mul(a.z, b.y)), sub(mul(a.z, b.x), mul(a.x, b.z)), sub(mul(a.x, b.y), mul(a.y, b.x))};
-}
-inline Pair pair_of(const Vec3& a, const Vec3& b) { return {_mm_set_pd(b.x, a.x), _mm_set_pd(b.y, a.y), _mm_set_pd(b.z, a.z)}; }
-inline double lane(__m128d v, int l) { return l == 0 ? _mm_cvtsd_f64(v) : _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); }
-
-}  // namespace
-
 void AccelScene::refine_triangle_pair(const Ray* const r[2], const float t_guess[2], Hit* const hit[2]) const {
   Vec3 v0[2], v1[2], v2[2];
   for (int l = 0; l < 2; ++l) {
@@ -538,32 +521,23 @@ void AccelScene::refine_triangle_pair(const Ray* const r[2], const float t_guess
     v0[l] = vtx(0), v1[l] = vtx(1), v2[l] = vtx(2);
   }
   // refine()'s triangle case for two lanes, in its operations and order.
-  const Pair o = pair_of(r[0]->org, r[1]->org), d = pair_of(r[0]->dir, r[1]->dir);
-  const Pair a = pair_of(v0[0], v0[1]), b = pair_of(v1[0], v1[1]), c = pair_of(v2[0], v2[1]);
-  const Pair e1{sub(b.x, a.x), sub(b.y, a.y), sub(b.z, a.z)}, e2{sub(c.x, a.x), sub(c.y, a.y), sub(c.z, a.z)};
-  const Pair m = cross(e1, e2);
-  const __m128d len = _mm_sqrt_pd(dot(m, m)), zero = _mm_setzero_pd();
-  // normalize(): m * (1 / len) where len > 0, else m.
-  const __m128d inv = _mm_div_pd(_mm_set1_pd(1.0), len), positive = _mm_cmpgt_pd(len, zero);
-  auto unit = [&](__m128d v) { return _mm_or_pd(_mm_and_pd(positive, mul(v, inv)), _mm_andnot_pd(positive, v)); };
-  const Pair n{unit(m.x), unit(m.y), unit(m.z)};
+  const Vec3Pair o = pair_of(r[0]->org, r[1]->org), d = pair_of(r[0]->dir, r[1]->dir);
+  const Vec3Pair a = pair_of(v0[0], v0[1]), e1 = pair_of(v1[0], v1[1]) - a, e2 = pair_of(v2[0], v2[1]) - a;
+  const Vec3Pair m = cross(e1, e2), n = normalize(m);
   const __m128d dn = dot(d, n);
-  const Pair w{sub(a.x, o.x), sub(a.y, o.y), sub(a.z, o.z)};
   // A ray in the triangle's plane keeps Embree's t.
-  const __m128d edge_on = _mm_cmpeq_pd(dn, zero);
-  const __m128d t = _mm_or_pd(_mm_andnot_pd(edge_on, _mm_div_pd(dot(w, n), dn)),
-                              _mm_and_pd(edge_on, _mm_set_pd(t_guess[1], t_guess[0])));
-  const Pair p{add(o.x, mul(d.x, t)), add(o.y, mul(d.y, t)), add(o.z, mul(d.z, t))};
+  const __m128d t = select(_mm_cmpeq_pd(dn, _mm_setzero_pd()), _mm_set_pd(t_guess[1], t_guess[0]),
+                           _mm_div_pd(dot(a - o, n), dn));
+  const Vec3Pair p = along(o, d, t), q = p - a;
   const __m128d area = dot(m, n);
-  const Pair q{sub(p.x, a.x), sub(p.y, a.y), sub(p.z, a.z)};
   const __m128d u = _mm_div_pd(dot(cross(q, e2), n), area), v = _mm_div_pd(dot(cross(e1, q), n), area);
   for (int l = 0; l < 2; ++l) {
     Hit& h = *hit[l];
     h.t = lane(t, l);
     h.u = lane(u, l);
     h.v = lane(v, l);
-    h.p_object = {lane(p.x, l), lane(p.y, l), lane(p.z, l)};
-    h.ng = {lane(n.x, l), lane(n.y, l), lane(n.z, l)};
+    h.p_object = lane(p, l);
+    h.ng = lane(n, l);
   }
 }
 

@@ -1,8 +1,8 @@
 #include "camera/lens_array.hpp"
 
-#include <fmt/format.h>
+#include "math/vec_pair.hpp"
 
-#include <emmintrin.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -153,31 +153,19 @@ void LensArray::lines(const int i[], const int j[], const double u[], const doub
     out.ox[k] = c_world.x, out.oy[k] = c_world.y, out.oz[k] = c_world.z;
   }
   // line(): d = normalize(c - p), p = ((i + u) s - W s/2, H s/2 - (j + v) s,
-  // -g), so d's z before normalising is 0 - (-g) = g exactly; then
-  // to_world_dir(d) = (X d.x + Y d.y) + Z d.z, coordinate by coordinate.
+  // -g), so d's z before normalising is 0 - (-g) = g exactly.
   const Frame& f = desc_.frame;
-  const __m128d s = _mm_set1_pd(s_), hw = _mm_set1_pd(half_w_), hh = _mm_set1_pd(half_h_), dz = _mm_set1_pd(desc_.gap);
-  const __m128d one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
+  const __m128d s = _mm_set1_pd(s_), hw = _mm_set1_pd(half_w_), hh = _mm_set1_pd(half_h_), g = _mm_set1_pd(desc_.gap);
   int k = 0;
   for (; k + 1 < n; k += 2) {
     const __m128d fi = _mm_set_pd(i[k + 1], i[k]), fj = _mm_set_pd(j[k + 1], j[k]);
     const __m128d px = _mm_sub_pd(_mm_mul_pd(_mm_add_pd(fi, _mm_loadu_pd(u + k)), s), hw);
     const __m128d py = _mm_sub_pd(hh, _mm_mul_pd(_mm_add_pd(fj, _mm_loadu_pd(v + k)), s));
-    const __m128d dx = _mm_sub_pd(_mm_load_pd(cx + k), px), dy = _mm_sub_pd(_mm_load_pd(cy + k), py);
-    const __m128d len =
-        _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz)));
-    // normalize(): a * (1 / l) where l > 0, else a (l is at least g here).
-    const __m128d inv = _mm_div_pd(one, len);
-    const __m128d positive = _mm_cmpgt_pd(len, zero);
-    auto unit = [&](__m128d a) { return _mm_or_pd(_mm_and_pd(positive, _mm_mul_pd(a, inv)), _mm_andnot_pd(positive, a)); };
-    const __m128d ux = unit(dx), uy = unit(dy), uz = unit(dz);
-    auto world = [&](double ax, double ay, double az) {
-      return _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_set1_pd(ax), ux), _mm_mul_pd(_mm_set1_pd(ay), uy)),
-                        _mm_mul_pd(_mm_set1_pd(az), uz));
-    };
-    _mm_store_pd(out.dx + k, world(f.x.x, f.y.x, f.z.x));
-    _mm_store_pd(out.dy + k, world(f.x.y, f.y.y, f.z.y));
-    _mm_store_pd(out.dz + k, world(f.x.z, f.y.z, f.z.z));
+    const Vec3Pair d = to_world_dir(
+        f, normalize(Vec3Pair{_mm_sub_pd(_mm_load_pd(cx + k), px), _mm_sub_pd(_mm_load_pd(cy + k), py), g}));
+    _mm_store_pd(out.dx + k, d.x);
+    _mm_store_pd(out.dy + k, d.y);
+    _mm_store_pd(out.dz + k, d.z);
   }
   for (; k < n; ++k) {
     const Vec3 d = f.to_world_dir(normalize(Vec3{cx[k], cy[k], 0} - panel_point_local(i[k], j[k], u[k], v[k])));
