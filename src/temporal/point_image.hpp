@@ -44,8 +44,9 @@ struct PointImage {
     uint32_t shadow = 0;
     bool secondary = false;
   };
-  /// W*H beside `parts`, computed once when the keyframe is traced (reverse
-  /// reprojection looks each pixel up from up to 14 frames); may be empty.
+  /// W*H beside `parts` (required with them), computed once when the
+  /// keyframe is traced: reverse reprojection looks each pixel up from up
+  /// to 14 frames.
   std::vector<Edges> edges;
   /// What the reverse reprojection's same-surface test reads of a pixel:
   /// the object id it saw (-1 background) and its line parameter t (as

@@ -45,6 +45,8 @@ struct EyeHit {
 // point: `shadow` gets the lights whose visibility changes (their shadow
 // rays are traced), `secondary` whether the light of the mirror and
 // refraction rays changes by more than kSecondaryStep (they are traced).
+// Worked out once per pixel when the keyframe is traced (trace_point_image):
+// up to 14 frames look each keyframe pixel up.
 constexpr float kSecondaryStep = 1.0f / 255;
 PointImage::Edges pixel_edges(const PointImage& key, size_t idx) {
   PointImage::Edges e;
@@ -138,9 +140,7 @@ class PointImageLookup {
       const size_t idx = locate(key, line_dir, {sp.position, hit.group, sp.object}, ph);
       if (idx == kNone) continue;
       const ShadeParts& parts = key.image->parts[idx];
-      // Computed once per keyframe pixel where the keyframe was traced for
-      // visibility reuse (up to 14 frames look each pixel up); else here.
-      const PointImage::Edges e = key.image->edges.empty() ? pixel_edges(*key.image, idx) : key.image->edges[idx];
+      const PointImage::Edges& e = key.image->edges[idx];
       colour = shade_local(scene_, ray, sp, parts.lit, e.shadow, counts);
       secondary = e.secondary;
       if (!secondary) colour += Vec3{parts.secondary[0], parts.secondary[1], parts.secondary[2]};
@@ -244,6 +244,10 @@ void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse
     throw std::invalid_argument(fmt::format(
         "the point image of frame {} has {} shading records for {} pixels: trace it for visibility reuse", k->frame,
         k->parts.size(), pixels));
+  if (reuse == ReverseReuse::visibility && k->edges.size() != pixels)
+    throw std::invalid_argument(fmt::format(
+        "the point image of frame {} has {} edge records for {} pixels: trace it for visibility reuse", k->frame,
+        k->edges.size(), pixels));
 }
 
 void store(ImageBuffer& image, size_t p, const Vec3& c) {
