@@ -15,7 +15,10 @@
 #   6. the floor under each Tachyon ratio: Embree's own CPU seconds in the
 #      EIA and in a 2048x2048 pinhole view of the same scene (the same rays,
 #      coherent), and the whole command's time if holoray's own code took
-#      none: what the targets of section 2 would leave that code.
+#      none: what the targets of section 2 would leave that code;
+#   7. peak memory (the largest resident set, from the kernel's rusage of
+#      each command) of the 2048x2048 EIAs in both builds, and an 8192x8192
+#      EIA of teapot_s6 rendered by this build.
 # The baseline is built from BASE (a commit; default: the commit before
 # the image-library change) into a scratch folder, or taken from BASE_BIN.
 # Needs ../shared, tachyon and perf (linux-perf).
@@ -197,6 +200,29 @@ for s in scenes:
     print(f"| {s} | {total_rays(eia, f) / 1e6:.1f} / {total_rays(pinhole, f) / 1e6:.1f} | {e['embree']:.2f} | "
           f"{p['embree']:.2f} | {e['holoray']:.2f} | {floor:.3f} | {t:.3f} | {t / floor:.2f}x | "
           f"{f'{target:g}x' if target else ''} | {allowed} |")
+print()
+
+# 7. peak memory
+def peak(cmd):
+    """The command's largest resident set in MiB (the kernel's own count,
+    ru_maxrss of the child) and its wall seconds."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, ru = os.wait4(p.pid, 0)
+    if status != 0:
+        sys.exit(f"failed: {' '.join(cmd)}")
+    return ru.ru_maxrss / 1024, time.perf_counter() - t0
+print("## Peak memory (largest resident set, MiB; one run each)\n")
+print("| scene | EIA | this build | baseline | this / baseline |\n|---|---|---:|---:|---:|")
+for s in scenes:
+    f = f"{nff}/{s}.nff"
+    n, _ = peak([new, "render", f] + eia + ["-o", f"{tmp}/n.png", "-q"])
+    b, _ = peak([base, "render", f] + eia + ["-o", f"{tmp}/b.png", "-q"])
+    print(f"| {s} | 2048x2048 | {n:.1f} | {b:.1f} | {n / b:.3f}x |")
+n, secs = peak([new, "render", f"{nff}/teapot_s6.nff", "--lenses", "512x512", "--pixels-per-lens", "16",
+                "-o", f"{tmp}/big.png", "-q"])
+os.remove(f"{tmp}/big.png")
+print(f"| teapot_s6 | 8192x8192 | {n:.1f} ({secs:.1f} s) | | |")
 PY
 cp "$tmp/speed_results.md" bench/speed_results.md
 cat bench/speed_results.md
