@@ -121,3 +121,45 @@ TEST(Shapes, MeetsAgreesWithTheFullIntersectionOnRandomSegments) {
   EXPECT_GT(met, 25000);
   EXPECT_GT(missed, 25000);
 }
+
+// The sphere test rejects most misses before its division (sphere_hit's
+// margin): on lines that graze a sphere, from near and from up to 1e6
+// radii away, its answer is the one that the projection of the centre onto
+// the line gives (the test before that rejection, here in long double),
+// except within a few ulps of tangency where rounding decides either way.
+TEST(Sphere, QuickRejectionAgreesWithTheProjectionOnGrazingLines) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int hits = 0, misses = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const Sphere s{{u(rng), u(rng), u(rng)}, 0.01 + std::fabs(u(rng))};
+    // A unit direction, a point at distance r (1 + e) from the centre off
+    // the line, and an origin up to 1e6 radii back along it.
+    Vec3 d = normalize(Vec3{u(rng), u(rng), u(rng)});
+    Vec3 side = normalize(cross(d, Vec3{u(rng), u(rng), u(rng)}));
+    const double e = std::ldexp(u(rng), -static_cast<int>(rng() % 50));
+    const double back = std::ldexp(std::fabs(u(rng)), static_cast<int>(rng() % 21)) * s.radius;
+    const Vec3 o = s.centre + side * (s.radius * (1 + e)) - d * back;
+    d = d * (0.5 + std::fabs(u(rng)));  // any length
+    // The projection, in long double: h2 = r^2 - |oc + d tc|^2.
+    long double ocd = 0, dd = 0, q2 = 0;
+    const long double oc[3] = {static_cast<long double>(o.x) - s.centre.x, static_cast<long double>(o.y) - s.centre.y,
+                               static_cast<long double>(o.z) - s.centre.z};
+    const long double dl[3] = {d.x, d.y, d.z};
+    for (int c = 0; c < 3; ++c) ocd += oc[c] * dl[c], dd += dl[c] * dl[c];
+    for (int c = 0; c < 3; ++c) q2 += (oc[c] - dl[c] * ocd / dd) * (oc[c] - dl[c] * ocd / dd);
+    const long double h2 = static_cast<long double>(s.radius) * s.radius - q2;
+    // Rounding in double decides within ~1e-12 of tangency (relative to the
+    // scale of the sum), the same either way the test is written.
+    const long double scale = static_cast<long double>(s.radius) * s.radius + q2 + ocd * ocd / dd;
+    if (std::fabs(static_cast<double>(h2 / scale)) < 1e-12) continue;
+    double t;
+    Vec3 n;
+    const bool met = h2 > 0;
+    ASSERT_EQ(meets_sphere(s, o, d, 0, INFINITY), met) << "line " << k << " e " << e << " back " << back;
+    ASSERT_EQ(intersect_sphere(s, o, d, 0, INFINITY, t, n), met) << "line " << k;
+    (met ? hits : misses)++;
+  }
+  EXPECT_GT(hits, 40000);
+  EXPECT_GT(misses, 40000);
+}

@@ -36,10 +36,18 @@ bool sphere_hit(const Sphere& s, const Vec3& o, const Vec3& d, double tnear, dou
   const double r = std::fabs(s.radius);
   const double a = dot(d, d);
   const Vec3 oc = o - s.centre;
+  const double b = dot(oc, d), r2 = r * r, cc = dot(oc, oc);
+  // Most of Embree's calls are rays that enter the sphere's box and miss it
+  // (balls_s4: 83 %). a times the h2 below is b^2 + a (r^2 - |oc|^2),
+  // here without the division's latency; the rounding errors of this sum
+  // and of a h2 are each below about 25 epsilon a (r^2 + |oc|^2), so past
+  // a margin of 1e-13 (about 450 epsilon) it rejects only lines that the
+  // exact test below rejects too: the answers are the same.
+  if (b * b + a * (r2 - cc) < -1e-13 * a * (r2 + cc)) return false;
   // Project the centre onto the line first: keeps precision when the origin is far away.
-  const double tc = -dot(oc, d) / a;
+  const double tc = -b / a;
   const Vec3 q = oc + d * tc;
-  const double h2 = r * r - dot(q, q);
+  const double h2 = r2 - dot(q, q);
   if (h2 < 0) return false;
   const double h = std::sqrt(h2 / a);
   const double roots[2] = {tc - h, tc + h};
