@@ -19,4 +19,14 @@ ImageBuffer::ImageBuffer(int w, int h, int c, float fill) : width(w), height(h),
   });
 }
 
+ImageBuffer ImageBuffer::unset(int w, int h, int c) {
+  ImageBuffer b;
+  b.width = w, b.height = h, b.channels = c;
+  const size_t n = static_cast<size_t>(w) * h * c;
+  b.data.reserve(n);
+  advise_huge_pages(b.data.data(), n * sizeof(float));
+  b.data.resize(n);  // FloatSamples: not zeroed
+  return b;
+}
+
 }  // namespace holoray

@@ -310,11 +310,13 @@ void take_pixel(ReprojectedFrame& out, const PointImage& key, size_t p) {
   if (key.seen[p].object >= 0) out.status[p] = PixelStatus::reprojected, out.received[p] = 1;
 }
 
-// Frame setup shared by keyframes and reprojected frames.
+// Frame setup shared by keyframes and reprojected frames. Each of them
+// writes every pixel's colour (the packets cover every tile's rectangle;
+// a copy takes every pixel), so the colour is left unset.
 ReprojectedFrame blank_frame(const LensArray& camera) {
   const size_t n = static_cast<size_t>(camera.pixel_count());
   ReprojectedFrame out;
-  out.colour = ImageBuffer(camera.width(), camera.height(), 3);
+  out.colour = ImageBuffer::unset(camera.width(), camera.height(), 3);
   out.status.assign(n, PixelStatus::traced);
   out.received.assign(n, 0);
   out.object.assign(n, -1);
