@@ -6,11 +6,8 @@
 
 namespace holoray {
 
-ImageBuffer::ImageBuffer(int w, int h, int c, float fill) : width(w), height(h), channels(c) {
-  const size_t n = static_cast<size_t>(w) * h * c;
-  data.reserve(n);
-  advise_huge_pages(data.data(), n * sizeof(float));
-  data.resize(n);
+ImageBuffer::ImageBuffer(int w, int h, int c, float fill) : ImageBuffer(unset(w, h, c)) {
+  const size_t n = data.size();
   // In pieces of one 2 MiB page: each page is first touched by one thread.
   constexpr size_t kPiece = (size_t{2} << 20) / sizeof(float);
   parallel_each((n + kPiece - 1) / kPiece, [&](size_t k) {
