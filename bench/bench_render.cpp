@@ -5,7 +5,6 @@
 // Whitted shading per frame in each style, and the paper's Table 3: the time
 // to trace the first lens in each style. All use the same oneTBB schedule.
 #include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
 #include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
@@ -17,6 +16,7 @@
 #include <string>
 #include <tuple>
 
+#include "accel/embree_api.hpp"
 #include "camera/placement.hpp"
 #include "render/renderer.hpp"
 #include "render/tiles.hpp"
@@ -270,11 +270,8 @@ void BM_EmbreePacket(benchmark::State& state, const std::string& name) {
       for (auto& id : p.hit.geomID) id = RTC_INVALID_GEOMETRY_ID;
     state.ResumeTiming();
     tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 256), [&](const tbb::blocked_range<int64_t>& r) {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       for (int64_t k = r.begin(); k != r.end(); ++k)
-        rtcIntersect16(f.valid[static_cast<size_t>(k)].lane, scene, &ctx, &work[static_cast<size_t>(k)]);
+        embree::intersect16(f.valid[static_cast<size_t>(k)].lane, scene, work[static_cast<size_t>(k)], true);
     });
   }
   state.counters["rays"] = benchmark::Counter(static_cast<double>(f.rays.size() * state.iterations()), benchmark::Counter::kIsRate);
@@ -293,10 +290,7 @@ void BM_EmbreeRaw(benchmark::State& state, const std::string& name) {
     for (auto& rh : work) rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     state.ResumeTiming();
     tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 4096), [&](const tbb::blocked_range<int64_t>& r) {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      for (int64_t k = r.begin(); k != r.end(); ++k) rtcIntersect1(scene, &ctx, &work[static_cast<size_t>(k)]);
+      for (int64_t k = r.begin(); k != r.end(); ++k) embree::intersect1(scene, work[static_cast<size_t>(k)], true);
     });
   }
   state.counters["rays"] = benchmark::Counter(static_cast<double>(n * state.iterations()), benchmark::Counter::kIsRate);

@@ -18,7 +18,7 @@ packages=(
   blender                   # the add-on's tests (tests/blender), headless: Debian's Blender, which embeds Debian's python3
   xvfb                      # docs/blender/screenshots.sh: Blender's real interface, for the guide's pictures
   libopenmpi-dev openmpi-bin  # mpirun -np N holoray animate|render (optional in CMake; installed so the README's commands build it)
-  clang libclang-rt-14-dev  # fuzz/run.sh and scripts/sanitize.sh
+  clang libclang-rt-dev     # fuzz/run.sh and scripts/sanitize.sh (the release's own clang and its runtime)
   hyperfine                 # bench/run_startup_deps.sh: start-up per library
   tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray and tachyon the pinhole tests' references
   tachyon-doc               # bench/run_tachyon_compare.sh: Tachyon's manual and example scenes

@@ -46,8 +46,10 @@ def command(binary, scene, settings, gltf, output, camera_object, width, height)
 def _fill(render_pass, px):
     """A pass's pixels from (pixels, channels) values, Blender's rows bottom up.
     foreach_set takes the buffer whole: 2 ms for 1024x1024 RGBA, where
-    assigning `rect` converts value by value (336 ms)."""
-    render_pass.rect.foreach_set(np.ascontiguousarray(px, dtype=np.float32))
+    assigning `rect` converts value by value (336 ms). Blender 4.1 and later
+    take the values flat; before, one row per pixel."""
+    px = np.ascontiguousarray(px, dtype=np.float32)
+    render_pass.rect.foreach_set(px.reshape(-1) if bpy.app.version >= (4, 1, 0) else px)
 
 
 def read_exr(path, width, height):
@@ -142,8 +144,9 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         layer = result.layers[0]
         if s.camera == "QUILT":  # holoray names a quilt by its layout: out_qsCxRaA.exr
             output = next(iter(glob.glob(os.path.join(workdir, "out_qs*.exr"))), output)
-        # Blender's own reader straight into the layer (EXR to Combined, in C).
-        layer.load_from_file(output)
+        # Blender's own EXR reader, then the pixels set whole. (RenderLayer.load_from_file
+        # reads an EXR into Combined in 3.4 but leaves it black in 4.3.)
+        _fill(layer.passes["Combined"], read_exr(output, width, height))
         for aov, name, channels, _, _ in self._PASSES:
             if aov in aovs and name in layer.passes:
                 px = read_exr(f"{os.path.splitext(output)[0]}.{aov}.exr", width, height)

@@ -1,8 +1,8 @@
 #include "accel/accel_scene.hpp"
 
+#include "accel/embree_api.hpp"
 #include "math/vec_pair.hpp"
 
-#include <embree3/rtcore.h>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -449,14 +449,11 @@ void AccelScene::resolve(const Ray& r, unsigned geom_id, unsigned inst_id, unsig
 }
 
 bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence, bool refined) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherence == RayCoherence::coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   RTCRayHit rh;
   rh.ray = to_rtc_ray(r);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx, &rh);
+  embree::intersect1(impl_->scene, rh, coherence == RayCoherence::coherent);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
   resolve(r, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, ng, rh.hit.u, rh.hit.v, rh.ray.tfar, hit, refined);
@@ -490,9 +487,6 @@ void to_rtc_packet(const RayPacket& p, RTCRayK& ray, int valid[kPacketSize]) {
 void AccelScene::intersect_raw(const RayPacket& p, RawHit raw[kPacketSize], bool found[kPacketSize],
                                RayCoherence coherence) const {
   static_assert(kPacketSize == 16, "the packet kernels below are Embree's 16-wide ones");
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherence == RayCoherence::coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) int valid[kPacketSize];
   alignas(64) RTCRayHit16 rh;
   to_rtc_packet(p, rh.ray, valid);
@@ -500,7 +494,7 @@ void AccelScene::intersect_raw(const RayPacket& p, RawHit raw[kPacketSize], bool
     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtcIntersect16(valid, impl_->scene, &ctx, &rh);
+  embree::intersect16(valid, impl_->scene, rh, coherence == RayCoherence::coherent);
   for (int k = 0; k < kPacketSize; ++k) {
     found[k] = p.active[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
     if (!found[k]) continue;
@@ -588,23 +582,19 @@ void AccelScene::primitive_of(const RawHit& raw, uint32_t& group, PrimKind& kind
 }
 
 namespace {
-// The context of a shadow packet. Embree 3.13.5's coherent occlusion packets
-// loop forever in a scene with instances (seen on animated glTF shots):
-// coherent only without.
-RTCIntersectContext occlusion_context(RayCoherence coherence, bool instanced) {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherence == RayCoherence::coherent && !instanced) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  return ctx;
+// Whether a shadow packet takes the coherent traversal. Embree 3.13.5's
+// coherent occlusion packets loop forever in a scene with instances (seen
+// on animated glTF shots): coherent only without.
+bool coherent_occlusion(RayCoherence coherence, bool instanced) {
+  return coherence == RayCoherence::coherent && !instanced;
 }
 }  // namespace
 
 void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
-  RTCIntersectContext ctx = occlusion_context(coherence, impl_->instanced);
   alignas(64) int valid[kPacketSize];
   alignas(64) RTCRay16 ray;
   to_rtc_packet(p, ray, valid);
-  rtcOccluded16(valid, impl_->scene, &ctx, &ray);
+  embree::occluded16(valid, impl_->scene, ray, coherent_occlusion(coherence, impl_->instanced));
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.active[k] && ray.tfar[k] == -INFINITY;
 }
 
@@ -613,9 +603,9 @@ static_assert(sizeof(RTCRay16) == offsetof(ShadowPacket, valid) && offsetof(Shad
               offsetof(ShadowPacket, flags) == offsetof(RTCRay16, flags));
 
 void AccelScene::occluded(ShadowPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
-  RTCIntersectContext ctx = occlusion_context(coherence, impl_->instanced);
   static_assert(alignof(ShadowPacket) >= alignof(RTCRay16));
-  rtcOccluded16(p.valid, impl_->scene, &ctx, reinterpret_cast<RTCRay16*>(&p));
+  embree::occluded16(p.valid, impl_->scene, *reinterpret_cast<RTCRay16*>(&p),
+                     coherent_occlusion(coherence, impl_->instanced));
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.valid[k] != 0 && p.tfar[k] == -INFINITY;
 }
 
@@ -633,10 +623,8 @@ bool AccelScene::intersect_primitive(const Ray& r, uint32_t group, PrimKind kind
 }
 
 bool AccelScene::occluded(const Ray& r) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
   RTCRay ray = to_rtc_ray(r);
-  rtcOccluded1(impl_->scene, &ctx, &ray);
+  embree::occluded1(impl_->scene, ray, false);
   return ray.tfar == -INFINITY;
 }
 

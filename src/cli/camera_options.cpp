@@ -29,7 +29,7 @@ std::array<CLI::Option*, 2> add_camera_options(CLI::App& cmd, CameraOptions& o, 
           ->excludes(display);
   cmd.add_option("--views", o.looking_glass_views,
                  "With --looking-glass: the views N of the quilt the native image is the continuous version of")
-      ->check(CLI::Range(1, 4096))
+      ->check(in_range(1, 4096))
       ->needs(glass)
       ->capture_default_str();
   return {display, glass};

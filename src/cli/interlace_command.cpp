@@ -16,7 +16,7 @@ namespace holoray::cli {
 
 CLI::App* add_interlace_command(CLI::App& app, InterlaceCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("interlace", "A Looking Glass's native panel image from a quilt and the device's calibration");
-  cmd->add_option("quilt", o.input, "Quilt image (views tiled as Looking Glass tools do: view 0 bottom left), e.g. NAME_qs8x6a0.75.png")->required();
+  cmd->add_option("quilt-image", o.input, "Quilt image (views tiled as Looking Glass tools do: view 0 bottom left), e.g. NAME_qs8x6a0.75.png")->required();
   cmd->add_option("--looking-glass", o.calibration, "The device's calibration file (visual.json)")->required();
   cmd->add_option("-o,--output", o.output, "Native panel image (.png or .exr)")->required();
   cmd->add_option("--quilt", o.quilt, "Columns x rows of the quilt (default: read from the file's _qsCxR name)");

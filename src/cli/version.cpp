@@ -3,11 +3,11 @@
 #include <CLI/Version.hpp>
 #include <OpenEXR/OpenEXRConfig.h>
 #include <assimp/version.h>
-#include <embree3/rtcore_config.h>
 #include <fmt/format.h>
 #include <oneapi/tbb/version.h>
 #include <png.h>
 
+#include "accel/embree_api.hpp"  // RTC_VERSION_STRING of the Embree built against
 #include "cluster/mpi_world.hpp"
 #include "holoray_version.hpp"  // generated: HOLORAY_VERSION, HOLORAY_GIT_COMMIT
 

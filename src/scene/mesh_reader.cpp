@@ -6,6 +6,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/version.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -856,17 +857,22 @@ class MeshReader {
     if (s_.mNumCameras > 0) {
       const aiCamera& c = *s_.mCameras[0];
       const aiMatrix4x4 m = global(c.mName);
-      // assimp 5.2's glTF importer departs from aiCamera's documentation:
-      // it copies the node's translation into mPosition (which the node
-      // transform already holds) and stores yfov * aspect, the full angle,
-      // as mHorizontalFOV (documented as half the horizontal angle).
+      // assimp's glTF importer departs from aiCamera's documentation: it
+      // copies the node's translation into mPosition (which the node
+      // transform already holds), and mHorizontalFOV (documented as half the
+      // horizontal angle) holds a full angle made from the file's yfov:
+      // yfov * aspect in assimp 5.2 (Debian 12), the true horizontal angle
+      // 2 atan(aspect tan(yfov / 2)) from 5.3 on (Debian 13 has 5.4).
       // MeshImport.GltfCameraAndPointLightPlaceTheViewAndLight checks both.
       vp.from = to_vec(m * (gltf_ ? aiVector3D(0, 0, 0) : c.mPosition));
       vp.at = vp.from + to_vec(aiMatrix3x3(m) * c.mLookAt);
       vp.up = to_vec(aiMatrix3x3(m) * c.mUp);
       // NFF's angle is the full vertical one (the pinhole camera's height).
       const double aspect = c.mAspect > 0 ? c.mAspect : 1.0;
-      const double vertical = gltf_ ? c.mHorizontalFOV / aspect : 2 * std::atan(std::tan(c.mHorizontalFOV) / aspect);
+      const bool assimp_5_3 = aiGetVersionMajor() > 5 || (aiGetVersionMajor() == 5 && aiGetVersionMinor() >= 3);
+      const double vertical = !gltf_      ? 2 * std::atan(std::tan(c.mHorizontalFOV) / aspect)
+                              : assimp_5_3 ? 2 * std::atan(std::tan(c.mHorizontalFOV / 2) / aspect)
+                                           : c.mHorizontalFOV / aspect;
       vp.angle_deg = vertical * 180 / std::numbers::pi;
       if (animation_ && animation_->camera) {
         MeshAnimation::Camera& moving = *animation_->camera;
