@@ -11,11 +11,15 @@
 # installs into it from nothing. Everything runs inside a private mount
 # namespace (unshare -m), so nothing stays mounted, and the root is deleted
 # at the end. A root that cannot be made fails the run; nothing is skipped.
-# Needs root (debootstrap, unshare, chroot). Usage: bash scripts/debian13_check.sh
+# Needs root (debootstrap, unshare, chroot): runs itself under sudo otherwise. Usage: bash scripts/debian13_check.sh
+# (KEEP_ROOT=DIR: keep the root, with its build, in DIR afterwards, for
+# bench/run_embree_bench.sh; DIR must not exist yet.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$PWD
-[ "$(id -u)" -eq 0 ] || { echo "debian13_check: run as root (debootstrap, unshare -m and chroot need it)" >&2; exit 1; }
+# debootstrap, unshare -m and chroot need root.
+[ "$(id -u)" -eq 0 ] || exec sudo --preserve-env=CI,HOLORAY_DEBIAN_MIRROR,HOLORAY_DEBIAN13_CACHE,KEEP_ROOT \
+  HOME="$HOME" bash "$0" "$@"
 mirror=${HOLORAY_DEBIAN_MIRROR:-http://deb.debian.org/debian}
 cache=${HOLORAY_DEBIAN13_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/holoray}
 mkdir -p "$cache/apt-archives/partial"
@@ -40,8 +44,14 @@ if [ ! -s "$base" ]; then
   rm -rf --one-file-system "$made"
 fi
 
-root=$(mktemp -d /var/tmp/holoray-debian13.XXXXXX)
-trap 'rm -rf --one-file-system "$root"' EXIT
+if [ -n "${KEEP_ROOT:-}" ]; then
+  [ ! -e "$KEEP_ROOT" ] || { echo "debian13_check: KEEP_ROOT=$KEEP_ROOT exists already" >&2; exit 1; }
+  mkdir -p "$KEEP_ROOT"
+  root=$(cd "$KEEP_ROOT" && pwd)
+else
+  root=$(mktemp -d /var/tmp/holoray-debian13.XXXXXX)
+  trap 'rm -rf --one-file-system "$root"' EXIT
+fi
 tar -C "$root" -xf "$base"
 git clone -q --no-hardlinks "$repo" "$root/root/holoray"
 mkdir -p "$root/root/shared"
@@ -53,9 +63,9 @@ echo "== in Debian 13, as the README says:"
 printf '%s\n' "$quick_start"
 
 # Inside a private mount namespace: the kernel's file systems, the network's
-# resolver, ../shared read-only and apt's download cache; then chroot.
-unshare -m --propagation private bash -euo pipefail -s "$root" "$(cd .. && pwd)/shared" "$cache/apt-archives" \
-    "$quick_start" <<'INSIDE'
+# resolver, ../shared read-only and apt's download cache; then chroot. The
+# script is an argument, not stdin, so that nothing it runs can read it.
+inside='
 root=$1 shared=$2 archives=$3 quick_start=$4
 mount -t proc proc "$root/proc"
 mount --rbind /sys "$root/sys"
@@ -73,5 +83,7 @@ chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" \
 grep PRETTY_NAME /etc/os-release
 $quick_start
 bash scripts/run_doc_examples.sh README.md"
-INSIDE
+'
+unshare -m --propagation private bash -euo pipefail -c "$inside" debian13 "$root" "$(cd .. && pwd)/shared" \
+  "$cache/apt-archives" "$quick_start" < /dev/null
 echo "debian13_check: the README's commands pass on Debian 13"

@@ -4,6 +4,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# Tested on Debian 12 (bookworm) and Debian 13 (trixie); elsewhere the
+# package names below may differ, and apt says which.
+release=$( (. /etc/os-release 2>/dev/null && echo "${ID:-unknown} ${VERSION_ID:-}") || echo unknown)
+case $release in
+  "debian 12" | "debian 13") ;;
+  *) echo "setup.sh: holoray is tested on Debian 12 and Debian 13; this is '$release': trying anyway" >&2 ;;
+esac
+
 packages=(
   build-essential cmake ninja-build pkg-config
   help2man                  # the build's man page (build/holoray.1), made from --help

@@ -4,6 +4,8 @@ field focuses at the cube, and holoray as the render engine. Run inside
 Blender; `build(addon=True)` enables the add-on (found through
 BLENDER_USER_SCRIPTS)."""
 
+import os
+
 import addon_utils
 import bpy
 
@@ -45,8 +47,9 @@ def build(addon=True, fresh=True):
     else:
         for obj in list(bpy.data.objects):
             bpy.data.objects.remove(obj)
-    if addon:
-        addon_utils.enable("holoray_blender", default_set=True, handle_error=None)
+    if addon:  # the add-on's module: HOLORAY_BLENDER_ADDON names an installed extension's
+        addon_utils.enable(os.environ.get("HOLORAY_BLENDER_ADDON", "holoray_blender"), default_set=True,
+                           handle_error=None)
     scene = bpy.context.scene
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0, 0, 0.5))
     cube = bpy.context.view_layer.objects.active
