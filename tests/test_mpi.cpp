@@ -129,6 +129,20 @@ TEST(MpiAnimate, FrameRangesRunApartGiveTheFolderOfOneRun) {
   EXPECT_EQ(test::folder_bytes(dir.file("parts")), test::folder_bytes(dir.file("whole")));
 }
 
+// The program users run links no MPI (its libraries cost every command
+// start-up time); under mpirun it becomes holoray-mpi, which does, and which
+// the tests above run through it.
+TEST(MpiProgram, HolorayLinksNoMpiAndNamesTheProgramThatDoes) {
+  const auto ldd = test::run_shell(std::string("ldd ") + HOLORAY_CLI);
+  ASSERT_EQ(ldd.status, 0) << ldd.output;
+  EXPECT_EQ(ldd.output.find("libmpi"), std::string::npos) << ldd.output;
+  const auto version = test::run_cli("--version");
+  EXPECT_NE(version.output.find("built with: MPI yes (holoray-mpi, under mpirun)"), std::string::npos)
+      << version.output;
+  const auto mpi_ldd = test::run_shell("ldd " + (fs::path(HOLORAY_CLI).parent_path() / "holoray-mpi").string());
+  EXPECT_NE(mpi_ldd.output.find("libmpi"), std::string::npos) << mpi_ldd.output;
+}
+
 // Done when: a still over three ranks, square, hex and lenticular, colour
 // and every AOV, bit for bit one process's pixels (NaN depth included).
 TEST(MpiRender, ThreeRanksWriteTheStillOfOneProcess) {

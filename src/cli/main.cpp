@@ -15,6 +15,8 @@
 #include "cluster/mpi_world.hpp"
 
 int main(int argc, char** argv) {
+  // Under mpirun: the MPI build takes over (launch_check.hpp says why two).
+  holoray::cli::become_mpi_program_if_launched(argv);
   // Under mpirun (and built with MPI): this process's rank; else one of one.
   const holoray::cluster::World world(argc, argv);
   // Named, so that usage lines (and the man page made from them) say holoray.
