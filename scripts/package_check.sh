@@ -43,6 +43,13 @@ holoray render "$examples/primitives.nff" --lenses 16x16 --pixels-per-lens 4 -o 
 [ -s t.png ] || { echo "package_check: render wrote no t.png" >&2; exit 1; }
 holoray animate "$examples/shots/swinging_box.toml" -o frames --video s.mkv -q
 [ -s s.mkv ] || { echo "package_check: animate --video wrote no s.mkv" >&2; exit 1; }
+# Under mpirun, the installed holoray becomes /usr/lib/holoray/holoray-mpi:
+# two ranks write the still of one process.
+if [ -x /usr/lib/holoray/holoray-mpi ] && command -v mpirun >/dev/null; then
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe --bind-to none -np 2 \
+    holoray render "$examples/primitives.nff" --lenses 16x16 --pixels-per-lens 4 -o m.png -q
+  cmp t.png m.png || { echo "package_check: mpirun -np 2 holoray render wrote another image" >&2; exit 1; }
+fi
 if command -v man >/dev/null; then
   man -w holoray
 else
