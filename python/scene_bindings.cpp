@@ -57,11 +57,12 @@ void bind_scene(py::module_& m) {
       });
   m.def(
       "load_scene",
-      [](const std::string& path) {
+      [](const std::string& path, const std::string& camera_name, const std::vector<std::string>& texture_path) {
         py::gil_scoped_release nogil;
-        return api::Scene::load(path);
+        return api::Scene::load(path, {camera_name, texture_path});
       },
-      py::arg("path"), "NFF, Tachyon (.dat) or a mesh file through assimp. Raises SceneError (file:line:col).");
+      py::arg("path"), py::kw_only(), py::arg("camera_name") = "", py::arg("texture_path") = std::vector<std::string>{},
+      "NFF, Tachyon (.dat) or a mesh file through assimp. Raises SceneError (file:line:col).");
 }
 
 }  // namespace holoray::python

@@ -44,6 +44,9 @@ struct AnimateOptions {
   /// viewpoint (traced in full); default: the shot's lens array.
   std::optional<Camera> camera;
   int threads = 0;  ///< 0: all cores
+  /// How the shot's scene files are read: a camera_name replaces the shot
+  /// file's `camera_name`; texture_paths are searched after its `texture_path`.
+  LoadOptions load;
   ShadowCacheOptions cache;
   /// Also trace every reused frame in full and compare (FrameRow::difference,
   /// reference_seconds): the report's measurements.

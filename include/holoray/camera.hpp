@@ -38,6 +38,11 @@ struct LensArray {
   Mode mode = Mode::orthoscopic;
   double view_distance = INFINITY;     ///< lenticular: vertical perspective distance V
   std::optional<Placement> placement;  ///< needs pitch; default: the viewpoint's
+  /// Orthoscopic: the array stands this far from the eye along the view
+  /// (pseudoscopic: at the eye, the field measured there); scene units,
+  /// > 0. Default: the viewpoint's |eye - at| (a mesh file's camera: the
+  /// depth of the scene's centre). Exclusive with placement.
+  std::optional<double> focus_distance;
 };
 
 /// The viewpoint's ordinary perspective view. 0 x 0: the scene's resolution,
@@ -59,7 +64,8 @@ struct Quilt {
   double view_cone_deg = 40;  ///< leftmost to rightmost view
   int view = -1;              ///< >= 0: only that view, as a plain image
   /// The views' focal (zero-parallax) plane's distance from the viewpoint,
-  /// scene units; default: the viewpoint's |eye - at|.
+  /// scene units; default: the viewpoint's |eye - at| (a mesh file's camera:
+  /// the depth of the scene's centre).
   std::optional<double> focus_distance;
 };
 
@@ -68,6 +74,7 @@ struct Quilt {
 struct Display {
   std::string path;                    ///< the display file (TOML)
   std::optional<Placement> placement;  ///< default: the viewpoint's
+  std::optional<double> focus_distance;  ///< as LensArray's: where the panel's lens sheet stands
 };
 
 /// A Looking Glass's native panel image from its calibration (visual.json).

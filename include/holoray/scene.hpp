@@ -31,6 +31,19 @@ struct Mesh {
   std::optional<Texture> texture;
 };
 
+/// How a scene file is read (Scene::load; docs/guide/scenes.md, "File
+/// cameras" and "Textures").
+struct LoadOptions {
+  /// The mesh file's camera the viewpoint is, by its name in the file;
+  /// "": the file's first. A name the file lacks throws
+  /// std::invalid_argument listing its cameras; NFF and Tachyon files have
+  /// no named cameras.
+  std::string camera_name;
+  /// Folders a mesh file's texture is looked for in, by its base name, when
+  /// the path the file gives does not exist (after the file's own folder).
+  std::vector<std::string> texture_paths;
+};
+
 struct SceneData;  // the scene description (internal)
 
 /// A scene: everything a render needs but the camera. Copies share the
@@ -48,7 +61,7 @@ class HOLORAY_API Scene {
   /// NFF (.nff), Tachyon (.dat) or a mesh file through assimp (.obj, .ply,
   /// .stl, .gltf, .glb, .3ds, .dae, .ac). Throws SceneError (file:line:col)
   /// for malformed input, std::runtime_error for a file that cannot be read.
-  static Scene load(const std::string& path);
+  static Scene load(const std::string& path, const LoadOptions& options = {});
 
   /// Adds a mesh; returns its object id (the `id` AOV). Throws
   /// std::invalid_argument naming the field: a coordinate that is NaN or

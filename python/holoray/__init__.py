@@ -35,14 +35,21 @@ __all__ = [
 ]
 
 
-def load_scene(path):
+def load_scene(path, *, camera_name="", texture_path=()):
     """NFF (.nff), Tachyon (.dat) or a mesh file through assimp (.obj, .gltf, .glb,
-    .ply, .stl, .3ds, .dae, .ac). Raises SceneError (file:line:col) for malformed
-    input, FileNotFoundError for a missing file."""
+    .ply, .stl, .3ds, .dae, .fbx, .blend, .ac, ...). camera_name picks the mesh
+    file's camera the viewpoint is (default: its first; ValueError naming the
+    file's cameras when it has none of that name). texture_path: folders (a
+    path or a sequence of them) where a texture the file names but that does
+    not exist is looked for by its base name, after the file's own folder.
+    Raises SceneError (file:line:col) for malformed input, FileNotFoundError
+    for a missing file."""
     path = os.fspath(path)
     if not os.path.isfile(path):
         raise FileNotFoundError(2, "no such scene file", path)
-    return _holoray.load_scene(path)
+    if isinstance(texture_path, (str, os.PathLike)):
+        texture_path = [texture_path]
+    return _holoray.load_scene(path, camera_name=camera_name, texture_path=[os.fspath(p) for p in texture_path])
 
 
 def read_image(path):

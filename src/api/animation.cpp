@@ -139,7 +139,10 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   so.reproject.threads = o.threads;
   so.reference = o.reference;
 
-  s.shot = std::make_unique<ShotFrames>(read_shot_file(shot_path));
+  Shot parsed = read_shot_file(shot_path);
+  if (!o.load.camera_name.empty()) parsed.read.camera_name = o.load.camera_name;
+  parsed.read.texture_paths.insert(parsed.read.texture_paths.end(), o.load.texture_paths.begin(), o.load.texture_paths.end());
+  s.shot = std::make_unique<ShotFrames>(std::move(parsed));
   ShotFrames& shot = *s.shot;
   so.encoding = o.encoding ? (*o.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
                 : shot.shot().objects.empty() ? holoray::Encoding::linear

@@ -62,6 +62,9 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
   FrameCameraDesc d;
   if (const auto* a = std::get_if<LensArray>(&camera)) {
     d.array = settings_of(*a);
+    if (a->focus_distance && a->placement)
+      throw std::invalid_argument("focus_distance: goes with the viewpoint's placement, not an explicit one");
+    d.focus_distance = a->focus_distance;
   } else if (const auto* p = std::get_if<Pinhole>(&camera)) {
     if (p->width < 0 || p->height < 0 || (p->width == 0) != (p->height == 0) || p->width > 65536 || p->height > 65536)
       throw std::invalid_argument(
@@ -97,6 +100,9 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.kind = Kind::display;
     d.display = read_file(s->path, read_display_file);
     place_explicitly(d.array, s->placement);
+    if (s->focus_distance && s->placement)
+      throw std::invalid_argument("focus_distance: goes with the viewpoint's placement, not an explicit one");
+    d.focus_distance = s->focus_distance;
   } else if (const auto* g = std::get_if<LookingGlass>(&camera)) {
     if (g->views < 1 || g->views > 4096) throw std::invalid_argument(fmt::format("views: expected 1 to 4096, got {}", g->views));
     d.kind = Kind::looking_glass;

@@ -47,6 +47,22 @@ void check_options(const RenderOptions& o) {
     throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
 }
 
+// A mesh file's camera, and where the focal plane stands when the file
+// gives no point looked at (docs/guide/scenes.md, "File cameras").
+std::string describe_viewpoint(const FrameCameraDesc& choice, const std::optional<Viewpoint>& vp) {
+  if (!vp || vp->camera.empty()) return "";
+  static constexpr const char* axis[] = {"vertical", "horizontal", "on the larger side"};
+  std::string out = fmt::format("camera     '{}' from the file, ", vp->camera);
+  if (vp->ortho_size > 0) out += fmt::format("orthographic, {:.6g} units {}", vp->ortho_size, axis[int(vp->fov_axis)]);
+  else out += fmt::format("{:.4g} deg {}", vp->angle_deg, axis[int(vp->fov_axis)]);
+  if (choice.kind != Kind::pinhole) {
+    const double distance = choice.focus_distance.value_or(length(vp->at - vp->from));
+    out += fmt::format("; focal plane {:.6g} from the eye ({})", distance,
+                       choice.focus_distance ? "focus distance given" : "the depth of the scene's centre");
+  }
+  return out + "\n";
+}
+
 // The CLI's summary of the camera (docs/guide/stills.md shows it).
 std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& camera, const Camera& public_camera) {
   const int width = camera.width(), height = camera.height();
@@ -64,8 +80,11 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
                        q.columns, q.rows, q.view_cone_deg);
   }
   if (choice.kind == Kind::pinhole)
-    return fmt::format("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
-                       camera.view->desc().fov_deg);
+    return camera.view->desc().ortho_height > 0
+               ? fmt::format("view       {}x{} px, orthographic, {:.6g} units tall (the scene's viewpoint)\n", width, height,
+                             camera.view->desc().ortho_height)
+               : fmt::format("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
+                             camera.view->desc().fov_deg);
   if (camera.panel) {
     const DisplayDesc& d = *choice.display;
     const DisplayGeometry& g = camera.panel->geometry();
@@ -177,7 +196,10 @@ int Renderer::band_rows() const { return state_->camera.array ? state_->camera.a
 size_t Renderer::skipped_polygons() const { return state_->render_scene->skipped_polygons(); }
 const RenderStats& Renderer::build_stats() const { return state_->build; }
 
-std::string Renderer::describe() const { return describe_camera(state_->choice, state_->camera, state_->public_camera); }
+std::string Renderer::describe() const {
+  return describe_viewpoint(state_->choice, state_->scene->desc.viewpoint) +
+         describe_camera(state_->choice, state_->camera, state_->public_camera);
+}
 
 const char* Renderer::style_name() const { return to_string(state_->style); }
 

@@ -42,9 +42,9 @@ SceneData& Scene::mutable_data() {
   return *data_;
 }
 
-Scene Scene::load(const std::string& path) {
+Scene Scene::load(const std::string& path, const LoadOptions& options) {
   Scene s;
-  s.data_->desc = read_scene_file(path);
+  s.data_->desc = read_scene_file(path, nullptr, {options.camera_name, options.texture_paths});
   return s;
 }
 

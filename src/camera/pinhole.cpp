@@ -16,7 +16,9 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
                                             desc.from.x, desc.from.y, desc.from.z));
   if (!std::isfinite(desc.shift_x) || !std::isfinite(desc.shift_y))
     throw std::invalid_argument(fmt::format("the view's window shift must be finite, got {}, {}", desc.shift_x, desc.shift_y));
-  if (!(desc.fov_deg > 0 && desc.fov_deg < 180))
+  if (!(desc.ortho_height >= 0) || !std::isfinite(desc.ortho_height))
+    throw std::invalid_argument(fmt::format("the orthographic view's height must be positive, got {}", desc.ortho_height));
+  if (desc.ortho_height == 0 && !(desc.fov_deg > 0 && desc.fov_deg < 180))
     throw std::invalid_argument(fmt::format("the field of view must be between 0 and 180 degrees, got {}", desc.fov_deg));
   if (desc.width < 1 || desc.height < 1 || static_cast<int64_t>(desc.width) * desc.height > (int64_t{1} << 30))
     throw std::invalid_argument(
@@ -29,24 +31,28 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
                                             desc.up.x, desc.up.y, desc.up.z));
   }
   if (desc.mirrored) frame_.x = -frame_.x;
-  pixel_ = 2 * std::tan(desc.fov_deg * std::numbers::pi / 360) / desc.height;
+  pixel_ = desc.ortho_height > 0 ? desc.ortho_height / desc.height
+                                 : 2 * std::tan(desc.fov_deg * std::numbers::pi / 360) / desc.height;
 }
 
 PixelLine PinholeCamera::line(int i, int j, double u, double v) const {
   // The image plane at distance 1 in front of the eye, centred on d.
   const double x = (i + u + (desc_.sample_u - 0.5) - 0.5 * desc_.width) * pixel_ + desc_.shift_x;
   const double y = (0.5 * desc_.height - (j + v + (desc_.sample_v - 0.5))) * pixel_ + desc_.shift_y;
+  if (desc_.ortho_height > 0) return {frame_.to_world_point({x, y, 0}), -frame_.z};
   return {desc_.from, normalize(frame_.to_world_dir({x, y, -1}))};
 }
 
 bool PinholeCamera::project(const Vec3& p_world, PanelHit& out) const {
   const Vec3 q = frame_.to_local_point(p_world);
-  if (!(q.z < 0)) return false;  // behind or beside the eye
-  const double fi = (q.x / -q.z - desc_.shift_x) / pixel_ + 0.5 * desc_.width - (desc_.sample_u - 0.5);
-  const double fj = 0.5 * desc_.height - (q.y / -q.z - desc_.shift_y) / pixel_ - (desc_.sample_v - 0.5);
+  if (!(q.z < 0)) return false;  // behind or beside the eye (plane)
+  const bool ortho = desc_.ortho_height > 0;
+  const double px = ortho ? q.x : q.x / -q.z, py = ortho ? q.y : q.y / -q.z;
+  const double fi = (px - desc_.shift_x) / pixel_ + 0.5 * desc_.width - (desc_.sample_u - 0.5);
+  const double fj = 0.5 * desc_.height - (py - desc_.shift_y) / pixel_ - (desc_.sample_v - 0.5);
   if (!(fi >= 0 && fi < desc_.width && fj >= 0 && fj < desc_.height)) return false;
   const int i = static_cast<int>(fi), j = static_cast<int>(fj);
-  out = {i, j, fi - i, fj - j, length(q)};
+  out = {i, j, fi - i, fj - j, ortho ? -q.z : length(q)};
   return true;
 }
 

@@ -43,18 +43,29 @@ struct PinholeDesc {
   /// The window moved up by this much on the same plane (a camera's vertical
   /// lens shift, as Blender's shift_y).
   double shift_y = 0;
+  /// An orthographic view (a file's orthographic camera, Viewpoint::ortho_size):
+  /// the image's full height in scene units, rays parallel to d from the
+  /// plane through `from`; `fov_deg` is then unused. 0: perspective.
+  double ortho_height = 0;
 };
 
 /// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,
 /// mirrored), at `width` x `height` pixels.
 /// The angle (radians) one pixel of a pinhole view subtends at the centre:
 /// 2 tan(fov / 2) / height (RenderScene::set_pixel_footprint).
+/// An orthographic view's pixel subtends no angle: its width seen from the
+/// focal distance |at - from| stands in.
 inline double pixel_angle(const PinholeDesc& d) {
+  if (d.ortho_height > 0) return d.ortho_height / d.height / length(d.at - d.from);
   return 2 * std::tan(d.fov_deg * 3.14159265358979323846 / 360) / d.height;
 }
 
+/// The angle (or orthographic extent) the viewpoint gives the image's
+/// `fov_axis` side becomes the vertical one of a `width` x `height` image.
 inline PinholeDesc view_of(const Viewpoint& vp, int width, int height) {
-  return PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, width, height, vp.mirrored};
+  PinholeDesc d{vp.from, vp.at, vp.up, vp.vertical_angle_deg(width, height), width, height, vp.mirrored};
+  d.ortho_height = vp.vertical_ortho_size(width, height);
+  return d;
 }
 
 /// A pinhole camera. Immutable after construction; safe to share between threads.

@@ -16,7 +16,9 @@ ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& vp) {
   // Tachyon's screen is left-handed: so is the array it places (its
   // sub-aperture views then show what Tachyon's camera shows).
   if (vp.mirrored) out.frame.x = -out.frame.x;
-  out.width = 2 * length(view) * std::tan(vp.angle_deg * 3.14159265358979323846 / 360);
+  // The field across the viewpoint's own fov_axis side (NFF: the vertical
+  // angle, the contract's); an orthographic camera's is its extent.
+  out.width = vp.ortho_size > 0 ? vp.ortho_size : 2 * length(view) * std::tan(vp.angle_deg * 3.14159265358979323846 / 360);
   return out;
 }
 

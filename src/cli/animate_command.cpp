@@ -135,8 +135,10 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
+  add_scene_read_options(*cmd, o.camera_name, o.texture_paths);
   lay_out_help(*cmd,
                {{"Output", {"--output", "--format", "--encoding", "--video", "--crf", "--report", "--quiet", "--verbose"}},
+                {"Scene", {"--camera-name", "--texture-path"}},
                 {"Camera", {"--camera", "--resolution", "--display", "--looking-glass", "--views"}},
                 {"Reuse", {"--method", "--reuse", "--fill", "--rebuild-above", "--reach", "--no-leak-check", "--cache",
                            "--cache-cell", "--cache-memory"}},
@@ -229,6 +231,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       if (dealer) dealer->stop();
       return true;
     };
+    ao.load = {o.camera_name, o.texture_paths};
     api::Animation animation(o.shot, ao);
     const Encoding encoding = animation.encoding() == api::Encoding::srgb ? Encoding::srgb : Encoding::linear;
     frames = animation.frame_count();

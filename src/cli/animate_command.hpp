@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/cache_options.hpp"
 #include "cli/camera_options.hpp"
@@ -15,6 +16,8 @@ namespace holoray::cli {
 struct AnimateCommandOptions {
   std::string shot, output, method, fill = "trace", reuse, reach = "near";  // method "": reverse (integral), full (pinhole)
   CameraOptions view;                   ///< --camera, --resolution, --display, --looking-glass, --views
+  std::string camera_name;              ///< --camera-name NAME (replaces the shot's camera_name)
+  std::vector<std::string> texture_paths;  ///< --texture-path DIR, after the shot's texture_path
   std::string format = "png", encoding = "auto", report;
   std::string frames;                   ///< --frames A:B (inclusive) or N: only those frames
   std::string video;                    ///< --video PATH (.mkv FFV1 lossless, .mp4 H.264)

@@ -82,4 +82,14 @@ FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still) {
   return d;
 }
 
+void add_scene_read_options(CLI::App& cmd, std::string& camera_name, std::vector<std::string>& texture_paths) {
+  cmd.add_option("--camera-name", camera_name,
+                 "The mesh file's camera to look through, by its name in the file (default: the file's first camera)");
+  cmd.add_option("--texture-path", texture_paths,
+                 "A folder where textures the scene file names but that do not exist are looked for by base name, "
+                 "after the file's own folder; repeat for more, searched in order")
+      ->check(CLI::ExistingDirectory)
+      ->allow_extra_args(false);
+}
+
 }  // namespace holoray::cli

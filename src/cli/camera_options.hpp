@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "display/looking_glass.hpp"
 #include "holoray/camera.hpp"
@@ -37,6 +38,11 @@ std::array<CLI::Option*, 2> add_camera_options(CLI::App& cmd, CameraOptions& o, 
 FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still);
 /// camera_desc's rules alone, without reading any file.
 void camera_desc_rules(const CameraOptions& o, bool quilt, bool still);
+
+/// --camera-name NAME (the mesh file's camera the viewpoint is) and
+/// --texture-path DIR (repeatable: folders a texture the file names is
+/// looked for in, by its base name), for api::LoadOptions.
+void add_scene_read_options(CLI::App& cmd, std::string& camera_name, std::vector<std::string>& texture_paths);
 
 /// --origin, --normal and --up as an explicit placement (CLI11 makes them
 /// go together); nullopt when none is given.

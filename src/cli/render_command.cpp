@@ -160,9 +160,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->needs(quilt)
       ->capture_default_str();
   cmd->add_option("--focus-distance", o.focus_distance,
-                  "With --quilt or --looking-glass: the views' focal (zero-parallax) plane, its distance from the "
-                  "viewpoint in scene units (default: the viewpoint's from-to-at distance)")
+                  "The focal plane's distance from the viewpoint, scene units: where a lens array or a display's lens "
+                  "sheet stands, a quilt's or Looking Glass's zero-parallax plane (default: the viewpoint's from-to-at "
+                  "distance; a mesh file's camera: the depth of the scene's centre)")
       ->check(CLI::PositiveNumber);
+  add_scene_read_options(*cmd, o.camera_name, o.texture_paths);
   cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says")
       ->check(in_range(0))
       ->needs(quilt);
@@ -199,6 +201,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                 "programs that drive holoray (the Blender add-on)");
   lay_out_help(*cmd,
                {{"Output", {"--output", "--aov", "--encoding", "--exr-compression", "--quiet", "--progress"}},
+                {"Scene", {"--camera-name", "--texture-path"}},
                 {"Camera", {"--camera", "--resolution", "--sample-at", "--shift", "--display", "--looking-glass", "--views", "--quilt",
                             "--view-cone", "--quilt-view", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
@@ -225,10 +228,12 @@ api::Camera camera_of(const RenderCommandOptions& o) {
   if (cache_enabled(o.cache) && (pinhole || quilt || !v.looking_glass.empty()))
     throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
   const std::optional<double> focus = std::isnan(o.focus_distance) ? std::nullopt : std::optional(o.focus_distance);
-  if (focus && v.looking_glass.empty() && !quilt)
-    throw std::invalid_argument("--focus-distance: goes with --quilt or --looking-glass (the views' focal plane)");
+  if (focus && pinhole)
+    throw std::invalid_argument("--focus-distance: goes with a lens array, a display, --quilt or --looking-glass (the plane they stand at or focus on)");
+  if (focus && !o.origin.empty())
+    throw std::invalid_argument("--focus-distance: places by the viewpoint; --origin places explicitly: give one of them");
   if (!v.looking_glass.empty()) return api::LookingGlass{v.looking_glass, v.looking_glass_views, focus};
-  if (!v.display.empty()) return api::Display{v.display, placement_of(o.origin, o.normal, o.up)};
+  if (!v.display.empty()) return api::Display{v.display, placement_of(o.origin, o.normal, o.up), focus};
   if (quilt) {
     api::Quilt q;
     parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
@@ -249,7 +254,9 @@ api::Camera camera_of(const RenderCommandOptions& o) {
     if (!o.shift.empty()) std::tie(p.shift_x, p.shift_y) = parse_shift(o.shift);
     return p;
   }
-  return lens_array_of(o);
+  api::LensArray a = lens_array_of(o);
+  a.focus_distance = focus;
+  return a;
 }
 
 // The summary `render` prints: the scene, the camera, the times and rays.
@@ -292,7 +299,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
     const auto t_parse = Clock::now();
-    const api::Scene scene = api::Scene::load(o.scene);
+    const api::Scene scene = api::Scene::load(o.scene, {o.camera_name, o.texture_paths});
     const double parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), o.scene);
 

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "cli/cache_options.hpp"
 #include "cli/camera_options.hpp"
@@ -25,7 +26,9 @@ struct RenderCommandOptions {
   std::string shift;                  ///< --shift X,Y (pinhole lens shift)
   std::string quilt;                  ///< --quilt CxR: a Looking Glass quilt of C*R views
   double view_cone = 40;              ///< --view-cone DEG
-  double focus_distance = NAN;        ///< --focus-distance D (quilt, Looking Glass); NaN: not given
+  double focus_distance = NAN;        ///< --focus-distance D (arrays, displays, quilt, Looking Glass); NaN: not given
+  std::string camera_name;            ///< --camera-name NAME: the mesh file's camera
+  std::vector<std::string> texture_paths;  ///< --texture-path DIR, repeatable
   int quilt_view = -1;                ///< --quilt-view K: only view K, as a plain image
   CacheCommandOptions cache;
   bool quiet = false;

@@ -44,26 +44,30 @@ std::optional<double> FrameCamera::pixel_angle() const {
 FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<Viewpoint>& viewpoint,
                               const std::string& scene) {
   using Kind = FrameCameraDesc::Kind;
-  Viewpoint focused;  // the viewpoint, its `at` moved to the focus distance when one is given
+  // The viewpoint, its `at` moved to the focus distance when one is given.
+  std::optional<Viewpoint> focused = viewpoint;
+  if (focused && d.focus_distance) focused = viewpoint->focused_at(*d.focus_distance);
   auto need_viewpoint = [&](const char* option, const char* what) -> const Viewpoint& {
-    if (!viewpoint) throw std::invalid_argument(fmt::format("{}: '{}' has no viewpoint (NFF 'v'){}", option, scene, what));
-    if (!d.focus_distance) return *viewpoint;
-    if (!(*d.focus_distance > 0) || !std::isfinite(*d.focus_distance))
-      throw std::invalid_argument(fmt::format("--focus-distance: expected a positive distance, got {}", *d.focus_distance));
-    focused = *viewpoint;
-    focused.at = focused.from + normalize(viewpoint->at - viewpoint->from) * *d.focus_distance;
-    return focused;
+    if (!focused) throw std::invalid_argument(fmt::format("{}: '{}' has no viewpoint (NFF 'v'){}", option, scene, what));
+    return *focused;
+  };
+  // Sheared frusta need a perspective centre view.
+  auto perspective = [&](const char* option) -> const Viewpoint& {
+    const Viewpoint& vp = need_viewpoint(option, " to centre the views on");
+    if (vp.ortho_size > 0)
+      throw std::invalid_argument(fmt::format("{}: the camera '{}' is orthographic: its views would not part", option, vp.camera));
+    return vp;
   };
   FrameCamera c;
   switch (d.kind) {
     case Kind::looking_glass: {
-      const Viewpoint& vp = need_viewpoint("--looking-glass", " to centre the views on");
+      const Viewpoint& vp = perspective("--looking-glass");
       const LookingGlassCalibration& cal = *d.calibration;
       c.glass.emplace(cal, view_of(vp, cal.width, cal.height), d.looking_glass_views);
       break;
     }
     case Kind::quilt: {
-      const Viewpoint& vp = need_viewpoint("--quilt", " to centre the views on");
+      const Viewpoint& vp = perspective("--quilt");
       const PinholeDesc centre = view_of(vp, d.quilt.view_width, d.quilt.view_height);
       if (d.quilt_view >= 0) c.view.emplace(quilt_view(d.quilt, centre, d.quilt_view));
       else c.quilt.emplace(d.quilt, centre);
@@ -76,7 +80,8 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       PinholeDesc pd = view_of(vp, w, h);
       if (d.tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
       // The window's larger side on the image plane at distance 1.
-      const double larger = 2 * std::tan(pd.fov_deg * std::numbers::pi / 360) * std::max(1.0, double(w) / h);
+      const double height = pd.ortho_height > 0 ? pd.ortho_height : 2 * std::tan(pd.fov_deg * std::numbers::pi / 360);
+      const double larger = height * std::max(1.0, double(w) / h);
       pd.shift_x = d.shift_x * larger;
       pd.shift_y = d.shift_y * larger;
       c.view.emplace(pd);
@@ -84,12 +89,12 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
     }
     case Kind::display: {
       const std::optional<Frame> frame = explicit_frame(d.array);
-      if (auto eia = as_lens_array(*d.display, viewpoint, frame)) c.array.emplace(*eia);
-      else c.panel.emplace(place_display(*d.display, viewpoint, frame));
+      if (auto eia = as_lens_array(*d.display, focused, frame)) c.array.emplace(*eia);
+      else c.panel.emplace(place_display(*d.display, focused, frame));
       c.red_first = d.display->subpixels != SubpixelOrder::bgr;
       break;
     }
-    case Kind::integral: c.array.emplace(place_array(d.array, viewpoint)); break;
+    case Kind::integral: c.array.emplace(place_array(d.array, focused)); break;
   }
   return c;
 }

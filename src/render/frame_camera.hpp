@@ -41,8 +41,10 @@ struct FrameCameraDesc {
   std::optional<DisplayDesc> display;                  ///< display
   std::optional<LookingGlassCalibration> calibration;  ///< looking_glass
   int looking_glass_views = kDefaultLookingGlassViews; ///< looking_glass: the quilt it is the continuous version of
-  /// quilt, looking_glass: the focal plane's distance from the viewpoint (the
-  /// views' zero-parallax plane); nullopt: the viewpoint's |from - at|.
+  /// The focal plane's distance from the viewpoint, scene units: where a
+  /// lens array or a display's panel stands (orthoscopic), the quilt's and
+  /// Looking Glass's zero-parallax plane; nullopt: the viewpoint's |from - at|
+  /// (a file camera's: the depth of the scene's centre, Viewpoint::Focus).
   std::optional<double> focus_distance;
 };
 

@@ -32,6 +32,7 @@
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
 #include "scene/tachyon_reader.hpp"
+#include "scene/texture_search.hpp"
 #include "scene/nff_reader.hpp"
 
 namespace holoray {
@@ -65,9 +66,12 @@ Affine to_affine(const aiMatrix4x4& a) {
 
 class MeshReader {
  public:
-  MeshReader(const aiScene& s, std::string source, bool gltf, const MeshLimits& limits, MeshAnimation* animation)
-      : s_(s), limits_(limits), gltf_(gltf), animation_(animation) {
+  MeshReader(const aiScene& s, std::string source, std::string ext, const MeshLimits& limits, MeshAnimation* animation,
+             const SceneReadOptions& options)
+      : s_(s), limits_(limits), options_(options), ext_(std::move(ext)), gltf_(ext_ == ".gltf" || ext_ == ".glb"),
+        animation_(animation) {
     out_.source = std::move(source);
+    camera_ = chosen_camera();
     if (animation_ && s_.mNumAnimations > 0) read_animation(*s_.mAnimations[0]);
     if (!animation_ && s_.mNumAnimations > 0)
       warn("its node animation is not played in a still (nodes stand at rest); a shot plays it (holoray animate)");
@@ -366,13 +370,13 @@ class MeshReader {
       if (const aiTexture* e = s_.GetEmbeddedTexture(path.c_str())) {
         read_embedded(*e, header, img);
       } else {
-        std::filesystem::path file = std::filesystem::path(out_.source).parent_path() / path;
-        // Files written on Windows name their images with backslashes (".\\wood.jpg").
-        std::string slashed = path;
-        std::replace(slashed.begin(), slashed.end(), '\\', '/');
-        if (!std::filesystem::exists(file) && slashed != path)
-          file = std::filesystem::path(out_.source).parent_path() / slashed;
-        read_texture_file(file.string(), header, img);
+        const TextureLookup where = find_texture(path, out_.source, options_.texture_paths);
+        if (!where.found) {
+          std::string tried;
+          for (const std::string& t : where.tried) tried += fmt::format("{}{}", tried.empty() ? "" : ", ", t);
+          throw std::runtime_error(fmt::format("not found; looked for {}", tried));
+        }
+        read_texture_file(*where.found, header, img);
       }
       img.srgb = colour && header.format != "openexr" && header.format != "hdr";
     } catch (const std::exception& e) {
@@ -582,7 +586,7 @@ class MeshReader {
       animation_->parts.push_back(std::move(p));
       rel = aiMatrix4x4();
     }
-    if (part >= 0 && s_.mNumCameras > 0 && node->mName == s_.mCameras[0]->mName) {
+    if (part >= 0 && camera_ != nullptr && node->mName == camera_->mName) {
       MeshAnimation::Camera cam;
       cam.chain = animation_->parts[static_cast<size_t>(part)].chain;
       cam.fixed = to_affine(rel);
@@ -852,34 +856,112 @@ class MeshReader {
     return d > 0 && std::isfinite(d) ? d : 0;
   }
 
+  // The camera the viewpoint is: the one named in the options, else the
+  // file's first. Throws std::invalid_argument naming the file's cameras.
+  const aiCamera* chosen_camera() const {
+    if (options_.camera_name.empty()) return s_.mNumCameras > 0 ? s_.mCameras[0] : nullptr;
+    std::string names;
+    for (unsigned k = 0; k < s_.mNumCameras; ++k) {
+      if (options_.camera_name == s_.mCameras[k]->mName.C_Str()) return s_.mCameras[k];
+      names += fmt::format("{}'{}'", k ? ", " : "", s_.mCameras[k]->mName.C_Str());
+    }
+    throw std::invalid_argument(fmt::format("camera name: '{}' has no camera '{}' ({})", out_.source, options_.camera_name,
+                                            names.empty() ? "it has none" : "its cameras: " + names));
+  }
+
+  // The camera's lens as its format defines it. assimp's importers do not
+  // follow aiCamera's documentation (mHorizontalFOV, "half the horizontal
+  // angle"); each stores what its own format gives (assimp 5.2.5 and 5.4.3,
+  // read from their sources):
+  //  - glTF 2.0 (§5.12, yfov: vertical): 5.2 stores yfov * aspect, 5.3 on
+  //    the horizontal angle 2 atan(aspect tan(yfov / 2)); both read back to
+  //    yfov. Orthographic (§5.13): mOrthographicWidth is xmag, half the width.
+  //  - Blender (.blend): 2 atan(sensor_x / 2 lens), on the image's larger
+  //    side (sensor fit "auto", Blender's default).
+  //  - FBX: FieldOfView, the full horizontal angle in 5.2, half of it from 5.4.
+  //  - 3DS: the focal length in mm (the chunk's `lens`) as if it were degrees;
+  //    read as Blender's 3DS importer does, a 36 mm wide film.
+  //  - Irrlicht: fovy * aspect, and mLookAt is the point looked at.
+  //  - Collada (xfov, or yfov with aspect_ratio made into xfov), ASE and the
+  //    rest: the full horizontal angle.
+  // tests/blender/test_file_cameras.py checks them against Blender's imports
+  // of the same files.
+  void read_lens(const aiCamera& c, Viewpoint& vp) {
+    const double aspect = c.mAspect > 0 && std::isfinite(c.mAspect) ? c.mAspect : 0;
+    const double a = aspect > 0 ? aspect : 1;
+    const double h = c.mHorizontalFOV;
+    const auto assimp_at_least = [](unsigned minor) {
+      return aiGetVersionMajor() > 5 || (aiGetVersionMajor() == 5 && aiGetVersionMinor() >= minor);
+    };
+    const auto degrees = [](double radians) { return radians * 180 / std::numbers::pi; };
+    using Axis = Viewpoint::FovAxis;
+    vp.fov_axis = Axis::horizontal;
+    if (c.mOrthographicWidth > 0) {
+      vp.ortho_size = 2 * c.mOrthographicWidth;
+    } else if (gltf_) {
+      vp.angle_deg = degrees(assimp_at_least(3) ? 2 * std::atan(std::tan(h / 2) / a) : h / a);
+      vp.fov_axis = Axis::vertical;
+    } else if (ext_ == ".irr") {
+      vp.angle_deg = degrees(h / a);
+      vp.fov_axis = Axis::vertical;
+    } else if (ext_ == ".blend") {
+      vp.angle_deg = degrees(h);
+      vp.fov_axis = Axis::larger;
+    } else if (ext_ == ".fbx") {
+      vp.angle_deg = degrees(assimp_at_least(4) ? 2 * h : h);
+    } else if (ext_ == ".3ds") {
+      const double lens_mm = degrees(h);
+      vp.angle_deg = degrees(2 * std::atan(18 / lens_mm));
+    } else {
+      vp.angle_deg = degrees(h);
+    }
+    if (!(vp.angle_deg > 0 && vp.angle_deg < 180)) {
+      warn(fmt::format("camera '{}': a field of view of {:.4g} deg cannot be rendered; 45 deg instead", c.mName.C_Str(),
+                       vp.angle_deg));
+      vp.angle_deg = 45;
+    }
+    // The image the camera was made for, 512 px on its shorter side.
+    if (aspect > 0 && aspect != 1) {
+      vp.xres = aspect > 1 ? static_cast<int>(std::lround(512 * aspect)) : 512;
+      vp.yres = aspect > 1 ? 512 : static_cast<int>(std::lround(512 / aspect));
+    }
+    vp.camera = c.mName.C_Str();
+  }
+
+  // The distance along the view direction `dir` (unit) from `eye` at which a
+  // file camera, which has no point it looks at, places its focal plane: the
+  // depth of the scene's bounding-box centre; its distance when the centre
+  // lies behind the eye.
+  double centre_depth(const Vec3& eye, const Vec3& dir) const {
+    const Vec3 to_centre = bounds_.centre() - eye;
+    const double depth = dot(to_centre, dir);
+    const double d = depth > 0 ? depth : length(to_centre);
+    return d > 0 && std::isfinite(d) ? d : 1;
+  }
+
   void read_camera() {
     Viewpoint vp;
-    if (s_.mNumCameras > 0) {
-      const aiCamera& c = *s_.mCameras[0];
+    if (camera_ != nullptr) {
+      const aiCamera& c = *camera_;
       const aiMatrix4x4 m = global(c.mName);
-      // assimp's glTF importer departs from aiCamera's documentation: it
-      // copies the node's translation into mPosition (which the node
-      // transform already holds), and mHorizontalFOV (documented as half the
-      // horizontal angle) holds a full angle made from the file's yfov:
-      // yfov * aspect in assimp 5.2 (Debian 12), the true horizontal angle
-      // 2 atan(aspect tan(yfov / 2)) from 5.3 on (Debian 13 has 5.4).
-      // MeshImport.GltfCameraAndPointLightPlaceTheViewAndLight checks both.
-      vp.from = to_vec(m * (gltf_ ? aiVector3D(0, 0, 0) : c.mPosition));
-      vp.at = vp.from + to_vec(aiMatrix3x3(m) * c.mLookAt);
+      // assimp's glTF importer copies the node's translation into mPosition
+      // (which the node transform already holds).
+      const aiVector3D local_from = gltf_ ? aiVector3D(0, 0, 0) : c.mPosition;
+      vp.from = to_vec(m * local_from);
+      const aiVector3D look = ext_ == ".irr" ? c.mLookAt - c.mPosition : c.mLookAt;
+      const Vec3 dir = normalize(to_vec(aiMatrix3x3(m) * look));
       vp.up = to_vec(aiMatrix3x3(m) * c.mUp);
-      // NFF's angle is the full vertical one (the pinhole camera's height).
-      const double aspect = c.mAspect > 0 ? c.mAspect : 1.0;
-      const bool assimp_5_3 = aiGetVersionMajor() > 5 || (aiGetVersionMajor() == 5 && aiGetVersionMinor() >= 3);
-      const double vertical = !gltf_      ? 2 * std::atan(std::tan(c.mHorizontalFOV) / aspect)
-                              : assimp_5_3 ? 2 * std::atan(std::tan(c.mHorizontalFOV / 2) / aspect)
-                                           : c.mHorizontalFOV / aspect;
-      vp.angle_deg = vertical * 180 / std::numbers::pi;
+      read_lens(c, vp);
+      const double focus = centre_depth(vp.from, dir);
+      vp.at = vp.from + dir * focus;
+      vp.focus = Viewpoint::Focus::scene_centre_depth;
       if (animation_ && animation_->camera) {
         MeshAnimation::Camera& moving = *animation_->camera;
-        moving.from = to_vec(gltf_ ? aiVector3D(0, 0, 0) : c.mPosition);
-        moving.look = to_vec(c.mLookAt);
+        moving.from = to_vec(local_from);
+        moving.look = to_vec(look);
         moving.up = to_vec(c.mUp);
-        moving.angle_deg = vp.angle_deg;
+        moving.optics = vp;
+        moving.focus_distance = focus;
       }
     } else {
       // A three-quarter view from +z (raised toward +y, moved toward +x),
@@ -904,7 +986,10 @@ class MeshReader {
 
   const aiScene& s_;
   MeshLimits limits_;
-  bool gltf_;  // the file went through assimp's glTF 2 importer (read_camera)
+  SceneReadOptions options_;
+  std::string ext_;  // the file's extension, lower case: its format (read_lens)
+  bool gltf_;        // the file went through assimp's glTF 2 importer (read_lens)
+  const aiCamera* camera_ = nullptr;  // the viewpoint's camera (chosen_camera), null: none
   MeshAnimation* animation_;  // null: nodes at rest
   std::unordered_map<std::string, int> track_of_;  // node name -> animation_->tracks index
   std::vector<int> uv_set_;                         // per material: the texture coordinate set its maps read, -1: none
@@ -1057,11 +1142,10 @@ Affine MeshAnimation::transform(size_t part, double seconds) const {
 Viewpoint MeshAnimation::camera_at(double seconds) const {
   const Camera& c = camera.value();
   const Affine m = chain_at(c.chain, tracks, seconds) * c.fixed;
-  Viewpoint vp;
+  Viewpoint vp = c.optics;
   vp.from = m.point(c.from);
-  vp.at = vp.from + m.dir(c.look);
+  vp.at = vp.from + normalize(m.dir(c.look)) * c.focus_distance;
   vp.up = m.dir(c.up);
-  vp.angle_deg = c.angle_deg;
   return vp;
 }
 
@@ -1117,7 +1201,8 @@ void MeshAnimation::pose(size_t k, double seconds, std::vector<Vec3>& vertices, 
   pose_mesh(d, d.weights_at(seconds), tracks, seconds, vertices, normals);
 }
 
-SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, MeshAnimation* animation) {
+SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, MeshAnimation* animation,
+                         const SceneReadOptions& options) {
   std::ifstream in = open_for_reading(path);
   const std::string ext = lower_extension(path);
   std::error_code ec;
@@ -1132,15 +1217,17 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
   if (animation) *animation = MeshAnimation{};
-  return MeshReader(*scene, path, ext == ".gltf" || ext == ".glb", limits, animation).read();
+  return MeshReader(*scene, path, ext, limits, animation, options).read();
 }
 
-SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation) {
+SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation, const SceneReadOptions& options) {
   const std::string ext = lower_extension(path);
   if (animation) *animation = MeshAnimation{};
+  if ((ext == ".nff" || ext == ".dat") && !options.camera_name.empty())
+    throw std::invalid_argument(fmt::format("camera name: '{}' has one viewpoint and no named cameras", path));
   if (ext == ".nff") return read_nff_file(path);
   if (ext == ".dat") return read_tachyon_file(path);
-  return read_mesh_file(path, {}, animation);
+  return read_mesh_file(path, {}, animation, options);
 }
 
 }  // namespace holoray

@@ -48,6 +48,18 @@ struct MeshLimits {
   long max_warnings_kept = 100;
 };
 
+/// What the user says about reading a scene file (all formats; NFF and
+/// Tachyon files take no camera name).
+struct SceneReadOptions {
+  /// The file camera the viewpoint is; "": the file's first (assimp keeps
+  /// no "active" mark). Throws std::invalid_argument naming the file's
+  /// cameras when none has this name.
+  std::string camera_name;
+  /// Folders a texture is looked for in, by its base name, when the path the
+  /// file gives does not exist (texture_search.hpp).
+  std::vector<std::string> texture_paths;
+};
+
 /// What a mesh file's first animation moves. Part k sits in the file's
 /// frame at time t (seconds) by transform(k, t): the product, outermost
 /// first, of each chain link's fixed matrix times its track's TRS at t.
@@ -69,7 +81,8 @@ struct MeshAnimation {
     std::vector<Link> chain;
     Affine fixed;
     Vec3 from, look, up;
-    double angle_deg = 45;
+    Viewpoint optics;           ///< angle, axis, orthographic size, name: those of every pose
+    double focus_distance = 1;  ///< `at` this far along `look`: the rest pose's (read_camera)
   };
   /// A mesh whose vertices move: morph targets (glTF 2.0 §3.7.2.2), then a
   /// skin (§3.7.3; assimp's aiBone). Morphing blends the targets into the
@@ -129,11 +142,13 @@ void pose_mesh(const MeshAnimation::DeformingMesh& mesh, const std::vector<doubl
 /// triangles or more than limits.max_triangles. With `animation`, the nodes
 /// the file's first animation moves go there as parts and the returned
 /// scene keeps only what stands still (lights and camera at rest).
-SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits = {}, MeshAnimation* animation = nullptr);
+SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits = {}, MeshAnimation* animation = nullptr,
+                         const SceneReadOptions& options = {});
 
 /// The scene file's reader by its extension: `.nff` (read_nff_file), `.dat`
 /// (read_tachyon_file), else read_mesh_file (with `animation`: NFF and
 /// Tachyon files have none, it is left empty). Throws as they do.
-SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation = nullptr);
+SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation = nullptr,
+                          const SceneReadOptions& options = {});
 
 }  // namespace holoray

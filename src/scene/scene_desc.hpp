@@ -24,13 +24,37 @@ struct SourceLoc {
 /// (docs/tachyon-notes.md §2). World units; `up` as written (not orthogonalised).
 struct Viewpoint {
   Vec3 from, at, up;
-  double angle_deg = 45;   // full-image (vertical) field of view (nff-notes §2)
+  double angle_deg = 45;   // full-image field of view across `fov_axis` (NFF: vertical, nff-notes §2)
   double hither = 0;       // read and kept; the integral camera ignores it (see README)
   int xres = 0, yres = 0;  // 0 when the file gives no `resolution`
   /// Tachyon's screen: right = up x view (NFF's is view x up), so an image of
   /// the same world comes out mirrored left to right (tachyon-notes §2).
   bool mirrored = false;
   SourceLoc loc;
+  /// The image side `angle_deg` (or `ortho_size`) spans: NFF, Tachyon and
+  /// glTF (`yfov`) give the vertical angle; Collada's `xfov`, FBX, 3DS and
+  /// ASE the horizontal one; a Blender camera's sensor fit "auto" the
+  /// larger side (docs/guide/scenes.md, "File cameras").
+  enum class FovAxis { vertical, horizontal, larger };
+  FovAxis fov_axis = FovAxis::vertical;
+  /// An orthographic camera's full extent across `fov_axis`, scene units
+  /// (glTF 2.0 §5.13: 2 ymag); 0: a perspective camera.
+  double ortho_size = 0;
+  /// Where `at` comes from. A file camera (mesh files) has a direction but
+  /// no point looked at: the point is placed at `focus_distance` along it,
+  /// the depth of the scene's bounding-box centre (mesh_reader.cpp).
+  enum class Focus { look_at, scene_centre_depth, option };
+  Focus focus = Focus::look_at;
+  std::string camera;      // a mesh file's camera name ("" for NFF, Tachyon, a viewpoint made in code)
+
+  /// The full vertical angle, degrees, of a `width` x `height` image
+  /// (square pixels) whose `fov_axis` side spans `angle_deg`.
+  double vertical_angle_deg(int width, int height) const;
+  /// The full vertical extent of such an orthographic image (ortho_size > 0).
+  double vertical_ortho_size(int width, int height) const;
+  /// The same viewpoint, `at` moved to `distance` along from -> at
+  /// (focus = option). Throws std::invalid_argument unless distance > 0 and finite.
+  Viewpoint focused_at(double distance) const;
 };
 
 /// How a light falls off; NFF lights are all `point` with no attenuation.

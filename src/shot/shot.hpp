@@ -10,6 +10,7 @@
 
 #include "camera/placement.hpp"
 #include "math/transform.hpp"
+#include "scene/mesh_reader.hpp"
 #include "scene/scene_desc.hpp"
 #include "shot/camera_path.hpp"
 
@@ -52,6 +53,11 @@ struct Shot {
   ArraySettings array;             ///< as `holoray render` takes them (no explicit placement)
   ShotCamera camera;
   std::vector<ShotObject> objects;
+  /// How its scene files are read: the mesh files' camera by name (top-level
+  /// `camera_name`) and the folders textures are looked for in
+  /// (`texture_path`, a string or an array, resolved against the shot file's
+  /// folder; `holoray animate --texture-path` adds to them).
+  SceneReadOptions read;
 };
 
 }  // namespace holoray

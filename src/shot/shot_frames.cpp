@@ -16,7 +16,7 @@ ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
   animations_.resize(shot_.objects.size());
   for (size_t k = 0; k < shot_.objects.size(); ++k) {
     MeshAnimation& anim = animations_[k];
-    descs_.push_back(read_scene_file(shot_.objects[k].scene, &anim));
+    descs_.push_back(read_scene_file(shot_.objects[k].scene, &anim, shot_.read));
     entries_.push_back({k, -1});
     for (size_t p = 0; p < anim.parts.size(); ++p) {
       descs_.push_back(std::move(anim.parts[p].scene));

@@ -28,7 +28,18 @@ class ShotParser : TomlFields {
     const toml::table root = parse();
     Shot shot;
     shot.source = source();
-    check_keys(root, "the shot", {"frames", "fps", "spp", "background", "array", "camera", "object"});
+    check_keys(root, "the shot",
+               {"frames", "fps", "spp", "background", "array", "camera", "object", "camera_name", "texture_path"});
+    shot.read.camera_name = string(root, "camera_name").value_or("");
+    if (const toml::node* n = root.get("texture_path")) {
+      if (const auto* one = n->as_string()) {
+        shot.read.texture_paths.push_back(resolve(one->get()));
+      } else if (const toml::array* list = n->as_array(); list && list->is_homogeneous(toml::node_type::string)) {
+        for (const toml::node& dir : *list) shot.read.texture_paths.push_back(resolve(dir.as_string()->get()));
+      } else {
+        fail(n->source(), "texture_path: expected a folder or an array of folders (strings)");
+      }
+    }
     shot.frames = static_cast<int>(integer(root, "frames", 1, kMaxFrames, true).value_or(1));
     shot.fps = number(root, "fps", 1e-6, 1e6).value_or(24);
     shot.spp = static_cast<int>(integer(root, "spp", 1, 65536).value_or(1));
