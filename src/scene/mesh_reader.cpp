@@ -879,8 +879,9 @@ class MeshReader {
   //  - Blender (.blend): 2 atan(sensor_x / 2 lens), on the image's larger
   //    side (sensor fit "auto", Blender's default).
   //  - FBX: FieldOfView, the full horizontal angle in 5.2, half of it from 5.4.
-  //  - 3DS: the focal length in mm (the chunk's `lens`) as if it were degrees;
-  //    read as Blender's 3DS importer does, a 36 mm wide film.
+  //  - 3DS: the chunk's `lens` as if it were degrees; 3ds Max's horizontal
+  //    angle is 2400 / lens degrees (lib3ds; the same scene's ASE export,
+  //    CAMERA_FOV, agrees: MeshImport.ThreeDsAndAseCamerasOfOneSceneAgree).
   //  - Irrlicht: fovy * aspect, and mLookAt is the point looked at.
   //  - Collada (xfov, or yfov with aspect_ratio made into xfov), ASE and the
   //    rest: the full horizontal angle.
@@ -910,8 +911,7 @@ class MeshReader {
     } else if (ext_ == ".fbx") {
       vp.angle_deg = degrees(assimp_at_least(4) ? 2 * h : h);
     } else if (ext_ == ".3ds") {
-      const double lens_mm = degrees(h);
-      vp.angle_deg = degrees(2 * std::atan(18 / lens_mm));
+      vp.angle_deg = 2400 / degrees(h);
     } else {
       vp.angle_deg = degrees(h);
     }
@@ -946,9 +946,21 @@ class MeshReader {
       const aiMatrix4x4 m = global(c.mName);
       // assimp's glTF importer copies the node's translation into mPosition
       // (which the node transform already holds).
-      const aiVector3D local_from = gltf_ ? aiVector3D(0, 0, 0) : c.mPosition;
+      // A keyframed 3DS file's camera (assimp: mLookAt reset to +z) has its
+      // first key in the node transform, and its target is lost: it is aimed
+      // at the scene's centre instead, with a warning.
+      const bool lost_target = ext_ == ".3ds" && c.mLookAt == aiVector3D(0, 0, 1);
+      const aiVector3D local_from = gltf_ || lost_target ? aiVector3D(0, 0, 0) : c.mPosition;
       vp.from = to_vec(m * local_from);
-      const aiVector3D look = ext_ == ".irr" ? c.mLookAt - c.mPosition : c.mLookAt;
+      aiVector3D look = ext_ == ".irr" ? c.mLookAt - c.mPosition : c.mLookAt;
+      if (lost_target) {
+        const Vec3 to_centre = bounds_.centre() - vp.from;
+        aiMatrix3x3 to_node(m);
+        to_node.Inverse();
+        look = to_node * aiVector3D(float(to_centre.x), float(to_centre.y), float(to_centre.z));
+        warn(fmt::format("camera '{}': assimp does not keep a keyframed 3DS camera's target; it is aimed at the scene's "
+                         "centre instead", c.mName.C_Str()));
+      }
       const Vec3 dir = normalize(to_vec(aiMatrix3x3(m) * look));
       vp.up = to_vec(aiMatrix3x3(m) * c.mUp);
       read_lens(c, vp);
