@@ -131,8 +131,8 @@ TEST(MeshImport, MissingTextureIsNamedInAWarningAndShownAsAChecker) {
   const SceneDesc d = read_mesh_file(dir.file("m.obj"));
   ASSERT_EQ(d.warnings.size(), 1u);
   EXPECT_EQ(d.warnings[0], dir.file("m.obj") +
-                               ": warning: material 'wood': cannot read texture 'wood.png' (no such file): a checker "
-                               "shows where it goes");
+                               ": warning: material 'wood': cannot read texture 'wood.png' (not found; looked for " +
+                               dir.file("wood.png") + "): a checker shows where it goes");
   const Material& m = d.materials.at(static_cast<size_t>(d.objects.at(0).material));
   ASSERT_GE(m.texture, 0);
   const ImageMap& img = d.images.at(static_cast<size_t>(d.textures.at(static_cast<size_t>(m.texture)).image));

@@ -238,6 +238,9 @@ TEST(MeshAnimation, AnimatedGltfCameraPlacesTheArrayAsTheSameCameraKeys) {
   ASSERT_TRUE(anim.camera);
   ASSERT_TRUE(still.viewpoint);
   const double angle = still.viewpoint->angle_deg;
+  // A file camera's focal plane: the depth of the scene's centre at rest,
+  // held as the camera moves.
+  const double focus = length(still.viewpoint->at - still.viewpoint->from);
   const std::string head = "frames = 5\nfps = 4\n[array]\nlenses = 24\npixels_per_lens = 6\n";
   const std::string objects = "[[object]]\nscene = \"light.nff\"\n[[object]]\nscene = \"cam.gltf\"\n";
   test::write_text(dir.file("a.toml"), head + objects);
@@ -246,17 +249,17 @@ TEST(MeshAnimation, AnimatedGltfCameraPlacesTheArrayAsTheSameCameraKeys) {
 [[camera.key]]
 frame = 0
 from = [-1, 0, 6]
-at = [-1, 0, 5]
+at = [-1, 0, {1:.17g}]
 up = [0, 1, 0]
 angle = {0:.17g}
 [[camera.key]]
 frame = 4
 from = [1, 0.5, 6]
-at = [1, 0.5, 5]
+at = [1, 0.5, {1:.17g}]
 up = [0, 1, 0]
 angle = {0:.17g}
 )",
-                                      angle) +
+                                      angle, 6 - focus) +
                        objects);
   const std::vector<ImageBuffer> a = render_shot(dir.file("a.toml")), b = render_shot(dir.file("b.toml"));
   ASSERT_EQ(a.size(), 5u);

@@ -131,6 +131,18 @@ TEST(ShotReader, ErrorsNameTheFileLineAndWhatWasExpected) {
             std::string::npos);
 }
 
+TEST(ShotReader, CameraNameAndTexturePathsAreReadAndResolvedAgainstTheShot) {
+  const Shot one = parse_shot("frames = 2\ncamera_name = 'Cam'\ntexture_path = 'tex'\n[[object]]\nscene = 'a.dae'\n",
+                              "/shots/s.toml");
+  EXPECT_EQ(one.read.camera_name, "Cam");
+  EXPECT_EQ(one.read.texture_paths, (std::vector<std::string>{"/shots/tex"}));
+  const Shot two = parse_shot("frames = 2\ntexture_path = ['t1', '/abs/t2']\n[[object]]\nscene = 'a.dae'\n", "/shots/s.toml");
+  EXPECT_EQ(two.read.texture_paths, (std::vector<std::string>{"/shots/t1", "/abs/t2"}));
+  EXPECT_NE(error_of([] { parse_shot("frames = 2\ntexture_path = 3\n[[object]]\nscene = 'a'\n", "s.toml"); })
+                .find("s.toml:2:16: error: texture_path: expected a folder or an array of folders (strings)"),
+            std::string::npos);
+}
+
 TEST(ShotFrames, TachyonPathPlacesTheArrayOnTheViewDirection) {
   if (!have_shared_scenes()) GTEST_SKIP() << "../shared not present";
   TempDir dir;
