@@ -99,7 +99,7 @@ void bind_cameras(py::module_& m) {
       .def(py::init([](const py::handle& lenses, int pixels_per_lens, const std::string& grid, std::optional<double> fov_lens,
                        const std::string& mode, std::optional<double> pitch, std::optional<double> gap, std::optional<int> rows,
                        std::optional<double> view_distance, const py::handle& origin, const py::handle& normal,
-                       const py::handle& up) {
+                       const py::handle& up, std::optional<double> focus_distance) {
              api::LensArray a;
              const auto [nx, ny] = pair_of(lenses, "lenses");
              if (nx < 1 || ny < 1)
@@ -123,12 +123,17 @@ void bind_cameras(py::module_& m) {
              a.view_distance = view_distance.value_or(INFINITY);
              a.placement = placement_of(origin, normal, up);
              if (a.placement && !pitch) throw py::value_error("pitch: an explicit placement (origin, normal, up) needs the lens pitch");
+             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
+               throw py::value_error("focus_distance: expected a positive distance");
+             if (focus_distance && a.placement) throw py::value_error("focus_distance: goes without origin, normal and up");
+             a.focus_distance = focus_distance;
              return a;
            }),
            py::arg("lenses") = py::make_tuple(64, 64), py::arg("pixels_per_lens") = 8, py::arg("grid") = "square",
            py::arg("fov_lens") = py::none(), py::arg("mode") = "orthoscopic", py::kw_only(), py::arg("pitch") = py::none(),
            py::arg("gap") = py::none(), py::arg("rows") = py::none(), py::arg("view_distance") = py::none(),
-           py::arg("origin") = py::none(), py::arg("normal") = py::none(), py::arg("up") = py::none())
+           py::arg("origin") = py::none(), py::arg("normal") = py::none(), py::arg("up") = py::none(),
+           py::arg("focus_distance") = py::none())
       .def_property_readonly("lenses", [](const api::LensArray& a) { return py::make_tuple(a.lenses_x, a.lenses_y); })
       .def_readonly("pixels_per_lens", &api::LensArray::pixels_per_lens)
       .def("__repr__", [](const api::LensArray& a) {
@@ -166,8 +171,12 @@ void bind_cameras(py::module_& m) {
            py::arg("columns"), py::arg("rows"), py::arg("view_resolution") = py::make_tuple(420, 560), py::arg("view_cone") = 40.0,
            py::kw_only(), py::arg("focus_distance") = py::none());
   py::class_<api::Display>(m, "Display", "A physical panel and its lens sheet, from a display file (TOML).")
-      .def(py::init([](const py::object& path) { return api::Display{existing_file(path, "path"), std::nullopt}; }),
-           py::arg("path"));
+      .def(py::init([](const py::object& path, std::optional<double> focus_distance) {
+             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
+               throw py::value_error("focus_distance: expected a positive distance");
+             return api::Display{existing_file(path, "path"), std::nullopt, focus_distance};
+           }),
+           py::arg("path"), py::kw_only(), py::arg("focus_distance") = py::none());
   py::class_<api::LookingGlass>(m, "LookingGlass", "A Looking Glass's native panel image, from its calibration (visual.json).")
       .def(py::init([](const py::object& path, int views, std::optional<double> focus_distance) {
              if (views < 1 || views > 4096) throw py::value_error("views: expected 1 to 4096");

@@ -67,3 +67,13 @@ def test_an_unknown_camera_name_is_a_value_error_naming_the_cameras():
     assert result.description.startswith("camera     'testCamera' from the file, 37.85 deg horizontal\n")
     with pytest.raises(ValueError, match=r"has no camera 'nope' \(its cameras: 'Camera', 'testCamera'\)"):
         holoray.load_scene(path, camera_name="nope")
+
+
+def test_focus_distance_moves_a_file_cameras_lens_array():
+    duck = holoray.load_scene(os.path.join(MODELS, "Collada/duck.dae"))
+    at_centre = holoray.render(duck, holoray.LensArray((16, 16), 4)).description
+    at_three = holoray.render(duck, holoray.LensArray((16, 16), 4, focus_distance=3.0)).description
+    assert "focal plane 6.85342 from the eye (the depth of the scene's centre)" in at_centre
+    assert "focal plane 3 from the eye (focus distance given)" in at_three
+    # The array spans the camera's field where it stands: 2 d tan(54.43 / 2) over 16 lenses.
+    assert "pitch 0.192857," in at_three
