@@ -11,7 +11,10 @@
 
 #include "camera/pinhole.hpp"
 #include "render/frame_camera.hpp"
+#include "render/render_scene.hpp"
+#include "render/view_renderer.hpp"
 #include "scene/mesh_reader.hpp"
+#include "scene/nff_reader.hpp"
 #include "scene/texture_search.hpp"
 #include "test_util.hpp"
 
@@ -148,6 +151,49 @@ TEST(FileCamera, FocusDistancePlacesTheLensArrayAlongTheView) {
   EXPECT_NEAR(at_two.array->desc().pitch * 4, 2 * 2 * std::tan(0.3), 1e-6);  // yfov in float
   fd.focus_distance = -1;
   EXPECT_THROW(make_frame_camera(fd, d.viewpoint, "c.gltf"), std::invalid_argument);
+}
+
+TEST(FileCamera, ClippingPlanesBoundWhatThePinholeViewSees) {
+  // A unit sphere 4 ahead: its surface lies 3 to 5 along the axis.
+  const SceneDesc desc = parse_nff("v\nfrom 0 -4 0\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0\nresolution 32 32\n"
+                                   "l 0 -5 5\nf 1 1 1 1 0 0 0 1\ns 0 0 0 1\n",
+                                   "sphere.nff");
+  const RenderScene scene(desc);
+  auto view = [&](double near, double far) {
+    PinholeDesc d{desc.viewpoint->from, desc.viewpoint->at, desc.viewpoint->up, 50, 32, 32};
+    d.clip_near = near, d.clip_far = far;
+    RenderOptions ro;
+    ro.aovs.id = ro.aovs.depth = true;
+    RenderStats stats;
+    return render_view(scene, PinholeCamera(d), ro, stats);
+  };
+  auto hits = [](const FrameBuffers& fb) {
+    int n = 0;
+    for (int j = 0; j < 32; ++j)
+      for (int i = 0; i < 32; ++i) n += *fb.id.at(i, j) >= 0;
+    return n;
+  };
+  const int whole = hits(view(0, INFINITY));
+  EXPECT_GT(whole, 100);
+  EXPECT_EQ(hits(view(0, 2.9)), 0) << "the sphere lies beyond the far plane";
+  EXPECT_EQ(hits(view(5.1, INFINITY)), 0) << "the sphere lies before the near plane";
+  // Past the near plane at 4 the view meets the sphere's far side (depth > 4).
+  const FrameBuffers cut = view(4, INFINITY);
+  EXPECT_GT(hits(cut), 0);
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i)
+      if (*cut.id.at(i, j) >= 0) EXPECT_GT(*cut.depth.at(i, j), 4) << i << "," << j;
+  EXPECT_THROW(PinholeCamera(PinholeDesc{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 50, 8, 8, false, 0.5, 0.5, 0, 0, 0, 3, 2}),
+               std::invalid_argument);
+}
+
+TEST(FileCamera, GltfCameraWithoutZfarIsNotClippedFar) {
+  test::TempDir dir;
+  const SceneDesc d = read_mesh_file(two_camera_gltf(dir));  // "near": znear 0.1, no zfar
+  EXPECT_NEAR(d.viewpoint->clip_near, 0.1, 1e-7);
+  EXPECT_EQ(d.viewpoint->clip_far, INFINITY) << "glTF 2.0 §5.12: an infinite projection";
+  const SceneDesc top = read_mesh_file(dir.file("c.gltf"), {}, nullptr, {"top", {}});
+  EXPECT_NEAR(top.viewpoint->clip_far, 100, 1e-5);
 }
 
 // ---- textures ----

@@ -55,6 +55,8 @@ std::string describe_viewpoint(const FrameCameraDesc& choice, const std::optiona
   std::string out = fmt::format("camera     '{}' from the file, ", vp->camera);
   if (vp->ortho_size > 0) out += fmt::format("orthographic, {:.6g} units {}", vp->ortho_size, axis[int(vp->fov_axis)]);
   else out += fmt::format("{:.4g} deg {}", vp->angle_deg, axis[int(vp->fov_axis)]);
+  if (choice.kind == Kind::pinhole && (vp->clip_near > 0 || vp->clip_far < INFINITY))
+    out += fmt::format("; sees {:.6g} to {:.6g} along its axis (the file's clipping)", vp->clip_near, vp->clip_far);
   if (choice.kind != Kind::pinhole) {
     const double distance = choice.focus_distance.value_or(length(vp->at - vp->from));
     out += fmt::format("; focal plane {:.6g} from the eye ({})", distance,

@@ -18,6 +18,9 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
     throw std::invalid_argument(fmt::format("the view's window shift must be finite, got {}, {}", desc.shift_x, desc.shift_y));
   if (!(desc.ortho_height >= 0) || !std::isfinite(desc.ortho_height))
     throw std::invalid_argument(fmt::format("the orthographic view's height must be positive, got {}", desc.ortho_height));
+  if (!(desc.clip_near >= 0 && desc.clip_far > desc.clip_near) || std::isnan(desc.clip_far))
+    throw std::invalid_argument(fmt::format("the clipping range must run from 0 or more to farther, got {} to {}",
+                                            desc.clip_near, desc.clip_far));
   if (desc.ortho_height == 0 && !(desc.fov_deg > 0 && desc.fov_deg < 180))
     throw std::invalid_argument(fmt::format("the field of view must be between 0 and 180 degrees, got {}", desc.fov_deg));
   if (desc.width < 1 || desc.height < 1 || static_cast<int64_t>(desc.width) * desc.height > (int64_t{1} << 30))

@@ -47,6 +47,9 @@ struct PinholeDesc {
   /// the image's full height in scene units, rays parallel to d from the
   /// plane through `from`; `fov_deg` is then unused. 0: perspective.
   double ortho_height = 0;
+  /// The clipping range along the view axis (Viewpoint::clip_near, clip_far):
+  /// only surfaces between the two planes are seen. 0 to infinity: none.
+  double clip_near = 0, clip_far = INFINITY;
 };
 
 /// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,
@@ -65,6 +68,8 @@ inline double pixel_angle(const PinholeDesc& d) {
 inline PinholeDesc view_of(const Viewpoint& vp, int width, int height) {
   PinholeDesc d{vp.from, vp.at, vp.up, vp.vertical_angle_deg(width, height), width, height, vp.mirrored};
   d.ortho_height = vp.vertical_ortho_size(width, height);
+  d.clip_near = vp.clip_near;
+  d.clip_far = vp.clip_far;
   return d;
 }
 
@@ -80,6 +85,8 @@ class PinholeCamera final : public Camera {
   int width() const override { return desc_.width; }
   int height() const override { return desc_.height; }
   int64_t pixel_count() const { return static_cast<int64_t>(desc_.width) * desc_.height; }
+  /// The view axis d (unit, world): the clipping planes are perpendicular to it.
+  Vec3 axis() const { return -frame_.z; }
 
   /// The ray of pixel (i, j) at offset (u, v): origin `from`, unit direction
   /// (world frame). The line parameter t is the distance from the eye.

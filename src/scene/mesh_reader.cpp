@@ -926,6 +926,13 @@ class MeshReader {
       vp.yres = aspect > 1 ? 512 : static_cast<int>(std::lround(512 / aspect));
     }
     vp.camera = c.mName.C_Str();
+    if (c.mClipPlaneNear > 0 && std::isfinite(c.mClipPlaneNear)) vp.clip_near = c.mClipPlaneNear;
+    // glTF's zfar is optional (an infinite projection, §5.12); assimp fills
+    // in 100 where it is missing.
+    size_t k = 0;  // assimp's glTF importer keeps the file's camera order
+    while (k < s_.mNumCameras && s_.mCameras[k] != &c) ++k;
+    const bool infinite = gltf_ && k < options_.gltf_infinite_far.size() && options_.gltf_infinite_far[k];
+    if (!infinite && c.mClipPlaneFar > vp.clip_near && std::isfinite(c.mClipPlaneFar)) vp.clip_far = c.mClipPlaneFar;
   }
 
   // The distance along the view direction `dir` (unit) from `eye` at which a
@@ -1084,7 +1091,7 @@ void check_gltf_numbers(const nlohmann::json& j, const std::string& path) {
         numbers(mesh["weights"], 0, fmt::format("mesh {}'s weights", m));
 }
 
-void check_gltf(std::ifstream& in, const std::string& path, bool binary) {
+void check_gltf(std::ifstream& in, const std::string& path, bool binary, std::vector<bool>& infinite_far) {
   std::string text;
   if (binary) {  // GLB: 12-byte header, then the JSON chunk (length, type "JSON", text)
     char head[20];
@@ -1129,6 +1136,10 @@ void check_gltf(std::ifstream& in, const std::string& path, bool binary) {
   }
   if (!j.is_object()) return;  // assimp says what it expected
   check_gltf_numbers(j, path);
+  if (j.contains("cameras") && j["cameras"].is_array())
+    for (const auto& c : j["cameras"])
+      infinite_far.push_back(c.is_object() && c.contains("perspective") && c["perspective"].is_object() &&
+                             !c["perspective"].contains("zfar"));
   if (!j.contains("skins") || !j["skins"].is_array()) return;
   for (size_t k = 0; k < j["skins"].size(); ++k)
     if (const auto& skin = j["skins"][k]; skin.is_object() && !skin.contains("inverseBindMatrices"))
@@ -1219,7 +1230,8 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   const std::string ext = lower_extension(path);
   std::error_code ec;
   if (ext == ".ply") check_ply_header(in, path, std::filesystem::file_size(path, ec));
-  if (ext == ".gltf" || ext == ".glb") check_gltf(in, path, ext == ".glb");
+  SceneReadOptions read = options;
+  if (ext == ".gltf" || ext == ".glb") check_gltf(in, path, ext == ".glb", read.gltf_infinite_far);
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; triangulated polygons keep
   // their file order. Node transforms are applied by the reader itself, so
@@ -1229,7 +1241,7 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
   if (animation) *animation = MeshAnimation{};
-  return MeshReader(*scene, path, ext, limits, animation, options).read();
+  return MeshReader(*scene, path, ext, limits, animation, read).read();
 }
 
 SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation, const SceneReadOptions& options) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -46,6 +47,11 @@ struct Viewpoint {
   enum class Focus { look_at, scene_centre_depth, option };
   Focus focus = Focus::look_at;
   std::string camera;      // a mesh file's camera name ("" for NFF, Tachyon, a viewpoint made in code)
+  /// A file camera's clipping range, distances along its axis: what a
+  /// pinhole view through it shows, as the file's own tools show it. The
+  /// lens array ignores it (each lens is its own camera), and so does
+  /// everything for NFF's `hither`.
+  double clip_near = 0, clip_far = INFINITY;
 
   /// The full vertical angle, degrees, of a `width` x `height` image
   /// (square pixels) whose `fov_axis` side spans `angle_deg`.

@@ -26,6 +26,9 @@ if ext == ".blend":
 else:
     bpy.ops.wm.read_factory_settings(use_empty=True)
     if ext in (".dae", ".zae"):
+        if "collada_import" not in dir(bpy.ops.wm):  # Debian 13's Blender 4.3 is built without it
+            print("SKIP Blender has no Collada importer")
+            sys.exit(0)
         bpy.ops.wm.collada_import(filepath=path)
     elif ext == ".fbx":
         bpy.ops.import_scene.fbx(filepath=path)
