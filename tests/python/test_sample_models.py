@@ -64,7 +64,7 @@ def test_an_unknown_camera_name_is_a_value_error_naming_the_cameras():
     path = os.path.join(MODELS, "Collada/COLLADA.dae")
     second = holoray.load_scene(path, camera_name="testCamera")
     result = holoray.render(second, holoray.Pinhole((32, 32)))
-    assert result.description.startswith("camera     'testCamera' from the file, 37.85 deg horizontal\n")
+    assert result.description.startswith("camera     'testCamera' from the file, 37.85 deg horizontal; sees 0.01 to 1000")
     with pytest.raises(ValueError, match=r"has no camera 'nope' \(its cameras: 'Camera', 'testCamera'\)"):
         holoray.load_scene(path, camera_name="nope")
 
@@ -77,3 +77,20 @@ def test_focus_distance_moves_a_file_cameras_lens_array():
     assert "focal plane 3 from the eye (focus distance given)" in at_three
     # The array spans the camera's field where it stands: 2 d tan(54.43 / 2) over 16 lenses.
     assert "pitch 0.192857," in at_three
+
+
+def test_centre_view_shows_the_whole_duck_and_a_far_focus_the_whole_engine():
+    # The duck's camera frames all of it: so does the EIA's centre view, no
+    # pixel of its border on the duck. The engine's camera is a close-up (its
+    # own view cuts the engine): a focal plane farther out shows it whole.
+    def view(name, **kw):
+        scene = holoray.load_scene(os.path.join(MODELS, name))
+        result = holoray.render(scene, holoray.LensArray((48, 48), 5, **kw), aovs=["id"])
+        return result.aovs["id"][2::5, 2::5] >= 0
+    def whole(v):
+        border = np.concatenate([v[0], v[-1], v[:, 0], v[:, -1]])
+        return v.mean() > 0.01 and not border.any()
+    engine = "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
+    assert whole(view("Collada/duck.dae"))
+    assert not whole(view(engine))
+    assert whole(view(engine, focus_distance=3000.0))
