@@ -67,6 +67,13 @@ api::AnimateOptions options_of(const py::dict& kw) {
     else if (k == "camera") { if (!value.is_none()) o.camera = camera_of(value, "camera"); }
     else if (k == "report") o.reference = value.cast<bool>();
     else if (k == "cache") o.cache.enabled = value.cast<bool>();
+    else if (k == "camera_name") o.load.camera_name = py::str(value);
+    else if (k == "texture_path") {
+      if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
+        o.load.texture_paths = {py::str(py::module_::import("os").attr("fspath")(value))};
+      else
+        for (const py::handle dir : value) o.load.texture_paths.push_back(py::str(py::module_::import("os").attr("fspath")(dir)));
+    }
     else if (k == "encoding") {
       const std::string v = py::str(value);
       if (v == "linear") o.encoding = api::Encoding::linear;

@@ -137,3 +137,10 @@ def test_stopping_early_leaves_only_whole_frames(tmp):
     names = sorted(p.name for p in out.iterdir())
     assert all(re.fullmatch(r"frame_\d{4}\.png", n) for n in names), names
     assert len(names) < FRAMES
+
+
+def test_camera_name_reaches_the_shots_scene_files():
+    # The shot's mesh file is read with the name given here: one it lacks is
+    # refused, saying which cameras it has (none), before any frame.
+    with pytest.raises(ValueError, match=r"swinging_box.gltf' has no camera 'nope' \(it has none\)"):
+        next(holoray.animate(SHOT, camera_name="nope", frames=0, texture_path=["."]))
