@@ -14,14 +14,13 @@
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
 #include "reuse/shadow_cache.hpp"
+#include "util/stopwatch.hpp"
 
 namespace holoray::api {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Kind = FrameCameraDesc::Kind;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 AovSet aov_set(const Aovs& a) { return {a.albedo, a.depth, a.normal, a.id}; }
 

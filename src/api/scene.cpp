@@ -145,7 +145,7 @@ void Scene::set_viewpoint(const Vec3d& eye, const Vec3d& at, const Vec3d& up, do
   if (!(fov_deg > 0 && fov_deg < 180)) throw std::invalid_argument(fmt::format("fov_deg: expected degrees in (0, 180), got {}", fov_deg));
   const Vec3 from = vec(eye), to = vec(at), u = vec(up);
   if (length(from - to) == 0) throw std::invalid_argument("at: the same point as eye");
-  if (length(cross(u, from - to)) == 0) throw std::invalid_argument("up: parallel to the line of sight (or zero)");
+  if (!up_orients(to - from, u)) throw std::invalid_argument("up: parallel to the line of sight (or zero)");
   SceneDesc& d = mutable_data().desc;
   Viewpoint vp = d.viewpoint.value_or(Viewpoint{});
   vp.from = from;

@@ -1,5 +1,6 @@
 #include "camera/display_camera.hpp"
 
+#include <numbers>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,7 +10,7 @@ namespace holoray {
 
 namespace {
 constexpr double kSqrt3 = 1.7320508075688772;
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 bool positive_finite(double v) { return v > 0 && std::isfinite(v); }
 }  // namespace

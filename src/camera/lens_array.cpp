@@ -2,6 +2,7 @@
 
 #include "math/vec_pair.hpp"
 
+#include <numbers>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -11,7 +12,7 @@ namespace holoray {
 
 namespace {
 constexpr double kSqrt3 = 1.7320508075688772;
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 }  // namespace
 
 const char* to_string(Grid g) {

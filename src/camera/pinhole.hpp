@@ -13,6 +13,7 @@
 // offset (u, v) inside it in [0, 1), 0.5 = centre.
 #pragma once
 
+#include <numbers>
 #include <cmath>
 
 #include "camera/camera.hpp"
@@ -60,7 +61,7 @@ struct PinholeDesc {
 /// focal distance |at - from| stands in.
 inline double pixel_angle(const PinholeDesc& d) {
   if (d.ortho_height > 0) return d.ortho_height / d.height / length(d.at - d.from);
-  return 2 * std::tan(d.fov_deg * 3.14159265358979323846 / 360) / d.height;
+  return 2 * std::tan(d.fov_deg * std::numbers::pi / 360) / d.height;
 }
 
 /// The angle (or orthographic extent) the viewpoint gives the image's

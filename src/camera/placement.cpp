@@ -1,5 +1,6 @@
 #include "camera/placement.hpp"
 
+#include <numbers>
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -18,7 +19,7 @@ ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& vp) {
   if (vp.mirrored) out.frame.x = -out.frame.x;
   // The field across the viewpoint's own fov_axis side (NFF: the vertical
   // angle, the contract's); an orthographic camera's is its extent.
-  out.width = vp.ortho_size > 0 ? vp.ortho_size : 2 * length(view) * std::tan(vp.angle_deg * 3.14159265358979323846 / 360);
+  out.width = vp.ortho_size > 0 ? vp.ortho_size : 2 * length(view) * std::tan(vp.angle_deg * std::numbers::pi / 360);
   return out;
 }
 
@@ -61,7 +62,7 @@ LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>
     const double fov = s.fov_lens_deg.value_or(kDefaultLensFovDeg);
     if (!(fov > 0 && fov < 180))
       throw std::invalid_argument(fmt::format("lens field of view must be between 0 and 180 degrees, got {}", fov));
-    d.gap = d.pitch / (2 * std::tan(fov * 3.14159265358979323846 / 360));
+    d.gap = d.pitch / (2 * std::tan(fov * std::numbers::pi / 360));
   }
   return d;
 }

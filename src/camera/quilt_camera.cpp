@@ -1,5 +1,6 @@
 #include "camera/quilt_camera.hpp"
 
+#include <numbers>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -9,7 +10,7 @@
 namespace holoray {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 }
 
 PinholeDesc sheared_view(const PinholeDesc& centre, double phi_rad, int width, int height) {

@@ -24,13 +24,11 @@
 #include "holoray/holoray.hpp"
 #include "image/image_io.hpp"
 #include "scene/parse_error.hpp"
+#include "util/stopwatch.hpp"
 
 namespace holoray::cli {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // The colour file and its AOV files (aov_path: albedo beside it in its
 // format, depth, normal and id as EXR), written band by band, top to bottom:

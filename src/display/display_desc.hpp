@@ -4,6 +4,7 @@
 // and validates it, camera/display_camera.hpp turns it into lines.
 #pragma once
 
+#include <numbers>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -42,7 +43,7 @@ struct DisplayDesc {
   /// Samples across one panel row: 3 per pixel with subpixels, else 1.
   int samples_per_pixel() const { return subpixels == SubpixelOrder::none ? 1 : 3; }
   /// Pixels per lens along a row, P = pitch / pixel pitch (lenticular: horizontal pitch / pixel pitch).
-  double pixels_per_lens() const { return pitch_mm / std::cos(slant_deg * 3.14159265358979323846 / 180) / pixel_pitch_mm; }
+  double pixels_per_lens() const { return pitch_mm / std::cos(slant_deg * std::numbers::pi / 180) / pixel_pitch_mm; }
 };
 
 }  // namespace holoray

@@ -1,5 +1,6 @@
 #include "display/display_placement.hpp"
 
+#include <numbers>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -11,7 +12,7 @@ namespace holoray {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 struct Placed {
   Frame frame;

@@ -1,5 +1,6 @@
 #include "display/looking_glass.hpp"
 
+#include <numbers>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,7 +16,7 @@ namespace holoray {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 double field(const nlohmann::json& j, const char* key, const std::string& source, std::optional<double> fallback = {}) {
   const auto it = j.find(key);

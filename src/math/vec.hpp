@@ -95,6 +95,14 @@ inline bool intersect_line_box(const Vec3& o, const Vec3& d, const Bounds3& b, d
 
 /// Right-handed orthonormal frame: `x` right, `y` up, `z` the normal
 /// (camera-model.md, "Frame"). Maps between world and frame-local coordinates.
+/// Whether `up` orients a view along `dir` (or a frame with normal `dir`):
+/// neither is zero and they are more than ~1e-9 rad from parallel, where a
+/// frame made from them loses its precision. Every reader and the API check
+/// viewpoints with it, so what one format accepts every format accepts.
+inline bool up_orients(const Vec3& dir, const Vec3& up) {
+  return length(cross(dir, up)) > 1e-9 * length(dir) * length(up);
+}
+
 struct Frame {
   Vec3 origin;
   Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};

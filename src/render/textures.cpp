@@ -34,7 +34,7 @@ void to_sphere(const Vec3& p, double& u, double& v) {
     return;
   }
   const double phi = std::acos(std::clamp(-p.y / r, -1.0, 1.0));
-  v = phi / 3.1415926;
+  v = phi / 3.1415926;  // Tachyon's own truncated pi, kept for pixel-for-pixel agreement
   const double s = std::sin(phi);
   const double theta = s > 0 ? std::acos(std::clamp(p.x / r / s, -1.0, 1.0)) / (2 * std::numbers::pi) : 0;
   u = p.z > 0 ? theta : 1 - theta;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camera/lens_array.hpp"
+#include "util/parallel.hpp"
 
 namespace holoray {
 
@@ -94,7 +95,5 @@ void for_each_packet_of(const TileRect& r, int P, bool subaperture, Fn&& fn) {
 /// Runs fn(tile) for every tile on `threads` threads (0: all cores).
 void for_each_tile(const ElementalTiles& tiles, int threads, const std::function<void(int)>& fn);
 
-/// Runs fn(k) for k in [0, n) on `threads` threads (0: all cores).
-void parallel_for_n(int n, int threads, const std::function<void(int)>& fn);
 
 }  // namespace holoray

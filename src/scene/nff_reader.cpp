@@ -72,7 +72,7 @@ class NffParser {
       v.yres = static_cast<int>(std::min(tok_.integer("the y resolution"), 1L << 30));
     }
     if (!(length(v.from - v.at) > 0)) tok_.fail(v.loc, "expected 'from' and 'at' to differ, found the same point");
-    if (!(length(cross(v.up, v.at - v.from)) > 1e-12 * length(v.up) * length(v.at - v.from)))
+    if (!up_orients(v.at - v.from, v.up))
       tok_.fail(up_tok.loc, "expected an 'up' direction not parallel to the view direction, found a parallel or zero one");
     scene_.viewpoint = v;
   }

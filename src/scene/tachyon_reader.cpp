@@ -233,7 +233,7 @@ class TachyonParser {
     const Vec3 view = keyed_unit("VIEWDIR", "view direction");
     const Token up_tok = expect_kw("UPDIR");
     v.up = vec3("an up direction component");
-    if (!(length(cross(v.up, view)) > 1e-12 * length(v.up)))
+    if (!up_orients(view, v.up))
       tok().fail(up_tok.loc, "expected an up direction not parallel to the view direction, found a parallel or zero one");
     const Token end = tok().next();
     if (is_kw(end, "FRUSTUM")) tok().fail(end.loc, "camera frustums are not supported yet");

@@ -33,7 +33,7 @@ std::vector<CameraPathFrame> parse_camera_path(std::string_view text, const std:
     }
     CameraPathFrame f{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, first.loc};
     if (length(f.view) == 0) tok.fail(first.loc, "the view direction is zero");
-    if (length(cross(f.view, f.up)) <= 1e-12 * length(f.view) * length(f.up))
+    if (!up_orients(f.view, f.up))
       tok.fail(first.loc, "the up direction is zero or parallel to the view direction");
     if (!tok.at_end() && tok.peek().loc.line == first.loc.line)
       tok.fail(tok.peek().loc, fmt::format("expected the end of line {} after 9 numbers, found {}", first.loc.line,

@@ -137,7 +137,7 @@ class ShotParser : TomlFields {
         key.at = need("at");
         key.up = need("up");
         if (length(key.from - key.at) == 0) fail(k.get("at")->source(), "'from' and 'at' are the same point");
-        if (length(cross(key.from - key.at, key.up)) == 0)
+        if (!up_orients(key.at - key.from, key.up))
           fail(k.get("up")->source(), "'up' is zero or parallel to the view direction");
         key.angle_deg = number(k, "angle", 1e-6, 179.999);
         cam.keys.push_back(key);

@@ -8,12 +8,11 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "util/stopwatch.hpp"
+
 namespace holoray {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Traced {
   LensArray camera;
