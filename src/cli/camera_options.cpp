@@ -59,29 +59,6 @@ std::optional<api::Placement> placement_of(const std::string& origin, const std:
   return api::Placement{arr(parse_vec3("--origin", origin)), arr(parse_vec3("--normal", normal)), arr(parse_vec3("--up", up))};
 }
 
-FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still) {
-  using Kind = FrameCameraDesc::Kind;
-  FrameCameraDesc d;
-  const bool pinhole = o.camera == "pinhole";
-  camera_desc_rules(o, quilt, still);
-  if (!o.resolution.empty()) {
-    parse_resolution(o.resolution, d.width, d.height);
-  }
-  if (!o.looking_glass.empty()) {
-    d.kind = Kind::looking_glass;
-    d.calibration = read_looking_glass(o.looking_glass);
-    d.looking_glass_views = o.looking_glass_views;
-  } else if (!o.display.empty()) {
-    d.kind = Kind::display;
-    d.display = read_display_file(o.display);
-  } else if (quilt) {
-    d.kind = Kind::quilt;
-  } else if (pinhole) {
-    d.kind = Kind::pinhole;
-  }
-  return d;
-}
-
 void add_scene_read_options(CLI::App& cmd, std::string& camera_name, std::vector<std::string>& texture_paths) {
   cmd.add_option("--camera-name", camera_name,
                  "The mesh file's camera to look through, by its name in the file (default: the file's first camera)");

@@ -1,7 +1,7 @@
 // holoray/cli: the camera options `render` and `animate` share (--camera,
-// --resolution, --display, --looking-glass, --views), declared once with
-// their CLI11 checks, and the one place that turns them into the
-// FrameCameraDesc both commands render through (render/frame_camera.hpp).
+// --resolution, --display, --looking-glass, --views, and how the scene file
+// is read: --camera-name, --texture-path), declared once with their CLI11
+// checks and the rules between them.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -11,7 +11,6 @@
 
 #include "display/looking_glass.hpp"
 #include "holoray/camera.hpp"
-#include "render/frame_camera.hpp"
 
 namespace holoray::cli {
 
@@ -29,14 +28,12 @@ struct CameraOptions {
 /// --looking-glass, for the command's own `excludes`.
 std::array<CLI::Option*, 2> add_camera_options(CLI::App& cmd, CameraOptions& o, const std::string& what);
 
-/// The camera the options name, its display or calibration file read.
-/// `quilt`: render's --quilt CxR was given (it takes --resolution as one
-/// view's size); `still`: render's (else animate's) wording. The rules
-/// CLI11 cannot say, for a value of --camera, throw std::invalid_argument:
-/// a panel or a quilt goes without `--camera pinhole`; --resolution goes
-/// with the pinhole camera or a quilt.
-FrameCameraDesc camera_desc(const CameraOptions& o, bool quilt, bool still);
-/// camera_desc's rules alone, without reading any file.
+/// The rules between the camera options that CLI11 cannot say, checked
+/// before any file is read. `quilt`: render's --quilt CxR was given (it
+/// takes --resolution as one view's size); `still`: render's (else
+/// animate's) wording. Throws std::invalid_argument: a panel or a quilt goes
+/// without `--camera pinhole`; --resolution goes with the pinhole camera or
+/// a quilt.
 void camera_desc_rules(const CameraOptions& o, bool quilt, bool still);
 
 /// --camera-name NAME (the mesh file's camera the viewpoint is) and
