@@ -69,10 +69,12 @@ api::AnimateOptions options_of(const py::dict& kw) {
     else if (k == "cache") o.cache.enabled = value.cast<bool>();
     else if (k == "camera_name") o.load.camera_name = py::str(value);
     else if (k == "texture_path") {
-      if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
-        o.load.texture_paths = {py::str(py::module_::import("os").attr("fspath")(value))};
-      else
-        for (const py::handle dir : value) o.load.texture_paths.push_back(py::str(py::module_::import("os").attr("fspath")(dir)));
+      // One folder (a str or a path-like), or a sequence of them.
+      const py::object fspath = py::module_::import("os").attr("fspath");
+      const bool one = py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
+      const py::object dirs = one ? py::object(py::make_tuple(value)) : py::reinterpret_borrow<py::object>(value);
+      for (const py::handle dir : dirs)
+        o.load.texture_paths.push_back(py::str(fspath(dir)));
     }
     else if (k == "encoding") {
       const std::string v = py::str(value);

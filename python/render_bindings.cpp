@@ -38,6 +38,12 @@ std::string existing_file(const py::object& path, const char* name) {
   return p;
 }
 
+// The cameras' focus_distance= (a focal plane's distance from the eye, > 0).
+std::optional<double> checked_focus(std::optional<double> d) {
+  if (d && !(*d > 0 && std::isfinite(*d))) throw py::value_error("focus_distance: expected a positive distance");
+  return d;
+}
+
 std::optional<api::Placement> placement_of(const py::handle& origin, const py::handle& normal, const py::handle& up) {
   if (origin.is_none() && normal.is_none() && up.is_none()) return std::nullopt;
   if (origin.is_none() || normal.is_none() || up.is_none())
@@ -123,10 +129,8 @@ void bind_cameras(py::module_& m) {
              a.view_distance = view_distance.value_or(INFINITY);
              a.placement = placement_of(origin, normal, up);
              if (a.placement && !pitch) throw py::value_error("pitch: an explicit placement (origin, normal, up) needs the lens pitch");
-             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
-               throw py::value_error("focus_distance: expected a positive distance");
+             a.focus_distance = checked_focus(focus_distance);
              if (focus_distance && a.placement) throw py::value_error("focus_distance: goes without origin, normal and up");
-             a.focus_distance = focus_distance;
              return a;
            }),
            py::arg("lenses") = py::make_tuple(64, 64), py::arg("pixels_per_lens") = 8, py::arg("grid") = "square",
@@ -162,27 +166,21 @@ void bind_cameras(py::module_& m) {
              const auto [w, h] = pair_of(view_resolution, "view_resolution");
              if (w < 1 || h < 1 || w > 65536 || h > 65536) throw py::value_error("view_resolution: expected 1 to 65536 pixels each way");
              if (!(view_cone >= 0 && view_cone <= 180)) throw py::value_error("view_cone: expected degrees in [0, 180]");
-             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
-               throw py::value_error("focus_distance: expected a positive distance");
              q.columns = columns, q.rows = rows, q.view_width = w, q.view_height = h, q.view_cone_deg = view_cone;
-             q.focus_distance = focus_distance;
+             q.focus_distance = checked_focus(focus_distance);
              return q;
            }),
            py::arg("columns"), py::arg("rows"), py::arg("view_resolution") = py::make_tuple(420, 560), py::arg("view_cone") = 40.0,
            py::kw_only(), py::arg("focus_distance") = py::none());
   py::class_<api::Display>(m, "Display", "A physical panel and its lens sheet, from a display file (TOML).")
       .def(py::init([](const py::object& path, std::optional<double> focus_distance) {
-             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
-               throw py::value_error("focus_distance: expected a positive distance");
-             return api::Display{existing_file(path, "path"), std::nullopt, focus_distance};
+             return api::Display{existing_file(path, "path"), std::nullopt, checked_focus(focus_distance)};
            }),
            py::arg("path"), py::kw_only(), py::arg("focus_distance") = py::none());
   py::class_<api::LookingGlass>(m, "LookingGlass", "A Looking Glass's native panel image, from its calibration (visual.json).")
       .def(py::init([](const py::object& path, int views, std::optional<double> focus_distance) {
              if (views < 1 || views > 4096) throw py::value_error("views: expected 1 to 4096");
-             if (focus_distance && !(*focus_distance > 0 && std::isfinite(*focus_distance)))
-               throw py::value_error("focus_distance: expected a positive distance");
-             return api::LookingGlass{existing_file(path, "path"), views, focus_distance};
+             return api::LookingGlass{existing_file(path, "path"), views, checked_focus(focus_distance)};
            }),
            py::arg("path"), py::arg("views") = 48, py::kw_only(), py::arg("focus_distance") = py::none());
 }

@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "holoray/scene.hpp"
 #include "scene/nff_reader.hpp"
@@ -20,45 +22,41 @@ namespace {
 // `up` tilted `tilt` radians from the view direction (0, 0, -1).
 std::string up_at(double tilt) { return fmt::format("{:.17g} 0 {:.17g}", std::sin(tilt), -std::cos(tilt)); }
 
-bool nff_accepts(double tilt) {
+// Whether `read` takes the viewpoint without throwing.
+bool accepts(const std::function<void()>& read) {
   try {
-    parse_nff("v\nfrom 0 0 5\nat 0 0 0\nup " + up_at(tilt) + "\nangle 40\nhither 1\nresolution 8 8\ns 0 0 0 1\n", "s.nff");
+    read();
     return true;
   } catch (const std::exception&) {
     return false;
   }
+}
+
+bool nff_accepts(double tilt) {
+  return accepts([&] {
+    parse_nff("v\nfrom 0 0 5\nat 0 0 0\nup " + up_at(tilt) + "\nangle 40\nhither 1\nresolution 8 8\ns 0 0 0 1\n", "s.nff");
+  });
 }
 
 bool shot_accepts(double tilt) {
   std::string up = up_at(tilt);
   std::replace(up.begin(), up.end(), ' ', ',');
-  try {
+  return accepts([&] {
     parse_shot("frames = 1\n[camera]\n[[camera.key]]\nframe = 0\nfrom = [0, 0, 5]\nat = [0, 0, 0]\nup = [" + up +
                    "]\n[[object]]\nscene = 'a.nff'\n",
                "s.toml");
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
+  });
 }
 
 bool path_accepts(double tilt) {
-  try {
-    parse_camera_path("0 0 -1 " + up_at(tilt) + " 0 0 5\n", "p.cam");
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
+  return accepts([&] { parse_camera_path("0 0 -1 " + up_at(tilt) + " 0 0 5\n", "p.cam"); });
 }
 
 bool api_accepts(double tilt) {
-  api::Scene s;
-  try {
+  return accepts([&] {
+    api::Scene s;
     s.set_viewpoint({0, 0, 5}, {0, 0, 0}, {std::sin(tilt), 0, -std::cos(tilt)}, 40);
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
+  });
 }
 
 TEST(UpDirection, EveryReaderAndTheApiDrawTheSameLine) {

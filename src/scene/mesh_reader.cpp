@@ -66,12 +66,15 @@ Affine to_affine(const aiMatrix4x4& a) {
 
 class MeshReader {
  public:
+  // `gltf_infinite_far`: per camera of a glTF file, whether it has no `zfar`
+  // (check_gltf reads it from the JSON; assimp turns it into 100).
   MeshReader(const aiScene& s, std::string source, std::string ext, const MeshLimits& limits, MeshAnimation* animation,
-             const SceneReadOptions& options)
+             const SceneReadOptions& options, std::vector<bool> gltf_infinite_far)
       : s_(s), limits_(limits), options_(options), ext_(std::move(ext)), gltf_(ext_ == ".gltf" || ext_ == ".glb"),
-        animation_(animation) {
+        gltf_infinite_far_(std::move(gltf_infinite_far)), animation_(animation) {
     out_.source = std::move(source);
-    camera_ = chosen_camera();
+    camera_index_ = chosen_camera();
+    camera_ = camera_index_ >= 0 ? s_.mCameras[camera_index_] : nullptr;
     if (animation_ && s_.mNumAnimations > 0) read_animation(*s_.mAnimations[0]);
     if (!animation_ && s_.mNumAnimations > 0)
       warn("its node animation is not played in a still (nodes stand at rest); a shot plays it (holoray animate)");
@@ -856,13 +859,14 @@ class MeshReader {
     return d > 0 && std::isfinite(d) ? d : 0;
   }
 
-  // The camera the viewpoint is: the one named in the options, else the
-  // file's first. Throws std::invalid_argument naming the file's cameras.
-  const aiCamera* chosen_camera() const {
-    if (options_.camera_name.empty()) return s_.mNumCameras > 0 ? s_.mCameras[0] : nullptr;
+  // The index of the camera the viewpoint is: the one named in the options,
+  // else the file's first; -1: none. Throws std::invalid_argument naming the
+  // file's cameras.
+  int chosen_camera() const {
+    if (options_.camera_name.empty()) return s_.mNumCameras > 0 ? 0 : -1;
     std::string names;
     for (unsigned k = 0; k < s_.mNumCameras; ++k) {
-      if (options_.camera_name == s_.mCameras[k]->mName.C_Str()) return s_.mCameras[k];
+      if (options_.camera_name == s_.mCameras[k]->mName.C_Str()) return static_cast<int>(k);
       names += fmt::format("{}'{}'", k ? ", " : "", s_.mCameras[k]->mName.C_Str());
     }
     throw std::invalid_argument(fmt::format("camera name: '{}' has no camera '{}' ({})", out_.source, options_.camera_name,
@@ -929,9 +933,9 @@ class MeshReader {
     if (c.mClipPlaneNear > 0 && std::isfinite(c.mClipPlaneNear)) vp.clip_near = c.mClipPlaneNear;
     // glTF's zfar is optional (an infinite projection, §5.12); assimp fills
     // in 100 where it is missing.
-    size_t k = 0;  // assimp's glTF importer keeps the file's camera order
-    while (k < s_.mNumCameras && s_.mCameras[k] != &c) ++k;
-    const bool infinite = gltf_ && k < options_.gltf_infinite_far.size() && options_.gltf_infinite_far[k];
+    // assimp's glTF importer keeps the file's camera order.
+    const auto k = static_cast<size_t>(camera_index_);
+    const bool infinite = gltf_ && k < gltf_infinite_far_.size() && gltf_infinite_far_[k];
     if (!infinite && c.mClipPlaneFar > vp.clip_near && std::isfinite(c.mClipPlaneFar)) vp.clip_far = c.mClipPlaneFar;
   }
 
@@ -1008,7 +1012,9 @@ class MeshReader {
   SceneReadOptions options_;
   std::string ext_;  // the file's extension, lower case: its format (read_lens)
   bool gltf_;        // the file went through assimp's glTF 2 importer (read_lens)
-  const aiCamera* camera_ = nullptr;  // the viewpoint's camera (chosen_camera), null: none
+  std::vector<bool> gltf_infinite_far_;  // per camera: glTF's zfar absent
+  int camera_index_ = -1;                // the viewpoint's camera (chosen_camera), -1: none
+  const aiCamera* camera_ = nullptr;     // s_.mCameras[camera_index_], null: none
   MeshAnimation* animation_;  // null: nodes at rest
   std::unordered_map<std::string, int> track_of_;  // node name -> animation_->tracks index
   std::vector<int> uv_set_;                         // per material: the texture coordinate set its maps read, -1: none
@@ -1230,8 +1236,8 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   const std::string ext = lower_extension(path);
   std::error_code ec;
   if (ext == ".ply") check_ply_header(in, path, std::filesystem::file_size(path, ec));
-  SceneReadOptions read = options;
-  if (ext == ".gltf" || ext == ".glb") check_gltf(in, path, ext == ".glb", read.gltf_infinite_far);
+  std::vector<bool> gltf_infinite_far;
+  if (ext == ".gltf" || ext == ".glb") check_gltf(in, path, ext == ".glb", gltf_infinite_far);
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; triangulated polygons keep
   // their file order. Node transforms are applied by the reader itself, so
@@ -1241,7 +1247,7 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
   if (animation) *animation = MeshAnimation{};
-  return MeshReader(*scene, path, ext, limits, animation, read).read();
+  return MeshReader(*scene, path, ext, limits, animation, options, std::move(gltf_infinite_far)).read();
 }
 
 SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation, const SceneReadOptions& options) {

@@ -58,9 +58,6 @@ struct SceneReadOptions {
   /// Folders a texture is looked for in, by its base name, when the path the
   /// file gives does not exist (texture_search.hpp).
   std::vector<std::string> texture_paths;
-  /// Filled by the reader from a glTF file's JSON: per camera, whether it has
-  /// no `zfar` (an infinite projection, which assimp turns into 100).
-  std::vector<bool> gltf_infinite_far;
 };
 
 /// What a mesh file's first animation moves. Part k sits in the file's
