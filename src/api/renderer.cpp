@@ -56,7 +56,7 @@ std::string describe_viewpoint(const FrameCameraDesc& choice, const std::optiona
   else out += fmt::format("{:.4g} deg {}", vp->angle_deg, axis[int(vp->fov_axis)]);
   if (choice.kind == Kind::pinhole && (vp->clip_near > 0 || vp->clip_far < INFINITY))
     out += fmt::format("; sees {:.6g} to {:.6g} along its axis (the file's clipping)", vp->clip_near, vp->clip_far);
-  if (choice.kind != Kind::pinhole) {
+  if (choice.kind != Kind::pinhole && !choice.array.origin) {  // an explicit placement has no focal plane of the camera's
     const double distance = choice.focus_distance.value_or(length(vp->at - vp->from));
     out += fmt::format("; focal plane {:.6g} from the eye ({})", distance,
                        choice.focus_distance ? "focus distance given" : "the depth of the scene's centre");

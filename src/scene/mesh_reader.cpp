@@ -885,7 +885,7 @@ class MeshReader {
   //  - FBX: FieldOfView, the full horizontal angle in 5.2, half of it from 5.4.
   //  - 3DS: the chunk's `lens` as if it were degrees; 3ds Max's horizontal
   //    angle is 2400 / lens degrees (lib3ds; the same scene's ASE export,
-  //    CAMERA_FOV, agrees: MeshImport.ThreeDsAndAseCamerasOfOneSceneAgree).
+  //    CAMERA_FOV, agrees: FileCamera.ThreeDsAndAseCamerasOfOneSceneAgree).
   //  - Irrlicht: fovy * aspect, and mLookAt is the point looked at.
   //  - Collada (xfov, or yfov with aspect_ratio made into xfov), ASE and the
   //    rest: the full horizontal angle.
@@ -932,8 +932,7 @@ class MeshReader {
     vp.camera = c.mName.C_Str();
     if (c.mClipPlaneNear > 0 && std::isfinite(c.mClipPlaneNear)) vp.clip_near = c.mClipPlaneNear;
     // glTF's zfar is optional (an infinite projection, §5.12); assimp fills
-    // in 100 where it is missing.
-    // assimp's glTF importer keeps the file's camera order.
+    // in 100 where it is missing, keeping the file's camera order.
     const auto k = static_cast<size_t>(camera_index_);
     const bool infinite = gltf_ && k < gltf_infinite_far_.size() && gltf_infinite_far_[k];
     if (!infinite && c.mClipPlaneFar > vp.clip_near && std::isfinite(c.mClipPlaneFar)) vp.clip_far = c.mClipPlaneFar;
