@@ -8,17 +8,14 @@
 #include <assimp/scene.h>
 #include <assimp/version.h>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <charconv>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <sstream>
 #include <numbers>
 #include <stdexcept>
@@ -30,6 +27,7 @@
 #include "image/image_io.hpp"
 #include "scene/bump_map.hpp"
 #include "scene/file_text.hpp"
+#include "scene/gltf_check.hpp"
 #include "scene/parse_error.hpp"
 #include "scene/tachyon_reader.hpp"
 #include "scene/texture_search.hpp"
@@ -1054,105 +1052,6 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
   }
 }
 
-// glTF is JSON, checked here before assimp reads it:
-// - a file that is not JSON is refused with its place ("file:line:col:
-//   error: ..."): assimp's format detection would otherwise fall back on
-//   its other readers, and one of Debian's 5.2 reads past the end of a
-//   15-byte file doing so (found by fuzz/, target gltf);
-// - a skin without inverseBindMatrices is refused: assimp 5.2 dereferences
-//   them without checking that the skin has them (the specification lets it
-//   leave them out: identity matrices), and crashes.
-// Values Debian's assimp 5.2 reads as numbers without checking that they
-// are (its rapidjson asserts, and the process aborts; found by fuzz/):
-// KHR_texture_transform's offset and scale (two numbers each), anywhere in
-// a material, and a mesh's default morph weights.
-void check_gltf_numbers(const nlohmann::json& j, const std::string& path) {
-  auto numbers = [&](const nlohmann::json& v, size_t at_least, const std::string& what) {
-    bool ok = v.is_array() && v.size() >= at_least;
-    for (size_t k = 0; ok && k < v.size(); ++k) ok = v[k].is_number();
-    if (!ok)
-      throw std::runtime_error(fmt::format("cannot read '{}': {} must be an array of {}numbers", path, what,
-                                           at_least > 0 ? fmt::format("at least {} ", at_least) : std::string()));
-  };
-  // Every KHR_texture_transform object under the materials, however deep.
-  std::function<void(const nlohmann::json&, const std::string&)> walk = [&](const nlohmann::json& v,
-                                                                          const std::string& where) {
-    if (v.is_object()) {
-      for (const auto& [key, value] : v.items()) {
-        if (key == "KHR_texture_transform" && value.is_object()) {
-          for (const char* field : {"offset", "scale"})
-            if (value.contains(field)) numbers(value[field], 2, fmt::format("{}: KHR_texture_transform's {}", where, field));
-        }
-        walk(value, where);
-      }
-    } else if (v.is_array()) {
-      for (const auto& e : v) walk(e, where);
-    }
-  };
-  if (j.contains("materials")) walk(j["materials"], "a material");
-  if (j.contains("meshes") && j["meshes"].is_array())
-    for (size_t m = 0; m < j["meshes"].size(); ++m)
-      if (const auto& mesh = j["meshes"][m]; mesh.is_object() && mesh.contains("weights"))
-        numbers(mesh["weights"], 0, fmt::format("mesh {}'s weights", m));
-}
-
-void check_gltf(std::ifstream& in, const std::string& path, bool binary, std::vector<bool>& infinite_far) {
-  std::string text;
-  if (binary) {  // GLB: 12-byte header, then the JSON chunk (length, type "JSON", text)
-    char head[20];
-    if (!in.read(head, sizeof head) || std::string_view(head, 4) != "glTF" || std::string_view(head + 16, 4) != "JSON")
-      throw std::runtime_error(fmt::format("cannot read '{}': not a binary glTF file (expected the 'glTF' magic and a "
-                                           "JSON chunk first)",
-                                           path));
-    uint32_t length = 0;
-    std::memcpy(&length, head + 12, sizeof length);
-    std::error_code ec;
-    if (length > std::filesystem::file_size(path, ec) || ec)
-      throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk claims {} bytes, more than the file holds",
-                                           path, length));
-    text.resize(length);
-    if (!in.read(text.data(), length))
-      throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is cut short", path));
-  } else {
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's byte is one past the character it stopped at (1-based).
-    const size_t at = std::min(text.size(), e.byte > 0 ? static_cast<size_t>(e.byte - 1) : size_t{0});
-    std::string reason = e.what();
-    if (const size_t colon = reason.find(": ", reason.find("column")); colon != std::string::npos)
-      reason = reason.substr(colon + 2);
-    if (binary) throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is not JSON ({})", path, reason));
-    const size_t newline = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
-    const size_t line_start = newline == std::string::npos ? 0 : newline + 1;
-    const size_t line_end = std::min(text.find('\n', at), text.size());
-    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(line_start), '\n'));
-    // The offending line under the message, unless it is long (a one-line file of megabytes).
-    const bool show = line_end - line_start <= 200;
-    throw ParseError(path, SourceLoc{line, static_cast<int>(at - line_start) + 1}, "expected glTF's JSON: " + reason,
-                     show ? text.substr(line_start, line_end - line_start) : std::string());
-  } catch (const nlohmann::json::exception& e) {  // a number out of range: no place given
-    std::string reason = e.what();
-    if (const size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
-    throw std::runtime_error(fmt::format("cannot read '{}': its JSON is not glTF's ({})", path, reason));
-  }
-  if (!j.is_object()) return;  // assimp says what it expected
-  check_gltf_numbers(j, path);
-  if (j.contains("cameras") && j["cameras"].is_array())
-    for (const auto& c : j["cameras"])
-      infinite_far.push_back(c.is_object() && c.contains("perspective") && c["perspective"].is_object() &&
-                             !c["perspective"].contains("zfar"));
-  if (!j.contains("skins") || !j["skins"].is_array()) return;
-  for (size_t k = 0; k < j["skins"].size(); ++k)
-    if (const auto& skin = j["skins"][k]; skin.is_object() && !skin.contains("inverseBindMatrices"))
-      throw std::runtime_error(fmt::format("cannot read '{}': skin {} has no inverseBindMatrices, which assimp cannot "
-                                           "read; export the skin with its inverse bind matrices",
-                                           path, k));
-}
-
 }  // namespace
 
 namespace {
@@ -1235,8 +1134,8 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   const std::string ext = lower_extension(path);
   std::error_code ec;
   if (ext == ".ply") check_ply_header(in, path, std::filesystem::file_size(path, ec));
-  std::vector<bool> gltf_infinite_far;
-  if (ext == ".gltf" || ext == ".glb") check_gltf(in, path, ext == ".glb", gltf_infinite_far);
+  GltfFacts gltf;
+  if (ext == ".gltf" || ext == ".glb") gltf = check_gltf(in, path, ext == ".glb");
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; triangulated polygons keep
   // their file order. Node transforms are applied by the reader itself, so
@@ -1246,7 +1145,7 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
   if (animation) *animation = MeshAnimation{};
-  return MeshReader(*scene, path, ext, limits, animation, options, std::move(gltf_infinite_far)).read();
+  return MeshReader(*scene, path, ext, limits, animation, options, std::move(gltf.infinite_far)).read();
 }
 
 SceneDesc read_scene_file(const std::string& path, MeshAnimation* animation, const SceneReadOptions& options) {
