@@ -1,4 +1,4 @@
-// The shadow cache (reuse/shadow_cache.hpp, issue 12): surface cells round
+// The shadow cache (render/shadow_cache.hpp, issue 12): surface cells round
 // trip, the cached image against tracing every shadow ray, determinism,
 // validity across moving frames, and the memory bound.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "render/renderer.hpp"
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 #include "scene/nff_reader.hpp"
 
 using namespace holoray;

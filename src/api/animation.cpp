@@ -15,7 +15,7 @@
 #include "holoray/animate.hpp"
 #include "holoray/errors.hpp"
 #include "image/image_io.hpp"
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 #include "scene/mesh_reader.hpp"
 #include "shot/shot_reader.hpp"
 #include "temporal/keyframe_schedule.hpp"

@@ -13,7 +13,7 @@
 #include "holoray/render.hpp"
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 #include "util/stopwatch.hpp"
 
 namespace holoray::api {

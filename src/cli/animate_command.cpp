@@ -177,7 +177,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     if (glass) {
       ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views, std::nullopt};  // the viewpoint's focus
     } else if (panel) {
-      ao.camera = api::Display{o.view.display, std::nullopt};
+      ao.camera = api::Display{o.view.display, std::nullopt, std::nullopt};
     } else if (pinhole) {
       api::Pinhole p;
       if (!o.view.resolution.empty()) parse_resolution(o.view.resolution, p.width, p.height);

@@ -1,5 +1,5 @@
 // holoray/cli: the shadow-cache options shared by `render` and `animate`
-// (issue 12; reuse/shadow_cache.hpp): --cache, --cache-cell, --cache-memory.
+// (issue 12; render/shadow_cache.hpp): --cache, --cache-cell, --cache-memory.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "render/ray_counts.hpp"
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 
 namespace holoray::cli {
 

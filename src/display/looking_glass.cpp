@@ -9,7 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "render/tiles.hpp"  // parallel_for_n: rows on all cores
+#include "util/parallel.hpp"  // parallel_for_n: rows on all cores
 #include "scene/file_text.hpp"
 
 namespace holoray {

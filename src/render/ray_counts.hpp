@@ -1,5 +1,5 @@
 // holoray/render: ray counts by kind, the SPD's "useful counts" (nff-notes §10.13),
-// and what the shadow cache (reuse/shadow_cache.hpp) answered instead.
+// and what the shadow cache (render/shadow_cache.hpp) answered instead.
 #pragma once
 
 #include <cstdint>

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 #include "scene/tessellate.hpp"
 
 namespace holoray {

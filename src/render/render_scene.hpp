@@ -135,7 +135,7 @@ class RenderScene {
   /// hall of mirrors costs 2^depth rays per pixel.
   void set_max_depth(int depth);
   int max_depth() const { return max_depth_; }
-  /// Shadow visibility reuse for the shading (reuse/shadow_cache.hpp), or
+  /// Shadow visibility reuse for the shading (render/shadow_cache.hpp), or
   /// null to trace every shadow ray. Not owned; set_transforms keeps it valid
   /// (ShadowCache::sync). The cache must have been built on this scene.
   void set_shadow_cache(ShadowCache* cache) { shadow_cache_ = cache; }

@@ -7,7 +7,7 @@
 #include "render/gltf_brdf.hpp"
 #include "render/gltf_batch.hpp"
 #include "render/light_batch.hpp"
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 
 namespace holoray {
 

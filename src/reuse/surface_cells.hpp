@@ -14,7 +14,7 @@
 //
 // Each cell has fixed sample points, its corners and its centre (object
 // space), with their geometric normals: whatever reuses a cell
-// (shadow_cache.hpp) derives its value from these alone, so the value never
+// (render/shadow_cache.hpp) derives its value from these alone, so the value never
 // depends on which pixel or thread asked first. Corners are the vertices of
 // the primitive's cell grid and have slots of their own, shared by the cells
 // that meet there (a triangle's inner vertex by six sub-triangles, a patch's

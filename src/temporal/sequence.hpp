@@ -54,7 +54,7 @@ struct SequenceOptions {
   /// scene's, filled in by the caller), a display's native panel images, a
   /// Looking Glass's, as `render` renders them.
   std::optional<FrameCameraDesc> frame_camera;
-  /// Shadow cache (reuse/shadow_cache.hpp) for traced frames, filling and
+  /// Shadow cache (render/shadow_cache.hpp) for traced frames, filling and
   /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
   /// it lives across frames while nothing moves. The reference frames
   /// (`reference`) are always traced without it.

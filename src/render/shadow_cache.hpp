@@ -1,4 +1,4 @@
-// holoray/reuse: the shadow cache (issue 12). Whether a point light is
+// holoray/render: the shadow cache (issue 12). Whether a point light is
 // visible from a surface point does not depend on the view: every lens that
 // sees the point (tens in an EIA) and every frame in which nothing moves asks
 // the same question. The cache answers it per surface cell (surface_cells.hpp)

@@ -1,4 +1,4 @@
-#include "reuse/shadow_cache.hpp"
+#include "render/shadow_cache.hpp"
 
 #include <atomic>
 #include <cmath>
