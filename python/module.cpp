@@ -1,9 +1,17 @@
 // holoray/python: the `_holoray` extension module, the compiled half of the
 // `holoray` package (python/holoray/__init__.py is the other). Exceptions
 // are mapped here: SceneError (a ValueError with file, line, column),
-// std::invalid_argument and std::length_error to ValueError (pybind11's own).
+// std::system_error to OSError by its errno (FileNotFoundError,
+// PermissionError, ...), std::invalid_argument to ValueError with the API's
+// `names` said as this module's keywords, std::length_error to ValueError
+// (pybind11's own).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -11,6 +19,17 @@
 
 namespace py = pybind11;
 using namespace holoray;
+
+namespace holoray::python {
+
+// This module's keywords are the C++ API's names but for fov_lens_deg.
+std::string in_keyword_words(std::string_view message) {
+  return api::say_names(message, [](std::string_view name) {
+    return std::string(name == "fov_lens_deg" ? std::string_view("fov_lens") : name);
+  });
+}
+
+}  // namespace holoray::python
 
 PYBIND11_MODULE(_holoray, m) {
   m.doc() = "holoray's compiled module: use the `holoray` package.";
@@ -30,6 +49,13 @@ PYBIND11_MODULE(_holoray, m) {
       PyErr_SetObject(scene_error.ptr(), instance.ptr());
     } catch (const api::Cancelled& e) {
       PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, python::in_keyword_words(e.what()).c_str());
+    } catch (const std::system_error& e) {
+      // OSError(errno, text) is the subclass for the errno: FileNotFoundError,
+      // PermissionError, IsADirectoryError, ...
+      if (e.code().category() != std::generic_category() && e.code().category() != std::system_category()) throw;
+      PyErr_SetObject(PyExc_OSError, py::make_tuple(e.code().value(), e.what()).ptr());
     }
   });
 

@@ -305,7 +305,7 @@ TEST(Placement, RefusesNonsense) {
   s.lenses_x = 0;
   EXPECT_EQ(message(s, vp), "lens counts must be at least 1, got 0x64");
   s = {};
-  EXPECT_EQ(message(s, std::nullopt), "the scene has no viewpoint ('v'); place the array with --origin, --normal, --up and --pitch");
+  EXPECT_EQ(message(s, std::nullopt), "the scene has no viewpoint ('v'); place the array with `origin`, `normal`, `up` and `pitch`");
   s.origin = Vec3{0, 0, 0};
   s.normal = Vec3{0, 0, 1};
   s.up = Vec3{0, 0, 2};
@@ -314,7 +314,7 @@ TEST(Placement, RefusesNonsense) {
   s = {};
   s.gap = 1;
   s.fov_lens_deg = 10;
-  EXPECT_EQ(message(s, vp), "give either --gap or --fov-lens, not both");
+  EXPECT_EQ(message(s, vp), "give either `gap` or `fov_lens_deg`, not both");
   s = {};
   s.lenses_x = 1 << 20;
   s.lenses_y = 1;

@@ -2,6 +2,8 @@
 // exact message for each class of malformed input.
 #include <gtest/gtest.h>
 
+#include <system_error>
+
 #include "scene/nff_reader.hpp"
 #include "scene/parse_error.hpp"
 #include "test_util.hpp"
@@ -175,8 +177,9 @@ TEST(NffReaderErrors, FolderInsteadOfFile) {
   try {
     read_nff_file(dir.path.string());
     FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), "cannot read '" + dir.path.string() + "': it is a folder");
+  } catch (const std::system_error& e) {
+    EXPECT_EQ(e.code(), std::errc::is_a_directory);
+    EXPECT_EQ(std::string(e.what()), "cannot read '" + dir.path.string() + "': " + e.code().message());
   }
 }
 

@@ -4,11 +4,17 @@
 //   std::length_error      an absurd size, refused before anything is allocated
 //   holoray::api::SceneError  a malformed scene, shot, display or calibration file
 //   holoray::api::Cancelled   a render stopped through its std::stop_token
-//   std::runtime_error     I/O (a file that cannot be read or written)
+//   std::system_error      I/O: a file that cannot be read or written; code()
+//                          is its errno (std::generic_category)
+//
+// Every malformed input file is a SceneError naming the file, whichever
+// reader found it; a file that is missing, unreadable or a folder is not.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "holoray/export.hpp"
 
@@ -43,5 +49,12 @@ class HOLORAY_API Cancelled : public std::runtime_error {
  public:
   Cancelled() : std::runtime_error("holoray: cancelled") {}
 };
+
+/// Messages name what the caller set by this API's names in backquotes
+/// (`pitch`, `fov_lens_deg`, `LookingGlass`: camera.hpp). Returns `message`
+/// with each such name replaced by say(name), a front end's own word for it
+/// (the CLI's --pitch, Python's pitch); backquoted text that is not a name
+/// (letters and '_') is kept as it is.
+HOLORAY_API std::string say_names(std::string_view message, const std::function<std::string(std::string_view)>& say);
 
 }  // namespace holoray::api

@@ -42,10 +42,10 @@ def load_scene(path, *, camera_name="", texture_path=()):
     file's cameras when it has none of that name). texture_path: folders (a
     path or a sequence of them) where a texture the file names but that does
     not exist is looked for by its base name, after the file's own folder.
-    Raises SceneError (file:line:col) for malformed input, FileNotFoundError
-    for a missing file."""
+    Raises SceneError (file:line:col) for malformed input, OSError for a file
+    that cannot be read (FileNotFoundError, PermissionError, IsADirectoryError)."""
     path = os.fspath(path)
-    if not os.path.isfile(path):
+    if not os.path.exists(path):
         raise FileNotFoundError(2, "no such scene file", path)
     if isinstance(texture_path, (str, os.PathLike)):
         texture_path = [texture_path]

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <system_error>
 
 #include "api/internal.hpp"
 #include "display/display_file.hpp"
@@ -43,12 +44,15 @@ ArraySettings settings_of(const LensArray& a) {
 }
 
 // A display or calibration file read by `read`: its errors are SceneErrors,
-// with a position where the reader knows one (syntax), without (a value).
+// with a position where the reader knows one (syntax), without (a value);
+// a file that cannot be read is a std::system_error, as everywhere.
 template <class Read>
 auto read_file(const std::string& path, Read&& read) {
   try {
     return read(path);
   } catch (const SceneError&) {
+    throw;
+  } catch (const std::system_error&) {  // I/O stays I/O
     throw;
   } catch (const std::runtime_error& e) {
     throw SceneError(path, 0, 0, e.what(), e.what());

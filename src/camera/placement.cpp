@@ -26,7 +26,7 @@ ViewPlacement place_by_viewpoint(RecordingMode mode, const Viewpoint& vp) {
 std::optional<Frame> explicit_frame(const ArraySettings& s) {
   if (!(s.origin || s.normal || s.up)) return std::nullopt;
   if (!(s.origin && s.normal && s.up))
-    throw std::invalid_argument("explicit placement needs all of --origin, --normal and --up");
+    throw std::invalid_argument("explicit placement needs all of `origin`, `normal` and `up`");
   return Frame::from_normal_up(*s.origin, *s.normal, *s.up);
 }
 
@@ -43,19 +43,19 @@ LensArrayDesc place_array(const ArraySettings& s, const std::optional<Viewpoint>
     throw std::invalid_argument(fmt::format("lens counts must be at least 1, got {}x{}", s.lenses_x, s.lenses_y));
 
   if (const std::optional<Frame> frame = explicit_frame(s)) {
-    if (!s.pitch) throw std::invalid_argument("explicit placement needs --pitch (the lens pitch in scene units)");
+    if (!s.pitch) throw std::invalid_argument("explicit placement needs `pitch` (the lens pitch in scene units)");
     d.frame = *frame;
     d.pitch = *s.pitch;
   } else {
     if (!vp)
       throw std::invalid_argument(
-          "the scene has no viewpoint ('v'); place the array with --origin, --normal, --up and --pitch");
+          "the scene has no viewpoint ('v'); place the array with `origin`, `normal`, `up` and `pitch`");
     const ViewPlacement placed = place_by_viewpoint(s.mode, *vp);
     d.frame = placed.frame;
     d.pitch = s.pitch ? *s.pitch : placed.width / s.lenses_x;
   }
 
-  if (s.gap && s.fov_lens_deg) throw std::invalid_argument("give either --gap or --fov-lens, not both");
+  if (s.gap && s.fov_lens_deg) throw std::invalid_argument("give either `gap` or `fov_lens_deg`, not both");
   if (s.gap) {
     d.gap = *s.gap;
   } else {

@@ -33,7 +33,7 @@ ImageBuffer extract_subaperture(const ImageBuffer& eia, const LensArray& cam, in
 }
 
 LensArrayDesc eia_layout(int width, int height, Grid grid, int P) {
-  if (P < 1) throw std::invalid_argument(fmt::format("--pixels-per-lens: must be at least 1, got {}", P));
+  if (P < 1) throw std::invalid_argument(fmt::format("`pixels_per_lens`: must be at least 1, got {}", P));
   LensArrayDesc d;
   d.pixels_per_lens = P;
   d.grid = grid;

@@ -18,6 +18,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "cli/error_words.hpp"
 #include "cli/interrupt.hpp"
 #include "holoray/holoray.hpp"
 #include "cluster/group_dealer.hpp"
@@ -401,7 +402,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   } catch (const ParseError& e) {
     return world.fail(e.what(), rendering);
   } catch (const std::exception& e) {
-    return world.fail(fmt::format("holoray: error: {}", e.what()), rendering);
+    return world.fail(error_line(e), rendering);
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "cli/error_words.hpp"
 #include "cli/validators.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
@@ -36,7 +37,7 @@ int run_compare(const CompareCommandOptions& o) {
       fmt::print("NaN     {} samples have a value in one image and NaN in the other; left out above\n", d.nan_mismatches);
     return 0;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    fmt::print(stderr, "{}\n", error_line(e));
   }
   return 1;
 }

@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "camera/quilt_camera.hpp"
+#include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
 #include "display/looking_glass.hpp"
@@ -62,7 +63,7 @@ int run_interlace(const InterlaceCommandOptions& o) {
     }
     return 0;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    fmt::print(stderr, "{}\n", error_line(e));
   }
   return 1;
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "camera/subaperture.hpp"
+#include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
 #include "display/display_file.hpp"
@@ -59,7 +60,7 @@ int run_simulate(const SimulateCommandOptions& o) {
   } catch (const ParseError& e) {
     fmt::print(stderr, "{}\n", e.what());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    fmt::print(stderr, "{}\n", error_line(e));
   }
   return 1;
 }
@@ -78,7 +79,7 @@ int run_views(const ViewsCommandOptions& o) {
     else write_image(o.output, view_grid(eia, cam), encoding);
     return 0;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    fmt::print(stderr, "{}\n", error_line(e));
   }
   return 1;
 }

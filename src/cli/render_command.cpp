@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "api/internal.hpp"
+#include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
 #include "cli/validators.hpp"
@@ -403,7 +404,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
   } catch (const ParseError& e) {
     return world.fail(e.what(), rendering);
   } catch (const std::exception& e) {
-    return world.fail(fmt::format("holoray: error: {}", e.what()), rendering);
+    return world.fail(error_line(e), rendering);
   }
 }
 

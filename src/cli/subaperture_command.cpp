@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "camera/subaperture.hpp"
+#include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
 #include "image/image_io.hpp"
@@ -41,7 +42,7 @@ int run_subaperture(const SubapertureCommandOptions& o) {
     write_image(o.output, view, encoding);
     return 0;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "holoray: error: {}\n", e.what());
+    fmt::print(stderr, "{}\n", error_line(e));
     return 1;
   }
 }

@@ -24,14 +24,14 @@ Placed place(const DisplayDesc& d, const std::optional<Viewpoint>& vp, const std
   if (explicit_frame) {
     if (!d.units_per_mm)
       throw std::invalid_argument(fmt::format(
-          "{}: placing the array with --origin, --normal and --up needs [scene] units_per_mm in the display file",
+          "{}: placing the array with `origin`, `normal` and `up` needs [scene] units_per_mm in the display file",
           d.source));
     out.frame = *explicit_frame;
     out.units_per_mm = *d.units_per_mm;
   } else {
     if (!vp)
       throw std::invalid_argument(
-          "the scene has no viewpoint to place the display by; give --origin, --normal and --up (and units_per_mm "
+          "the scene has no viewpoint to place the display by; give `origin`, `normal` and `up` (and units_per_mm "
           "in the display file)");
     const ViewPlacement view = place_by_viewpoint(d.mode, *vp);
     out.frame = view.frame;

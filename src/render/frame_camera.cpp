@@ -61,20 +61,20 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
   FrameCamera c;
   switch (d.kind) {
     case Kind::looking_glass: {
-      const Viewpoint& vp = perspective("--looking-glass");
+      const Viewpoint& vp = perspective("`LookingGlass`");
       const LookingGlassCalibration& cal = *d.calibration;
       c.glass.emplace(cal, view_of(vp, cal.width, cal.height), d.looking_glass_views);
       break;
     }
     case Kind::quilt: {
-      const Viewpoint& vp = perspective("--quilt");
+      const Viewpoint& vp = perspective("`Quilt`");
       const PinholeDesc centre = view_of(vp, d.quilt.view_width, d.quilt.view_height);
       if (d.quilt_view >= 0) c.view.emplace(quilt_view(d.quilt, centre, d.quilt_view));
       else c.quilt.emplace(d.quilt, centre);
       break;
     }
     case Kind::pinhole: {
-      const Viewpoint& vp = need_viewpoint("--camera pinhole", "");
+      const Viewpoint& vp = need_viewpoint("`Pinhole`", "");
       const int w = d.width > 0 ? d.width : vp.xres > 0 ? vp.xres : 512;
       const int h = d.width > 0 ? d.height : vp.yres > 0 ? vp.yres : 512;
       PinholeDesc pd = view_of(vp, w, h);

@@ -28,18 +28,15 @@ json parse_gltf_json(std::ifstream& in, const std::string& path, bool binary) {
   if (binary) {
     char head[20];
     if (!in.read(head, sizeof head) || std::string_view(head, 4) != "glTF" || std::string_view(head + 16, 4) != "JSON")
-      throw std::runtime_error(fmt::format("cannot read '{}': not a binary glTF file (expected the 'glTF' magic and a "
-                                           "JSON chunk first)",
-                                           path));
+      throw malformed_file(path, "not a binary glTF file (expected the 'glTF' magic and a JSON chunk first)");
     uint32_t length = 0;
     std::memcpy(&length, head + 12, sizeof length);
     std::error_code ec;
     if (length > std::filesystem::file_size(path, ec) || ec)
-      throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk claims {} bytes, more than the file holds",
-                                           path, length));
+      throw malformed_file(path, fmt::format("its JSON chunk claims {} bytes, more than the file holds", length));
     text.resize(length);
     if (!in.read(text.data(), length))
-      throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is cut short", path));
+      throw malformed_file(path, "its JSON chunk is cut short");
   } else {
     text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
@@ -51,7 +48,7 @@ json parse_gltf_json(std::ifstream& in, const std::string& path, bool binary) {
     std::string reason = e.what();
     if (const size_t colon = reason.find(": ", reason.find("column")); colon != std::string::npos)
       reason = reason.substr(colon + 2);
-    if (binary) throw std::runtime_error(fmt::format("cannot read '{}': its JSON chunk is not JSON ({})", path, reason));
+    if (binary) throw malformed_file(path, fmt::format("its JSON chunk is not JSON ({})", reason));
     const size_t newline = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
     const size_t line_start = newline == std::string::npos ? 0 : newline + 1;
     const size_t line_end = std::min(text.find('\n', at), text.size());
@@ -63,7 +60,7 @@ json parse_gltf_json(std::ifstream& in, const std::string& path, bool binary) {
   } catch (const json::exception& e) {  // a number out of range: no place given
     std::string reason = e.what();
     if (const size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
-    throw std::runtime_error(fmt::format("cannot read '{}': its JSON is not glTF's ({})", path, reason));
+    throw malformed_file(path, fmt::format("its JSON is not glTF's ({})", reason));
   }
 }
 
@@ -82,7 +79,7 @@ class GltfRules {
 
  private:
   [[noreturn]] void fail(const std::string& where, const std::string& expected) const {
-    throw std::runtime_error(fmt::format("cannot read '{}': {} {}", path_, where, expected));
+    throw malformed_file(path_, fmt::format("{} {}", where, expected));
   }
 
   const json& top(const char* name) const {
@@ -248,9 +245,9 @@ class GltfRules {
     const json& all = top("skins");
     for (size_t k = 0; k < all.size(); ++k)
       if (all[k].is_object() && !all[k].contains("inverseBindMatrices"))
-        throw std::runtime_error(fmt::format("cannot read '{}': skin {} has no inverseBindMatrices, which assimp cannot "
-                                             "read; export the skin with its inverse bind matrices",
-                                             path_, k));
+        throw malformed_file(path_, fmt::format("skin {} has no inverseBindMatrices, which assimp cannot read; export "
+                                                "the skin with its inverse bind matrices",
+                                                k));
   }
 
   const json& j_;

@@ -84,10 +84,10 @@ class MeshReader {
     read_materials();
     long triangles = 0;
     count(s_.mRootNode, triangles);
-    if (triangles == 0) throw std::runtime_error(fmt::format("cannot read '{}': it holds no triangles", out_.source));
+    if (triangles == 0) throw malformed_file(out_.source, "it holds no triangles");
     if (triangles > limits_.max_triangles)
-      throw std::runtime_error(fmt::format("cannot read '{}': {} triangles, over the limit of {}", out_.source, triangles,
-                                           limits_.max_triangles));
+      throw malformed_file(out_.source, fmt::format("{} triangles, over the limit of {}",
+                                                    triangles, limits_.max_triangles));
     out_.objects.reserve(static_cast<size_t>(triangles));
     walk(s_.mRootNode, aiMatrix4x4(), aiMatrix4x4(), -1);
     for (const auto& [mesh, node] : deforming_) add_deforming_mesh(*mesh, node);
@@ -514,8 +514,8 @@ class MeshReader {
       NodeTrack track;
       auto time = [&](double ticks, const char* what) {
         if (!std::isfinite(ticks))
-          throw std::runtime_error(fmt::format("cannot read '{}': node '{}' has a {} key at a time that is not finite",
-                                               out_.source, ch.mNodeName.C_Str(), what));
+          throw malformed_file(out_.source, fmt::format("node '{}' has a {} key at a time that is not finite",
+                                                        ch.mNodeName.C_Str(), what));
         return ticks / tps;
       };
       auto bad = [&](const char* what) {
@@ -549,16 +549,14 @@ class MeshReader {
       for (unsigned k = 0; k < ch.mNumKeys; ++k) {
         const aiMeshMorphKey& key = ch.mKeys[k];
         if (!std::isfinite(key.mTime))
-          throw std::runtime_error(fmt::format("cannot read '{}': node '{}' has a morph weight key at a time that is "
-                                               "not finite",
-                                               out_.source, ch.mName.C_Str()));
+          throw malformed_file(out_.source, fmt::format("node '{}' has a morph weight key at a time that is not finite",
+                                                        ch.mName.C_Str()));
         std::vector<double> w;
         for (unsigned i = 0; i < key.mNumValuesAndWeights; ++i) {
           const unsigned target = key.mValues[i];
           if (target >= 1024 || !std::isfinite(key.mWeights[i]))
-            throw std::runtime_error(fmt::format("cannot read '{}': node '{}' has a bad morph weight key (target {}, "
-                                                 "weight {})",
-                                                 out_.source, ch.mName.C_Str(), target, key.mWeights[i]));
+            throw malformed_file(out_.source, fmt::format("node '{}' has a bad morph weight key (target {}, weight {})",
+                                                          ch.mName.C_Str(), target, key.mWeights[i]));
           if (target >= w.size()) w.resize(target + 1, 0.0);
           w[target] = key.mWeights[i];
         }
@@ -671,8 +669,7 @@ class MeshReader {
       for (const std::vector<Vec3>* list : {&t.vertices, &t.normals})
         for (const Vec3& p : *list)
           if (!is_finite(p))
-            throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}': morph target {} is not finite",
-                                                 out_.source, d.mesh, k));
+            throw malformed_file(out_.source, fmt::format("mesh '{}': morph target {} is not finite", d.mesh, k));
       d.targets.push_back(std::move(t));
       d.weights.push_back(std::isfinite(am.mWeight) ? am.mWeight : 0.0);
     }
@@ -690,18 +687,18 @@ class MeshReader {
     for (unsigned b = 0; b < mesh.mNumBones; ++b) {
       const aiBone& bone = *mesh.mBones[b];
       if (!place_.count(bone.mName.C_Str()))
-        throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}' is skinned to joint '{}', which is not a node "
-                                             "of the scene",
-                                             out_.source, d.mesh, bone.mName.C_Str()));
+        throw malformed_file(out_.source, fmt::format("mesh '{}' is skinned to joint '{}', which is not a node of the "
+                                                      "scene",
+                                                      d.mesh, bone.mName.C_Str()));
       MeshAnimation::DeformingMesh::Joint j = joint_at(bone.mName.C_Str());
       j.inverse_bind = to_affine(bone.mOffsetMatrix);
       d.joints.push_back(std::move(j));
       for (unsigned k = 0; k < bone.mNumWeights; ++k) {
         const aiVertexWeight& w = bone.mWeights[k];
         if (w.mVertexId >= nv || !std::isfinite(w.mWeight) || w.mWeight < 0)
-          throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}': joint '{}' has a bad weight (vertex {}, "
-                                               "weight {}); expected a vertex below {} and a weight of 0 or more",
-                                               out_.source, d.mesh, bone.mName.C_Str(), w.mVertexId, w.mWeight, nv));
+          throw malformed_file(out_.source, fmt::format("mesh '{}': joint '{}' has a bad weight (vertex {}, weight "
+                                                        "{}); expected a vertex below {} and a weight of 0 or more",
+                                                        d.mesh, bone.mName.C_Str(), w.mVertexId, w.mWeight, nv));
         if (w.mWeight > 0) of_vertex[w.mVertexId].emplace_back(b, w.mWeight);
       }
     }
@@ -737,8 +734,7 @@ class MeshReader {
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const Vec3 p = posed ? (*posed)[v] : xf.point(mesh.mVertices[v]);
       if (!is_finite(p))
-        throw std::runtime_error(
-            fmt::format("cannot read '{}': mesh '{}' has a vertex that is not finite", out_.source, mesh.mName.C_Str()));
+        throw malformed_file(out_.source, fmt::format("mesh '{}' has a vertex that is not finite", mesh.mName.C_Str()));
       m.vertices.push_back(p);
     }
     if (mesh.HasNormals()) {
@@ -768,8 +764,8 @@ class MeshReader {
         for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
           const aiVector3D& t = mesh.mTextureCoords[uv_set][v];
           if (!std::isfinite(t.x) || !std::isfinite(t.y))
-            throw std::runtime_error(fmt::format("cannot read '{}': mesh '{}' has a texture coordinate that is not finite",
-                                                 out_.source, mesh.mName.C_Str()));
+            throw malformed_file(out_.source, fmt::format("mesh '{}' has a texture coordinate that is not finite",
+                                                          mesh.mName.C_Str()));
           m.uvs.push_back({t.x, t.y});
         }
       } else {
@@ -1046,8 +1042,8 @@ void check_ply_header(std::ifstream& in, const std::string& path, uintmax_t size
     uintmax_t n = 0;
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
     if (ec != std::errc() || end != count.data() + count.size() || n > size || declared + n > size)
-      throw std::runtime_error(fmt::format("cannot read '{}': its header declares {} {} elements, more than a file of {} bytes holds",
-                                           path, count, name, size));
+      throw malformed_file(path, fmt::format("its header declares {} {} elements, more than a file of {} bytes holds",
+                                             count, name, size));
     declared += n;
   }
 }
@@ -1143,7 +1139,7 @@ SceneDesc read_mesh_file(const std::string& path, const MeshLimits& limits, Mesh
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
-    throw std::runtime_error(fmt::format("cannot read '{}': {}", path, importer.GetErrorString()));
+    throw malformed_file(path, importer.GetErrorString());
   if (animation) *animation = MeshAnimation{};
   return MeshReader(*scene, path, ext, limits, animation, options, std::move(gltf.infinite_far)).read();
 }

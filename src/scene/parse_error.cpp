@@ -27,4 +27,8 @@ std::string ParseError::headline() const {
   return fmt::format("{}:{}:{}: error: {}", file(), line(), column(), message());
 }
 
+api::SceneError malformed_file(const std::string& path, const std::string& message) {
+  return api::SceneError(path, 0, 0, message, fmt::format("cannot read '{}': {}", path, message));
+}
+
 }  // namespace holoray

@@ -1,4 +1,7 @@
-// holoray/scene: the error every reader throws for malformed input.
+// holoray/scene: the errors every reader throws for malformed input: one
+// type, the public API's SceneError, with a position where the file has one
+// (ParseError) and without (malformed_file). I/O errors are not these: a
+// file that cannot be opened or read is a std::system_error with the errno.
 #pragma once
 
 #include <stdexcept>
@@ -26,5 +29,10 @@ class ParseError : public api::SceneError {
   /// The first line of what(): "file:line:col: error: message".
   std::string headline() const;
 };
+
+/// A malformed file where no position applies (a value out of range, a
+/// structure, what a library reading the file reported): line and column
+/// 0, what() "cannot read 'PATH': MESSAGE", message() MESSAGE.
+api::SceneError malformed_file(const std::string& path, const std::string& message);
 
 }  // namespace holoray

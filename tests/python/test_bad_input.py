@@ -1,6 +1,7 @@
 """Bad input raises the exception the stub names, with a message that says where and what."""
 from __future__ import annotations
 
+import json
 import re
 import time
 
@@ -91,6 +92,33 @@ def test_missing_scene_file_raises_file_not_found(tmp):
     with pytest.raises(FileNotFoundError) as info:
         holoray.load_scene(tmp / "nothere.nff")
     assert "nothere.nff" in str(info.value)
+
+
+def test_malformed_mesh_file_raises_scene_error_naming_the_file(tmp, run_cli):
+    # A face names vertex 9 of 3: assimp refuses it; the one error rule makes
+    # it a SceneError (no position: the message is assimp's), as in the CLI.
+    path = write(tmp / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+    with pytest.raises(holoray.SceneError) as info:
+        holoray.load_scene(path)
+    assert info.value.file == str(path)
+    assert (info.value.line, info.value.column) == (0, 0)
+    cli = run_cli("render", path, "-o", tmp / "x.png", ok=False)
+    assert cli.returncode == 1
+    assert f"holoray: error: {info.value}" in cli.stderr
+
+
+def test_malformed_gltf_structure_raises_scene_error(tmp):
+    path = write(tmp / "m.gltf", '{"asset": {"version": "2.0"}, "accessors": '
+                                 '[{"componentType": 5126, "count": 0, "type": "SCALAR"}]}')
+    with pytest.raises(holoray.SceneError) as info:
+        holoray.load_scene(path)
+    assert str(info.value) == f"cannot read '{path}': /accessors/0/count must be an integer of at least 1"
+
+
+def test_folder_as_scene_file_raises_is_a_directory(tmp):
+    with pytest.raises(IsADirectoryError) as info:
+        holoray.load_scene(tmp)
+    assert str(tmp) in str(info.value)
 
 
 def test_missing_display_and_calibration_files_raise_file_not_found(tmp, scene):
@@ -186,6 +214,21 @@ def test_a_good_mesh_after_a_refused_one_is_added():
 
 
 # ---- cameras and render options ----------------------------------------------
+
+
+def test_library_messages_name_the_api_not_the_cli_options(tmp):
+    # The library names a camera by the API's type (`Quilt`), which the CLI
+    # says as --quilt: Python reads the class name.
+    j = json.loads((REPO / "tests" / "data" / "blender" / "mapped_plane.gltf").read_text())
+    j["cameras"] = [{"type": "orthographic", "name": "top",
+                     "orthographic": {"xmag": 2.0, "ymag": 2.0, "znear": 0.1, "zfar": 100.0}}]
+    path = tmp / "ortho.gltf"
+    path.write_text(json.dumps(j))
+    scene = holoray.load_scene(path)
+    with pytest.raises(ValueError) as info:
+        holoray.render(scene, holoray.Quilt(2, 2, view_resolution=(8, 8)), threads=THREADS)
+    assert str(info.value).startswith("Quilt: the camera ")
+    assert "--" not in str(info.value)
 
 def test_absurd_lens_array_is_refused_quickly_before_allocating(scene):
     rss = vm_rss_bytes()

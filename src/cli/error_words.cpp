@@ -1,0 +1,39 @@
+#include "cli/error_words.hpp"
+
+#include <array>
+#include <string>
+#include <utility>
+
+#include "holoray/errors.hpp"
+
+namespace holoray::cli {
+
+namespace {
+
+// The API's names (include/holoray/camera.hpp) and the options that set them.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kOptions{{
+    {"origin", "--origin"},
+    {"normal", "--normal"},
+    {"up", "--up"},
+    {"pitch", "--pitch"},
+    {"gap", "--gap"},
+    {"fov_lens_deg", "--fov-lens"},
+    {"pixels_per_lens", "--pixels-per-lens"},
+    {"LookingGlass", "--looking-glass"},
+    {"Quilt", "--quilt"},
+    {"Pinhole", "--camera pinhole"},
+}};
+
+}  // namespace
+
+std::string in_option_words(std::string_view message) {
+  return api::say_names(message, [](std::string_view name) {
+    for (const auto& [api, option] : kOptions)
+      if (api == name) return std::string(option);
+    return std::string(name);
+  });
+}
+
+std::string error_line(const std::exception& e) { return "holoray: error: " + in_option_words(e.what()); }
+
+}  // namespace holoray::cli
