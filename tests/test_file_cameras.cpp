@@ -145,10 +145,10 @@ TEST(FileCamera, FocusDistancePlacesTheLensArrayAlongTheView) {
   const FrameCamera at_centre = make_frame_camera(fd, d.viewpoint, "c.gltf");
   fd.focus_distance = 2;
   const FrameCamera at_two = make_frame_camera(fd, d.viewpoint, "c.gltf");
-  EXPECT_NEAR(length(at_centre.array->desc().frame.origin - Vec3{0, 0.5, 0}), 0, 1e-9);
-  EXPECT_NEAR(length(at_two.array->desc().frame.origin - Vec3{0, 0.5, 3}), 0, 1e-9);
+  EXPECT_NEAR(length(at_centre.lens_array()->desc().frame.origin - Vec3{0, 0.5, 0}), 0, 1e-9);
+  EXPECT_NEAR(length(at_two.lens_array()->desc().frame.origin - Vec3{0, 0.5, 3}), 0, 1e-9);
   // The array spans the camera's field where it stands: 2 d tan(yfov / 2).
-  EXPECT_NEAR(at_two.array->desc().pitch * 4, 2 * 2 * std::tan(0.3), 1e-6);  // yfov in float
+  EXPECT_NEAR(at_two.lens_array()->desc().pitch * 4, 2 * 2 * std::tan(0.3), 1e-6);  // yfov in float
   fd.focus_distance = -1;
   EXPECT_THROW(make_frame_camera(fd, d.viewpoint, "c.gltf"), std::invalid_argument);
 }

@@ -32,7 +32,8 @@ TraceStyle trace_style(Style s, const FrameCamera& camera) {
     case Style::vertical: return TraceStyle::vertical;
     case Style::automatic: break;
   }
-  return camera.array ? preferred_style(camera.array->desc()) : TraceStyle::packet;
+  const holoray::LensArray* array = camera.lens_array();
+  return array ? preferred_style(array->desc()) : TraceStyle::packet;
 }
 
 void check_options(const RenderOptions& o) {
@@ -67,11 +68,11 @@ std::string describe_viewpoint(const FrameCameraDesc& choice, const std::optiona
 // The CLI's summary of the camera (docs/guide/stills.md shows it).
 std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& camera, const Camera& public_camera) {
   const int width = camera.width(), height = camera.height();
-  if (camera.glass)
+  if (const auto* glass = camera.get<LookingGlassCamera>())
     return fmt::format("panel      {}x{} px, Looking Glass ({}): RGB subpixels, each along its lenticule's view, view cone {:.4g} deg\n",
-                       width, height, std::get<LookingGlass>(public_camera).path, camera.glass->calibration().view_cone_deg);
-  if (camera.quilt) {
-    const QuiltDesc& q = camera.quilt->desc();
+                       width, height, std::get<LookingGlass>(public_camera).path, glass->calibration().view_cone_deg);
+  if (const auto* quilt = camera.get<QuiltCamera>()) {
+    const QuiltDesc& q = quilt->desc();
     return fmt::format("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
                        width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
   }
@@ -80,15 +81,15 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
     return fmt::format("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, choice.quilt_view,
                        q.columns, q.rows, q.view_cone_deg);
   }
-  if (choice.kind == Kind::pinhole)
-    return camera.view->desc().ortho_height > 0
+  if (const auto* view = camera.get<PinholeCamera>())
+    return view->desc().ortho_height > 0
                ? fmt::format("view       {}x{} px, orthographic, {:.6g} units tall (the scene's viewpoint)\n", width, height,
-                             camera.view->desc().ortho_height)
+                             view->desc().ortho_height)
                : fmt::format("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
-                             camera.view->desc().fov_deg);
-  if (camera.panel) {
+                             view->desc().fov_deg);
+  if (const auto* panel = camera.get<PanelView>()) {
     const DisplayDesc& d = *choice.display;
-    const DisplayGeometry& g = camera.panel->geometry();
+    const DisplayGeometry& g = panel->camera.geometry();
     return fmt::format("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
                        d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
                        d.samples_per_pixel() == 1 ? "one line" : "three lines", to_string(d.grid),
@@ -99,7 +100,7 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
   std::string out;
   if (choice.display)
     out += fmt::format("display    {}: whole pixels per lens, rendered as the EIA below\n", std::get<Display>(public_camera).path);
-  const holoray::LensArray& a = *camera.array;
+  const holoray::LensArray& a = *camera.lens_array();
   const LensArrayDesc& d = a.desc();
   out += fmt::format("EIA        {}x{} px, {} grid, {}x{} lenses x {} px, {}\n", width, height, to_string(d.grid), a.lens_count_x(),
                      a.lens_count_y(), d.pixels_per_lens, to_string(d.mode));
@@ -113,7 +114,8 @@ struct RendererState {
   std::shared_ptr<const SceneData> scene;
   Camera public_camera;
   FrameCameraDesc choice;
-  FrameCamera camera;
+  std::optional<FrameCamera> placed;  // set once the constructor has placed it
+  const FrameCamera& camera() const { return *placed; }
   std::unique_ptr<RenderScene> render_scene;
   std::unique_ptr<ShadowCache> cache;
   RenderOptions options;
@@ -138,21 +140,23 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   const bool placed = (array && array->placement) || (panel && panel->placement);
   if (desc.source.empty() && !desc.viewpoint && !placed)
     throw std::invalid_argument("camera: the scene has no viewpoint to place it by: call set_viewpoint(), or place the lens array explicitly");
-  s.camera = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
+  s.placed = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
   const Aovs& a = options.aovs;
-  if ((s.camera.panel || s.camera.glass) && (a.albedo || a.depth || a.normal || a.id))
+  const FrameCamera& frame_camera = s.camera();
+  const holoray::LensArray* array_camera = frame_camera.lens_array();
+  if ((frame_camera.get<PanelView>() || frame_camera.get<LookingGlassCamera>()) && (a.albedo || a.depth || a.normal || a.id))
     throw std::invalid_argument("aovs: not written for native panel images yet (colour only)");
-  if (options.cache.enabled && !s.camera.array)
+  if (options.cache.enabled && !array_camera)
     throw std::invalid_argument("cache: goes with the integral camera (its cells are sized in lens pitches)");
 
   // Refused before anything is allocated: the frame and its AOVs, the 8-bit
   // or float copy made on output, and a panel's samples (three per pixel
   // with subpixels), for the rows this process holds.
-  const int width = s.camera.width(), height = s.camera.height();
-  const MemoryShare share = options.memory_share ? options.memory_share(height, s.camera.array ? s.camera.array->desc().pixels_per_lens : 32)
+  const int width = frame_camera.width(), height = frame_camera.height();
+  const MemoryShare share = options.memory_share ? options.memory_share(height, array_camera ? array_camera->desc().pixels_per_lens : 32)
                                                  : MemoryShare{height, height, ""};
   const int64_t held = share.held_rows, copied = share.copied_rows;
-  const int64_t samples = static_cast<int64_t>(s.camera.panel_samples_per_row()) * held;
+  const int64_t samples = static_cast<int64_t>(frame_camera.panel_samples_per_row()) * held;
   const AovSet aovs = aov_set(a);
   const uint64_t need = frame_bytes(held * width, aovs) + static_cast<uint64_t>(copied * width) * 12 + frame_bytes(samples, aovs);
   const uint64_t have = physical_memory_bytes();
@@ -175,15 +179,15 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   s.render_scene = std::make_unique<RenderScene>(s.scene->desc);
   if (options.max_depth != 0) s.render_scene->set_max_depth(options.max_depth);
   // Mesh textures take the MIP level of what one pixel sees.
-  if (const auto angle = s.camera.pixel_angle()) s.render_scene->set_pixel_footprint(0, *angle);
+  if (const auto angle = frame_camera.pixel_angle()) s.render_scene->set_pixel_footprint(0, *angle);
   if (options.cache.enabled) {
     holoray::ShadowCacheOptions co;
-    co.cell_size = options.cache.cell * s.camera.array->desc().pitch;
+    co.cell_size = options.cache.cell * array_camera->desc().pitch;
     co.memory_limit_bytes = static_cast<uint64_t>(options.cache.memory_mib * 1048576.0);
     s.cache = std::make_unique<ShadowCache>(*s.render_scene, co);
     s.render_scene->set_shadow_cache(s.cache.get());
   }
-  s.style = trace_style(options.style, s.camera);
+  s.style = trace_style(options.style, frame_camera);
   s.build.build_seconds = seconds_since(t_build);
 }
 
@@ -191,15 +195,18 @@ Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 
-int Renderer::width() const { return state_->camera.width(); }
-int Renderer::height() const { return state_->camera.height(); }
-int Renderer::band_rows() const { return state_->camera.array ? state_->camera.array->desc().pixels_per_lens : 32; }
+int Renderer::width() const { return state_->camera().width(); }
+int Renderer::height() const { return state_->camera().height(); }
+int Renderer::band_rows() const {
+  const holoray::LensArray* array = state_->camera().lens_array();
+  return array ? array->desc().pixels_per_lens : 32;
+}
 size_t Renderer::skipped_polygons() const { return state_->render_scene->skipped_polygons(); }
 const RenderStats& Renderer::build_stats() const { return state_->build; }
 
 std::string Renderer::describe() const {
   return describe_viewpoint(state_->choice, state_->scene->desc.viewpoint) +
-         describe_camera(state_->choice, state_->camera, state_->public_camera);
+         describe_camera(state_->choice, state_->camera(), state_->public_camera);
 }
 
 const char* Renderer::style_name() const { return to_string(state_->style); }
@@ -223,7 +230,7 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
       if (progress) progress(f);
     };
   holoray::RenderStats st;
-  FrameBuffers fb = render_through(*s.render_scene, s.camera, ro, st);
+  FrameBuffers fb = render_through(*s.render_scene, s.camera(), ro, st);
   Result out;
   out.colour = detail::ImageAccess::wrap(std::move(fb.colour));
   if (!fb.albedo.empty()) out.albedo = detail::ImageAccess::wrap(std::move(fb.albedo));

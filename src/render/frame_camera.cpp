@@ -13,31 +13,37 @@
 
 namespace holoray {
 
+namespace {
+
+// std::visit over the five kinds with one lambda per kind.
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+
+}  // namespace
+
 int FrameCamera::width() const {
-  if (array) return array->width();
-  if (view) return view->width();
-  if (quilt) return quilt->width();
-  if (panel) return panel->geometry().width;
-  return glass->calibration().width;
+  return std::visit(Overloaded{[](const PanelView& p) { return p.camera.geometry().width; },
+                               [](const LookingGlassCamera& g) { return g.calibration().width; },
+                               [](const auto& c) { return c.width(); }},
+                    placed);
 }
 
 int FrameCamera::height() const {
-  if (array) return array->height();
-  if (view) return view->height();
-  if (quilt) return quilt->height();
-  if (panel) return panel->height();
-  return glass->height();
+  return std::visit(Overloaded{[](const PanelView& p) { return p.camera.height(); }, [](const auto& c) { return c.height(); }},
+                    placed);
 }
 
 int FrameCamera::panel_samples_per_row() const {
-  if (panel) return panel->width();
-  if (glass) return glass->width();
+  if (const PanelView* p = get<PanelView>()) return p->camera.width();
+  if (const LookingGlassCamera* g = get<LookingGlassCamera>()) return g->width();
   return 0;
 }
 
 std::optional<double> FrameCamera::pixel_angle() const {
-  if (array) return holoray::pixel_angle(array->desc());
-  if (view) return holoray::pixel_angle(view->desc());
+  if (const LensArray* a = get<LensArray>()) return holoray::pixel_angle(a->desc());
+  if (const PinholeCamera* v = get<PinholeCamera>()) return holoray::pixel_angle(v->desc());
   return std::nullopt;
 }
 
@@ -58,20 +64,17 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       throw std::invalid_argument(fmt::format("{}: the camera '{}' is orthographic: its views would not part", option, vp.camera));
     return vp;
   };
-  FrameCamera c;
   switch (d.kind) {
     case Kind::looking_glass: {
       const Viewpoint& vp = perspective("`LookingGlass`");
       const LookingGlassCalibration& cal = *d.calibration;
-      c.glass.emplace(cal, view_of(vp, cal.width, cal.height), d.looking_glass_views);
-      break;
+      return {LookingGlassCamera(cal, view_of(vp, cal.width, cal.height), d.looking_glass_views)};
     }
     case Kind::quilt: {
       const Viewpoint& vp = perspective("`Quilt`");
       const PinholeDesc centre = view_of(vp, d.quilt.view_width, d.quilt.view_height);
-      if (d.quilt_view >= 0) c.view.emplace(quilt_view(d.quilt, centre, d.quilt_view));
-      else c.quilt.emplace(d.quilt, centre);
-      break;
+      if (d.quilt_view >= 0) return {PinholeCamera(quilt_view(d.quilt, centre, d.quilt_view))};
+      return {QuiltCamera(d.quilt, centre)};
     }
     case Kind::pinhole: {
       const Viewpoint& vp = need_viewpoint("`Pinhole`", "");
@@ -84,28 +87,27 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       const double larger = height * std::max(1.0, double(w) / h);
       pd.shift_x = d.shift_x * larger;
       pd.shift_y = d.shift_y * larger;
-      c.view.emplace(pd);
-      break;
+      return {PinholeCamera(pd)};
     }
     case Kind::display: {
       const std::optional<Frame> frame = explicit_frame(d.array);
-      if (auto eia = as_lens_array(*d.display, focused, frame)) c.array.emplace(*eia);
-      else c.panel.emplace(place_display(*d.display, focused, frame));
-      c.red_first = d.display->subpixels != SubpixelOrder::bgr;
-      break;
+      if (auto eia = as_lens_array(*d.display, focused, frame)) return {LensArray(*eia)};
+      return {PanelView{DisplayCamera(place_display(*d.display, focused, frame)), d.display->subpixels != SubpixelOrder::bgr}};
     }
-    case Kind::integral: c.array.emplace(place_array(d.array, focused)); break;
+    case Kind::integral: break;
   }
-  return c;
+  return {LensArray(place_array(d.array, focused))};
 }
 
 FrameBuffers render_through(const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options,
                             RenderStats& stats) {
-  if (camera.glass) return render_looking_glass(scene, *camera.glass, options, stats);
-  if (camera.view) return render_view(scene, *camera.view, options, stats);
-  if (camera.quilt) return render_quilt(scene, *camera.quilt, options, stats);
-  if (camera.panel) return render_display(scene, *camera.panel, camera.red_first, options, stats);
-  return render_frame(scene, *camera.array, options, stats);
+  return std::visit(
+      Overloaded{[&](const LensArray& a) { return render_frame(scene, a, options, stats); },
+                 [&](const PinholeCamera& v) { return render_view(scene, v, options, stats); },
+                 [&](const QuiltCamera& q) { return render_quilt(scene, q, options, stats); },
+                 [&](const PanelView& p) { return render_display(scene, p.camera, p.red_first, options, stats); },
+                 [&](const LookingGlassCamera& g) { return render_looking_glass(scene, g, options, stats); }},
+      camera.placed);
 }
 
 }  // namespace holoray

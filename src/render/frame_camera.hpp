@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 
 #include "camera/lens_array.hpp"
 #include "camera/pinhole.hpp"
@@ -48,16 +49,26 @@ struct FrameCameraDesc {
   std::optional<double> focus_distance;
 };
 
-/// A FrameCameraDesc placed: exactly one camera is set. A display whose
-/// lenses are whole pixels is its integral camera (as_lens_array), so it
-/// renders with every integral-camera feature.
+/// A display's panel where its lenses are not whole pixels: traced per
+/// subpixel line, then packed into pixels in its subpixel order.
+struct PanelView {
+  DisplayCamera camera;
+  bool red_first = true;  ///< subpixel order RGB (else BGR)
+};
+
+/// A FrameCameraDesc placed: one camera of five, each the Camera interface
+/// (camera/camera.hpp) of its kind. A display whose lenses are whole pixels
+/// is its integral camera (as_lens_array), so it renders with every
+/// integral-camera feature. `render_through` is the one place that
+/// dispatches on the kind.
 struct FrameCamera {
-  std::optional<LensArray> array;
-  std::optional<PinholeCamera> view;  ///< a pinhole view, or one quilt view
-  std::optional<QuiltCamera> quilt;
-  std::optional<DisplayCamera> panel;
-  std::optional<LookingGlassCamera> glass;
-  bool red_first = true;  ///< panel: subpixel order RGB (else BGR)
+  std::variant<LensArray, PinholeCamera, QuiltCamera, PanelView, LookingGlassCamera> placed;
+
+  /// The camera of kind T, or nullptr.
+  template <class T>
+  const T* get() const { return std::get_if<T>(&placed); }
+  /// The integral camera (an EIA, or a display rendered as one), or nullptr.
+  const LensArray* lens_array() const { return get<LensArray>(); }
 
   /// The image's size in pixels (a panel's pixels, not its subpixels).
   int width() const;
