@@ -141,7 +141,9 @@ TEST(FileCamera, FocusDistancePlacesTheLensArrayAlongTheView) {
   test::TempDir dir;
   const SceneDesc d = read_mesh_file(two_camera_gltf(dir));
   FrameCameraDesc fd;
-  fd.array.lenses_x = fd.array.lenses_y = 4;
+  ArraySettings array;
+  array.lenses_x = array.lenses_y = 4;
+  fd.kind = FrameCameraDesc::Integral{array};
   const FrameCamera at_centre = make_frame_camera(fd, d.viewpoint, "c.gltf");
   fd.focus_distance = 2;
   const FrameCamera at_two = make_frame_camera(fd, d.viewpoint, "c.gltf");

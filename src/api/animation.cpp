@@ -85,15 +85,16 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   AnimationState& s = *state_;
   s.options = o;
   SequenceOptions& so = s.so;
-  using Kind = FrameCameraDesc::Kind;
+  using Desc = FrameCameraDesc;
   s.choice = o.camera ? frame_camera_desc(*o.camera) : FrameCameraDesc{};
   const FrameCameraDesc& choice = s.choice;
-  if (choice.kind == Kind::quilt) throw std::invalid_argument("camera: a quilt is rendered as a still (render), not animated");
-  if (o.camera && choice.kind == Kind::integral)
+  if (choice.get<Desc::Quilt>()) throw std::invalid_argument("camera: a quilt is rendered as a still (render), not animated");
+  if (o.camera && choice.get<Desc::Integral>())
     throw std::invalid_argument("camera: the shot's [array] places the lens array; pass a pinhole, display or Looking Glass camera");
-  const bool pinhole = choice.kind == Kind::pinhole;
-  const bool glass = choice.kind == Kind::looking_glass;
-  const bool panel = glass || choice.kind == Kind::display;
+  const bool pinhole = choice.get<Desc::Pinhole>() != nullptr;
+  const Desc::LookingGlass* glass = choice.get<Desc::LookingGlass>();
+  const Desc::Display* display = choice.get<Desc::Display>();
+  const bool panel = glass || display;
   const char* what = glass ? "looking glass" : "display";
   s.method = o.method != Method::automatic ? o.method : pinhole || panel ? Method::full : Method::reverse;
   so.method = s.method == Method::reverse ? holoray::Method::reverse
@@ -105,7 +106,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     throw std::invalid_argument(fmt::format("{}: goes with method full (reuse works on elemental images)", what));
   if (panel && (o.reference || o.cache.enabled))
     throw std::invalid_argument(fmt::format("{}: goes without the report and the cache (native panels are traced in full, without the cache)", what));
-  if (choice.kind != Kind::integral) so.frame_camera = choice;
+  if (!choice.get<Desc::Integral>()) so.frame_camera = choice;
   if (pinhole && o.reference)
     throw std::invalid_argument("report: goes with the integral camera (pinhole previews are traced in full)");
   if (pinhole && o.cache.enabled)
@@ -153,12 +154,13 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     if (first < 0 || last < first || last >= frames)
       throw std::invalid_argument(fmt::format("frames: the shot has frames 0 to {}, got {}:{}", frames - 1, first, last));
   }
-  if (pinhole && so.frame_camera->width == 0) {
+  Desc::Pinhole* view = so.frame_camera ? std::get_if<Desc::Pinhole>(&so.frame_camera->kind) : nullptr;
+  if (view && view->width == 0) {
     // The first scene's resolution, as every frame's (a path's viewpoints carry none).
     auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
                                   [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
-    so.frame_camera->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
-    so.frame_camera->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
+    view->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
+    view->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
   }
   if (auto_keys && so.method != holoray::Method::full)
     so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
@@ -172,10 +174,10 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   }
   // Two point images, two z-buffers and the frame (a panel: its samples,
   // three per pixel, and the packed frame): refused before the first trace.
-  const int panel_w = !panel ? 0 : glass ? choice.calibration->width : choice.display->width;
-  const int panel_h = !panel ? 0 : glass ? choice.calibration->height : choice.display->height;
-  s.width = panel ? panel_w : pinhole ? so.frame_camera->width : first.width();
-  s.height = panel ? panel_h : pinhole ? so.frame_camera->height : first.height();
+  const int panel_w = glass ? glass->calibration.width : display ? display->display.width : 0;
+  const int panel_h = glass ? glass->calibration.height : display ? display->display.height : 0;
+  s.width = panel ? panel_w : view ? view->width : first.width();
+  s.height = panel ? panel_h : view ? view->height : first.height();
   const uint64_t need = panel ? uint64_t(panel_w) * panel_h * (3 * 12 + 2 * 12)
                               : static_cast<uint64_t>(first.pixel_count()) * (2 * PointImage::kBytesPerPixel + 2 * 8 + 64);
   const uint64_t have = physical_memory_bytes();
@@ -196,15 +198,14 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
                                 first.desc().pixels_per_lens, to_string(first.desc().mode));
   // What the CLI prints of the camera and the method.
   std::string& d = s.describe;
-  if (choice.display)
-    d += fmt::format("panel      {}x{} px from {}, each frame's viewpoint\n", choice.display->width, choice.display->height,
+  if (display)
+    d += fmt::format("panel      {}x{} px from {}, each frame's viewpoint\n", panel_w, panel_h,
                      std::get<Display>(*o.camera).path);
-  else if (choice.calibration)
+  else if (glass)
     d += fmt::format("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
-                     choice.calibration->width, choice.calibration->height, std::get<LookingGlass>(*o.camera).path,
-                     choice.looking_glass_views);
+                     panel_w, panel_h, std::get<LookingGlass>(*o.camera).path, glass->views);
   else if (pinhole)
-    d += fmt::format("view       {}x{} px, pinhole, each frame's viewpoint\n", so.frame_camera->width, so.frame_camera->height);
+    d += fmt::format("view       {}x{} px, pinhole, each frame's viewpoint\n", s.width, s.height);
   else
     d += fmt::format("EIA        {}\n", s.array_summary);
   const std::string key_rule =

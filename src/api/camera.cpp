@@ -62,10 +62,10 @@ auto read_file(const std::string& path, Read&& read) {
 }  // namespace
 
 FrameCameraDesc frame_camera_desc(const Camera& camera) {
-  using Kind = FrameCameraDesc::Kind;
+  using Desc = FrameCameraDesc;
   FrameCameraDesc d;
   if (const auto* a = std::get_if<LensArray>(&camera)) {
-    d.array = settings_of(*a);
+    d.kind = Desc::Integral{settings_of(*a)};
     if (a->focus_distance && a->placement)
       throw std::invalid_argument("focus_distance: goes with the viewpoint's placement, not an explicit one");
     d.focus_distance = a->focus_distance;
@@ -73,14 +73,9 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     if (p->width < 0 || p->height < 0 || (p->width == 0) != (p->height == 0) || p->width > 65536 || p->height > 65536)
       throw std::invalid_argument(
           fmt::format("resolution: expected 1 to 65536 pixels each way (or 0x0: the scene's), got {}x{}", p->width, p->height));
-    d.kind = Kind::pinhole;
-    d.width = p->width;
-    d.height = p->height;
-    d.tachyon_samples = p->tachyon_samples;
     if (!std::isfinite(p->shift_x) || !std::isfinite(p->shift_y))
       throw std::invalid_argument(fmt::format("shift: expected finite fractions of the larger side, got {}, {}", p->shift_x, p->shift_y));
-    d.shift_x = p->shift_x;
-    d.shift_y = p->shift_y;
+    d.kind = Desc::Pinhole{p->width, p->height, p->tachyon_samples, p->shift_x, p->shift_y};
   } else if (const auto* q = std::get_if<Quilt>(&camera)) {
     if (q->columns < 1 || q->rows < 1 || int64_t{q->columns} * q->rows > 4096)
       throw std::invalid_argument(fmt::format("quilt: expected 1 to 4096 views, got {}x{}", q->columns, q->rows));
@@ -92,26 +87,25 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     if (q->view >= q->columns * q->rows)
       throw std::invalid_argument(fmt::format("view: a {}x{} quilt has views 0 to {}, got {}", q->columns, q->rows,
                                               q->columns * q->rows - 1, q->view));
-    d.kind = Kind::quilt;
-    d.quilt.columns = q->columns;
-    d.quilt.rows = q->rows;
-    d.quilt.view_width = q->view_width;
-    d.quilt.view_height = q->view_height;
-    d.quilt.view_cone_deg = q->view_cone_deg;
-    d.quilt_view = q->view;
+    QuiltDesc layout;
+    layout.columns = q->columns;
+    layout.rows = q->rows;
+    layout.view_width = q->view_width;
+    layout.view_height = q->view_height;
+    layout.view_cone_deg = q->view_cone_deg;
+    d.kind = Desc::Quilt{layout, q->view};
     d.focus_distance = q->focus_distance;
   } else if (const auto* s = std::get_if<Display>(&camera)) {
-    d.kind = Kind::display;
-    d.display = read_file(s->path, read_display_file);
-    place_explicitly(d.array, s->placement);
+    DisplayDesc display = read_file(s->path, read_display_file);
     if (s->focus_distance && s->placement)
       throw std::invalid_argument("focus_distance: goes with the viewpoint's placement, not an explicit one");
+    ArraySettings placement;
+    place_explicitly(placement, s->placement);
+    d.kind = Desc::Display{std::move(display), explicit_frame(placement)};
     d.focus_distance = s->focus_distance;
   } else if (const auto* g = std::get_if<LookingGlass>(&camera)) {
     if (g->views < 1 || g->views > 4096) throw std::invalid_argument(fmt::format("views: expected 1 to 4096, got {}", g->views));
-    d.kind = Kind::looking_glass;
-    d.calibration = read_file(g->path, read_looking_glass);
-    d.looking_glass_views = g->views;
+    d.kind = Desc::LookingGlass{read_file(g->path, read_looking_glass), g->views};
     d.focus_distance = g->focus_distance;
   }
   return d;

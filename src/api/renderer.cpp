@@ -20,7 +20,6 @@ namespace holoray::api {
 
 namespace {
 
-using Kind = FrameCameraDesc::Kind;
 
 AovSet aov_set(const Aovs& a) { return {a.albedo, a.depth, a.normal, a.id}; }
 
@@ -55,9 +54,10 @@ std::string describe_viewpoint(const FrameCameraDesc& choice, const std::optiona
   std::string out = fmt::format("camera     '{}' from the file, ", vp->camera);
   if (vp->ortho_size > 0) out += fmt::format("orthographic, {:.6g} units {}", vp->ortho_size, axis[int(vp->fov_axis)]);
   else out += fmt::format("{:.4g} deg {}", vp->angle_deg, axis[int(vp->fov_axis)]);
-  if (choice.kind == Kind::pinhole && (vp->clip_near > 0 || vp->clip_far < INFINITY))
+  const bool pinhole = choice.get<FrameCameraDesc::Pinhole>() != nullptr;
+  if (pinhole && (vp->clip_near > 0 || vp->clip_far < INFINITY))
     out += fmt::format("; sees {:.6g} to {:.6g} along its axis (the file's clipping)", vp->clip_near, vp->clip_far);
-  if (choice.kind != Kind::pinhole && !choice.array.origin) {  // an explicit placement has no focal plane of the camera's
+  if (!pinhole && !choice.placed_explicitly()) {  // an explicit placement has no focal plane of the camera's
     const double distance = choice.focus_distance.value_or(length(vp->at - vp->from));
     out += fmt::format("; focal plane {:.6g} from the eye ({})", distance,
                        choice.focus_distance ? "focus distance given" : "the depth of the scene's centre");
@@ -76,9 +76,9 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
     return fmt::format("quilt      {}x{} px: {}x{} views of {}x{} px, view cone {:.4g} deg, sheared frusta on the viewpoint's focal plane\n",
                        width, height, q.columns, q.rows, q.view_width, q.view_height, q.view_cone_deg);
   }
-  if (choice.kind == Kind::quilt) {
-    const QuiltDesc& q = choice.quilt;
-    return fmt::format("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, choice.quilt_view,
+  if (const auto* quilt_view = choice.get<FrameCameraDesc::Quilt>()) {
+    const QuiltDesc& q = quilt_view->layout;
+    return fmt::format("view       {}x{} px, quilt view {} of {}x{} (view cone {:.4g} deg)\n", width, height, quilt_view->view,
                        q.columns, q.rows, q.view_cone_deg);
   }
   if (const auto* view = camera.get<PinholeCamera>())
@@ -88,7 +88,7 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
                : fmt::format("view       {}x{} px, pinhole, field of view {:.4g} deg (the scene's viewpoint)\n", width, height,
                              view->desc().fov_deg);
   if (const auto* panel = camera.get<PanelView>()) {
-    const DisplayDesc& d = *choice.display;
+    const DisplayDesc& d = choice.get<FrameCameraDesc::Display>()->display;
     const DisplayGeometry& g = panel->camera.geometry();
     return fmt::format("panel      {}x{} px, {} ({} per pixel), {} grid{}, {}\n", width, height,
                        d.subpixels == SubpixelOrder::none ? "whole pixels" : fmt::format("{} subpixels", to_string(d.subpixels)),
@@ -98,7 +98,7 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
                        d.pitch_mm, d.pixels_per_lens(), d.gap_mm, g.pixel_pitch / d.pixel_pitch_mm);
   }
   std::string out;
-  if (choice.display)
+  if (choice.get<FrameCameraDesc::Display>())
     out += fmt::format("display    {}: whole pixels per lens, rendered as the EIA below\n", std::get<Display>(public_camera).path);
   const holoray::LensArray& a = *camera.lens_array();
   const LensArrayDesc& d = a.desc();
@@ -132,7 +132,8 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   s.scene = scene.data();
   s.public_camera = camera;
   s.choice = frame_camera_desc(camera);
-  if (s.choice.tachyon_samples && (s.choice.kind != Kind::pinhole || options.spp != 1))
+  const auto* pinhole = s.choice.get<FrameCameraDesc::Pinhole>();
+  if (pinhole && pinhole->tachyon_samples && options.spp != 1)
     throw std::invalid_argument("tachyon samples: go with the pinhole camera and one sample per pixel");
   const SceneDesc& desc = s.scene->desc;
   const auto* array = std::get_if<LensArray>(&camera);

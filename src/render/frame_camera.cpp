@@ -49,7 +49,6 @@ std::optional<double> FrameCamera::pixel_angle() const {
 
 FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<Viewpoint>& viewpoint,
                               const std::string& scene) {
-  using Kind = FrameCameraDesc::Kind;
   // The viewpoint, its `at` moved to the focus distance when one is given.
   std::optional<Viewpoint> focused = viewpoint;
   if (focused && d.focus_distance) focused = viewpoint->focused_at(*d.focus_distance);
@@ -64,39 +63,40 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       throw std::invalid_argument(fmt::format("{}: the camera '{}' is orthographic: its views would not part", option, vp.camera));
     return vp;
   };
-  switch (d.kind) {
-    case Kind::looking_glass: {
-      const Viewpoint& vp = perspective("`LookingGlass`");
-      const LookingGlassCalibration& cal = *d.calibration;
-      return {LookingGlassCamera(cal, view_of(vp, cal.width, cal.height), d.looking_glass_views)};
-    }
-    case Kind::quilt: {
-      const Viewpoint& vp = perspective("`Quilt`");
-      const PinholeDesc centre = view_of(vp, d.quilt.view_width, d.quilt.view_height);
-      if (d.quilt_view >= 0) return {PinholeCamera(quilt_view(d.quilt, centre, d.quilt_view))};
-      return {QuiltCamera(d.quilt, centre)};
-    }
-    case Kind::pinhole: {
-      const Viewpoint& vp = need_viewpoint("`Pinhole`", "");
-      const int w = d.width > 0 ? d.width : vp.xres > 0 ? vp.xres : 512;
-      const int h = d.width > 0 ? d.height : vp.yres > 0 ? vp.yres : 512;
-      PinholeDesc pd = view_of(vp, w, h);
-      if (d.tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
-      // The window's larger side on the image plane at distance 1.
-      const double height = pd.ortho_height > 0 ? pd.ortho_height : 2 * std::tan(pd.fov_deg * std::numbers::pi / 360);
-      const double larger = height * std::max(1.0, double(w) / h);
-      pd.shift_x = d.shift_x * larger;
-      pd.shift_y = d.shift_y * larger;
-      return {PinholeCamera(pd)};
-    }
-    case Kind::display: {
-      const std::optional<Frame> frame = explicit_frame(d.array);
-      if (auto eia = as_lens_array(*d.display, focused, frame)) return {LensArray(*eia)};
-      return {PanelView{DisplayCamera(place_display(*d.display, focused, frame)), d.display->subpixels != SubpixelOrder::bgr}};
-    }
-    case Kind::integral: break;
-  }
-  return {LensArray(place_array(d.array, focused))};
+  using Desc = FrameCameraDesc;
+  return std::visit(
+      Overloaded{
+          [&](const Desc::Integral& i) { return FrameCamera{LensArray(place_array(i.array, focused))}; },
+          [&](const Desc::Pinhole& p) {
+            const Viewpoint& vp = need_viewpoint("`Pinhole`", "");
+            const int w = p.width > 0 ? p.width : vp.xres > 0 ? vp.xres : 512;
+            const int h = p.width > 0 ? p.height : vp.yres > 0 ? vp.yres : 512;
+            PinholeDesc pd = view_of(vp, w, h);
+            if (p.tachyon_samples) pd.sample_u = 1, pd.sample_v = 0;
+            // The window's larger side on the image plane at distance 1.
+            const double height = pd.ortho_height > 0 ? pd.ortho_height : 2 * std::tan(pd.fov_deg * std::numbers::pi / 360);
+            const double larger = height * std::max(1.0, double(w) / h);
+            pd.shift_x = p.shift_x * larger;
+            pd.shift_y = p.shift_y * larger;
+            return FrameCamera{PinholeCamera(pd)};
+          },
+          [&](const Desc::Quilt& q) {
+            const Viewpoint& vp = perspective("`Quilt`");
+            const PinholeDesc centre = view_of(vp, q.layout.view_width, q.layout.view_height);
+            if (q.view >= 0) return FrameCamera{PinholeCamera(quilt_view(q.layout, centre, q.view))};
+            return FrameCamera{QuiltCamera(q.layout, centre)};
+          },
+          [&](const Desc::Display& p) {
+            if (auto eia = as_lens_array(p.display, focused, p.frame)) return FrameCamera{LensArray(*eia)};
+            return FrameCamera{PanelView{DisplayCamera(place_display(p.display, focused, p.frame)),
+                                         p.display.subpixels != SubpixelOrder::bgr}};
+          },
+          [&](const Desc::LookingGlass& g) {
+            const Viewpoint& vp = perspective("`LookingGlass`");
+            const LookingGlassCalibration& cal = g.calibration;
+            return FrameCamera{LookingGlassCamera(cal, view_of(vp, cal.width, cal.height), g.views)};
+          }},
+      d.kind);
 }
 
 FrameBuffers render_through(const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options,

@@ -3,9 +3,9 @@
 // `render` and `animate` both pick among the integral camera (the EIA,
 // camera-model.md), a pinhole view, a Looking Glass quilt (or one of its
 // views), a physical display's panel and a Looking Glass's native panel.
-// FrameCameraDesc is that choice as plain data, validated by the command
-// line; make_frame_camera() places it by a viewpoint (a still's, or each
-// frame's); render_through() traces it.
+// FrameCameraDesc is that choice as plain data, checked by the API;
+// make_frame_camera() places it by a viewpoint (a still's, or each frame's);
+// render_through() traces it.
 #pragma once
 
 #include <optional>
@@ -23,30 +23,55 @@
 
 namespace holoray {
 
-/// What an image is rendered as, before any viewpoint places it.
+/// What an image is rendered as, before any viewpoint places it: one kind
+/// of five, each with its own settings only.
 struct FrameCameraDesc {
-  enum class Kind { integral, pinhole, quilt, display, looking_glass };
-  Kind kind = Kind::integral;
-  /// integral: the lens array; its origin, normal and up (when set) also
-  /// place a display's panel explicitly.
-  ArraySettings array;
-  /// pinhole: the view's size in pixels; 0 takes the viewpoint's
-  /// resolution, else 512x512.
-  int width = 0, height = 0;
-  bool tachyon_samples = false;  ///< pinhole: one sample at each pixel's upper-right corner, where Tachyon samples
-  /// pinhole: the window moved right and up by these fractions of its larger
-  /// side (a camera's lens shift, Blender's convention).
-  double shift_x = 0, shift_y = 0;
-  QuiltDesc quilt;               ///< quilt: its layout, cone and one view's size
-  int quilt_view = -1;           ///< quilt: >= 0 renders that view alone, as a pinhole view
-  std::optional<DisplayDesc> display;                  ///< display
-  std::optional<LookingGlassCalibration> calibration;  ///< looking_glass
-  int looking_glass_views = kDefaultLookingGlassViews; ///< looking_glass: the quilt it is the continuous version of
+  /// The integral camera: the lens array (camera-model.md).
+  struct Integral {
+    ArraySettings array;
+  };
+  /// A pinhole view through the viewpoint.
+  struct Pinhole {
+    /// The view's size in pixels; 0 takes the viewpoint's resolution, else 512x512.
+    int width = 0, height = 0;
+    bool tachyon_samples = false;  ///< one sample at each pixel's upper-right corner, where Tachyon samples
+    /// The window moved right and up by these fractions of its larger side
+    /// (a camera's lens shift, Blender's convention).
+    double shift_x = 0, shift_y = 0;
+  };
+  /// A Looking Glass quilt, or one of its views.
+  struct Quilt {
+    QuiltDesc layout;  ///< its views, cone and one view's size
+    int view = -1;     ///< >= 0 renders that view alone, as a pinhole view
+  };
+  /// A physical display's panel (display-files.md).
+  struct Display {
+    DisplayDesc display;
+    std::optional<Frame> frame;  ///< an explicit placement of the panel (world)
+  };
+  /// A Looking Glass's native panel, from its calibration.
+  struct LookingGlass {
+    LookingGlassCalibration calibration;
+    int views = kDefaultLookingGlassViews;  ///< the quilt it is the continuous version of
+  };
+
+  std::variant<Integral, Pinhole, Quilt, Display, LookingGlass> kind;
   /// The focal plane's distance from the viewpoint, scene units: where a
   /// lens array or a display's panel stands (orthoscopic), the quilt's and
   /// Looking Glass's zero-parallax plane; nullopt: the viewpoint's |from - at|
   /// (a file camera's: the depth of the scene's centre, Viewpoint::Focus).
   std::optional<double> focus_distance;
+
+  /// The settings of kind T, or nullptr.
+  template <class T>
+  const T* get() const { return std::get_if<T>(&kind); }
+  /// Whether the camera stands where its settings say, not by the viewpoint
+  /// (a lens array's or a panel's origin, normal and up).
+  bool placed_explicitly() const {
+    if (const Integral* i = get<Integral>()) return i->array.origin.has_value();
+    if (const Display* d = get<Display>()) return d->frame.has_value();
+    return false;
+  }
 };
 
 /// A display's panel where its lenses are not whole pixels: traced per
