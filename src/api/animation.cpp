@@ -81,20 +81,22 @@ struct AnimationState {
   std::string describe, array_summary;
 };
 
-Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : state_(std::make_unique<AnimationState>()) {
-  AnimationState& s = *state_;
-  s.options = o;
-  SequenceOptions& so = s.so;
-  using Desc = FrameCameraDesc;
-  s.choice = o.camera ? frame_camera_desc(*o.camera) : FrameCameraDesc{};
+namespace {
+
+using Desc = FrameCameraDesc;
+
+// The camera's kind against the method and the options that go with it;
+// then the method's reuse, reach and fill. Sets s.method, s.reuse and the
+// schedule's method, camera and reuse settings.
+void choose_method(const AnimateOptions& o, AnimationState& s) {
   const FrameCameraDesc& choice = s.choice;
+  SequenceOptions& so = s.so;
   if (choice.get<Desc::Quilt>()) throw std::invalid_argument("camera: a quilt is rendered as a still (render), not animated");
   if (o.camera && choice.get<Desc::Integral>())
     throw std::invalid_argument("camera: the shot's [array] places the lens array; pass a pinhole, display or Looking Glass camera");
   const bool pinhole = choice.get<Desc::Pinhole>() != nullptr;
-  const Desc::LookingGlass* glass = choice.get<Desc::LookingGlass>();
-  const Desc::Display* display = choice.get<Desc::Display>();
-  const bool panel = glass || display;
+  const bool glass = choice.get<Desc::LookingGlass>() != nullptr;
+  const bool panel = glass || choice.get<Desc::Display>();
   const char* what = glass ? "looking glass" : "display";
   s.method = o.method != Method::automatic ? o.method : pinhole || panel ? Method::full : Method::reverse;
   so.method = s.method == Method::reverse ? holoray::Method::reverse
@@ -120,7 +122,10 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   so.reproject.reach = pick<Reach>("reach", o.reach, {{"near", Reach::near}, {"all", Reach::all}});
   so.fill = pick<Fill>("fill", o.fill, {{"trace", Fill::trace}, {"interpolate", Fill::interpolate}});
   so.reproject.detect_leaks = o.leak_check;
-  const bool auto_keys = o.keyframe_interval == 0;
+}
+
+// The options' numbers, each in its range; then the schedule's copies.
+void check_numbers(const AnimateOptions& o, SequenceOptions& so) {
   if (o.keyframe_interval < 0)
     throw std::invalid_argument(fmt::format("keyframe interval: must be a whole number of frames, at least 1 (0: placed by motion), got {}", o.keyframe_interval));
   if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
@@ -135,45 +140,40 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   if (!(o.cache.memory_mib >= 0) || !std::isfinite(o.cache.memory_mib))
     throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
   so.max_interpolated_share = o.rebuild_above_percent / 100;
-  if (!auto_keys) so.keyframe_interval = o.keyframe_interval;
+  if (o.keyframe_interval != 0) so.keyframe_interval = o.keyframe_interval;
   so.threads = o.threads;
   so.reproject.threads = o.threads;
   so.reference = o.reference;
+}
 
+// The shot file with the caller's camera name and texture folders.
+std::unique_ptr<ShotFrames> read_shot(const std::string& shot_path, const AnimateOptions& o) {
   Shot parsed = read_shot_file(shot_path);
   if (!o.load.camera_name.empty()) parsed.read.camera_name = o.load.camera_name;
   parsed.read.texture_paths.insert(parsed.read.texture_paths.end(), o.load.texture_paths.begin(), o.load.texture_paths.end());
-  s.shot = std::make_unique<ShotFrames>(std::move(parsed));
-  ShotFrames& shot = *s.shot;
-  so.encoding = o.encoding ? (*o.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
-                : shot.shot().objects.empty() ? holoray::Encoding::linear
-                                              : default_encoding(shot.shot().objects.front().scene);
-  const int frames = shot.frame_count();
-  if (o.frames) {
-    const auto [first, last] = *o.frames;
-    if (first < 0 || last < first || last >= frames)
-      throw std::invalid_argument(fmt::format("frames: the shot has frames 0 to {}, got {}:{}", frames - 1, first, last));
-  }
+  return std::make_unique<ShotFrames>(std::move(parsed));
+}
+
+// A pinhole view without a size takes the first scene's resolution, as
+// every frame's (a path's viewpoints carry none), else 512x512.
+void size_the_view(const ShotFrames& shot, SequenceOptions& so) {
   Desc::Pinhole* view = so.frame_camera ? std::get_if<Desc::Pinhole>(&so.frame_camera->kind) : nullptr;
-  if (view && view->width == 0) {
-    // The first scene's resolution, as every frame's (a path's viewpoints carry none).
-    auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
-                                  [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
-    view->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
-    view->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
-  }
-  if (auto_keys && so.method != holoray::Method::full)
-    so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
-  const holoray::LensArray first(shot.camera(0));
-  if (o.cache.enabled) {
-    holoray::ShadowCacheOptions co;
-    co.cell_size = o.cache.cell * first.desc().pitch;
-    co.memory_limit_bytes = static_cast<uint64_t>(o.cache.memory_mib * 1048576.0);
-    s.cache = std::make_unique<ShadowCache>(shot.scene(), co);
-    so.cache = s.cache.get();
-  }
-  // Two point images, two z-buffers and the frame (a panel: its samples,
-  // three per pixel, and the packed frame): refused before the first trace.
+  if (!view || view->width != 0) return;
+  auto first_res = std::find_if(shot.scenes().begin(), shot.scenes().end(),
+                                [](const SceneDesc& d) { return d.viewpoint && d.viewpoint->xres > 0; });
+  view->width = first_res != shot.scenes().end() ? first_res->viewpoint->xres : 512;
+  view->height = first_res != shot.scenes().end() ? first_res->viewpoint->yres : 512;
+}
+
+// The frames' size, and their buffers refused before the first trace when
+// they would take more than 80% of the machine: two point images, two
+// z-buffers and the frame (a panel: its samples, three per pixel, and the
+// packed frame).
+void size_the_frames(const holoray::LensArray& first, AnimationState& s) {
+  const Desc::LookingGlass* glass = s.choice.get<Desc::LookingGlass>();
+  const Desc::Display* display = s.choice.get<Desc::Display>();
+  const Desc::Pinhole* view = s.so.frame_camera ? s.so.frame_camera->get<Desc::Pinhole>() : nullptr;
+  const bool panel = glass || display;
   const int panel_w = glass ? glass->calibration.width : display ? display->display.width : 0;
   const int panel_h = glass ? glass->calibration.height : display ? display->display.height : 0;
   s.width = panel ? panel_w : view ? view->width : first.width();
@@ -185,6 +185,68 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     throw std::length_error(fmt::format("{}x{} frames need {:.2f} GiB while animating, more than 80% of this machine's {:.2f} GiB",
                                         panel ? panel_w : first.width(), panel ? panel_h : first.height(), need / 1073741824.0,
                                         have / 1073741824.0));
+}
+
+// What the CLI prints of the camera and the method.
+std::string describe_animation(const AnimateOptions& o, const AnimationState& s) {
+  const SequenceOptions& so = s.so;
+  std::string d;
+  if (s.choice.get<Desc::Display>())
+    d += fmt::format("panel      {}x{} px from {}, each frame's viewpoint\n", s.width, s.height,
+                     std::get<Display>(*o.camera).path);
+  else if (const auto* glass = s.choice.get<Desc::LookingGlass>())
+    d += fmt::format("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
+                     s.width, s.height, std::get<LookingGlass>(*o.camera).path, glass->views);
+  else if (s.choice.get<Desc::Pinhole>())
+    d += fmt::format("view       {}x{} px, pinhole, each frame's viewpoint\n", s.width, s.height);
+  else
+    d += fmt::format("EIA        {}\n", s.array_summary);
+  const std::string key_rule =
+      o.keyframe_interval == 0 ? fmt::format("{} keyframes placed by motion (at most {:g} px, {} frames apart)", so.keys.size(),
+                                             o.keyframe_motion, o.max_keyframe_interval)
+                               : fmt::format("keyframe every {}", o.keyframe_interval);
+  if (so.method == holoray::Method::reproject)
+    d += fmt::format("method     reproject: {}, reuse {}, fill {}, reach {}{}\n", key_rule, s.reuse, o.fill, o.reach,
+                     o.leak_check ? "" : ", no leak check");
+  else if (so.method == holoray::Method::reverse)
+    d += fmt::format("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, s.reuse);
+  else
+    d += "method     full ray tracing\n";
+  return d;
+}
+
+}  // namespace
+
+Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : state_(std::make_unique<AnimationState>()) {
+  AnimationState& s = *state_;
+  SequenceOptions& so = s.so;
+  s.options = o;
+  s.choice = o.camera ? frame_camera_desc(*o.camera) : FrameCameraDesc{};
+  choose_method(o, s);
+  check_numbers(o, so);
+
+  s.shot = read_shot(shot_path, o);
+  const ShotFrames& shot = *s.shot;
+  so.encoding = o.encoding ? (*o.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
+                : shot.shot().objects.empty() ? holoray::Encoding::linear
+                                              : default_encoding(shot.shot().objects.front().scene);
+  if (o.frames) {
+    const auto [first, last] = *o.frames;
+    if (first < 0 || last < first || last >= shot.frame_count())
+      throw std::invalid_argument(fmt::format("frames: the shot has frames 0 to {}, got {}:{}", shot.frame_count() - 1, first, last));
+  }
+  size_the_view(shot, so);
+  if (o.keyframe_interval == 0 && so.method != holoray::Method::full)
+    so.keys = KeyframePlanner(shot).keyframes(o.keyframe_motion, o.max_keyframe_interval);
+  const holoray::LensArray first(shot.camera(0));
+  if (o.cache.enabled) {
+    holoray::ShadowCacheOptions co;
+    co.cell_size = o.cache.cell * first.desc().pitch;
+    co.memory_limit_bytes = static_cast<uint64_t>(o.cache.memory_mib * 1048576.0);
+    s.cache = std::make_unique<ShadowCache>(shot.scene(), co);
+    so.cache = s.cache.get();
+  }
+  size_the_frames(first, s);
   if (o.frames || o.done)
     so.done = [this](int f) {
       const AnimateOptions& opt = state_->options;
@@ -196,29 +258,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   s.array_summary = fmt::format("{}x{} px, {} grid, {}x{} lenses x {} px, {}", first.width(), first.height(),
                                 to_string(first.desc().grid), first.lens_count_x(), first.lens_count_y(),
                                 first.desc().pixels_per_lens, to_string(first.desc().mode));
-  // What the CLI prints of the camera and the method.
-  std::string& d = s.describe;
-  if (display)
-    d += fmt::format("panel      {}x{} px from {}, each frame's viewpoint\n", panel_w, panel_h,
-                     std::get<Display>(*o.camera).path);
-  else if (glass)
-    d += fmt::format("panel      {}x{} px, Looking Glass ({}), each frame's viewpoint, continuous {}-view quilt\n",
-                     panel_w, panel_h, std::get<LookingGlass>(*o.camera).path, glass->views);
-  else if (pinhole)
-    d += fmt::format("view       {}x{} px, pinhole, each frame's viewpoint\n", s.width, s.height);
-  else
-    d += fmt::format("EIA        {}\n", s.array_summary);
-  const std::string key_rule =
-      auto_keys ? fmt::format("{} keyframes placed by motion (at most {:g} px, {} frames apart)", so.keys.size(),
-                              o.keyframe_motion, o.max_keyframe_interval)
-                : fmt::format("keyframe every {}", o.keyframe_interval);
-  if (so.method == holoray::Method::reproject)
-    d += fmt::format("method     reproject: {}, reuse {}, fill {}, reach {}{}\n", key_rule, s.reuse, o.fill, o.reach,
-                     o.leak_check ? "" : ", no leak check");
-  else if (so.method == holoray::Method::reverse)
-    d += fmt::format("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, s.reuse);
-  else
-    d += "method     full ray tracing\n";
+  s.describe = describe_animation(o, s);
 }
 
 Animation::~Animation() = default;
