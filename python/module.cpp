@@ -22,10 +22,13 @@ using namespace holoray;
 
 namespace holoray::python {
 
-// This module's keywords are the C++ API's names but for fov_lens_deg.
+// This module's keywords are the C++ API's names but for fov_lens_deg and
+// the animation's reference (fov_lens, report).
 std::string in_keyword_words(std::string_view message) {
   return api::say_names(message, [](std::string_view name) {
-    return std::string(name == "fov_lens_deg" ? std::string_view("fov_lens") : name);
+    if (name == "fov_lens_deg") return std::string("fov_lens");
+    if (name == "reference") return std::string("report");
+    return std::string(name);
   });
 }
 

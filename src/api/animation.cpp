@@ -97,22 +97,22 @@ void choose_method(const AnimateOptions& o, AnimationState& s) {
   const bool pinhole = choice.get<Desc::Pinhole>() != nullptr;
   const bool glass = choice.get<Desc::LookingGlass>() != nullptr;
   const bool panel = glass || choice.get<Desc::Display>();
-  const char* what = glass ? "looking glass" : "display";
+  const char* what = glass ? "`LookingGlass`" : "`Display`";
   s.method = o.method != Method::automatic ? o.method : pinhole || panel ? Method::full : Method::reverse;
   so.method = s.method == Method::reverse ? holoray::Method::reverse
               : s.method == Method::reproject ? holoray::Method::reproject
                                               : holoray::Method::full;
   if (pinhole && so.method != holoray::Method::full)
-    throw std::invalid_argument("camera pinhole: goes with method full (reuse works on elemental images)");
+    throw std::invalid_argument("`Pinhole`: goes with `method` full (reuse works on elemental images)");
   if (panel && so.method != holoray::Method::full)
-    throw std::invalid_argument(fmt::format("{}: goes with method full (reuse works on elemental images)", what));
+    throw std::invalid_argument(fmt::format("{}: goes with `method` full (reuse works on elemental images)", what));
   if (panel && (o.reference || o.cache.enabled))
-    throw std::invalid_argument(fmt::format("{}: goes without the report and the cache (native panels are traced in full, without the cache)", what));
+    throw std::invalid_argument(fmt::format("{}: goes without `reference` and `cache` (native panels are traced in full, without the cache)", what));
   if (!choice.get<Desc::Integral>()) so.frame_camera = choice;
   if (pinhole && o.reference)
-    throw std::invalid_argument("report: goes with the integral camera (pinhole previews are traced in full)");
+    throw std::invalid_argument("`reference`: goes with the integral camera (pinhole previews are traced in full)");
   if (pinhole && o.cache.enabled)
-    throw std::invalid_argument("cache: goes with the integral camera (its cells are sized in lens pitches)");
+    throw std::invalid_argument("`cache`: goes with the integral camera (its cells are sized in lens pitches)");
   s.reuse = !o.reuse.empty() ? o.reuse : so.method == holoray::Method::reverse ? "color" : "geometry";
   if (so.method == holoray::Method::reverse)
     so.reverse.reuse = pick<ReverseReuse>("reuse", s.reuse, {{"visibility", ReverseReuse::visibility}, {"color", ReverseReuse::color}});

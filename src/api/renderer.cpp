@@ -148,7 +148,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   if ((frame_camera.get<PanelView>() || frame_camera.get<LookingGlassCamera>()) && (a.albedo || a.depth || a.normal || a.id))
     throw std::invalid_argument("aovs: not written for native panel images yet (colour only)");
   if (options.cache.enabled && !array_camera)
-    throw std::invalid_argument("cache: goes with the integral camera (its cells are sized in lens pitches)");
+    throw std::invalid_argument("`cache`: goes with the integral camera (its cells are sized in lens pitches)");
 
   // Refused before anything is allocated: the frame and its AOVs, the 8-bit
   // or float copy made on output, and a panel's samples (three per pixel

@@ -154,27 +154,17 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
 int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
-    // The options' rules, worded for the command line; the API checks them
-    // again in its own words (api::Animation).
+    // The options' words checked here; the rules between them are the API's
+    // (api::Animation), which names what it refuses by its own names, said
+    // here as options (error_words.hpp).
     api::AnimateOptions ao;
     camera_desc_rules(o.view, false, false);
     const bool pinhole = o.view.camera == "pinhole";
     const bool glass = !o.view.looking_glass.empty();
     const bool panel = glass || !o.view.display.empty();
-    const char* panel_flag = glass ? "--looking-glass" : "--display";
     const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
     ao.method = pick<api::Method>("--method", method,
                                   {{"full", api::Method::full}, {"reproject", api::Method::reproject}, {"reverse", api::Method::reverse}});
-    if (pinhole && ao.method != api::Method::full)
-      throw std::invalid_argument("--camera pinhole: goes with --method full (reuse works on elemental images)");
-    if (panel && ao.method != api::Method::full)
-      throw std::invalid_argument(fmt::format("{}: goes with --method full (reuse works on elemental images)", panel_flag));
-    if (panel && (!o.report.empty() || cache_enabled(o.cache)))
-      throw std::invalid_argument(fmt::format("{}: goes without --report and --cache (native panels are traced in full, without the cache)", panel_flag));
-    if (pinhole && !o.report.empty())
-      throw std::invalid_argument("--report: goes with the integral camera (pinhole previews are traced in full)");
-    if (pinhole && cache_enabled(o.cache))
-      throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
     if (glass) {
       ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views, std::nullopt};  // the viewpoint's focus
     } else if (panel) {

@@ -10,8 +10,9 @@ namespace holoray::cli {
 
 namespace {
 
-// The API's names (include/holoray/camera.hpp) and the options that set them.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kOptions{{
+// The API's names (include/holoray/camera.hpp, render.hpp, animate.hpp) and
+// the options that set them.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 14> kOptions{{
     {"origin", "--origin"},
     {"normal", "--normal"},
     {"up", "--up"},
@@ -19,6 +20,10 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kOptions
     {"gap", "--gap"},
     {"fov_lens_deg", "--fov-lens"},
     {"pixels_per_lens", "--pixels-per-lens"},
+    {"method", "--method"},
+    {"reference", "--report"},
+    {"cache", "--cache"},
+    {"Display", "--display"},
     {"LookingGlass", "--looking-glass"},
     {"Quilt", "--quilt"},
     {"Pinhole", "--camera pinhole"},

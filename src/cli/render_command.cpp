@@ -225,7 +225,7 @@ api::Camera camera_of(const RenderCommandOptions& o) {
   // The cache's cells are sized in lens pitches (a display whose lenses are
   // whole pixels has them too: checked again once the camera is placed).
   if (cache_enabled(o.cache) && (pinhole || quilt || !v.looking_glass.empty()))
-    throw std::invalid_argument("--cache on: goes with the integral camera (its cells are sized in lens pitches)");
+    throw std::invalid_argument("--cache: goes with the integral camera (its cells are sized in lens pitches)");
   const std::optional<double> focus = std::isnan(o.focus_distance) ? std::nullopt : std::optional(o.focus_distance);
   if (focus && pinhole)
     throw std::invalid_argument("--focus-distance: goes with a lens array, a display, --quilt or --looking-glass (the plane they stand at or focus on)");

@@ -153,6 +153,19 @@ def test_malformed_shot_raises_scene_error(tmp, repo):
     assert "bogus" in str(info.value)
 
 
+def test_animation_rules_name_the_keywords(repo):
+    # The API refuses `Pinhole` with `method` reverse; Python reads its own
+    # words (the CLI reads --camera pinhole and --method: tests/test_pinhole.cpp).
+    with pytest.raises(ValueError) as info:
+        next(iter(holoray.animate(repo / "examples" / "shots" / "swinging_box.toml", camera=holoray.Pinhole(),
+                                  method="reverse")))
+    assert str(info.value) == "Pinhole: goes with method full (reuse works on elemental images)"
+    with pytest.raises(ValueError) as info:
+        next(iter(holoray.animate(repo / "examples" / "shots" / "swinging_box.toml", camera=holoray.Pinhole(),
+                                  method="full", report=True)))
+    assert str(info.value) == "report: goes with the integral camera (pinhole previews are traced in full)"
+
+
 def test_missing_shot_raises_file_not_found(tmp):
     with pytest.raises(FileNotFoundError):
         next(iter(holoray.animate(tmp / "nothere.toml")))
