@@ -151,6 +151,112 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   return cmd;
 }
 
+namespace {
+
+// One frame's line: traced (a keyframe), copied from its keyframe, or
+// reprojected with its shares of pixels (and, verbose, its stages' times).
+void print_frame(const std::string& rank_tag, int f, const api::FrameRow& r, bool verbose) {
+  if (r.keyframe) {
+    fmt::print("{}frame {:>5}  traced       {:.3f} s\n", rank_tag, f, r.seconds);
+  } else if (r.copied_from >= 0) {
+    fmt::print("{}frame {:>5}  copied       {:.3f} s  keyframe {} (same camera, nothing moved){}\n", rank_tag, f,
+               r.seconds, r.copied_from, r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr()) : "");
+  } else {
+    const double px = static_cast<double>(r.pixels);
+    fmt::print("{}frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", rank_tag, f,
+               r.seconds, 100 * r.reprojected / px, 100 * r.traced / px, 100 * r.interpolated / px,
+               r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr()) : "");
+    if (verbose)
+      fmt::print("             splat {:.3f} s, merge {:.3f} s, leaks {:.3f} s, check {:.3f} s, fill {:.3f} s\n",
+                 r.stage_seconds[0], r.stage_seconds[1], r.stage_seconds[2], r.stage_seconds[3], r.stage_seconds[4]);
+  }
+  std::fflush(stdout);
+}
+
+// Every rank's frame reports (one per frame written) on rank 0, in frame
+// order (collective: every rank has finished writing). api::FrameRow is
+// plain data: its bytes travel as they are.
+void gather_reports(const cluster::World& world, std::vector<api::FrameRow>& reports) {
+  static_assert(std::is_trivially_copyable_v<api::FrameRow>);
+  std::vector<unsigned char> bytes(reports.size() * sizeof(api::FrameRow));
+  if (!reports.empty()) std::memcpy(bytes.data(), reports.data(), bytes.size());
+  bytes = world.gather(bytes);
+  reports.resize(bytes.size() / sizeof(api::FrameRow));
+  if (!reports.empty()) std::memcpy(reports.data(), bytes.data(), bytes.size());
+  std::sort(reports.begin(), reports.end(), [](const api::FrameRow& a, const api::FrameRow& b) { return a.frame < b.frame; });
+}
+
+// The video, from the frames on disk, in order: it shows exactly what the
+// folder holds, and a resumed run rebuilds it whole.
+void write_video(const AnimateCommandOptions& o, int frames, const std::string& ext, Encoding encoding,
+                 const VideoOptions& vo) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::optional<VideoWriter> video;
+  std::vector<uint8_t> bytes;
+  for (int f = 0; f < frames; ++f) {
+    const ImageBuffer img = read_image(frame_path(o.output, f, frames, ext));
+    if (!video) video.emplace(o.video, img.width, img.height, vo);
+    if (img.channels < 3) throw std::runtime_error(fmt::format("frame {} has {} channels, not RGB", f, img.channels));
+    bytes.resize(size_t(img.width) * img.height * 3);
+    // PNG frames hold their codes already; EXR frames are encoded as PNG frames would be.
+    const Encoding enc = ext == "png" ? Encoding::linear : encoding;
+    for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+      for (int c = 0; c < 3; ++c) bytes[p * 3 + c] = encode_8bit(img.data[p * img.channels + c], enc);
+    video->add_frame(bytes.data());
+  }
+  video->finish();
+  if (!o.quiet)
+    fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, video_codec_name(o.video, vo),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
+// -o's folder made, and the folders --video and --report write into there.
+void make_output_folders(const AnimateCommandOptions& o) {
+  std::error_code ec;
+  std::filesystem::create_directories(o.output, ec);
+  if (!std::filesystem::is_directory(o.output))
+    throw std::runtime_error(fmt::format("-o: cannot create the folder '{}'{}", o.output, ec ? ": " + ec.message() : ""));
+  if (!o.video.empty()) {  // after -o's folder is made: the video may go in it
+    const auto dir = std::filesystem::path(o.video).parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+      throw std::invalid_argument(fmt::format("--video: folder '{}' does not exist", dir.string()));
+  }
+  if (!o.report.empty()) {
+    const auto dir = std::filesystem::path(o.report).parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+      throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
+  }
+}
+
+// --report: the command that reproduces the run, the EIA, the machine and
+// every frame's row (api::report_markdown).
+void write_report(const AnimateCommandOptions& o, const cluster::World& world, const api::Animation& animation,
+                  const std::string& method, const std::string& reuse, const std::string& key_args, api::Method chosen,
+                  const std::vector<api::FrameRow>& reports) {
+  std::string cmdline = fmt::format("{}holoray animate {} -o {} --method {} --cache {}",
+                                    world.distributed() ? fmt::format("mpirun -np {} ", world.size()) : "", o.shot,
+                                    o.output, method, o.cache.cache);
+  if (chosen == api::Method::reproject)
+    cmdline += fmt::format(" {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}", key_args, reuse, o.fill,
+                           o.rebuild_above, o.reach, o.no_leak_check ? " --no-leak-check" : "");
+  else if (chosen == api::Method::reverse)
+    cmdline += fmt::format(" {} --reuse {}", key_args, reuse);
+  write_text_file(o.report,
+                  api::report_markdown(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
+                                  {fmt::format("- command: `{} --report {}`", cmdline, o.report),
+                                   fmt::format("- EIA: {}", animation.array_summary()),
+                                   fmt::format("- machine: {}, {} threads{}", machine_description(),
+                                               o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency()),
+                                               world.distributed()
+                                                   ? fmt::format(" per rank, {} ranks (seconds are each frame's own, "
+                                                                 "on the rank that made it)", world.size())
+                                                   : "")},
+                                  reports));
+  if (!o.quiet) fmt::print("report     {}\n", o.report);
+}
+
+}  // namespace
+
 int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
@@ -236,20 +342,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
         auto_keys ? fmt::format("--keyframe-interval auto --keyframe-motion {:g} --max-keyframe-interval {}",
                                 o.keyframe_motion, o.max_keyframe_interval)
                   : fmt::format("--keyframe-interval {}", interval);
-    std::error_code ec;
-    std::filesystem::create_directories(o.output, ec);
-    if (!std::filesystem::is_directory(o.output))
-      throw std::runtime_error(fmt::format("-o: cannot create the folder '{}'{}", o.output, ec ? ": " + ec.message() : ""));
-    if (!o.video.empty()) {  // after -o's folder is made: the video may go in it
-      const auto dir = std::filesystem::path(o.video).parent_path();
-      if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw std::invalid_argument(fmt::format("--video: folder '{}' does not exist", dir.string()));
-    }
-    if (!o.report.empty()) {
-      const auto dir = std::filesystem::path(o.report).parent_path();
-      if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw std::invalid_argument(fmt::format("--report: folder '{}' does not exist", dir.string()));
-    }
+    make_output_folders(o);
     // Rank 0 alone, before any rank starts (agree() below waits for all).
     if (o.resume && world.rank() == 0) remove_stale_temporaries(o.output, range_first, range_last);
     // Under mpirun, ranks are dealt groups of frames (cluster/group_dealer):
@@ -284,37 +377,12 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       api::write_image(frame_path(o.output, f, frames, ext), colour, animation.encoding());
       write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_write).count();
       reports.push_back(r);
-      if (o.quiet) return;
-      if (r.keyframe) {
-        fmt::print("{}frame {:>5}  traced       {:.3f} s\n", rank_tag, f, r.seconds);
-      } else if (r.copied_from >= 0) {
-        fmt::print("{}frame {:>5}  copied       {:.3f} s  keyframe {} (same camera, nothing moved){}\n", rank_tag, f,
-                   r.seconds, r.copied_from, r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr()) : "");
-      } else {
-        const double px = static_cast<double>(r.pixels);
-        fmt::print("{}frame {:>5}  reprojected  {:.3f} s  {:.1f}% reused, {:.1f}% traced, {:.1f}% interpolated{}\n", rank_tag, f,
-                   r.seconds, 100 * r.reprojected / px, 100 * r.traced / px, 100 * r.interpolated / px,
-                   r.difference ? fmt::format(", PSNR {:.2f} dB", r.difference->psnr()) : "");
-        if (o.verbose)
-          fmt::print("             splat {:.3f} s, merge {:.3f} s, leaks {:.3f} s, check {:.3f} s, fill {:.3f} s\n",
-                     r.stage_seconds[0], r.stage_seconds[1], r.stage_seconds[2], r.stage_seconds[3], r.stage_seconds[4]);
-      }
-      std::fflush(stdout);
+      if (!o.quiet) print_frame(rank_tag, f, r, o.verbose);
     });
 
     const cluster::DealStats deal = dealer ? dealer->finish() : cluster::DealStats{};
-    // Every rank's frame reports (one per frame written) on rank 0, in frame
-    // order, for the totals and --report (collective: every rank has finished
-    // writing). api::FrameRow is plain data: its bytes travel as they are.
-    static_assert(std::is_trivially_copyable_v<api::FrameRow>);
-    if (world.distributed()) {
-      std::vector<unsigned char> bytes(reports.size() * sizeof(api::FrameRow));
-      if (!reports.empty()) std::memcpy(bytes.data(), reports.data(), bytes.size());
-      bytes = world.gather(bytes);
-      reports.resize(bytes.size() / sizeof(api::FrameRow));
-      if (!reports.empty()) std::memcpy(reports.data(), bytes.data(), bytes.size());
-      std::sort(reports.begin(), reports.end(), [](const api::FrameRow& a, const api::FrameRow& b) { return a.frame < b.frame; });
-    }
+    // On rank 0, for the totals and --report.
+    if (world.distributed()) gather_reports(world, reports);
     const api::RunTotals s = api::totals(reports);
     const int64_t written_all = static_cast<int64_t>(reports.size());  // on rank 0
     const double write_seconds_all = world.sum(write_seconds);
@@ -329,27 +397,8 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     }
     if (world.rank() != 0) return 0;
     if (!o.video.empty()) {
-      // From the frames on disk, in order: the video shows exactly what the
-      // folder holds, and a resumed run rebuilds it whole.
       vo.fps = animation.fps();
-      const auto t0 = std::chrono::steady_clock::now();
-      std::optional<VideoWriter> video;
-      std::vector<uint8_t> bytes;
-      for (int f = 0; f < frames; ++f) {
-        const ImageBuffer img = read_image(frame_path(o.output, f, frames, ext));
-        if (!video) video.emplace(o.video, img.width, img.height, vo);
-        if (img.channels < 3) throw std::runtime_error(fmt::format("frame {} has {} channels, not RGB", f, img.channels));
-        bytes.resize(size_t(img.width) * img.height * 3);
-        // PNG frames hold their codes already; EXR frames are encoded as PNG frames would be.
-        const Encoding enc = ext == "png" ? Encoding::linear : encoding;
-        for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
-          for (int c = 0; c < 3; ++c) bytes[p * 3 + c] = encode_8bit(img.data[p * img.channels + c], enc);
-        video->add_frame(bytes.data());
-      }
-      video->finish();
-      if (!o.quiet)
-        fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, video_codec_name(o.video, vo),
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      write_video(o, frames, ext, encoding, vo);
     }
     if (!o.quiet) {
       const int in_range = range_last - range_first + 1;
@@ -366,28 +415,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
                                             s.saved_percent, s.mean_psnr)
                               : "");
     }
-    if (!o.report.empty()) {
-      std::string cmdline = fmt::format("{}holoray animate {} -o {} --method {} --cache {}",
-                                        world.distributed() ? fmt::format("mpirun -np {} ", world.size()) : "", o.shot,
-                                        o.output, method, o.cache.cache);
-      if (ao.method == api::Method::reproject)
-        cmdline += fmt::format(" {} --reuse {} --fill {} --rebuild-above {:g} --reach {}{}", key_args, reuse, o.fill,
-                               o.rebuild_above, o.reach, o.no_leak_check ? " --no-leak-check" : "");
-      else if (ao.method == api::Method::reverse)
-        cmdline += fmt::format(" {} --reuse {}", key_args, reuse);
-      write_text_file(o.report,
-                      api::report_markdown(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
-                                      {fmt::format("- command: `{} --report {}`", cmdline, o.report),
-                                       fmt::format("- EIA: {}", animation.array_summary()),
-                                       fmt::format("- machine: {}, {} threads{}", machine_description(),
-                                                   o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency()),
-                                                   world.distributed()
-                                                       ? fmt::format(" per rank, {} ranks (seconds are each frame's own, "
-                                                                     "on the rank that made it)", world.size())
-                                                       : "")},
-                                      reports));
-      if (!o.quiet) fmt::print("report     {}\n", o.report);
-    }
+    if (!o.report.empty()) write_report(o, world, animation, method, reuse, key_args, ao.method, reports);
     return 0;
   } catch (const ParseError& e) {
     return world.fail(e.what(), rendering);
