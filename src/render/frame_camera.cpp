@@ -20,6 +20,9 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+// Written out: clang before 17 deduces no aggregate's template arguments.
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
 
 }  // namespace
 
