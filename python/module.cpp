@@ -20,7 +20,7 @@
 namespace py = pybind11;
 using namespace holoray;
 
-namespace holoray::python {
+namespace {
 
 // This module's keywords are the C++ API's names but for fov_lens_deg and
 // the animation's reference (fov_lens, report).
@@ -32,7 +32,7 @@ std::string in_keyword_words(std::string_view message) {
   });
 }
 
-}  // namespace holoray::python
+}  // namespace
 
 PYBIND11_MODULE(_holoray, m) {
   m.doc() = "holoray's compiled module: use the `holoray` package.";
@@ -53,7 +53,7 @@ PYBIND11_MODULE(_holoray, m) {
     } catch (const api::Cancelled& e) {
       PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     } catch (const std::invalid_argument& e) {
-      PyErr_SetString(PyExc_ValueError, python::in_keyword_words(e.what()).c_str());
+      PyErr_SetString(PyExc_ValueError, in_keyword_words(e.what()).c_str());
     } catch (const std::system_error& e) {
       // OSError(errno, text) is the subclass for the errno: FileNotFoundError,
       // PermissionError, IsADirectoryError, ...

@@ -20,7 +20,6 @@ namespace holoray::api {
 
 namespace {
 
-
 AovSet aov_set(const Aovs& a) { return {a.albedo, a.depth, a.normal, a.id}; }
 
 TraceStyle trace_style(Style s, const FrameCamera& camera) {
@@ -136,10 +135,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   if (pinhole && pinhole->tachyon_samples && options.spp != 1)
     throw std::invalid_argument("tachyon samples: go with the pinhole camera and one sample per pixel");
   const SceneDesc& desc = s.scene->desc;
-  const auto* array = std::get_if<LensArray>(&camera);
-  const auto* panel = std::get_if<Display>(&camera);
-  const bool placed = (array && array->placement) || (panel && panel->placement);
-  if (desc.source.empty() && !desc.viewpoint && !placed)
+  if (desc.source.empty() && !desc.viewpoint && !s.choice.placed_explicitly())
     throw std::invalid_argument("camera: the scene has no viewpoint to place it by: call set_viewpoint(), or place the lens array explicitly");
   s.placed = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
   const Aovs& a = options.aovs;

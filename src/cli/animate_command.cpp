@@ -30,6 +30,7 @@
 #include "image/image_io.hpp"
 #include "scene/file_text.hpp"
 #include "scene/parse_error.hpp"
+#include "util/stopwatch.hpp"
 #include "video/video_writer.hpp"
 
 namespace holoray::cli {
@@ -190,7 +191,7 @@ void gather_reports(const cluster::World& world, std::vector<api::FrameRow>& rep
 // folder holds, and a resumed run rebuilds it whole.
 void write_video(const AnimateCommandOptions& o, int frames, const std::string& ext, Encoding encoding,
                  const VideoOptions& vo) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   std::optional<VideoWriter> video;
   std::vector<uint8_t> bytes;
   for (int f = 0; f < frames; ++f) {
@@ -207,7 +208,7 @@ void write_video(const AnimateCommandOptions& o, int frames, const std::string& 
   video->finish();
   if (!o.quiet)
     fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, video_codec_name(o.video, vo),
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+               seconds_since(t0));
 }
 
 // -o's folder made, and the folders --video and --report write into there.
@@ -368,14 +369,14 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     }
     if (!world.agree(true, "")) return 1;
     rendering = true;
-    const auto run_start = std::chrono::steady_clock::now();
+    const auto run_start = Clock::now();
 
     std::vector<api::FrameRow> reports;
     double write_seconds = 0;  // encoding and writing the frames (not in FrameRow::seconds)
     animation.run([&](int f, const api::Image& colour, const api::FrameRow& r) {
-      const auto t_write = std::chrono::steady_clock::now();
+      const auto t_write = Clock::now();
       api::write_image(frame_path(o.output, f, frames, ext), colour, animation.encoding());
-      write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_write).count();
+      write_seconds += seconds_since(t_write);
       reports.push_back(r);
       if (!o.quiet) print_frame(rank_tag, f, r, o.verbose);
     });
@@ -387,7 +388,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const int64_t written_all = static_cast<int64_t>(reports.size());  // on rank 0
     const double write_seconds_all = world.sum(write_seconds);
     const int64_t interrupted_ranks = world.sum(int64_t{interrupt.requested() ? 1 : 0});
-    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+    const double wall_s = seconds_since(run_start);
     if (interrupted_ranks > 0) {
       if (world.rank() == 0)
         fmt::print(stderr, "holoray: interrupted by {} after {} new frames; every frame in '{}' is complete; "
