@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "image/image_io.hpp"
+#include "holoray/image.hpp"
 
 namespace holoray::python {
 
@@ -121,7 +121,7 @@ api::Texture texture_of(const py::handle& h, const char* name) {
     if (!std::isfinite(p[k])) throw py::value_error(std::string(name) + ": has a NaN or infinite value");
     // Colour channels are linear light, sRGB-encoded as files hold them; alpha is coverage, as it is.
     const bool alpha = t.channels == 4 && k % 4 == 3;
-    t.codes[k] = encode_8bit(p[k], alpha ? Encoding::linear : Encoding::srgb);
+    t.codes[k] = api::encode_8bit(p[k], alpha ? api::Encoding::linear : api::Encoding::srgb);
   }
   return t;
 }

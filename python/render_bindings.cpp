@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "api/pick.hpp"
+#include "holoray/pick.hpp"
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "holoray/render.hpp"

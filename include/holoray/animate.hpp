@@ -65,15 +65,6 @@ struct AnimateOptions {
   std::function<bool()> stop;
 };
 
-/// An image against a reference, on the 8-bit scale (as `holoray compare`).
-struct Difference {
-  std::array<double, 3> mse{};  ///< per channel (R, G, B), on 0..255
-  double mse_all = 0;
-  int64_t pixels = 0;
-  int64_t nan_mismatches = 0;  ///< samples NaN in one image only, left out
-  double psnr() const;         ///< dB; +infinity when equal
-};
-
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).
 struct FrameRow {
   int frame = 0;

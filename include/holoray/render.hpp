@@ -45,10 +45,14 @@ struct MemoryShare {
   std::string where;
 };
 
+/// The deepest ray tree RenderOptions::max_depth allows: past it a
+/// refracting scene's rays only multiply.
+inline constexpr int kMaxDepth = 16;
+
 struct RenderOptions {
   int threads = 0;    ///< worker threads; 0: all cores
   int spp = 1;        ///< samples per pixel, >= 1 (sample 0 at the centre)
-  int max_depth = 0;  ///< ray-tree depth, eye ray = 1; 0: the scene's (Tachyon raydepth), else 5
+  int max_depth = 0;  ///< ray-tree depth, eye ray = 1, at most kMaxDepth; 0: the scene's (Tachyon raydepth), else 5
   Aovs aovs;
   Style style = Style::automatic;
   ShadowCacheOptions cache;

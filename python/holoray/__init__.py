@@ -26,12 +26,14 @@ from ._holoray import (  # noqa: F401
     __version__,
     psnr,
     render,
+    subaperture_view,
 )
 from . import _holoray
 
 __all__ = [
     "Display", "LensArray", "LookingGlass", "Pinhole", "Quilt", "Result", "Scene", "SceneError",
-    "animate", "light_field", "load_scene", "psnr", "read_image", "render", "write_image",
+    "animate", "interlace_quilt", "light_field", "load_scene", "psnr", "read_image", "render", "simulate_view",
+    "subaperture_view", "write_image",
 ]
 
 
@@ -50,6 +52,24 @@ def load_scene(path, *, camera_name="", texture_path=()):
     if isinstance(texture_path, (str, os.PathLike)):
         texture_path = [texture_path]
     return _holoray.load_scene(path, camera_name=camera_name, texture_path=[os.fspath(p) for p in texture_path])
+
+
+def simulate_view(panel, display, eye=(0.0, 0.0, 600.0), width=800, samples=3):
+    """What an eye at `eye` (mm, the display's frame, z > 0 in front) sees of
+    `panel` (the display's native image, (H, W, 3) or (H, W)) through the lens
+    sheet of the display file `display` (docs/display-files.md), as `holoray
+    simulate`: float32 (h, width, 3), samples x samples per pixel. SceneError
+    for a malformed display file, ValueError for a panel of another size."""
+    return _holoray.simulate_view(panel, os.fspath(display), eye, width, samples)
+
+
+def interlace_quilt(quilt, columns, rows, calibration):
+    """A Looking Glass's native panel image (float32 (H, W, 3)) from a quilt of
+    columns x rows views (view 0 bottom left) and the device's calibration
+    file (visual.json), as `holoray interlace`. ValueError when the quilt is
+    not columns x rows views of whole pixels; SceneError for a malformed
+    calibration."""
+    return _holoray.interlace_quilt(quilt, columns, rows, os.fspath(calibration))
 
 
 def read_image(path):

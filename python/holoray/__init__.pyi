@@ -128,6 +128,25 @@ def light_field(eia: ArrayLike, pixels_per_lens: int) -> np.ndarray:
     subaperture --u u --v v`. Not a copy. ValueError when H or W is not a
     multiple of P."""
 
+def subaperture_view(eia: ArrayLike, pixels_per_lens: int, grid: str = "square", u: int = -1,
+                     v: int = -1) -> np.ndarray:
+    """Pixel (u, v) of every elemental image of an EIA (-1: P/2), as `holoray
+    subaperture`: float32 (Ny, Nx, C) for square and hex grids, (H, Nx, C)
+    for lenticular. grid: 'square', 'hex' or 'lenticular'. ValueError naming
+    pixels_per_lens when the EIA is not whole lenses, or (u, v) outside."""
+
+def simulate_view(panel: ArrayLike, display: PathLike, eye: ArrayLike = (0.0, 0.0, 600.0),
+                  width: int = 800, samples: int = 3) -> np.ndarray:
+    """What an eye at `eye` (mm, the display's frame, z > 0 in front) sees of
+    the panel image through the display file's lens sheet, as `holoray
+    simulate`: float32 (h, width, 3). SceneError for a malformed display
+    file, ValueError for a panel of another size."""
+
+def interlace_quilt(quilt: ArrayLike, columns: int, rows: int, calibration: PathLike) -> np.ndarray:
+    """A Looking Glass's native panel image, float32 (H, W, 3), from a quilt of
+    columns x rows views and the device's calibration (visual.json), as
+    `holoray interlace`. ValueError when the quilt is not whole views."""
+
 def animate(shot_path: PathLike, *, output: PathLike | None = None, **options: object
             ) -> Iterator[tuple[int, np.ndarray, dict[str, object]]]:
     """Renders a shot (docs/shot-format.md) frame by frame with keyframe reuse:

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "api/internal.hpp"
-#include "api/pick.hpp"
+#include "holoray/pick.hpp"
 #include "holoray/animate.hpp"
 #include "holoray/errors.hpp"
 #include "image/image_io.hpp"
@@ -26,12 +26,10 @@ namespace holoray::api {
 
 namespace {
 
-ImageDifference from_api(const Difference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
-Difference to_api(const ImageDifference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
+holoray::ImageDifference from_api(const Difference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
+Difference to_api(const holoray::ImageDifference& d) { return {d.mse, d.mse_all, d.pixels, d.nan_mismatches}; }
 
 }  // namespace
-
-double Difference::psnr() const { return from_api(*this).psnr_all(); }
 
 FrameRow to_api(const FrameReport& r) {
   FrameRow o;
@@ -229,7 +227,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   const ShotFrames& shot = *s.shot;
   so.encoding = o.encoding ? (*o.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
                 : shot.shot().objects.empty() ? holoray::Encoding::linear
-                                              : default_encoding(shot.shot().objects.front().scene);
+                                              : holoray::default_encoding(shot.shot().objects.front().scene);
   if (o.frames) {
     const auto [first, last] = *o.frames;
     if (first < 0 || last < first || last >= shot.frame_count())

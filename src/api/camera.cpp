@@ -61,6 +61,10 @@ auto read_file(const std::string& path, Read&& read) {
 
 }  // namespace
 
+DisplayDesc read_display(const std::string& path) { return read_file(path, read_display_file); }
+
+LookingGlassCalibration read_calibration(const std::string& path) { return read_file(path, read_looking_glass); }
+
 FrameCameraDesc frame_camera_desc(const Camera& camera) {
   using Desc = FrameCameraDesc;
   FrameCameraDesc d;
@@ -96,7 +100,7 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.kind = Desc::Quilt{layout, q->view};
     d.focus_distance = q->focus_distance;
   } else if (const auto* s = std::get_if<Display>(&camera)) {
-    DisplayDesc display = read_file(s->path, read_display_file);
+    DisplayDesc display = read_display(s->path);
     if (s->focus_distance && s->placement)
       throw std::invalid_argument("focus_distance: goes with the viewpoint's placement, not an explicit one");
     ArraySettings placement;
@@ -105,7 +109,7 @@ FrameCameraDesc frame_camera_desc(const Camera& camera) {
     d.focus_distance = s->focus_distance;
   } else if (const auto* g = std::get_if<LookingGlass>(&camera)) {
     if (g->views < 1 || g->views > 4096) throw std::invalid_argument(fmt::format("views: expected 1 to 4096, got {}", g->views));
-    d.kind = Desc::LookingGlass{read_file(g->path, read_looking_glass), g->views};
+    d.kind = Desc::LookingGlass{read_calibration(g->path), g->views};
     d.focus_distance = g->focus_distance;
   }
   return d;

@@ -7,6 +7,8 @@
 #include "holoray/camera.hpp"
 #include "holoray/image.hpp"
 #include "holoray/scene.hpp"
+#include "display/display_desc.hpp"
+#include "display/looking_glass.hpp"
 #include "image/image.hpp"
 #include "render/frame_camera.hpp"
 #include "render/ray_counts.hpp"
@@ -35,6 +37,10 @@ struct ImageAccess {
 /// The renderer's camera choice for a public camera; display and calibration
 /// files are read here (SceneError when malformed).
 FrameCameraDesc frame_camera_desc(const Camera& camera);
+/// A display file (display-files.md) or a Looking Glass calibration
+/// (visual.json): SceneError when malformed, std::system_error when unreadable.
+DisplayDesc read_display(const std::string& path);
+LookingGlassCalibration read_calibration(const std::string& path);
 
 api::RayCounts to_api(const holoray::RayCounts& r);
 FrameRow to_api(const FrameReport& r);

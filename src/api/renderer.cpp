@@ -14,7 +14,7 @@
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
 #include "render/shadow_cache.hpp"
-#include "util/stopwatch.hpp"
+#include "holoray/stopwatch.hpp"
 
 namespace holoray::api {
 
@@ -37,6 +37,7 @@ TraceStyle trace_style(Style s, const FrameCamera& camera) {
 void check_options(const RenderOptions& o) {
   if (o.spp < 1) throw std::invalid_argument(fmt::format("spp: expected at least 1 sample per pixel, got {}", o.spp));
   if (o.threads < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", o.threads));
+  static_assert(kMaxDepth == kDepthCap, "the API's depth limit is the renderer's");
   if (o.max_depth < 0 || o.max_depth > kDepthCap)
     throw std::invalid_argument(fmt::format("max_depth: expected 1 to {} (0: the scene's), got {}", kDepthCap, o.max_depth));
   if (!(o.cache.cell > 0) || !std::isfinite(o.cache.cell))
@@ -265,6 +266,5 @@ api::RayCounts to_api(const holoray::RayCounts& r) {
   return {r.eye, r.shadow, r.reflected, r.refracted, r.shadow_cached, r.cache_samples};
 }
 
-const char* version() { return HOLORAY_VERSION_STRING; }
 
 }  // namespace holoray::api

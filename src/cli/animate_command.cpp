@@ -20,18 +20,13 @@
 
 #include "cli/error_words.hpp"
 #include "cli/interrupt.hpp"
-#include "holoray/holoray.hpp"
-#include "cluster/group_dealer.hpp"
-#include "cluster/mpi_world.hpp"
 #include "cli/machine.hpp"
 #include "cli/option_parsing.hpp"
-#include "cli/validators.hpp"
 #include "cli/scene_warnings.hpp"
-#include "image/image_io.hpp"
-#include "scene/file_text.hpp"
-#include "scene/parse_error.hpp"
-#include "util/stopwatch.hpp"
-#include "video/video_writer.hpp"
+#include "cli/validators.hpp"
+#include "cluster/group_dealer.hpp"
+#include "cluster/mpi_world.hpp"
+#include "holoray/holoray.hpp"
 
 namespace holoray::cli {
 
@@ -127,7 +122,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
   cmd->add_flag("--resume", o.resume, "Skip frames already in the output folder (a --video is encoded again from all the frames)");
   cmd->add_option("--video", o.video, "Also write the frames as a video once all are done: .mkv (FFV1, lossless: decoded frames equal the 8-bit frames) or .mp4 (H.264); written under a temporary name and renamed when complete")
       ->check(parsed_by([](const std::string& v) {
-        if (!is_supported_video(v))
+        if (!api::is_video_output(v))
           throw std::invalid_argument(fmt::format("--video: '{}' is neither .mkv (FFV1, lossless) nor .mp4 (H.264)", v));
       }, "OUT.mkv|OUT.mp4"));
   cmd->add_option("--crf", o.crf, "With --video .mp4: H.264 constant rate factor, 0 (best) to 51 (default 18)")
@@ -189,25 +184,20 @@ void gather_reports(const cluster::World& world, std::vector<api::FrameRow>& rep
 
 // The video, from the frames on disk, in order: it shows exactly what the
 // folder holds, and a resumed run rebuilds it whole.
-void write_video(const AnimateCommandOptions& o, int frames, const std::string& ext, Encoding encoding,
-                 const VideoOptions& vo) {
+void write_video(const AnimateCommandOptions& o, int frames, const std::string& ext, api::Encoding encoding,
+                 const api::VideoOptions& vo) {
   const auto t0 = Clock::now();
-  std::optional<VideoWriter> video;
-  std::vector<uint8_t> bytes;
+  std::optional<api::VideoWriter> video;
   for (int f = 0; f < frames; ++f) {
-    const ImageBuffer img = read_image(frame_path(o.output, f, frames, ext));
-    if (!video) video.emplace(o.video, img.width, img.height, vo);
-    if (img.channels < 3) throw std::runtime_error(fmt::format("frame {} has {} channels, not RGB", f, img.channels));
-    bytes.resize(size_t(img.width) * img.height * 3);
+    const api::Image img = api::read_image(frame_path(o.output, f, frames, ext));
+    if (!video) video.emplace(o.video, img.width(), img.height(), vo);
+    if (img.channels() < 3) throw std::runtime_error(fmt::format("frame {} has {} channels, not RGB", f, img.channels()));
     // PNG frames hold their codes already; EXR frames are encoded as PNG frames would be.
-    const Encoding enc = ext == "png" ? Encoding::linear : encoding;
-    for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
-      for (int c = 0; c < 3; ++c) bytes[p * 3 + c] = encode_8bit(img.data[p * img.channels + c], enc);
-    video->add_frame(bytes.data());
+    video->add_frame(img, ext == "png" ? api::Encoding::linear : encoding);
   }
   video->finish();
   if (!o.quiet)
-    fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, video_codec_name(o.video, vo),
+    fmt::print("video      {}: {} frames, {}, {:.3f} s\n", o.video, frames, api::video_codec_name(o.video, vo),
                seconds_since(t0));
 }
 
@@ -242,7 +232,7 @@ void write_report(const AnimateCommandOptions& o, const cluster::World& world, c
                            o.rebuild_above, o.reach, o.no_leak_check ? " --no-leak-check" : "");
   else if (chosen == api::Method::reverse)
     cmdline += fmt::format(" {} --reuse {}", key_args, reuse);
-  write_text_file(o.report,
+  api::write_text_file(o.report,
                   api::report_markdown(fmt::format("holoray animate: {}", std::filesystem::path(o.shot).filename().string()),
                                   {fmt::format("- command: `{} --report {}`", cmdline, o.report),
                                    fmt::format("- EIA: {}", animation.array_summary()),
@@ -289,14 +279,14 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     ao.fill = pick<std::string>("--fill", o.fill, {{"trace", "trace"}, {"interpolate", "interpolate"}});
     ao.leak_check = !o.no_leak_check;
     const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
-    VideoOptions vo;
+    api::VideoOptions vo;
     if (!o.video.empty()) {
-      const bool h264 = !is_lossless_video(o.video);
+      const bool h264 = !api::is_lossless_video(o.video);
       if (o.crf != -1 && !h264) throw std::invalid_argument("--crf: goes with an .mp4 video (FFV1 is lossless)");
       if (o.crf != -1) vo.crf = o.crf;
     }
-    const Encoding encoding_choice = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
-    if (o.encoding != "auto") ao.encoding = encoding_choice == Encoding::srgb ? api::Encoding::srgb : api::Encoding::linear;
+    const api::Encoding encoding_choice = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
+    if (o.encoding != "auto") ao.encoding = encoding_choice;
     const bool auto_keys = o.keyframe_interval == "auto";
     const int interval = auto_keys ? 0 : keyframe_interval_of(o.keyframe_interval);
     if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
@@ -307,7 +297,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     ao.rebuild_above_percent = o.rebuild_above;
     ao.threads = o.threads;
     ao.reference = !o.report.empty();
-    ao.cache = {cache_enabled(o.cache), o.cache.cell, o.cache.memory_mib};  // checked before the shot is read
+    ao.cache = cache_options(o.cache);  // checked before the shot is read
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
@@ -331,7 +321,6 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     };
     ao.load = {o.camera_name, o.texture_paths};
     api::Animation animation(o.shot, ao);
-    const Encoding encoding = animation.encoding() == api::Encoding::srgb ? Encoding::srgb : Encoding::linear;
     frames = animation.frame_count();
     if (o.frames.empty()) range_last = frames - 1;
     if (range_last >= frames)
@@ -399,7 +388,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     if (world.rank() != 0) return 0;
     if (!o.video.empty()) {
       vo.fps = animation.fps();
-      write_video(o, frames, ext, encoding, vo);
+      write_video(o, frames, ext, animation.encoding(), vo);
     }
     if (!o.quiet) {
       const int in_range = range_last - range_first + 1;
@@ -418,10 +407,8 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     }
     if (!o.report.empty()) write_report(o, world, animation, method, reuse, key_args, ao.method, reports);
     return 0;
-  } catch (const ParseError& e) {
-    return world.fail(e.what(), rendering);
   } catch (const std::exception& e) {
-    return world.fail(error_line(e), rendering);
+    return world.fail(error_report(e), rendering);
   }
 }
 

@@ -9,7 +9,6 @@
 #include "cli/cache_options.hpp"
 #include "cli/camera_options.hpp"
 #include "cluster/mpi_world.hpp"
-#include "display/looking_glass.hpp"
 
 namespace holoray::cli {
 

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "cli/option_parsing.hpp"
-#include "render/render_scene.hpp"
 
 namespace holoray::cli {
 
@@ -23,24 +22,6 @@ bool cache_enabled(const CacheCommandOptions& o) {
   return on;
 }
 
-std::unique_ptr<ShadowCache> make_cache(const RenderScene& scene, double pitch, const CacheCommandOptions& o) {
-  if (!cache_enabled(o)) return nullptr;
-  ShadowCacheOptions so;
-  so.cell_size = o.cell * pitch;
-  so.memory_limit_bytes = static_cast<uint64_t>(o.memory_mib * 1048576.0);
-  return std::make_unique<ShadowCache>(scene, so);
-}
-
-std::string cache_summary(const ShadowCache& cache, const RayCounts& r, const CacheCommandOptions& o) {
-  const double q = static_cast<double>(std::max<uint64_t>(1, r.shadow_queries()));
-  const auto& cells = cache.cells();
-  return fmt::format(
-      "cache      {} cells of {:.4g} units, {:.1f} MiB (bound {:g} MiB){}; shadow queries {}: {:.1f}% by cells, "
-      "{:.1f}% traced; {} sample rays\n",
-      cells.slot_count(), cells.cell_size(), cache.bytes() / 1048576.0, o.memory_mib,
-      cells.uncovered_primitives() ? fmt::format(", {} primitives uncovered", cells.uncovered_primitives()) : "",
-      r.shadow_queries(), 100.0 * r.shadow_cached / q, 100.0 * r.shadow / q,
-      r.cache_samples);
-}
+api::ShadowCacheOptions cache_options(const CacheCommandOptions& o) { return {cache_enabled(o), o.cell, o.memory_mib}; }
 
 }  // namespace holoray::cli

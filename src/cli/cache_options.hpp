@@ -1,13 +1,12 @@
 // holoray/cli: the shadow-cache options shared by `render` and `animate`
-// (issue 12; render/shadow_cache.hpp): --cache, --cache-cell, --cache-memory.
+// (issue 12; api::ShadowCacheOptions): --cache, --cache-cell, --cache-memory.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
 
-#include "render/ray_counts.hpp"
-#include "render/shadow_cache.hpp"
+#include "holoray/render.hpp"
 
 namespace holoray::cli {
 
@@ -24,13 +23,7 @@ void add_cache_options(CLI::App& cmd, CacheCommandOptions& o);
 /// the cache is on.
 bool cache_enabled(const CacheCommandOptions& o);
 
-/// The cache for `scene`, cells of o.cell lens pitches (`pitch`, scene
-/// units); null when --cache off. The caller attaches it to the scene
-/// (RenderScene::set_shadow_cache) and keeps it alive while the scene renders.
-std::unique_ptr<ShadowCache> make_cache(const RenderScene& scene, double pitch, const CacheCommandOptions& o);
-
-/// One line for the render summary: cells, memory, how the shadow questions
-/// were answered.
-std::string cache_summary(const ShadowCache& cache, const RayCounts& rays, const CacheCommandOptions& o);
+/// The options as the API takes them (checked as cache_enabled checks).
+api::ShadowCacheOptions cache_options(const CacheCommandOptions& o);
 
 }  // namespace holoray::cli

@@ -55,8 +55,7 @@ std::optional<api::Placement> placement_of(const std::string& origin, const std:
   if (origin.empty() && normal.empty() && up.empty()) return std::nullopt;
   if (origin.empty() || normal.empty() || up.empty())
     throw std::invalid_argument("--origin, --normal and --up: give all three, or none");
-  auto arr = [](const Vec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
-  return api::Placement{arr(parse_vec3("--origin", origin)), arr(parse_vec3("--normal", normal)), arr(parse_vec3("--up", up))};
+  return api::Placement{parse_vec3("--origin", origin), parse_vec3("--normal", normal), parse_vec3("--up", up)};
 }
 
 void add_scene_read_options(CLI::App& cmd, std::string& camera_name, std::vector<std::string>& texture_paths) {

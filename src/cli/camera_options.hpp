@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "display/looking_glass.hpp"
 #include "holoray/camera.hpp"
 
 namespace holoray::cli {
@@ -20,7 +19,7 @@ struct CameraOptions {
   std::string resolution;           ///< --resolution WxH (pinhole; render's --quilt: one view)
   std::string display;              ///< --display FILE (display-files.md)
   std::string looking_glass;        ///< --looking-glass CAL.json
-  int looking_glass_views = kDefaultLookingGlassViews;  ///< --views N
+  int looking_glass_views = api::LookingGlass{}.views;  ///< --views N
 };
 
 /// Registers the options on `cmd`; `what` words the help for a still

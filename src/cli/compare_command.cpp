@@ -6,8 +6,7 @@
 
 #include "cli/error_words.hpp"
 #include "cli/validators.hpp"
-#include "image/image_io.hpp"
-#include "image/metrics.hpp"
+#include "holoray/image.hpp"
 
 namespace holoray::cli {
 
@@ -24,15 +23,15 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommandOptions& o) {
 
 int run_compare(const CompareCommandOptions& o) {
   try {
-    const ImageBuffer a = read_image(o.a);
-    const ImageDifference d = compare_images(a, read_image(o.b));
+    const api::Image a = api::read_image(o.a);
+    const api::Difference d = api::compare_images(a, api::read_image(o.b));
     auto db = [](double v) { return std::isinf(v) ? std::string("inf") : fmt::format("{:.3f}", v); };
-    fmt::print("{} x {} pixels\n", a.width, a.height);
+    fmt::print("{} x {} pixels\n", a.width(), a.height());
     fmt::print("channel        MSE       RMSE   PSNR dB\n");
     static constexpr const char* kName[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-      fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", kName[c], d.mse[static_cast<size_t>(c)], d.rmse(c), db(d.psnr(c)));
-    fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", "all", d.mse_all, d.rmse_all(), db(d.psnr_all()));
+      fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", kName[c], d.mse[static_cast<size_t>(c)], std::sqrt(d.mse[static_cast<size_t>(c)]), db(d.psnr(c)));
+    fmt::print("{:<7} {:>10.4f} {:>10.4f} {:>9}\n", "all", d.mse_all, std::sqrt(d.mse_all), db(d.psnr()));
     if (d.nan_mismatches > 0)
       fmt::print("NaN     {} samples have a value in one image and NaN in the other; left out above\n", d.nan_mismatches);
     return 0;

@@ -41,4 +41,10 @@ std::string in_option_words(std::string_view message) {
 
 std::string error_line(const std::exception& e) { return "holoray: error: " + in_option_words(e.what()); }
 
+std::string error_report(const std::exception& e) {
+  const auto* scene = dynamic_cast<const api::SceneError*>(&e);
+  if (scene && scene->line() > 0) return e.what();
+  return error_line(e);
+}
+
 }  // namespace holoray::cli

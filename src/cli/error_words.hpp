@@ -18,5 +18,9 @@ std::string in_option_words(std::string_view message);
 /// The line a command prints for an error it stops on:
 /// "holoray: error: " and what() in the command line's words.
 std::string error_line(const std::exception& e);
+/// What the CLI prints for an error: a scene file's report as its reader
+/// wrote it ("file:line:col: error: ...", the line and a caret), any other
+/// error as error_line().
+std::string error_report(const std::exception& e);
 
 }  // namespace holoray::cli

@@ -2,16 +2,15 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <filesystem>
 #include <regex>
 
-#include "camera/quilt_camera.hpp"
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
-#include "display/looking_glass.hpp"
-#include "image/image_io.hpp"
+#include "holoray/image.hpp"
+#include "holoray/preview.hpp"
+#include "holoray/stopwatch.hpp"
 
 namespace holoray::cli {
 
@@ -32,10 +31,10 @@ CLI::App* add_interlace_command(CLI::App& app, InterlaceCommandOptions& o) {
 
 int run_interlace(const InterlaceCommandOptions& o) {
   try {
-    if (!is_supported_output(o.output))
+    if (!api::is_image_output(o.output))
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
-    const Encoding encoding = parse_encoding(o.encoding);
-    QuiltDesc q;
+    const api::Encoding encoding = parse_encoding(o.encoding);
+    api::QuiltLayout q;
     if (!o.quilt.empty()) {
       parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
     } else {
@@ -45,21 +44,14 @@ int run_interlace(const InterlaceCommandOptions& o) {
         throw std::invalid_argument(fmt::format("'{}' names no quilt layout (_qsCxR); give --quilt CxR", name));
       parse_lens_count(m[1].str() + "x" + m[2].str(), q.columns, q.rows, "--quilt");
     }
-    const LookingGlassCalibration cal = read_looking_glass(o.calibration);
-    ImageBuffer quilt = read_image(o.input);
-    if (quilt.width % q.columns || quilt.height % q.rows)
-      throw std::invalid_argument(fmt::format("a {}x{} image is not {}x{} views of whole pixels", quilt.width, quilt.height,
-                                              q.columns, q.rows));
-    q.view_width = quilt.width / q.columns, q.view_height = quilt.height / q.rows;
-    q.view_cone_deg = cal.view_cone_deg;
-    const auto start = std::chrono::steady_clock::now();
-    const ImageBuffer panel = interlace_quilt(quilt, q, cal);
-    write_image(o.output, panel, encoding);
+    const api::Image quilt = api::read_image(o.input);
+    const auto start = Clock::now();
+    const api::Image panel = api::interlace_quilt(quilt, q.columns, q.rows, o.calibration);
+    api::write_image(o.output, panel, encoding);
     if (!o.quiet) {
-      fmt::print("panel      {}x{} px, Looking Glass ({}), from a {}x{} quilt of {}x{} views\n", cal.width, cal.height,
-                 o.calibration, q.columns, q.rows, q.view_width, q.view_height);
-      fmt::print("wrote      {} ({:.3f} s)\n", o.output,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      fmt::print("panel      {}x{} px, Looking Glass ({}), from a {}x{} quilt of {}x{} views\n", panel.width(),
+                 panel.height(), o.calibration, q.columns, q.rows, quilt.width() / q.columns, quilt.height() / q.rows);
+      fmt::print("wrote      {} ({:.3f} s)\n", o.output, seconds_since(start));
     }
     return 0;
   } catch (const std::exception& e) {

@@ -36,7 +36,7 @@ void parse_resolution(const std::string& text, int& width, int& height) {
     throw std::invalid_argument(fmt::format("--resolution: width and height must be from 1 to 65536, got '{}'", text));
 }
 
-Vec3 parse_vec3(const std::string& option, const std::string& text) {
+std::array<double, 3> parse_vec3(const std::string& option, const std::string& text) {
   double v[3];
   std::string_view rest(text);
   for (int k = 0; k < 3; ++k) {
@@ -52,44 +52,43 @@ Vec3 parse_vec3(const std::string& option, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-Grid parse_grid(const std::string& text) {
-  if (text == "square") return Grid::square;
-  if (text == "hex") return Grid::hex;
-  if (text == "lenticular") return Grid::lenticular;
+api::Grid parse_grid(const std::string& text) {
+  if (text == "square") return api::Grid::square;
+  if (text == "hex") return api::Grid::hex;
+  if (text == "lenticular") return api::Grid::lenticular;
   throw std::invalid_argument(fmt::format("--grid: expected square, hex or lenticular, got '{}'", text));
 }
 
-Encoding parse_encoding(const std::string& text) {
-  if (text == "linear") return Encoding::linear;
-  if (text == "srgb") return Encoding::srgb;
+api::Encoding parse_encoding(const std::string& text) {
+  if (text == "linear") return api::Encoding::linear;
+  if (text == "srgb") return api::Encoding::srgb;
   throw std::invalid_argument(fmt::format("--encoding: expected linear or srgb, got '{}'", text));
 }
 
-ExrCompression parse_exr_compression(const std::string& text) {
-  return pick<ExrCompression>("--exr-compression", text,
-                              {{"zip", ExrCompression::zip}, {"zips", ExrCompression::zips}, {"piz", ExrCompression::piz},
-                               {"rle", ExrCompression::rle}, {"none", ExrCompression::none}});
+api::ExrCompression parse_exr_compression(const std::string& text) {
+  using C = api::ExrCompression;
+  return pick<C>("--exr-compression", text, {{"zip", C::zip}, {"zips", C::zips}, {"piz", C::piz}, {"rle", C::rle}, {"none", C::none}});
 }
 
-Encoding parse_encoding(const std::string& text, const std::string& scene) {
+api::Encoding parse_encoding(const std::string& text, const std::string& scene) {
   if (text != "auto") {
     if (text == "linear" || text == "srgb") return parse_encoding(text);
     throw std::invalid_argument(fmt::format("--encoding: expected auto, linear or srgb, got '{}'", text));
   }
-  return default_encoding(scene);
+  return api::default_encoding(scene);
 }
 
-std::optional<TraceStyle> parse_style(const std::string& text) {
-  if (text == "auto") return std::nullopt;
-  if (text == "packet") return TraceStyle::packet;
-  if (text == "subaperture") return TraceStyle::subaperture;
-  if (text == "horizontal") return TraceStyle::horizontal;
-  if (text == "vertical") return TraceStyle::vertical;
+api::Style parse_style(const std::string& text) {
+  if (text == "auto") return api::Style::automatic;
+  if (text == "packet") return api::Style::packet;
+  if (text == "subaperture") return api::Style::subaperture;
+  if (text == "horizontal") return api::Style::horizontal;
+  if (text == "vertical") return api::Style::vertical;
   throw std::invalid_argument(fmt::format("--style: expected auto, subaperture, packet, horizontal or vertical, got '{}'", text));
 }
 
-AovSet parse_aovs(const std::string& text) {
-  AovSet a;
+api::Aovs parse_aovs(const std::string& text) {
+  api::Aovs a;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {

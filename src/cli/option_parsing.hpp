@@ -11,11 +11,12 @@
 #include <string_view>
 #include <utility>
 
-#include "api/pick.hpp"  // pick(), the choice among named values
-#include "camera/lens_array.hpp"
-#include "image/image_io.hpp"
-#include "math/vec.hpp"
-#include "render/renderer.hpp"
+#include <array>
+
+#include "holoray/camera.hpp"
+#include "holoray/image.hpp"
+#include "holoray/pick.hpp"  // pick(), the choice among named values
+#include "holoray/render.hpp"
 
 namespace holoray::cli {
 
@@ -25,20 +26,19 @@ void parse_lens_count(const std::string& text, int& nx, int& ny, std::string_vie
 /// "WxH" (e.g. 512x512) for --resolution; sizes from 1 to 65536 each.
 void parse_resolution(const std::string& text, int& width, int& height);
 /// "X,Y,Z" with finite numbers.
-Vec3 parse_vec3(const std::string& option, const std::string& text);
+std::array<double, 3> parse_vec3(const std::string& option, const std::string& text);
 /// "square", "hex" or "lenticular" (--grid).
-Grid parse_grid(const std::string& text);
+api::Grid parse_grid(const std::string& text);
 /// "linear" or "srgb" (--encoding).
-Encoding parse_encoding(const std::string& text);
+api::Encoding parse_encoding(const std::string& text);
 /// --encoding of render and animate: "linear", "srgb" or "auto", which is
-/// default_encoding(scene). Throws std::invalid_argument for other text.
-Encoding parse_encoding(const std::string& text, const std::string& scene);
+/// api::default_encoding(scene). Throws std::invalid_argument for other text.
+api::Encoding parse_encoding(const std::string& text, const std::string& scene);
 /// "zip", "zips", "piz", "rle" or "none" (--exr-compression).
-ExrCompression parse_exr_compression(const std::string& text);
-/// "auto" (nullopt: preferred_style decides), "subaperture", "packet",
-/// "horizontal" or "vertical" (--style).
-std::optional<TraceStyle> parse_style(const std::string& text);
+api::ExrCompression parse_exr_compression(const std::string& text);
+/// "auto", "subaperture", "packet", "horizontal" or "vertical" (--style).
+api::Style parse_style(const std::string& text);
 /// Comma-separated subset of albedo,depth,normal,id.
-AovSet parse_aovs(const std::string& text);
+api::Aovs parse_aovs(const std::string& text);
 
 }  // namespace holoray::cli

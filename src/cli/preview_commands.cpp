@@ -2,15 +2,11 @@
 
 #include <fmt/format.h>
 
-#include "camera/subaperture.hpp"
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
-#include "display/display_file.hpp"
-#include "image/image_io.hpp"
-#include "preview/simulate.hpp"
-#include "preview/views.hpp"
-#include "scene/parse_error.hpp"
+#include "holoray/image.hpp"
+#include "holoray/preview.hpp"
 
 namespace holoray::cli {
 
@@ -47,36 +43,33 @@ CLI::App* add_views_command(CLI::App& app, ViewsCommandOptions& o) {
 
 int run_simulate(const SimulateCommandOptions& o) {
   try {
-    if (!is_supported_output(o.output))
+    if (!api::is_image_output(o.output))
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
-    const Encoding encoding = parse_encoding(o.encoding);
-    SimulateOptions so;
+    const api::Encoding encoding = parse_encoding(o.encoding);
+    api::SimulateOptions so;
     so.eye_mm = parse_vec3("--eye", o.eye);
     so.width = o.width;
     so.samples = o.samples;
-    const DisplayDesc display = read_display_file(o.display);
-    write_image(o.output, simulate_view(as_rgb(read_image(o.input)), display, so), encoding);
+    const api::Image panel = api::read_image(o.input);
+    api::write_image(o.output, api::simulate_view(panel, o.display, so), encoding);
     return 0;
-  } catch (const ParseError& e) {
-    fmt::print(stderr, "{}\n", e.what());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "{}\n", error_line(e));
+    fmt::print(stderr, "{}\n", error_report(e));
   }
   return 1;
 }
 
 int run_views(const ViewsCommandOptions& o) {
   try {
-    const bool gif = lower_extension(o.output) == ".gif";
-    if (!gif && !is_supported_output(o.output))
+    const bool gif = api::lower_extension(o.output) == ".gif";
+    if (!gif && !api::is_image_output(o.output))
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png, .exr or .gif)", o.output));
     if (gif && (o.fps < 1 || o.fps > 100)) throw std::invalid_argument(fmt::format("--fps: must be 1 to 100, got {}", o.fps));
-    const Encoding encoding = parse_encoding(o.encoding);
-    const Grid grid = parse_grid(o.grid);
-    const ImageBuffer eia = as_rgb(read_image(o.input));
-    const LensArray cam(eia_layout(eia.width, eia.height, grid, o.pixels_per_lens));
-    if (gif) write_animation(o.output, view_sweep(eia, cam), o.fps, encoding);
-    else write_image(o.output, view_grid(eia, cam), encoding);
+    const api::Encoding encoding = parse_encoding(o.encoding);
+    const api::EiaLayout layout{parse_grid(o.grid), o.pixels_per_lens};
+    const api::Image eia = api::read_image(o.input);
+    if (gif) api::write_animation(o.output, api::view_sweep(eia, layout), o.fps, encoding);
+    else api::write_image(o.output, api::view_grid(eia, layout), encoding);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}\n", error_line(e));

@@ -14,7 +14,6 @@
 #include <tuple>
 #include <utility>
 
-#include "api/internal.hpp"
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
@@ -23,9 +22,6 @@
 #include "cluster/mpi_world.hpp"
 #include "cluster/row_bands.hpp"
 #include "holoray/holoray.hpp"
-#include "image/image_io.hpp"
-#include "scene/parse_error.hpp"
-#include "util/stopwatch.hpp"
 
 namespace holoray::cli {
 
@@ -36,58 +32,34 @@ namespace {
 // whole in one process, as the bands arrive under mpirun.
 class FrameFiles {
  public:
-  FrameFiles(const std::string& output, int width, int height, const AovSet& aovs, Encoding encoding, ExrCompression exr) {
+  FrameFiles(const std::string& output, int width, int height, const api::Aovs& aovs, api::Encoding encoding,
+             api::ExrCompression exr) {
     const std::string ext = std::filesystem::path(output).extension().string().substr(1);
-    const FrameBuffers shape = allocate_frame(width, 1, aovs);  // each plane's channels
-    auto add = [&](ImageBuffer FrameBuffers::*plane, const std::string& path, Encoding enc) {
-      files_.emplace_back(plane, std::make_unique<ImageWriter>(path, width, height, (shape.*plane).channels, enc, exr));
+    auto add = [&](api::Image api::Result::*plane, const std::string& path, int channels, api::Encoding enc) {
+      files_.emplace_back(plane, std::make_unique<api::ImageWriter>(path, width, height, channels, enc, exr));
     };
-    add(&FrameBuffers::colour, output, encoding);
-    if (aovs.albedo) add(&FrameBuffers::albedo, aov_path(output, "albedo", ext), encoding);
-    if (aovs.depth) add(&FrameBuffers::depth, aov_path(output, "depth", "exr"), Encoding::linear);
-    if (aovs.normal) add(&FrameBuffers::normal, aov_path(output, "normal", "exr"), Encoding::linear);
-    if (aovs.id) add(&FrameBuffers::id, aov_path(output, "id", "exr"), Encoding::linear);
+    add(&api::Result::colour, output, 3, encoding);
+    if (aovs.albedo) add(&api::Result::albedo, api::aov_path(output, "albedo", ext), 3, encoding);
+    if (aovs.depth) add(&api::Result::depth, api::aov_path(output, "depth", "exr"), 1, api::Encoding::linear);
+    if (aovs.normal) add(&api::Result::normal, api::aov_path(output, "normal", "exr"), 3, api::Encoding::linear);
+    if (aovs.id) add(&api::Result::id, api::aov_path(output, "id", "exr"), 1, api::Encoding::linear);
   }
-  /// The next rows of every file.
-  void write(const FrameBuffers& rows) {
+  /// The next rows of every file: a band, or the whole image.
+  void write(const api::Result& rows) {
     for (auto& [plane, writer] : files_) writer->write_rows(rows.*plane);
-  }
-  /// The whole image, from the API's result (its buffers, not copies).
-  void write(const api::Result& r) {
-    using api::detail::ImageAccess;
-    for (auto& [plane, writer] : files_)
-      writer->write_rows(ImageAccess::buffer(plane == &FrameBuffers::colour   ? r.colour
-                                             : plane == &FrameBuffers::albedo ? r.albedo
-                                             : plane == &FrameBuffers::depth  ? r.depth
-                                             : plane == &FrameBuffers::normal ? r.normal
-                                                                              : r.id));
   }
   void finish() {
     for (auto& [plane, writer] : files_) writer->finish();
   }
 
  private:
-  std::vector<std::pair<ImageBuffer FrameBuffers::*, std::unique_ptr<ImageWriter>>> files_;
+  std::vector<std::pair<api::Image api::Result::*, std::unique_ptr<api::ImageWriter>>> files_;
 };
-
-// A rendered band's planes as the band exchange takes them (copied: under
-// mpirun, where the network dwarfs the copy).
-FrameBuffers buffers_of(const api::Result& r) {
-  using api::detail::ImageAccess;
-  FrameBuffers fb;
-  fb.colour = ImageAccess::buffer(r.colour);
-  fb.albedo = ImageAccess::buffer(r.albedo);
-  fb.depth = ImageAccess::buffer(r.depth);
-  fb.normal = ImageAccess::buffer(r.normal);
-  fb.id = ImageAccess::buffer(r.id);
-  return fb;
-}
 
 // The lens array the options describe (each value checked by CLI11).
 api::LensArray lens_array_of(const RenderCommandOptions& o) {
   api::LensArray a;
-  const Grid grid = parse_grid(o.grid);
-  a.grid = grid == Grid::hex ? api::Grid::hex : grid == Grid::lenticular ? api::Grid::lenticular : api::Grid::square;
+  a.grid = parse_grid(o.grid);
   a.mode = o.mode == "pseudoscopic" ? api::Mode::pseudoscopic : api::Mode::orthoscopic;
   parse_lens_count(o.lenses, a.lenses_x, a.lenses_y);
   a.pixels_per_lens = o.pixels_per_lens;
@@ -179,7 +151,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->check(in_range(1))->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(in_range(0))->capture_default_str();
   cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (default: the scene's Tachyon raydepth, else 5, the SPD's)")
-      ->check(in_range(1, kDepthCap));
+      ->check(in_range(1, api::kMaxDepth));
   cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")
       ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
       ->capture_default_str();
@@ -288,10 +260,10 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
     // Everything the user typed is checked before the scene is read.
-    const Encoding encoding = parse_encoding(o.encoding, o.scene);
-    const ExrCompression exr = parse_exr_compression(o.exr_compression);
-    const AovSet aovs = o.aovs.empty() ? AovSet{} : parse_aovs(o.aovs);
-    const std::optional<TraceStyle> style = parse_style(o.style);
+    const api::Encoding encoding = parse_encoding(o.encoding, o.scene);
+    const api::ExrCompression exr = parse_exr_compression(o.exr_compression);
+    const api::Aovs aovs = o.aovs.empty() ? api::Aovs{} : parse_aovs(o.aovs);
+    const api::Style style = parse_style(o.style);
     const api::Camera camera = camera_of(o);
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
@@ -306,13 +278,9 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.spp = o.spp;
     ropt.threads = o.threads;
     ropt.max_depth = o.max_depth;
-    ropt.aovs = {aovs.albedo, aovs.depth, aovs.normal, aovs.id};
-    ropt.style = !style ? api::Style::automatic
-                 : *style == TraceStyle::packet ? api::Style::packet
-                 : *style == TraceStyle::subaperture ? api::Style::subaperture
-                 : *style == TraceStyle::horizontal ? api::Style::horizontal
-                                                    : api::Style::vertical;
-    ropt.cache = {cache_enabled(o.cache), o.cache.cell, o.cache.memory_mib};
+    ropt.aovs = aovs;
+    ropt.style = style;
+    ropt.cache = cache_options(o.cache);
     // Under mpirun: bands of whole lens rows of an EIA, else rows of 32 (the
     // line renderers' tile); the image never depends on them. A rank holds
     // only its own bands, rank 0 one band more (cluster/band_exchange.hpp),
@@ -354,8 +322,8 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     // A quilt's name tells Looking Glass tools its layout.
     const auto* quilt = std::get_if<api::Quilt>(&camera);
     const std::string output =
-        quilt && quilt->view < 0 ? quilt_file_name(o.output, QuiltDesc{quilt->columns, quilt->rows, quilt->view_width,
-                                                                       quilt->view_height, quilt->view_cone_deg})
+        quilt && quilt->view < 0 ? api::quilt_file_name(o.output, {quilt->columns, quilt->rows, quilt->view_width,
+                                                                   quilt->view_height, quilt->view_cone_deg})
                                  : o.output;
     api::Result result;
     double gather_s = 0, band_bytes = 0, write_s = 0;
@@ -364,11 +332,11 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       // traces its own, rank 0 writes them to the files in order as they
       // arrive (the gather time includes those writes).
       const auto t_trace = Clock::now();
-      std::vector<FrameBuffers> mine;
+      std::vector<api::Result> mine;
       for (const RowBand& b : bands) {
         if (b.rank != world.rank()) continue;
         const api::Result band = renderer.render(std::array<int, 2>{b.y0, b.y1});
-        mine.push_back(buffers_of(band));
+        mine.push_back(band);
         api::RayCounts& r = result.stats.rays;
         const api::RayCounts& n = band.stats.rays;
         r.eye += n.eye, r.shadow += n.shadow, r.reflected += n.reflected, r.refracted += n.refracted;
@@ -379,7 +347,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       const auto t_gather = Clock::now();
       std::optional<FrameFiles> files;
       if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding, exr);
-      cluster::stream_bands(world, bands, mine, width, aovs, [&](const RowBand&, const FrameBuffers& b) { files->write(b); },
+      cluster::stream_bands(world, bands, mine, width, aovs, [&](const RowBand&, const api::Result& b) { files->write(b); },
                             band_bytes);
       if (files) files->finish();
       gather_s = seconds_since(t_gather);
@@ -401,10 +369,8 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     }
     if (!o.quiet) print_summary(o, scene, renderer, result, parse_s, gather_s, band_bytes, output, write_s, world);
     return 0;
-  } catch (const ParseError& e) {
-    return world.fail(e.what(), rendering);
   } catch (const std::exception& e) {
-    return world.fail(error_line(e), rendering);
+    return world.fail(error_report(e), rendering);
   }
 }
 

@@ -4,9 +4,7 @@
 
 #include <algorithm>
 
-namespace holoray {
-
-void print_scene_warnings(const SceneDesc& desc) { print_scene_warnings(desc.warnings, desc.warning_count, desc.source); }
+namespace holoray::cli {
 
 void print_scene_warnings(const std::vector<std::string>& warnings, size_t count, const std::string& source) {
   constexpr size_t kShown = 10;  // enough to find the pattern, few enough to still see the summary
@@ -15,4 +13,4 @@ void print_scene_warnings(const std::vector<std::string>& warnings, size_t count
   if (count > shown) fmt::print(stderr, "{}: {} more warning{}\n", source, count - shown, count - shown == 1 ? "" : "s");
 }
 
-}  // namespace holoray
+}  // namespace holoray::cli

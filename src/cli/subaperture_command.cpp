@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "camera/subaperture.hpp"
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
-#include "image/image_io.hpp"
+#include "holoray/image.hpp"
+#include "holoray/preview.hpp"
 
 namespace holoray::cli {
 
@@ -30,16 +30,12 @@ CLI::App* add_subaperture_command(CLI::App& app, SubapertureCommandOptions& o) {
 
 int run_subaperture(const SubapertureCommandOptions& o) {
   try {
-    if (!is_supported_output(o.output))
+    if (!api::is_image_output(o.output))
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
-    const Grid grid = parse_grid(o.grid);
-    const Encoding encoding = parse_encoding(o.encoding);
-    const int P = o.pixels_per_lens;
-    const ImageBuffer eia = read_image(o.input);
-    const LensArrayDesc d = eia_layout(eia.width, eia.height, grid, P);
-    const LensArray cam(d);
-    const ImageBuffer view = extract_subaperture(eia, cam, o.u < 0 ? P / 2 : o.u, o.v < 0 ? P / 2 : o.v);
-    write_image(o.output, view, encoding);
+    const api::EiaLayout layout{parse_grid(o.grid), o.pixels_per_lens};
+    const api::Encoding encoding = parse_encoding(o.encoding);
+    const api::Image eia = api::read_image(o.input);
+    api::write_image(o.output, api::subaperture_view(eia, layout, o.u, o.v), encoding);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}\n", error_line(e));

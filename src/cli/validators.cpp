@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "image/image_io.hpp"
+#include "holoray/image.hpp"
 
 namespace holoray::cli {
 
@@ -72,7 +72,7 @@ CLI::Validator existing_file() {
 CLI::Validator output_image() {
   return CLI::Validator(
       [](std::string& path) -> std::string {
-        if (!is_supported_output(path)) return fmt::format("unsupported output '{}' (use .png or .exr)", path);
+        if (!api::is_image_output(path)) return fmt::format("unsupported output '{}' (use .png or .exr)", path);
         const std::filesystem::path dir = std::filesystem::path(path).parent_path();
         std::error_code ec;
         if (!dir.empty() && !std::filesystem::is_directory(dir, ec))

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "util/stopwatch.hpp"
+#include "holoray/stopwatch.hpp"
 
 namespace holoray {
 

@@ -1,8 +1,6 @@
-// holoray/api: a named choice among a few, for every front end's option
-// values (the CLI's --method, the API's and Python's method="...").
+// holoray public API: a named choice among a few, for every front end's
+// option values (the CLI's --method, the API's and Python's method="...").
 #pragma once
-
-#include <fmt/format.h>
 
 #include <initializer_list>
 #include <stdexcept>
@@ -18,9 +16,12 @@ T pick(const std::string& option, const std::string& value, std::initializer_lis
   std::string names;
   for (const auto& [name, v] : choices) {
     if (value == name) return v;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
+    if (!names.empty()) names.append(", ");
+    names.append(name);
   }
-  throw std::invalid_argument(fmt::format("{}: expected one of {}, got '{}'", option, names, value));
+  std::string message = option;
+  message.append(": expected one of ").append(names).append(", got '").append(value).append("'");
+  throw std::invalid_argument(message);
 }
 
 }  // namespace holoray

@@ -1,5 +1,5 @@
-// holoray/util: wall-clock seconds, the one clock every timing in the
-// summaries and reports reads.
+// holoray public API: wall-clock seconds, the one clock every timing in the
+// library's results and the front ends' summaries and reports reads.
 #pragma once
 
 #include <chrono>
