@@ -170,7 +170,7 @@ KindRays& kind_rays(const std::string& name, int lenses) {
     Vec3 ng[kPacketSize], ns[kPacketSize];
     for (int l = 0; l < kPacketSize; ++l) {
       if (!found[l]) continue;
-      sp[l] = scene.surface(eye.rays[l], hits[l]);
+      sp[l] = scene.surface(eye.rays[l], hits[l], {});
       const bool front = dot(sp[l].ng, -eye.rays[l].dir) >= 0;
       ng[l] = front ? sp[l].ng : -sp[l].ng;
       ns[l] = front ? sp[l].ns : -sp[l].ns;

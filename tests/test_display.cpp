@@ -293,7 +293,7 @@ TEST(DisplayRender, EachChannelIsItsOwnSubpixelsSingleRayColour) {
         if (const auto pr = primary_ray_along(cam.line(sample, j), scene.bounds(), scene.epsilon(), RecordingMode::orthoscopic)) {
           Hit hit;
           if (scene.accel().intersect(pr->ray, hit, RayCoherence::coherent))
-            colour = shade(scene, pr->ray, scene.surface(pr->ray, hit), 1, counts);
+            colour = shade(scene, pr->ray, scene.surface(pr->ray, hit, {}), 1, counts);
         }
         c[ch] = static_cast<float>(ch == 0 ? colour.x : ch == 1 ? colour.y : colour.z);
         ASSERT_NEAR(a.colour.at(i, j)[ch], c[ch], 1e-5f) << i << "," << j << " channel " << ch;

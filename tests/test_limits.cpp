@@ -71,15 +71,16 @@ TEST(PathologicalScenes, EndlessRefractionAndMirrorsStopAtTheDepthLimit) {
   s.lights = {Light{{3, 3, 0}, {1, 1, 1}, {}}, Light{{-3, 2, 8}, {1, 1, 1}, {}}};
 
   RenderScene scene(s);
-  EXPECT_EQ(scene.max_depth(), kMaxRayDepth);
+  EXPECT_EQ(scene.file_max_depth(), kMaxRayDepth);
   LensArrayDesc inside = small_array();
   inside.mode = RecordingMode::pseudoscopic;
   const LensArray cam(inside);
   for (const int depth : {1, 3, kMaxRayDepth, 8}) {
     SCOPED_TRACE(depth);
-    scene.set_max_depth(depth);
+    RenderSettings settings = file_settings(scene);
+    settings.max_depth = depth;
     RenderStats stats;
-    const FrameBuffers fb = render_frame(scene, cam, RenderOptions{}, stats);
+    const FrameBuffers fb = render_frame(RenderContext(scene, settings), cam, RenderOptions{}, stats);
     const RayCounts& r = stats.rays;
     ASSERT_EQ(r.eye, static_cast<uint64_t>(cam.pixel_count()));  // the box surrounds the array
     const uint64_t secondary = r.reflected + r.refracted, nodes = (uint64_t{1} << depth) - 1;
@@ -88,8 +89,6 @@ TEST(PathologicalScenes, EndlessRefractionAndMirrorsStopAtTheDepthLimit) {
     EXPECT_LE(r.shadow, nodes * s.lights.size() * r.eye);
     for (float v : fb.colour.data) ASSERT_TRUE(std::isfinite(v));
   }
-  EXPECT_THROW(scene.set_max_depth(0), std::invalid_argument);
-  EXPECT_THROW(scene.set_max_depth(kDepthCap + 1), std::invalid_argument);
 }
 
 // A file with one object too many is refused at that object, before it is stored.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -296,4 +297,31 @@ TEST(RenderStyles, PacketsKeepTheImageBudgetOnTheSpdTachyonAndGltfScenes) {
     const FrameBuffers packets = render_frame(scene, cam, opt, stats);
     EXPECT_GE(compare_images(single.colour, packets.colour).psnr_all(), 60.0);
   }
+}
+
+// Issue 54: the built scene is shared, the render's settings are its own. Two
+// renders of one RenderScene at once, through two arrays and two depth
+// limits, give the images each gives alone.
+TEST(RenderContext, OneBuiltSceneServesTwoRendersAtOnce) {
+  const SceneDesc desc = read_scene_file(test::source_dir() + "/examples/primitives.nff");
+  const RenderScene scene(desc);
+  const LensArrayDesc near = test::camera_at(desc, {}, 24, 8), far = test::camera_at(desc, {0.5, 0, 0.3}, 24, 8);
+  RenderSettings shallow = file_settings(scene), deep = shallow;
+  shallow.max_depth = 1;
+  deep.max_depth = 6;
+  RenderOptions one_thread;
+  one_thread.threads = 1;
+  auto render = [&](const LensArrayDesc& d, const RenderSettings& s) {
+    RenderStats stats;
+    return render_frame(RenderContext(scene, s), LensArray(d), one_thread, stats).colour.data;
+  };
+  const auto alone_a = render(near, shallow), alone_b = render(far, deep);
+  decltype(render(near, shallow)) together_a, together_b;
+  std::thread a([&] { together_a = render(near, shallow); });
+  std::thread b([&] { together_b = render(far, deep); });
+  a.join();
+  b.join();
+  EXPECT_EQ(together_a, alone_a);
+  EXPECT_EQ(together_b, alone_b);
+  EXPECT_NE(render(near, deep), alone_a) << "the depth limit should show in this scene's mirror";
 }

@@ -29,7 +29,14 @@ struct Rendered {
   RenderStats stats;
 };
 
-Rendered render(const RenderScene& scene, const LensArrayDesc& cam, int threads = 0,
+// `scene` as its file asks, with `cache` (null: every shadow ray traced).
+RenderContext with_cache(const RenderScene& scene, const ShadowCache* cache) {
+  RenderSettings settings = file_settings(scene);
+  settings.shadow_cache = cache;
+  return {scene, settings};
+}
+
+Rendered render(const RenderContext& scene, const LensArrayDesc& cam, int threads = 0,
                 TileOrder order = TileOrder::row_major) {
   RenderOptions opt;
   opt.threads = threads;
@@ -115,8 +122,7 @@ TEST(ShadowCache, WithoutOccludersTheImageIsTracingsWithinOneLsb) {
   RenderScene scene(desc);
   const Rendered traced = render(scene, cam);
   ShadowCache cache(scene, cells_of(0.1));
-  scene.set_shadow_cache(&cache);
-  const Rendered cached = render(scene, cam);
+  const Rendered cached = render(with_cache(scene, &cache), cam);
   EXPECT_LE(max_lsb(traced.fb.colour, cached.fb.colour), 1.0);
   // The cache answered most questions (else this test would prove nothing).
   const RayCounts& r = cached.stats.rays;
@@ -130,8 +136,7 @@ TEST(ShadowCache, WithOccludersEveryPixelKeepsItsShadow) {
   RenderScene scene(desc);
   const Rendered traced = render(scene, cam);
   ShadowCache cache(scene, cells_of(cam.pitch));
-  scene.set_shadow_cache(&cache);
-  const Rendered cached = render(scene, cam);
+  const Rendered cached = render(with_cache(scene, &cache), cam);
   const ImageDifference d = compare_images(quantize_8bit(traced.fb.colour, Encoding::linear),
                                            quantize_8bit(cached.fb.colour, Encoding::linear));
   EXPECT_GE(d.psnr_all(), 50.0) << "MSE " << d.mse_all;
@@ -145,10 +150,7 @@ TEST(ShadowCache, ThreadCountAndTileOrderDoNotChangeTheImage) {
   // A fresh cache per render: each classifies its cells in its own order.
   auto cached = [&](int threads, TileOrder order) {
     ShadowCache cache(scene, cells_of(cam.pitch));
-    scene.set_shadow_cache(&cache);
-    Rendered r = render(scene, cam, threads, order);
-    scene.set_shadow_cache(nullptr);
-    return r.fb.colour.data;
+    return render(with_cache(scene, &cache), cam, threads, order).fb.colour.data;
   };
   const auto ref = cached(1, TileOrder::row_major);
   EXPECT_EQ(ref, cached(2, TileOrder::row_major));
@@ -165,13 +167,13 @@ TEST(ShadowCache, AnOccluderCrossingTheLightLeavesNoStaleShadow) {
   RenderScene scene({{&ball, true}, {&floor, false}});
   auto at = [](int f) { return std::vector<Affine>{Affine::translate({-3 + f * 0.75, 0, 0}), Affine{}}; };
   const LensArrayDesc cam = looking_at({0, -6, 6});
-  ShadowCache cache(scene, cells_of(cam.pitch));
+  scene.set_transforms(at(0));
+  ShadowCache cache(scene, cells_of(cam.pitch));  // built at frame 0
   for (int f = 0; f <= 8; ++f) {
     scene.set_transforms(at(f));
-    scene.set_shadow_cache(nullptr);
+    cache.sync();  // as a shot does after each move
     const Rendered traced = render(scene, cam);
-    scene.set_shadow_cache(&cache);
-    const Rendered cached = render(scene, cam);
+    const Rendered cached = render(with_cache(scene, &cache), cam);
     const ImageDifference d = compare_images(quantize_8bit(traced.fb.colour, Encoding::linear),
                                              quantize_8bit(cached.fb.colour, Encoding::linear));
     EXPECT_GE(d.psnr_all(), 45.0) << "frame " << f;
@@ -191,8 +193,7 @@ TEST(ShadowCache, OverItsMemoryBoundItTracesInsteadOfFailing) {
   ShadowCache cache(scene, o);
   EXPECT_GT(cache.cells().uncovered_primitives(), 0u);
   EXPECT_LE(cache.bytes(), o.memory_limit_bytes);
-  scene.set_shadow_cache(&cache);
-  const Rendered cached = render(scene, cam);
+  const Rendered cached = render(with_cache(scene, &cache), cam);
   const ImageDifference d = compare_images(quantize_8bit(traced.fb.colour, Encoding::linear),
                                            quantize_8bit(cached.fb.colour, Encoding::linear));
   EXPECT_GE(d.psnr_all(), 50.0);

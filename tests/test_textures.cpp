@@ -197,9 +197,10 @@ TEST(MeshTextures, ThePixelFootprintChoosesTheMipLevel) {
   opt.aovs.albedo = true;
   auto spread_of_albedo = [&](double footprint_spread, double& mean) {
     RenderScene scene(d);
-    scene.set_pixel_footprint(0, footprint_spread);
+    RenderSettings settings = file_settings(scene);
+    settings.footprint = {0, footprint_spread};
     RenderStats stats;
-    const ImageBuffer a = render_view(scene, cam, opt, stats).albedo;
+    const ImageBuffer a = render_view(RenderContext(scene, settings), cam, opt, stats).albedo;
     double sum = 0, sum2 = 0;
     int n = 0;
     for (int j = 8; j < 56; ++j)

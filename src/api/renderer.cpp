@@ -11,7 +11,7 @@
 #include "api/internal.hpp"
 #include "holoray/errors.hpp"
 #include "holoray/render.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 #include "render/renderer.hpp"
 #include "render/shadow_cache.hpp"
 #include "holoray/stopwatch.hpp"
@@ -117,6 +117,7 @@ struct RendererState {
   std::optional<FrameCamera> placed;  // set once the constructor has placed it
   const FrameCamera& camera() const { return *placed; }
   std::unique_ptr<RenderScene> render_scene;
+  RenderSettings settings;  // this renderer's depth, cache, footprint and background
   std::unique_ptr<ShadowCache> cache;
   RenderOptions options;
   TraceStyle style = TraceStyle::packet;
@@ -175,15 +176,16 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.scene = std::move(lit);
   }
   s.render_scene = std::make_unique<RenderScene>(s.scene->desc);
-  if (options.max_depth != 0) s.render_scene->set_max_depth(options.max_depth);
+  s.settings = file_settings(*s.render_scene);
+  if (options.max_depth != 0) s.settings.max_depth = options.max_depth;
   // Mesh textures take the MIP level of what one pixel sees.
-  if (const auto angle = frame_camera.pixel_angle()) s.render_scene->set_pixel_footprint(0, *angle);
+  if (const auto angle = frame_camera.pixel_angle()) s.settings.footprint = {0, *angle};
   if (options.cache.enabled) {
     holoray::ShadowCacheOptions co;
     co.cell_size = options.cache.cell * array_camera->desc().pitch;
     co.memory_limit_bytes = static_cast<uint64_t>(options.cache.memory_mib * 1048576.0);
     s.cache = std::make_unique<ShadowCache>(*s.render_scene, co);
-    s.render_scene->set_shadow_cache(s.cache.get());
+    s.settings.shadow_cache = s.cache.get();
   }
   s.style = trace_style(options.style, frame_camera);
   s.build.build_seconds = seconds_since(t_build);
@@ -228,7 +230,7 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
       if (progress) progress(f);
     };
   holoray::RenderStats st;
-  FrameBuffers fb = render_through(*s.render_scene, s.camera(), ro, st);
+  FrameBuffers fb = render_through(RenderContext(*s.render_scene, s.settings), s.camera(), ro, st);
   Result out;
   out.colour = detail::ImageAccess::wrap(std::move(fb.colour));
   if (!fb.albedo.empty()) out.albedo = detail::ImageAccess::wrap(std::move(fb.albedo));

@@ -22,7 +22,7 @@ ImageBuffer pack_subpixels(const ImageBuffer& s, bool red_first) {
   return out;
 }
 
-FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camera, bool red_first,
+FrameBuffers render_display(const RenderContext& scene, const DisplayCamera& camera, bool red_first,
                             const RenderOptions& opt, RenderStats& stats) {
   refuse_aovs(opt.aovs);
   const RecordingMode mode = camera.geometry().mode;
@@ -35,7 +35,7 @@ FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camer
   return fb;
 }
 
-FrameBuffers render_looking_glass(const RenderScene& scene, const LookingGlassCamera& camera,
+FrameBuffers render_looking_glass(const RenderContext& scene, const LookingGlassCamera& camera,
                                   const RenderOptions& opt, RenderStats& stats) {
   refuse_aovs(opt.aovs);
   FrameBuffers fb = detail::render_lines(scene, camera, opt, stats, detail::eye_ray);

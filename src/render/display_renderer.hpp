@@ -19,13 +19,13 @@ namespace holoray {
 /// thread count. `red_first` is true for RGB order. Throws
 /// std::invalid_argument for AOVs (not written for panel images yet), spp < 1
 /// or threads < 0.
-FrameBuffers render_display(const RenderScene& scene, const DisplayCamera& camera, bool red_first,
+FrameBuffers render_display(const RenderContext& scene, const DisplayCamera& camera, bool red_first,
                             const RenderOptions& options, RenderStats& stats);
 
 /// A Looking Glass panel traced natively (display/looking_glass.hpp): each
 /// subpixel along its own view, channels packed as RGB (flipSubp is in the
 /// views already). Pinhole rays from each view's eye. Throws as render_display.
-FrameBuffers render_looking_glass(const RenderScene& scene, const LookingGlassCamera& camera,
+FrameBuffers render_looking_glass(const RenderContext& scene, const LookingGlassCamera& camera,
                                   const RenderOptions& options, RenderStats& stats);
 
 /// Packs a subpixel image (3W x H samples) into the W x H panel image:

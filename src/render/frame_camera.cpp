@@ -102,7 +102,7 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
       d.kind);
 }
 
-FrameBuffers render_through(const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options,
+FrameBuffers render_through(const RenderContext& scene, const FrameCamera& camera, const RenderOptions& options,
                             RenderStats& stats) {
   return std::visit(
       Overloaded{[&](const LensArray& a) { return render_frame(scene, a, options, stats); },

@@ -103,7 +103,7 @@ struct FrameCamera {
   /// samples are their pixels.
   int panel_samples_per_row() const;
   /// The angle one pixel subtends (radians), for mesh textures' MIP levels
-  /// (RenderScene::set_pixel_footprint); nullopt where the finest level is read.
+  /// (RenderSettings::footprint); nullopt where the finest level is read.
   std::optional<double> pixel_angle() const;
 };
 
@@ -115,7 +115,7 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
 
 /// The image (or the rows options.rows names) through `camera`, by the
 /// renderer of its kind.
-FrameBuffers render_through(const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options,
+FrameBuffers render_through(const RenderContext& scene, const FrameCamera& camera, const RenderOptions& options,
                             RenderStats& stats);
 
 }  // namespace holoray

@@ -30,7 +30,7 @@ inline bool eye_ray(const PixelLine& line, PrimaryRay& out) {
 }
 
 template <class Cam, class MakeRay>
-FrameBuffers render_lines(const RenderScene& scene, const Cam& camera, const RenderOptions& opt, RenderStats& stats,
+FrameBuffers render_lines(const RenderContext& scene, const Cam& camera, const RenderOptions& opt, RenderStats& stats,
                           MakeRay make_ray) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));

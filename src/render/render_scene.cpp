@@ -186,7 +186,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   const double level = 1.0 / (2.0 * std::sqrt(static_cast<double>(std::max<size_t>(1, light_count))));
   ambient_ = Vec3{level, level, level};
   if (!parts.empty()) background_ = parts.front().desc->background;
-  if (!parts.empty() && parts.front().desc->max_depth) max_depth_ = *parts.front().desc->max_depth;
+  if (!parts.empty() && parts.front().desc->max_depth) file_max_depth_ = *parts.front().desc->max_depth;
   if (!parts.empty()) fog_ = parts.front().desc->fog;
   // Tachyon fogs what a ray misses as if it were infinitely far: the fog's
   // colour, unless an exponential fog has no density.
@@ -288,7 +288,6 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
 void RenderScene::set_transforms(const std::vector<Affine>& object_to_world) {
   accel_->set_transforms(object_to_world);
   update_epsilon();
-  if (shadow_cache_) shadow_cache_->sync();
 }
 
 void RenderScene::set_vertices(uint32_t part, const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals,
@@ -327,13 +326,6 @@ void RenderScene::set_vertices(uint32_t part, const std::vector<Vec3>& vertices,
   }
   accel_->set_positions(part, positions, pose);
   update_epsilon();
-  if (shadow_cache_) shadow_cache_->sync();
-}
-
-void RenderScene::set_max_depth(int depth) {
-  if (depth < 1 || depth > kDepthCap)
-    throw std::invalid_argument(fmt::format("the ray depth must be from 1 to {}, got {}", kDepthCap, depth));
-  max_depth_ = depth;
 }
 
 void RenderScene::add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingModel shading, TriangleData& tris) {
@@ -423,7 +415,7 @@ int RenderScene::object_of(uint32_t group, PrimKind kind, uint32_t prim) const {
   return -1;
 }
 
-SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
+SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit, const PixelFootprint& footprint) const {
   SurfacePoint sp;
   sp.position = ray.org + ray.dir * hit.t;
   sp.ng = hit.ng;
@@ -460,7 +452,7 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   sp.material = &materials_[object_material_[obj]];
   sp.colour = sp.material->colour;
   if (sp.material->texture >= 0 && sp.material->model != ShadingModel::tachyon && hit.kind == PrimKind::triangle)
-    sp.colour = textured_colour(sp, hit.u, hit.v, hit.t * length(ray.dir));
+    sp.colour = textured_colour(sp, hit.u, hit.v, footprint.at(hit.t * length(ray.dir)));
   const Material& m = *sp.material;
   if (m.model == ShadingModel::gltf) {
     sp.metallic = static_cast<float>(m.metallic);
@@ -471,9 +463,9 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
   // Only a mesh's triangles carry texture coordinates.
   const bool data_maps = m.metal_rough_texture >= 0 || m.specular_texture >= 0;
   if (hit.kind == PrimKind::triangle && (data_maps || m.normal_texture >= 0)) {
-    const double distance = hit.t * length(ray.dir);
-    if (data_maps) apply_data_maps(sp, distance);
-    if (m.normal_texture >= 0) apply_normal_map(sp, distance);
+    const double width = footprint.at(hit.t * length(ray.dir));
+    if (data_maps) apply_data_maps(sp, width);
+    if (m.normal_texture >= 0) apply_normal_map(sp, width);
   }
   return sp;
 }
@@ -481,12 +473,12 @@ SurfacePoint RenderScene::surface(const Ray& ray, const Hit& hit) const {
 // glTF 2.0 §3.9.3: metallic in the blue channel, roughness in the green,
 // each scaling its factor. MTL's map_Ks (a blinn_phong material's only
 // data map): its first channel scales Ks.
-void RenderScene::apply_data_maps(SurfacePoint& sp, double distance) const {
+void RenderScene::apply_data_maps(SurfacePoint& sp, double width) const {
   const Material& m = *sp.material;
   Vec3 texel;
   if (m.model == ShadingModel::blinn_phong) {
-    if (texel_at(m.specular_texture, sp, sp.u, sp.v, distance, texel)) sp.highlight = static_cast<float>(texel.x);
-  } else if (texel_at(m.metal_rough_texture, sp, sp.u, sp.v, distance, texel)) {
+    if (texel_at(m.specular_texture, sp, sp.u, sp.v, width, texel)) sp.highlight = static_cast<float>(texel.x);
+  } else if (texel_at(m.metal_rough_texture, sp, sp.u, sp.v, width, texel)) {
     sp.metallic = static_cast<float>(std::clamp(m.metallic * texel.z, 0.0, 1.0));
     sp.roughness = static_cast<float>(std::clamp(m.roughness * texel.y, 0.0, 1.0));
   }
@@ -499,10 +491,10 @@ void RenderScene::apply_data_maps(SurfacePoint& sp, double distance) const {
 // maps and Blender's follow), both made orthonormal to the interpolated
 // normal. A file's own TANGENT attribute and a texture transform's
 // rotation of the frame are not read.
-void RenderScene::apply_normal_map(SurfacePoint& sp, double distance) const {
+void RenderScene::apply_normal_map(SurfacePoint& sp, double width) const {
   const Material& m = *sp.material;
   Vec3 texel;
-  if (!texel_at(m.normal_texture, sp, sp.u, sp.v, distance, texel)) return;
+  if (!texel_at(m.normal_texture, sp, sp.u, sp.v, width, texel)) return;
   const size_t t = group_base_[sp.group][0] + size_t{sp.prim};
   const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];  // texel_at found it
   const TriangleData& tris = accel_->geometry(sp.group).triangles;
@@ -532,23 +524,23 @@ void RenderScene::apply_normal_map(SurfacePoint& sp, double distance) const {
   if (length(mapped) > 0) sp.ns = normalize(mapped);
 }
 
-Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, double distance) const {
+Vec3 RenderScene::textured_colour(const SurfacePoint& sp, double u, double v, double width) const {
   const Material& mat = *sp.material;
   Vec3 texel;
-  if (!texel_at(mat.texture, sp, u, v, distance, texel)) return mat.colour;
+  if (!texel_at(mat.texture, sp, u, v, width, texel)) return mat.colour;
   return mul(mat.colour, texel);
 }
 
-Vec3 RenderScene::emission(const SurfacePoint& sp, double distance) const {
+Vec3 RenderScene::emission(const SurfacePoint& sp, double distance, const PixelFootprint& footprint) const {
   const Material& mat = *sp.material;
   Vec3 texel;
   if (mat.emission_texture < 0 || sp.kind != PrimKind::triangle ||
-      !texel_at(mat.emission_texture, sp, sp.u, sp.v, distance, texel))
+      !texel_at(mat.emission_texture, sp, sp.u, sp.v, footprint.at(distance), texel))
     return mat.emission;
   return mul(mat.emission, texel);
 }
 
-bool RenderScene::texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const {
+bool RenderScene::texel_at(int texture, const SurfacePoint& sp, double u, double v, double width, Vec3& out) const {
   const TextureDesc& tex = textures_[static_cast<size_t>(texture)];
   if (tex.kind != TextureDesc::Kind::uv_image || tex.image < 0) return false;
   double tu_u, tu_v;
@@ -558,8 +550,7 @@ bool RenderScene::texel_at(int texture, const SurfacePoint& sp, double u, double
   // The footprint in level-0 texels: world width x texture units per world
   // unit (the transform scales them by the root of its determinant) x texels per unit.
   const auto& m = tex.uv_transform;
-  const double world = footprint_base_ + footprint_spread_ * distance;
-  const double texels = world * tu->uv_per_world * std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3])) *
+  const double texels = width * tu->uv_per_world * std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3])) *
                         std::sqrt(double(mip.width()) * mip.height());
   const double level = texels > 1 ? std::log2(texels) : 0.0;
   out = mip.sample_uv(tu_u, tu_v, level, tex.wrap_u, tex.wrap_v, tex.nearest, decode_table(tex.srgb));

@@ -18,7 +18,7 @@
 namespace holoray {
 
 /// Default ray-tree depth limit, counting the eye ray as depth 1 (nff-notes
-/// §10.7), and the most RenderScene::set_max_depth accepts.
+/// §10.7), and the most RenderSettings::max_depth may be.
 inline constexpr int kMaxRayDepth = 5;
 inline constexpr int kDepthCap = 16;
 
@@ -101,6 +101,21 @@ struct ScenePart {
 /// anything was left out. Empty when nothing remains.
 Bounds3 finite_bounds(const SceneDesc& desc, const std::optional<Vec3>& eye, bool* left_out = nullptr);
 
+/// The width (world units) of the patch a pixel sees at distance d along
+/// its eye ray: base + spread * d. It chooses a mesh texture's MIP level
+/// (footprint in texels, MipMap::sample_uv). A pinhole pixel: base 0,
+/// spread its angle; an EIA pixel: its angle through the lens (pixel pitch
+/// / gap), far wider. 0, 0: the finest level everywhere. Secondary rays use
+/// the distance from their own origin (sharper than their true footprint).
+struct PixelFootprint {
+  double base = 0, spread = 0;
+  double at(double distance) const { return base + spread * distance; }
+};
+
+/// A built scene: geometry, lights, materials and textures, shared by every
+/// render and camera that reads it (render_context.hpp holds what one render
+/// adds: depth, shadow cache, pixel footprint, background). Only the per-
+/// frame motion (set_transforms, set_vertices) changes it, between renders.
 class RenderScene {
  public:
   // Embree keeps a pointer to the scene's alpha cutout (accel_scene.hpp): not movable.
@@ -114,7 +129,7 @@ class RenderScene {
   explicit RenderScene(const std::vector<ScenePart>& parts);
 
   /// Object-to-world transform per part for the frames that follow (paper
-  /// §3); clears the shadow cache's cells when anything moved. Not
+  /// §3); a shadow cache on the scene is then stale until its sync(). Not
   /// thread-safe against rendering. Throws std::invalid_argument as
   /// AccelScene::set_transforms does.
   void set_transforms(const std::vector<Affine>& object_to_world);
@@ -123,27 +138,19 @@ class RenderScene {
   /// the order of its meshes' vertices, tagged `pose` (AccelScene::pose: a
   /// frame, not 0); `normals` empty keeps the flat triangles flat. Winding
   /// normals, shading normals and texture footprints follow; the BVH is
-  /// refitted; the shadow cache is cleared. Not thread-safe against
+  /// refitted (a shadow cache is stale until its sync()). Not thread-safe against
   /// rendering. Vertices equal to the current ones change nothing (the
   /// pose keeps its earlier tag). Throws std::invalid_argument when the
   /// part is not deformable or a count differs from its build.
   void set_vertices(uint32_t part, const std::vector<Vec3>& vertices, const std::vector<Vec3>& normals, uint64_t pose);
-  void set_background(const Vec3& colour) { background_ = colour; }
-  /// Ray-tree depth limit (eye ray = 1; default kMaxRayDepth = 5, the SPD's,
-  /// or the first scene file's own, Tachyon's `raydepth`).
-  /// Throws std::invalid_argument outside 1..kDepthCap (16): past that a
-  /// hall of mirrors costs 2^depth rays per pixel.
-  void set_max_depth(int depth);
-  int max_depth() const { return max_depth_; }
-  /// Shadow visibility reuse for the shading (render/shadow_cache.hpp), or
-  /// null to trace every shadow ray. Not owned; set_transforms keeps it valid
-  /// (ShadowCache::sync). The cache must have been built on this scene.
-  void set_shadow_cache(ShadowCache* cache) { shadow_cache_ = cache; }
-  const ShadowCache* shadow_cache() const { return shadow_cache_; }
+  /// The scene file's ray-tree depth limit (eye ray = 1): the first file's
+  /// own (Tachyon's `raydepth`), else kMaxRayDepth = 5, the SPD's.
+  int file_max_depth() const { return file_max_depth_; }
 
   const AccelScene& accel() const { return *accel_; }
-  /// Resolves a hit of `ray` (world) into position, normals, object and material.
-  SurfacePoint surface(const Ray& ray, const Hit& hit) const;
+  /// Resolves a hit of `ray` (world) into position, normals, object and
+  /// material; textures read at the MIP level of `footprint`.
+  SurfacePoint surface(const Ray& ray, const Hit& hit, const PixelFootprint& footprint) const;
 
   const std::vector<PointLight>& lights() const { return lights_; }
   /// The surface colour at a hit: its triangle's vertex colours
@@ -163,21 +170,14 @@ class RenderScene {
   bool only_plain_nff() const { return only_plain_nff_; }
   /// Light a mesh surface gives off at `sp`, seen from `distance` along
   /// the ray (Material::emission times its texture); zero for most.
-  Vec3 emission(const SurfacePoint& sp, double distance) const;
+  Vec3 emission(const SurfacePoint& sp, double distance, const PixelFootprint& footprint) const;
   const Vec3& ambient() const { return ambient_; }      ///< Ia (nff-notes §4: 1/(2 sqrt(n)))
+  /// The scene file's background (the first file's; its fog colour under fog).
   const Vec3& background() const { return background_; }
   /// The first scene file's Tachyon fog, if any (applied by Tachyon shading).
   const std::optional<FogDesc>& fog() const { return fog_; }
   /// Geometry bounds (world); empty for a scene with no geometry.
   const Bounds3& bounds() const { return accel_->bounds(); }
-  /// The width (world units) of the patch a pixel sees at distance d along
-  /// its eye ray: base + spread * d. It chooses a mesh texture's MIP level
-  /// (footprint in texels, MipMap::sample_uv). A pinhole pixel: base 0,
-  /// spread its angle; an EIA pixel: its angle through the lens (pixel
-  /// pitch / gap), far wider. Default 0, 0: the finest level everywhere.
-  /// Secondary rays use the distance from their own origin (sharper than
-  /// their true footprint).
-  void set_pixel_footprint(double base, double spread) { footprint_base_ = base, footprint_spread_ = spread; }
   /// Offset for spawning secondary rays, relative to the scene's coordinate scale.
   double epsilon() const { return epsilon_; }
   /// Polygons with no area (all vertices collinear or repeated), skipped.
@@ -191,8 +191,7 @@ class RenderScene {
   /// Appends a triangle mesh (one object, id `id`) to a group's triangles.
   void add_mesh(const TriangleMeshDesc& mesh, uint32_t id, ShadingModel shading, TriangleData& tris);
 
-  int max_depth_ = kMaxRayDepth;
-  ShadowCache* shadow_cache_ = nullptr;
+  int file_max_depth_ = kMaxRayDepth;
   std::unique_ptr<AccelScene> accel_;
   std::vector<Material> materials_;        // [0] is the default for objects before any `f`
   std::vector<uint32_t> object_material_;  // per object
@@ -214,7 +213,6 @@ class RenderScene {
   };
   std::vector<int32_t> tri_uv_;
   std::vector<TriangleUv> tri_uvs_;
-  double footprint_base_ = 0, footprint_spread_ = 0;
   /// Alpha-masked mesh materials (Material::alpha_mask) as Embree's cutout.
   class AlphaCutout final : public TriangleCutout {
    public:
@@ -228,18 +226,18 @@ class RenderScene {
   /// The texture coordinates a hit's image reads (TextureDesc::uv_transform
   /// applied), and the triangle's record; null when the triangle has none.
   const TriangleUv* texture_uv(const TextureDesc& tex, size_t triangle, double u, double v, double& tu, double& tv) const;
-  /// SurfacePoint::colour of a hit at `distance` along its ray.
-  Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double distance) const;
+  /// SurfacePoint::colour of a hit whose pixel footprint there is `width` (world units).
+  Vec3 textured_colour(const SurfacePoint& sp, double u, double v, double width) const;
   /// A glTF material's metallic and roughness at a triangle hit
   /// (Material::metal_rough_texture), a blinn_phong one's highlight weight
   /// (Material::specular_texture).
-  void apply_data_maps(SurfacePoint& sp, double distance) const;
+  void apply_data_maps(SurfacePoint& sp, double width) const;
   /// The shading normal bent by the material's normal map at a triangle
   /// hit (Material::normal_texture), in the triangle's tangent frame.
-  void apply_normal_map(SurfacePoint& sp, double distance) const;
+  void apply_normal_map(SurfacePoint& sp, double width) const;
   /// Texture `texture` (a uv_image) at the hit's coordinates, its MIP level
-  /// from the footprint at `distance`; false when it cannot be read there.
-  bool texel_at(int texture, const SurfacePoint& sp, double u, double v, double distance, Vec3& out) const;
+  /// from a pixel footprint `width` wide (world units); false when it cannot be read there.
+  bool texel_at(int texture, const SurfacePoint& sp, double u, double v, double width, Vec3& out) const;
   std::vector<PointLight> lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased

@@ -216,7 +216,7 @@ void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin,
                                    t0[l], t1[l], margin, camera.desc().mode, out[l]);
 }
 
-Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
+Vec3 render_pixel(const RenderContext& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary, SurfacePoint* surface) {
   Vec3 sum;
   if (primary) *primary = PrimaryHit{};
@@ -242,14 +242,14 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
   return sum * (1.0 / spp);
 }
 
-void trace_eye_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int k,
+void trace_eye_packet(const RenderContext& scene, const LensArray& camera, const PixelXY px[], int n, int k,
                       RayCounts& counts, EyePacket& out) {
   bool ok[kPacketSize];
   primary_rays(camera, scene.bounds(), scene.epsilon(), px, n, k, out.primary, ok);
   intersect_eye_packet(scene, ok, n, counts, out);
 }
 
-void intersect_eye_packet(const RenderScene& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out) {
+void intersect_eye_packet(const RenderContext& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out) {
   // Only the flags need resetting: a lane's ray is read where it is active.
   std::fill(out.rays.active, out.rays.active + kPacketSize, false);
   std::fill(out.found, out.found + kPacketSize, false);
@@ -266,7 +266,7 @@ void intersect_eye_packet(const RenderScene& scene, const bool ok[], int n, RayC
     if (out.found[l]) out.surface[l] = scene.surface(out.rays.rays[l], out.hits[l]);
 }
 
-void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
+void render_packet(const RenderContext& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[],
                    ShadeParts parts[]) {
   if (parts && spp != 1) throw std::invalid_argument(fmt::format("shading records need spp = 1, got {}", spp));
@@ -297,7 +297,7 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
   for (int l = 0; l < n; ++l) colours[l] = sum[l] * (1.0 / spp);
 }
 
-FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, const RenderOptions& opt,
+FrameBuffers render_frame(const RenderContext& scene, const LensArray& camera, const RenderOptions& opt,
                           RenderStats& stats, uint64_t memory_limit_bytes) {
   if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
   if (opt.threads < 0) throw std::invalid_argument(fmt::format("threads must be 0 (all) or more, got {}", opt.threads));

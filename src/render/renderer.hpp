@@ -13,7 +13,7 @@
 #include "camera/lens_array.hpp"
 #include "image/image.hpp"
 #include "render/ray_counts.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 #include "render/shading.hpp"
 #include "render/tiles.hpp"
 
@@ -96,7 +96,7 @@ struct RenderStats {
 /// the centre); `primary` (optional) gets sample 0's hit and `surface`
 /// (optional) its surface point, valid when primary->status is kHit. `margin`
 /// and `bounds` as for primary_ray (the scene's epsilon and bounds).
-Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
+Vec3 render_pixel(const RenderContext& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary = nullptr, SurfacePoint* surface = nullptr);
 
 /// render_pixel() for up to kPacketSize pixels px[k] (k < n), any pixels
@@ -107,7 +107,7 @@ Vec3 render_pixel(const RenderScene& scene, const LensArray& camera, int i, int 
 /// agree, and colours within the image budget (shade(RayPacket)). With `parts` (spp must be
 /// 1), parts[k] gets what the rays of lane k's shading found (ShadeParts;
 /// zero for background lanes): the keyframes of reverse reprojection.
-void render_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
+void render_packet(const RenderContext& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
                    RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
                    SurfacePoint surface[] = nullptr, ShadeParts parts[] = nullptr);
 
@@ -119,7 +119,7 @@ void render_packet(const RenderScene& scene, const LensArray& camera, const Pixe
 /// only when want_surface and primary.status is kHit. The one place where the
 /// styles differ (paper §6), shared by render_frame and the benchmarks.
 template <class Store>
-void render_block(const RenderScene& scene, const LensArray& camera, const TileRect& block, TraceStyle style,
+void render_block(const RenderContext& scene, const LensArray& camera, const TileRect& block, TraceStyle style,
                   int spp, bool want_surface, RayCounts& counts, Store&& store) {
   auto single = [&](int i, int j) {
     PrimaryHit ph;
@@ -172,7 +172,7 @@ void sample_offset(int i, int j, int k, double& u, double& v);
 /// Renders the EIA. Throws std::invalid_argument when spp < 1 or threads < 0,
 /// std::length_error when the buffers would exceed `memory_limit_bytes`
 /// (0: no limit), naming both numbers.
-FrameBuffers render_frame(const RenderScene& scene, const LensArray& camera, const RenderOptions& options,
+FrameBuffers render_frame(const RenderContext& scene, const LensArray& camera, const RenderOptions& options,
                           RenderStats& stats, uint64_t memory_limit_bytes = 0);
 
 /// The primary ray of one pixel sample, and how to turn its hit distance back
@@ -208,10 +208,10 @@ struct EyePacket {
   SurfacePoint surface[kPacketSize];    ///< valid where found
   bool found[kPacketSize] = {};
 };
-void trace_eye_packet(const RenderScene& scene, const LensArray& camera, const PixelXY px[], int n, int k,
+void trace_eye_packet(const RenderContext& scene, const LensArray& camera, const PixelXY px[], int n, int k,
                       RayCounts& counts, EyePacket& out);
 /// The same for rays the caller made: out.primary[l] for the lanes l < n
 /// with ok[l] (any camera); the others stay inactive.
-void intersect_eye_packet(const RenderScene& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out);
+void intersect_eye_packet(const RenderContext& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out);
 
 }  // namespace holoray

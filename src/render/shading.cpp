@@ -15,7 +15,7 @@ namespace {
 Vec3 reflect(const Vec3& d, const Vec3& n) { return d - n * (2 * dot(d, n)); }
 }  // namespace
 
-Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts) {
+Vec3 trace(const RenderContext& scene, const Ray& ray, int depth, RayCounts& counts) {
   Hit hit;
   if (!scene.accel().intersect(ray, hit)) return scene.background();
   return shade(scene, ray, scene.surface(ray, hit), depth, counts);
@@ -34,7 +34,7 @@ struct HitFrame {
   bool front;  // the ray met the outward (winding) side
 };
 
-[[gnu::always_inline]] inline HitFrame frame_of(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
+[[gnu::always_inline]] inline HitFrame frame_of(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp) {
   HitFrame f;
   f.m = sp.material;
   f.colour = sp.colour;
@@ -50,7 +50,7 @@ struct HitFrame {
 // A mesh material's own light (Material::emission), added right after the
 // ambient term; most materials give off none and add nothing (NFF's and
 // Tachyon's scenes keep their bits).
-inline void add_emission(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, Vec3& colour) {
+inline void add_emission(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, Vec3& colour) {
   const Vec3& e = sp.material->emission;
   if (e.x > 0 || e.y > 0 || e.z > 0) colour += scene.emission(sp, length(sp.position - ray.org));
 }
@@ -90,7 +90,7 @@ inline void add_emission(const RenderScene& scene, const Ray& ray, const Surface
 // of unit falloff (PointLight::unit_falloff: NFF's), and the code for the
 // other kinds is left out of its loop.
 template <bool Unit = false>
-[[gnu::always_inline]] inline bool shadow_ray(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp,
+[[gnu::always_inline]] inline bool shadow_ray(const RenderContext& scene, const HitFrame& f, const SurfacePoint& sp,
                                               const PointLight& light, Ray& shadow, double& falloff) {
   const double eps = scene.epsilon();
   if (!Unit && light.kind == LightKind::directional) {
@@ -166,7 +166,7 @@ Vec3 light_contribution(const HitFrame& f, const SurfacePoint& sp, const PointLi
 }
 
 // NFF's ambient term Ia*Kd*C (nff-notes §4); glTF materials have none.
-Vec3 ambient_term(const RenderScene& scene, const HitFrame& f) {
+Vec3 ambient_term(const RenderContext& scene, const HitFrame& f) {
   if (f.m->model == ShadingModel::gltf) return {};
   return mul(scene.ambient(), f.colour) * f.m->kd;
 }
@@ -178,7 +178,7 @@ Vec3 ambient_term(const RenderScene& scene, const HitFrame& f) {
 // traced with the packet's others: testing the occluders its corners met
 // first (one primitive each) measured slower than tracing (gears_s4 2048x2048:
 // 3.27/3.15/2.79 s against 2.71/2.76/2.40 s).
-int cached_visibility(const RenderScene& scene, const HitFrame& f, const SurfacePoint& sp, const CellRef& cell,
+int cached_visibility(const RenderContext& scene, const HitFrame& f, const SurfacePoint& sp, const CellRef& cell,
                       int light, const Ray& shadow, RayCounts& counts) {
   const ShadowCache* cache = scene.shadow_cache();
   if (cache == nullptr || cell.slot == CellRef::kNone || dot(f.ng, shadow.dir) <= 0) return -1;
@@ -193,7 +193,7 @@ int cached_visibility(const RenderScene& scene, const HitFrame& f, const Surface
   return -1;
 }
 
-CellRef cell_of(const RenderScene& scene, const SurfacePoint& sp) {
+CellRef cell_of(const RenderContext& scene, const SurfacePoint& sp) {
   const ShadowCache* cache = scene.shadow_cache();
   return cache ? cache->locate(sp) : CellRef::none();
 }
@@ -220,7 +220,7 @@ struct SecondaryRays {
 }
 
 // secondary_rays() of a glTF material, out of line as gltf_contribution().
-[[gnu::noinline]] SecondaryRays gltf_secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp,
+[[gnu::noinline]] SecondaryRays gltf_secondary_rays(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp,
                                                     const HitFrame& f) {
   SecondaryRays s;
   const Material& m = *f.m;
@@ -268,7 +268,7 @@ inline bool gltf_transmits(const Material& m) { return m.transmittance > 0 || m.
 // The transmitted ray of an NFF or blinn_phong material (T > 0), weighted T:
 // refracted by Snell's law, or on total internal reflection (`reflects`) a
 // second mirror ray; false when it casts none.
-[[gnu::always_inline]] inline bool nff_transmit(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp,
+[[gnu::always_inline]] inline bool nff_transmit(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp,
                                                 const HitFrame& f, Ray& out, Vec3& weight, bool& reflects) {
   const Material& m = *f.m;
   if (!(m.transmittance > 0)) return false;
@@ -288,7 +288,7 @@ inline bool gltf_transmits(const Material& m) { return m.transmittance > 0 || m.
   return true;
 }
 
-SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
+SecondaryRays secondary_rays(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f) {
   if (f.m->model == ShadingModel::gltf) [[unlikely]]
     return gltf_secondary_rays(scene, ray, sp, f);
   SecondaryRays s;
@@ -298,7 +298,7 @@ SecondaryRays secondary_rays(const RenderScene& scene, const Ray& ray, const Sur
 }
 
 // Adds mirror and transmitted light to `colour`, traced one ray at a time (incoherent).
-void add_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f, int depth,
+void add_secondary(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, const HitFrame& f, int depth,
                    RayCounts& counts, Vec3& colour) {
   if (depth >= scene.max_depth()) return;
   const SecondaryRays s = secondary_rays(scene, ray, sp, f);
@@ -357,7 +357,7 @@ LightRay tachyon_light(const PointLight& light, const Vec3& p, const Vec3& n) {
 // surface blocks it, else the product of (1 - opacity) over the transparent
 // surfaces it crosses (Tachyon's shadow filter; a surface with opacity < 1
 // casts no shadow of its own). Lights' spheres are passed through.
-double tachyon_shadow(const RenderScene& scene, Ray shadow, RayCounts& counts) {
+double tachyon_shadow(const RenderContext& scene, Ray shadow, RayCounts& counts) {
   ++counts.shadow;
   if (!scene.has_tachyon_transparency()) return scene.accel().occluded(shadow) ? 0 : 1;
   double filter = 1;
@@ -388,7 +388,7 @@ struct TachyonHit {
   bool lit = false;  // its diffuse or highlight weight needs the lights
 };
 
-TachyonHit tachyon_begin(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp) {
+TachyonHit tachyon_begin(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp) {
   TachyonHit t;
   t.f = frame_of(scene, ray, sp);
   t.dir = normalize(ray.dir);
@@ -412,11 +412,11 @@ void tachyon_add_light(TachyonHit& t, const PointLight& light, const LightRay& l
   }
 }
 
-Ray tachyon_shadow_ray(const RenderScene& scene, const TachyonHit& t, const LightRay& l) {
+Ray tachyon_shadow_ray(const RenderContext& scene, const TachyonHit& t, const LightRay& l) {
   return Ray{t.f.above, l.to_light, 0, l.distance - scene.epsilon()};
 }
 
-Vec3 tachyon_finish(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, const TachyonHit& t, int depth,
+Vec3 tachyon_finish(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, const TachyonHit& t, int depth,
                     RayCounts& counts) {
   const Material& m = *t.f.m;
   if (m.emitter) return t.texel;
@@ -451,7 +451,7 @@ Vec3 tachyon_finish(const RenderScene& scene, const Ray& ray, const SurfacePoint
   return colour;
 }
 
-Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+Vec3 shade_tachyon(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   TachyonHit t = tachyon_begin(scene, ray, sp);
   if (t.lit) {
     for (const PointLight& light : scene.lights()) {
@@ -467,7 +467,7 @@ Vec3 shade_tachyon(const RenderScene& scene, const Ray& ray, const SurfacePoint&
 // shade_tachyon() for the lanes of a packet with tachyon[k] set: the shadow
 // rays toward each light go as one packet (rtcOccluded16) unless the scene
 // has transparent surfaces, whose filtering walks each ray on its own.
-void shade_tachyon(const RenderScene& scene, const RayPacket& rays, const bool tachyon[kPacketSize],
+void shade_tachyon(const RenderContext& scene, const RayPacket& rays, const bool tachyon[kPacketSize],
                    const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
   TachyonHit t[kPacketSize];
   for (int k = 0; k < kPacketSize; ++k)
@@ -504,7 +504,7 @@ void shade_tachyon(const RenderScene& scene, const RayPacket& rays, const bool t
 
 }  // namespace
 
-Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+Vec3 shade(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   if (sp.material->model == ShadingModel::tachyon) return shade_tachyon(scene, ray, sp, depth, counts);
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = ambient_term(scene, f);
@@ -535,7 +535,7 @@ namespace {
 // faster (teapot_s6 0.907x, gears_s4 0.951x the whole command); it does not
 // agree with the single-ray kernel on every ray (gears: 1 mirror ray in 2 M
 // found another surface), which the image budget allows.
-void trace_packet(const RenderScene& scene, const RayPacket& rays, int depth, RayCounts& counts,
+void trace_packet(const RenderContext& scene, const RayPacket& rays, int depth, RayCounts& counts,
                   Vec3 colours[kPacketSize]) {
   Hit hits[kPacketSize];
   bool found[kPacketSize] = {};
@@ -553,7 +553,7 @@ void trace_packet(const RenderScene& scene, const RayPacket& rays, int depth, Ra
 
 // trace() for a packet's secondary ray: in a scene of plain NFF materials
 // with Embree's float hit (RenderScene::only_plain_nff).
-Vec3 trace_secondary(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts) {
+Vec3 trace_secondary(const RenderContext& scene, const Ray& ray, int depth, RayCounts& counts) {
   Hit hit;
   if (!scene.accel().intersect(ray, hit, RayCoherence::incoherent, !scene.only_plain_nff())) return scene.background();
   return shade(scene, ray, scene.surface(ray, hit), depth, counts);
@@ -571,7 +571,7 @@ constexpr int kMinCoherentLanes = 4;
 // then the transmitted (or totally reflected) rays, each set traced a level
 // deeper as one packet when coherent, else one by one. Same rays, weights and
 // order of addition per lane as add_secondary().
-void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+void add_secondary(const RenderContext& scene, const RayPacket& rays, const bool hit[kPacketSize],
                    const SurfacePoint sps[kPacketSize], const HitFrame f[kPacketSize], int depth, RayCounts& counts,
                    Vec3 colours[kPacketSize]) {
   if (depth >= scene.max_depth()) return;
@@ -640,7 +640,7 @@ void add_secondary(const RenderScene& scene, const RayPacket& rays, const bool h
 
 }  // namespace
 
-Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
+Vec3 shade_local(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
                  RayCounts& counts) {
   const HitFrame f = frame_of(scene, ray, sp);
   Vec3 colour = ambient_term(scene, f);
@@ -661,13 +661,13 @@ Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& s
   return colour;
 }
 
-Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
+Vec3 shade_secondary(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts) {
   Vec3 colour;
   add_secondary(scene, ray, sp, frame_of(scene, ray, sp), depth, counts, colour);
   return colour;
 }
 
-void shade_secondary(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+void shade_secondary(const RenderContext& scene, const RayPacket& rays, const bool hit[kPacketSize],
                      const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]) {
   HitFrame f[kPacketSize];
   for (int k = 0; k < kPacketSize; ++k)
@@ -703,7 +703,7 @@ struct LaneGeometry {
 // converts, each origin rounded once per packet, not once per light. GCC
 // leaves the loop scalar: the gain is the branches and conversions saved.
 template <class MarkLit>
-void shade_point_light(const RenderScene& scene, const bool hit[kPacketSize], const LaneGeometry& g,
+void shade_point_light(const RenderContext& scene, const bool hit[kPacketSize], const LaneGeometry& g,
                        const SurfacePoint sps[kPacketSize],
                        const HitFrame f[kPacketSize], size_t l, RayCounts& counts, Vec3 colours[kPacketSize],
                        MarkLit&& mark_lit) {
@@ -758,7 +758,7 @@ bool gather_lanes(const bool hit[kPacketSize], const SurfacePoint sps[kPacketSiz
 // gltf_batch.hpp). The shadow rays go as one packet; the lanes it reaches
 // get the light's term and, with `parts`, its bit.
 template <class Lanes>
-void shade_batched_light(const RenderScene& scene, const Lanes& batch, size_t l, RayCounts& counts,
+void shade_batched_light(const RenderContext& scene, const Lanes& batch, size_t l, RayCounts& counts,
                          Vec3 colours[kPacketSize], ShadeParts parts[]) {
   constexpr bool nff = std::is_same_v<Lanes, NffLanes>;
   const PointLight& light = scene.lights()[l];
@@ -781,7 +781,7 @@ void shade_batched_light(const RenderScene& scene, const Lanes& batch, size_t l,
 
 }  // namespace
 
-void shade(const RenderScene& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
+void shade(const RenderContext& scene, const RayPacket& rays, const bool hit_in[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
            ShadeParts parts[kPacketSize]) {
   // Tachyon materials take their own packet path; the NFF lanes go on below.

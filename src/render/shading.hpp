@@ -10,7 +10,7 @@
 #pragma once
 
 #include "render/ray_counts.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 
 namespace holoray {
 
@@ -18,11 +18,11 @@ namespace holoray {
 // RenderScene::set_max_depth in render_scene.hpp.
 
 /// Colour (linear RGB) seen along `ray` (world, unit dir) at ray-tree `depth`.
-Vec3 trace(const RenderScene& scene, const Ray& ray, int depth, RayCounts& counts);
+Vec3 trace(const RenderContext& scene, const Ray& ray, int depth, RayCounts& counts);
 
 /// Colour of a known surface point hit by `ray` (world, unit dir, travelling
 /// toward the surface: the viewer is at -ray.dir).
-Vec3 shade(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
+Vec3 shade(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
 
 /// What reverse reprojection (temporal/reverse.hpp) keeps of a shaded eye
 /// hit: the part of the shading that rays computed. 16 bytes.
@@ -38,17 +38,17 @@ inline constexpr int kMaxPartLights = 32;
 /// `ray` (zero where the normal faces away from the light), in shade()'s
 /// order. A light is seen when its bit is set in `lit`, except for the bits
 /// set in `trace`: those lights get their shadow ray (counted in `counts`).
-Vec3 shade_local(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
+Vec3 shade_local(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, uint32_t lit, uint32_t trace,
                  RayCounts& counts);
 
 /// The terms of shade() that the mirror and refraction rays bring at `sp`
 /// hit by `ray` at ray-tree `depth` (Ks*I_reflected + T*I_transmitted).
-Vec3 shade_secondary(const RenderScene& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
+Vec3 shade_secondary(const RenderContext& scene, const Ray& ray, const SurfacePoint& sp, int depth, RayCounts& counts);
 /// shade_secondary() for the lanes of a packet with hit[k] set, added to
 /// colours[k]: their mirror rays, then their transmitted rays, each set
 /// traced as one packet when nearly parallel and else one by one, as
 /// shade()'s packets trace them (to the image budget, not to the bit).
-void shade_secondary(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+void shade_secondary(const RenderContext& scene, const RayPacket& rays, const bool hit[kPacketSize],
                      const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize]);
 
 /// shade() for the lanes of a packet with hit[k] set, into colours[k] (other
@@ -64,7 +64,7 @@ void shade_secondary(const RenderScene& scene, const RayPacket& rays, const bool
 /// Tachyon's linear spot (gltf_batch.hpp): a lane's colour is then shade()'s
 /// to the image budget (60 dB), not to the bit; so are the secondary rays' answers.
 /// With `parts`, parts[k] also gets what lane k's rays found (ShadeParts).
-void shade(const RenderScene& scene, const RayPacket& rays, const bool hit[kPacketSize],
+void shade(const RenderContext& scene, const RayPacket& rays, const bool hit[kPacketSize],
            const SurfacePoint sps[kPacketSize], int depth, RayCounts& counts, Vec3 colours[kPacketSize],
            ShadeParts parts[kPacketSize] = nullptr);
 

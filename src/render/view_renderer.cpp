@@ -4,7 +4,7 @@
 
 namespace holoray {
 
-FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, const RenderOptions& opt,
+FrameBuffers render_view(const RenderContext& scene, const PinholeCamera& camera, const RenderOptions& opt,
                          RenderStats& stats) {
   const PinholeDesc& d = camera.desc();
   if (d.clip_near == 0 && d.clip_far == INFINITY) return detail::render_lines(scene, camera, opt, stats, detail::eye_ray);
@@ -18,7 +18,7 @@ FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, 
   });
 }
 
-FrameBuffers render_quilt(const RenderScene& scene, const QuiltCamera& camera, const RenderOptions& opt,
+FrameBuffers render_quilt(const RenderContext& scene, const QuiltCamera& camera, const RenderOptions& opt,
                           RenderStats& stats) {
   return detail::render_lines(scene, camera, opt, stats, detail::eye_ray);
 }

@@ -18,7 +18,7 @@ namespace holoray {
 /// at the eye (NFF's hither is not applied, as for the integral camera).
 /// options.style, tile_order and primary_hits are ignored. Throws
 /// std::invalid_argument when spp < 1 or threads < 0.
-FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, const RenderOptions& options,
+FrameBuffers render_view(const RenderContext& scene, const PinholeCamera& camera, const RenderOptions& options,
                          RenderStats& stats);
 
 /// Renders a Looking Glass quilt (camera/quilt_camera.hpp): every view in one
@@ -26,7 +26,7 @@ FrameBuffers render_view(const RenderScene& scene, const PinholeCamera& camera, 
 /// scene is built once and the threads never wait for a view to finish.
 /// With one sample per pixel, tile k of the result is render_view of quilt
 /// view k (more samples jitter by quilt pixel, not view pixel).
-FrameBuffers render_quilt(const RenderScene& scene, const QuiltCamera& camera, const RenderOptions& options,
+FrameBuffers render_quilt(const RenderContext& scene, const QuiltCamera& camera, const RenderOptions& options,
                           RenderStats& stats);
 
 }  // namespace holoray

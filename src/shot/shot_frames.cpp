@@ -34,7 +34,6 @@ ShotFrames::ShotFrames(Shot shot) : shot_(std::move(shot)) {
     parts.push_back({&descs_[e], en.part >= 0 || !shot_.objects[en.object].motion.is_static(), deformable});
   }
   scene_ = std::make_unique<RenderScene>(parts);
-  if (shot_.background) scene_->set_background(*shot_.background);
 
   const auto nff_view = std::find_if(descs_.begin(), descs_.end(), [](const SceneDesc& d) { return d.viewpoint.has_value(); });
   if (nff_view != descs_.end()) default_angle_ = nff_view->viewpoint->angle_deg;
@@ -140,6 +139,12 @@ void ShotFrames::seek(int frame) {
     animations_[d.object].pose(d.mesh, frame / shot_.fps, vertices, normals);
     scene_->set_vertices(group, vertices, normals, pose);
   }
+}
+
+RenderSettings ShotFrames::settings() const {
+  RenderSettings s = file_settings(*scene_);
+  if (shot_.background) s.background = *shot_.background;
+  return s;
 }
 
 }  // namespace holoray

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "camera/lens_array.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 #include "scene/mesh_reader.hpp"
 #include "shot/shot.hpp"
 
@@ -42,10 +42,9 @@ class ShotFrames {
   /// Moves the scene to `frame` and poses its skinned and morphed meshes there (not
   /// thread-safe against rendering).
   void seek(int frame);
-  /// Shadow cache for the frames that follow, or null (RenderScene::set_shadow_cache).
-  void set_shadow_cache(ShadowCache* cache) { scene_->set_shadow_cache(cache); }
-  /// What one pixel sees, for mesh textures' MIP levels (RenderScene::set_pixel_footprint).
-  void set_pixel_footprint(double base, double spread) { scene_->set_pixel_footprint(base, spread); }
+  /// What the shot's renders start from: its scene files' depth limit and
+  /// background, the shot's background where it sets one (render_context.hpp).
+  RenderSettings settings() const;
 
  private:
   struct Entry {

@@ -13,7 +13,7 @@ namespace {
 
 bool is_hole(PixelStatus s) { return static_cast<int8_t>(s) < 0; }
 
-void trace_holes(const RenderScene& scene, const LensArray& camera, int threads, ReprojectedFrame& frame) {
+void trace_holes(const RenderContext& scene, const LensArray& camera, int threads, ReprojectedFrame& frame) {
   const ElementalTiles tiles(camera);
   const int W = camera.width();
   std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
@@ -40,7 +40,7 @@ void trace_holes(const RenderScene& scene, const LensArray& camera, int threads,
 // A hole whose line cannot meet the scene's bounds shows the background:
 // set exactly, at the cost of a box test and no ray (the same test the
 // tracer makes first), so interpolation never paints a surface over it.
-void settle_background(const RenderScene& scene, const LensArray& camera, ReprojectedFrame& frame) {
+void settle_background(const RenderContext& scene, const LensArray& camera, ReprojectedFrame& frame) {
   const int W = camera.width();
   const Vec3 bg = scene.background();
   for (size_t p = 0; p < frame.status.size(); ++p) {
@@ -131,7 +131,7 @@ void interpolate_holes(const LensArray& camera, int threads, ReprojectedFrame& f
 
 }  // namespace
 
-void fill_missed(const RenderScene& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame) {
+void fill_missed(const RenderContext& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame) {
   const auto start = std::chrono::steady_clock::now();
   if (fill == Fill::interpolate) {
     settle_background(scene, camera, frame);

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "camera/lens_array.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 #include "temporal/reproject.hpp"
 
 namespace holoray {
@@ -17,6 +17,6 @@ enum class Fill {
 };
 
 /// Fills `frame` in place; the scene must be at the frame's time.
-void fill_missed(const RenderScene& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame);
+void fill_missed(const RenderContext& scene, const LensArray& camera, Fill fill, int threads, ReprojectedFrame& frame);
 
 }  // namespace holoray

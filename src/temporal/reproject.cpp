@@ -54,7 +54,7 @@ Candidate decode(uint64_t key) {
 
 class Splatter {
  public:
-  Splatter(const RenderScene& scene, const LensArray& camera, const PointImage& key, const ReprojectOptions& opt)
+  Splatter(const RenderContext& scene, const LensArray& camera, const PointImage& key, const ReprojectOptions& opt)
       : scene_(scene), cam_(camera), key_(key), reach_(opt.reach),
         ortho_(camera.desc().mode == RecordingMode::orthoscopic),
         footprint_(camera.pixel_pitch() / camera.desc().gap) {
@@ -115,7 +115,7 @@ class Splatter {
     }
   }
 
-  const RenderScene& scene_;
+  const RenderContext& scene_;
   const LensArray& cam_;
   const PointImage& key_;
   Reach reach_;
@@ -132,7 +132,7 @@ double lap(Clock::time_point& t) {
   return s;
 }
 
-void check_key(const RenderScene& scene, const PointImage* k) {
+void check_key(const RenderContext& scene, const PointImage* k) {
   if (k && k->hits.size() != static_cast<size_t>(k->camera.pixel_count()))
     throw std::invalid_argument(fmt::format("the point image of frame {} has {} records for {} pixels", k->frame,
                                             k->hits.size(), k->camera.pixel_count()));
@@ -145,7 +145,7 @@ void check_key(const RenderScene& scene, const PointImage* k) {
 
 size_t ReprojectedFrame::count(PixelStatus s) const { return static_cast<size_t>(std::count(status.begin(), status.end(), s)); }
 
-ReprojectedFrame reproject(const RenderScene& scene, const LensArray& camera, int frame, const PointImage* prev,
+ReprojectedFrame reproject(const RenderContext& scene, const LensArray& camera, int frame, const PointImage* prev,
                            const PointImage* next, const ReprojectOptions& opt) {
   if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
   check_key(scene, prev);

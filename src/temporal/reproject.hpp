@@ -45,7 +45,7 @@
 
 #include "camera/lens_array.hpp"
 #include "image/image.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 #include "temporal/point_image.hpp"
 
 namespace holoray {
@@ -103,7 +103,7 @@ struct ReprojectedFrame {
 /// space, so the scene's current transforms move them. Colours of one
 /// surface blend with weight (frame - prev.frame) / (next.frame - prev.frame)
 /// on `next`. Throws std::invalid_argument for a keyframe of another size.
-ReprojectedFrame reproject(const RenderScene& scene, const LensArray& camera, int frame, const PointImage* prev,
+ReprojectedFrame reproject(const RenderContext& scene, const LensArray& camera, int frame, const PointImage* prev,
                            const PointImage* next, const ReprojectOptions& options);
 
 }  // namespace holoray

@@ -76,7 +76,7 @@ PointImage::Edges pixel_edges(const PointImage& key, size_t idx) {
 // worker threads: const and thread-safe.
 class PointImageLookup {
  public:
-  PointImageLookup(const RenderScene& scene, const LensArray& camera, const PointImage* prev, const PointImage* next,
+  PointImageLookup(const RenderContext& scene, const LensArray& camera, const PointImage* prev, const PointImage* next,
                    double w_next, const ReverseOptions& opt)
       : scene_(scene), same_surface_(opt.same_surface),
         tiny_(1e-7 * std::fmax(1.0, length(scene.bounds().diagonal()))) {
@@ -220,14 +220,14 @@ class PointImageLookup {
     return false;
   }
 
-  const RenderScene& scene_;
+  const RenderContext& scene_;
   Key keys_[2];
   const Key* same_camera_ = nullptr;  // the first of keys_ with the frame's camera (square grid)
   double same_surface_, tiny_;
   double lens_half_angle_ = 0;
 };
 
-void check_key(const RenderScene& scene, const PointImage* k, ReverseReuse reuse) {
+void check_key(const RenderContext& scene, const PointImage* k, ReverseReuse reuse) {
   if (!k) return;
   const auto pixels = static_cast<size_t>(k->camera.pixel_count());
   if (k->hits.size() != pixels)
@@ -276,7 +276,7 @@ class ShadeQueue {
     ++n_;
   }
   bool full() const { return n_ == kPacketSize; }
-  void flush(const RenderScene& scene, RayCounts& counts, ImageBuffer& colour) {
+  void flush(const RenderContext& scene, RayCounts& counts, ImageBuffer& colour) {
     if (n_ == 0) return;
     bool hit[kPacketSize] = {};
     std::fill(hit, hit + n_, true);
@@ -346,7 +346,7 @@ RayCounts for_each_packet(const LensArray& camera, int threads, Tile&& tile) {
 // A keyframe: the packets of full tracing, so its colour equals
 // render_frame's bit for bit, keeping every pixel's hit and, when `parts`
 // is given, its shading records.
-ReprojectedFrame trace_keyframe(const RenderScene& scene, const LensArray& camera, std::vector<PrimaryHit>& hits,
+ReprojectedFrame trace_keyframe(const RenderContext& scene, const LensArray& camera, std::vector<PrimaryHit>& hits,
                                 std::vector<ShadeParts>* parts, int threads) {
   const int W = camera.width();
   ReprojectedFrame out = blank_frame(camera);
@@ -379,7 +379,7 @@ ReprojectedFrame trace_keyframe(const RenderScene& scene, const LensArray& camer
 // same-surface tolerance) and refines only the hits it must shade; the
 // refinement and the surface point (normals, material) were a fifth of a
 // reprojected frame. Visibility reuse shades at every hit and refines all.
-ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera, const PointImageLookup& lookup,
+ReprojectedFrame trace_reusing(const RenderContext& scene, const LensArray& camera, const PointImageLookup& lookup,
                                ReverseReuse reuse, bool copy, int threads) {
   const int W = camera.width();
   ReprojectedFrame out = blank_frame(camera);
@@ -489,7 +489,7 @@ ReprojectedFrame trace_reusing(const RenderScene& scene, const LensArray& camera
 // descriptions give every pixel the keyframe pixel's line) and every scene
 // group where the keyframe saw it. Holds and the still stretches of a
 // locked-off shot: the keyframe's image is this frame's full trace.
-const PointImage* same_frame(const RenderScene& scene, const LensArray& camera, const PointImage* prev,
+const PointImage* same_frame(const RenderContext& scene, const LensArray& camera, const PointImage* prev,
                              const PointImage* next) {
   const AccelScene& accel = scene.accel();
   for (const PointImage* k : {prev, next}) {
@@ -518,7 +518,7 @@ ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
 
 }  // namespace
 
-PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
+PointImage trace_point_image(const RenderContext& scene, const LensArray& camera, int frame, ReverseReuse reuse,
                              int threads, RenderStats& stats) {
   const auto start = std::chrono::steady_clock::now();
   PointImage key{frame, camera, {}, {}, {}, {}, {}, {}, {}, {}};
@@ -547,7 +547,7 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
   return key;
 }
 
-ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& camera, int frame,
+ReprojectedFrame reverse_reproject(const RenderContext& scene, const LensArray& camera, int frame,
                                    const PointImage* prev, const PointImage* next, const ReverseOptions& opt) {
   if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
   // More lights than a mask holds, or Tachyon's shading (which ShadeParts do

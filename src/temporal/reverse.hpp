@@ -41,7 +41,7 @@
 #pragma once
 
 #include "camera/lens_array.hpp"
-#include "render/render_scene.hpp"
+#include "render/render_context.hpp"
 #include "temporal/point_image.hpp"
 #include "temporal/reproject.hpp"
 
@@ -67,7 +67,7 @@ struct ReverseOptions {
 /// Traces the keyframe `frame` seen by `camera` (the scene at its time) into
 /// a point image, with the ShadeParts that `reuse` needs. `stats` gets its
 /// rays and seconds. The colour equals render_frame()'s bit for bit.
-PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, int frame, ReverseReuse reuse,
+PointImage trace_point_image(const RenderContext& scene, const LensArray& camera, int frame, ReverseReuse reuse,
                              int threads, RenderStats& stats);
 
 /// Builds frame `frame`, seen by `camera`, from keyframes `prev` and `next`
@@ -77,7 +77,7 @@ PointImage trace_point_image(const RenderScene& scene, const LensArray& camera, 
 /// (ReverseOptions::copy_unchanged). Status per pixel: `reprojected`
 /// (reused) or `traced` (shaded, or background); never missed. Throws std::invalid_argument for a keyframe of another size, with
 /// no transforms, or without the parts `options.reuse` needs.
-ReprojectedFrame reverse_reproject(const RenderScene& scene, const LensArray& camera, int frame,
+ReprojectedFrame reverse_reproject(const RenderContext& scene, const LensArray& camera, int frame,
                                    const PointImage* prev, const PointImage* next, const ReverseOptions& options);
 
 }  // namespace holoray

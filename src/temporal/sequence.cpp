@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "holoray/stopwatch.hpp"
+#include "render/shadow_cache.hpp"
 
 namespace holoray {
 
@@ -21,8 +22,8 @@ struct Traced {
   double seconds = 0;
 };
 
-Traced trace_frame(ShotFrames& shot, int frame, bool keep_points, int threads) {
-  shot.seek(frame);
+// Frame `frame` traced in full through `scene` (the shot moved there).
+Traced trace_frame(const ShotFrames& shot, const RenderContext& scene, int frame, bool keep_points, int threads) {
   RenderOptions ro;
   ro.spp = shot.shot().spp;
   ro.threads = threads;
@@ -30,7 +31,7 @@ Traced trace_frame(ShotFrames& shot, int frame, bool keep_points, int threads) {
   Traced t{LensArray(shot.camera(frame)), {}, {}, 0};
   ro.style = preferred_style(t.camera.desc());  // as the keyframes of reuse are traced
   const auto start = Clock::now();
-  t.buffers = render_frame(shot.scene(), t.camera, ro, t.stats);
+  t.buffers = render_frame(scene, t.camera, ro, t.stats);
   t.seconds = seconds_since(start);
   return t;
 }
@@ -78,13 +79,25 @@ std::vector<FrameGroup> frame_groups(int frames, const SequenceOptions& opt) {
 void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
                      const std::function<void(int, const ImageBuffer&, const FrameReport&)>& emit) {
   const int frames = shot.frame_count();
-  shot.set_shadow_cache(opt.cache);
-  // Full ray tracing of a frame for the report: the baseline, without the cache.
+  const bool panel_frames = opt.frame_camera.has_value();
+  // What each frame's render asks of the scene (render_context.hpp). EIA
+  // frames share the shot's pitch, gap and pixels: one pixel footprint.
+  RenderSettings settings = shot.settings();
+  settings.shadow_cache = opt.cache;
+  if (!panel_frames) settings.footprint = {0, pixel_angle(shot.camera(0))};
+  // The scene moved to frame f, the cache cleared if anything moved there.
+  auto seek = [&](int f) {
+    shot.seek(f);
+    if (opt.cache) opt.cache->sync();
+    return RenderContext(shot.scene(), settings);
+  };
+  // Full ray tracing of a frame for the report: the baseline, without the
+  // cache (the same scene, another render of it).
   auto reference = [&](int f) {
-    shot.set_shadow_cache(nullptr);
-    const Traced ref = trace_frame(shot, f, false, opt.threads);
-    shot.set_shadow_cache(opt.cache);
-    return ref;
+    RenderSettings full = settings;
+    full.shadow_cache = nullptr;
+    shot.seek(f);
+    return trace_frame(shot, RenderContext(shot.scene(), full), f, false, opt.threads);
   };
   auto done = [&](int f) { return opt.done && opt.done(f); };
   auto stop = [&] { return opt.stop && opt.stop(); };
@@ -109,9 +122,6 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     return r;
   };
 
-  const bool panel_frames = opt.frame_camera.has_value();
-  // EIA frames: every frame's array has the shot's pitch, gap and pixels.
-  if (!panel_frames) shot.set_pixel_footprint(0, pixel_angle(shot.camera(0)));
   if (panel_frames && opt.method != Method::full)
     throw std::invalid_argument("pinhole and display frames are traced in full (reuse works on elemental images)");
   if (opt.method == Method::full) {
@@ -125,7 +135,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         // A view of the frame's viewpoint: a pinhole preview, a Looking Glass, or a display's
         // panel (through the integral camera when it is an ordinary EIA, as
         // `render --display` does).
-        shot.seek(f);
+        RenderContext scene = seek(f);
         const Viewpoint vp = shot.viewpoint(f);
         RenderOptions ro;
         ro.spp = shot.shot().spp;
@@ -134,12 +144,16 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         const auto start = Clock::now();
         const FrameCamera camera = make_frame_camera(*opt.frame_camera, vp, "the shot");
         // Mesh textures take the MIP level of what one pixel sees, as in `render`.
-        if (const auto angle = camera.pixel_angle()) shot.set_pixel_footprint(0, *angle);
-        const FrameBuffers b = render_through(shot.scene(), camera, ro, stats);
+        if (const auto angle = camera.pixel_angle()) {
+          RenderSettings s = scene.settings();
+          s.footprint = {0, *angle};
+          scene = RenderContext(scene.scene(), s);
+        }
+        const FrameBuffers b = render_through(scene, camera, ro, stats);
         emit(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
         continue;
       }
-      const Traced t = trace_frame(shot, f, false, opt.threads);
+      const Traced t = trace_frame(shot, seek(f), f, false, opt.threads);
       emit(f, t.buffers.colour, keyframe_report(f, t.buffers.colour, t.stats, t.seconds));
     }
     return;
@@ -153,16 +167,16 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
   // A keyframe traced, with its point image (transforms at its time) and its report.
   auto trace_key = [&](int f) {
     if (opt.method == Method::reverse) {
-      shot.seek(f);
+      const RenderContext scene = seek(f);
       RenderStats stats;
       const auto start = Clock::now();
       auto image = std::make_unique<PointImage>(
-          trace_point_image(shot.scene(), LensArray(shot.camera(f)), f, opt.reverse.reuse, opt.threads, stats));
+          trace_point_image(scene, LensArray(shot.camera(f)), f, opt.reverse.reuse, opt.threads, stats));
       const double seconds = seconds_since(start);
       FrameReport report = keyframe_report(f, image->colour, stats, seconds);
       return std::pair{std::move(image), std::move(report)};
     }
-    Traced t = trace_frame(shot, f, true, opt.threads);
+    Traced t = trace_frame(shot, seek(f), f, true, opt.threads);
     FrameReport report = keyframe_report(f, t.buffers.colour, t.stats, t.seconds);
     auto image = std::make_unique<PointImage>(
         PointImage{f, t.camera, std::move(t.buffers.primary), std::move(t.buffers.colour), {}, {}, {}, {}, {}, {}});
@@ -206,12 +220,12 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
     for (int f = f0 + 1; f < f1; ++f) {
       if (done(f)) continue;
       if (stop()) return;
-      shot.seek(f);
+      const RenderContext scene = seek(f);
       const LensArray camera(shot.camera(f));
       const auto start = Clock::now();
       ReprojectedFrame rf = opt.method == Method::reverse
-                                ? reverse_reproject(shot.scene(), camera, f, prev.get(), next.get(), opt.reverse)
-                                : reproject(shot.scene(), camera, f, prev.get(), next.get(), opt.reproject);
+                                ? reverse_reproject(scene, camera, f, prev.get(), next.get(), opt.reverse)
+                                : reproject(scene, camera, f, prev.get(), next.get(), opt.reproject);
       FrameReport r;
       r.frame = f;
       r.pixels = camera.pixel_count();
@@ -226,7 +240,7 @@ void render_sequence(ShotFrames& shot, const SequenceOptions& opt,
         fill = Fill::trace;
         r.rebuilt = true;
       }
-      if (opt.method == Method::reproject) fill_missed(shot.scene(), camera, fill, opt.threads, rf);
+      if (opt.method == Method::reproject) fill_missed(scene, camera, fill, opt.threads, rf);
       r.seconds = seconds_since(start);
       r.traced = static_cast<int64_t>(rf.count(PixelStatus::traced));
       r.interpolated = static_cast<int64_t>(rf.count(PixelStatus::interpolated));
