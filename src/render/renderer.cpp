@@ -267,21 +267,19 @@ void intersect_eye_packet(const RenderContext& scene, const bool ok[], int n, Ra
 }
 
 void render_packet(const RenderContext& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
-                   RayCounts& counts, Vec3 colours[], PrimaryHit primary[], SurfacePoint surface[],
-                   ShadeParts parts[]) {
+                   PacketScratch& scratch, RayCounts& counts, Vec3 colours[], PrimaryHit primary[],
+                   SurfacePoint surface[], ShadeParts parts[]) {
   if (parts && spp != 1) throw std::invalid_argument(fmt::format("shading records need spp = 1, got {}", spp));
   if (parts) std::fill(parts, parts + n, ShadeParts{});
   Vec3 sum[kPacketSize];
-  // 5.5 KB whose members all have initialisers: built once per thread, not
-  // once per 16 rays (render_packet is never re-entered).
-  thread_local EyePacket eye;
+  EyePacket& eye = scratch.eye;
   for (int k = 0; k < spp; ++k) {
     trace_eye_packet(scene, camera, px, n, k, counts, eye);
     Vec3 c[kPacketSize];
     for (int l = 0; l < kPacketSize; ++l) c[l] = scene.background();
-    // shade() sets the parts it is given; per thread, so that packets
+    // shade() sets the parts it is given; the scratch's, so that packets
     // without parts do not zero 256 bytes each.
-    thread_local ShadeParts lane_parts[kPacketSize];
+    ShadeParts* lane_parts = scratch.lane_parts;
     if (std::any_of(eye.found, eye.found + n, [](bool f) { return f; }))
       shade(scene, eye.rays, eye.found, eye.surface, 1, counts, c, parts ? lane_parts : nullptr);
     if (parts)

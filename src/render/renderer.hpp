@@ -107,8 +107,12 @@ Vec3 render_pixel(const RenderContext& scene, const LensArray& camera, int i, in
 /// agree, and colours within the image budget (shade(RayPacket)). With `parts` (spp must be
 /// 1), parts[k] gets what the rays of lane k's shading found (ShadeParts;
 /// zero for background lanes): the keyframes of reverse reprojection.
+/// `scratch` holds the packet's rays, hits and shading records: one per
+/// thread's run of packets (a block, a task), made once (6 KB, every
+/// member initialised), never shared between threads.
+struct PacketScratch;
 void render_packet(const RenderContext& scene, const LensArray& camera, const PixelXY px[], int n, int spp,
-                   RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
+                   PacketScratch& scratch, RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
                    SurfacePoint surface[] = nullptr, ShadeParts parts[] = nullptr);
 
 /// Renders the pixels of `block` (single-ray styles: at most P x P, one
@@ -142,9 +146,10 @@ void render_block(const RenderContext& scene, const LensArray& camera, const Til
       Vec3 c[kPacketSize];
       PrimaryHit ph[kPacketSize];
       SurfacePoint sp[kPacketSize];
+      PacketScratch scratch;
       for_each_packet_of(block, camera.desc().pixels_per_lens, style == TraceStyle::subaperture,
                          [&](const PixelXY* px, int m) {
-                           render_packet(scene, camera, px, m, spp, counts, c, ph, want_surface ? sp : nullptr);
+                           render_packet(scene, camera, px, m, spp, scratch, counts, c, ph, want_surface ? sp : nullptr);
                            for (int l = 0; l < m; ++l) store(px[l].i, px[l].j, c[l], ph[l], sp[l]);
                          });
       return;
@@ -213,5 +218,10 @@ void trace_eye_packet(const RenderContext& scene, const LensArray& camera, const
 /// The same for rays the caller made: out.primary[l] for the lanes l < n
 /// with ok[l] (any camera); the others stay inactive.
 void intersect_eye_packet(const RenderContext& scene, const bool ok[], int n, RayCounts& counts, EyePacket& out);
+
+struct PacketScratch {
+  EyePacket eye;
+  ShadeParts lane_parts[kPacketSize];
+};
 
 }  // namespace holoray

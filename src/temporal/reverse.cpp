@@ -353,12 +353,13 @@ ReprojectedFrame trace_keyframe(const RenderContext& scene, const LensArray& cam
   hits.assign(out.status.size(), PrimaryHit{});
   if (parts) parts->assign(out.status.size(), ShadeParts{});
   out.rays = for_each_packet(camera, threads, [&](RayCounts& counts, auto&& each_packet) {
+    PacketScratch scratch;
     each_packet([&](const PixelXY* px, int k) {
       Vec3 c[kPacketSize];
       PrimaryHit ph[kPacketSize];
       ShadeParts sh[kPacketSize];
       // The object from the hit record, not from a copy of 16 surface points.
-      render_packet(scene, camera, px, k, 1, counts, c, ph, nullptr, parts ? sh : nullptr);
+      render_packet(scene, camera, px, k, 1, scratch, counts, c, ph, nullptr, parts ? sh : nullptr);
       for (int l = 0; l < k; ++l) {
         const size_t p = static_cast<size_t>(px[l].j) * W + px[l].i;
         store(out.colour, p, c[l]);
