@@ -145,282 +145,337 @@ void check_key(const RenderContext& scene, const PointImage* k) {
 
 size_t ReprojectedFrame::count(PixelStatus s) const { return static_cast<size_t>(std::count(status.begin(), status.end(), s)); }
 
-ReprojectedFrame reproject(const RenderContext& scene, const LensArray& camera, int frame, const PointImage* prev,
-                           const PointImage* next, const ReprojectOptions& opt) {
-  if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
-  check_key(scene, prev);
-  check_key(scene, next);
-  const int W = camera.width(), H = camera.height();
-  const size_t n = static_cast<size_t>(W) * H;
-  const PointImage* keys[2] = {prev, next};
-  double w_next = 0;
-  if (prev && next && next->frame != prev->frame) w_next = double(frame - prev->frame) / double(next->frame - prev->frame);
-  else if (!prev) w_next = 1;
+namespace {
 
-  auto clock = Clock::now();
-  // 1-2. Splat each keyframe into its own z-buffer.
-  ZBuffer z[2];
-  for (int k = 0; k < 2; ++k) {
-    if (!keys[k]) continue;
-    z[k] = ZBuffer(n);
-    Splatter(scene, camera, *keys[k], opt).run(z[k], opt.threads);
+// One frame's reprojection (reproject() below), its steps in order over
+// the state they share: the keyframes' z-buffers, the merged candidates per
+// pixel and the frame being built.
+class Reprojection {
+ public:
+  Reprojection(const RenderContext& scene, const LensArray& camera, int frame, const PointImage* prev,
+               const PointImage* next, const ReprojectOptions& opt)
+      : scene_(scene), camera_(camera), opt_(opt), keys_{prev, next}, W_(camera.width()), H_(camera.height()),
+        n_(static_cast<size_t>(W_) * H_), tiles_(camera),
+        footprint_(camera.pixel_pitch() / camera.desc().gap),
+        tiny_(1e-7 * std::fmax(1.0, length(scene.bounds().diagonal()))) {
+    if (prev && next && next->frame != prev->frame) w_next_ = double(frame - prev->frame) / double(next->frame - prev->frame);
+    else if (!prev) w_next_ = 1;
   }
-  const double splat_seconds = lap(clock);
-  const double footprint = camera.pixel_pitch() / camera.desc().gap;
-  const double tiny = 1e-7 * std::fmax(1.0, length(scene.bounds().diagonal()));
 
-  ReprojectedFrame out;
-  out.seconds.splat = splat_seconds;
-  out.colour = ImageBuffer(W, H, 3);
-  out.status.assign(n, PixelStatus::missed);
-  out.received.assign(n, 0);
-  out.object.assign(n, -1);
-  std::vector<float> depth(n, 0);
-  struct Winner {
-    int8_t key = -1;
-    uint32_t src = 0;
-  };
-  std::vector<Winner> winner(n), runner_up(n);
-  const Vec3 bg = scene.background();
+  /// 1-2. Each keyframe splatted into its own z-buffer.
+  void splat() {
+    for (int k = 0; k < 2; ++k) {
+      if (!keys_[k]) continue;
+      z_[k] = ZBuffer(n_);
+      Splatter(scene_, camera_, *keys_[k], opt_).run(z_[k], opt_.threads);
+    }
+  }
 
-  // 3. Merge the keyframes.
-  const ElementalTiles tiles(camera);
-  for_each_tile(tiles, opt.threads, [&](int tile) {
-    const TileRect r = tiles.rect(tile);
-    for (int j = r.y0; j < r.y1; ++j)
-      for (int i = r.x0; i < r.x1; ++i) {
-        const size_t p = static_cast<size_t>(j) * W + i;
-        Candidate c[2];
-        for (int k = 0; k < 2; ++k)
-          if (keys[k]) c[k] = decode(z[k][p].load(std::memory_order_relaxed));
-        float* o = out.colour.at(i, j);
-        o[0] = static_cast<float>(bg.x), o[1] = static_cast<float>(bg.y), o[2] = static_cast<float>(bg.z);
-        if (!c[0].valid && !c[1].valid) continue;
-        out.received[p] = 1;
-        const int best = !c[0].valid ? 1 : !c[1].valid ? 0 : (c[1].depth > c[0].depth ? 1 : 0);
-        const float* cb = keys[best]->colour.at(c[best].src % keys[best]->camera.width(), c[best].src / keys[best]->camera.width());
-        Vec3 colour{cb[0], cb[1], cb[2]};
-        if (c[0].valid && c[1].valid) {
-          const PrimaryHit& a = prev->hits[c[0].src];
-          const PrimaryHit& b = next->hits[c[1].src];
-          const bool same_object = scene.object_of(a.group, static_cast<PrimKind>(a.kind), a.prim) ==
-                                   scene.object_of(b.group, static_cast<PrimKind>(b.kind), b.prim);
-          const double tol = kSameSurface * footprint * std::fabs(c[best].depth) + tiny;
-          if (same_object && std::fabs(c[0].depth - c[1].depth) <= tol) {
-            const float* ca = prev->colour.at(c[0].src % prev->camera.width(), c[0].src / prev->camera.width());
-            const float* cn = next->colour.at(c[1].src % next->camera.width(), c[1].src / next->camera.width());
-            colour = Vec3{ca[0], ca[1], ca[2]} * (1 - w_next) + Vec3{cn[0], cn[1], cn[2]} * w_next;
-          }
-        }
-        o[0] = static_cast<float>(colour.x), o[1] = static_cast<float>(colour.y), o[2] = static_cast<float>(colour.z);
-        depth[p] = c[best].depth;
-        winner[p] = {static_cast<int8_t>(best), c[best].src};
-        if (c[0].valid && c[1].valid) runner_up[p] = {static_cast<int8_t>(1 - best), c[1 - best].src};
-        const PrimaryHit& wh = keys[best]->hits[c[best].src];
-        out.object[p] = scene.object_of(wh.group, static_cast<PrimKind>(wh.kind), wh.prim);
-        out.status[p] = PixelStatus::reprojected;
+  /// 3. The keyframes merged: per pixel the nearer candidate, blended with
+  /// the other where both show the same surface.
+  void merge() {
+    out_.colour = ImageBuffer(W_, H_, 3);
+    out_.status.assign(n_, PixelStatus::missed);
+    out_.received.assign(n_, 0);
+    out_.object.assign(n_, -1);
+    depth_.assign(n_, 0);
+    winner_.assign(n_, {});
+    runner_up_.assign(n_, {});
+    const Vec3 bg = scene_.background();
+    const PointImage* prev = keys_[0];
+    const PointImage* next = keys_[1];
+    for_each_pixel([&](int i, int j, size_t p) {
+      Candidate c[2];
+      for (int k = 0; k < 2; ++k)
+        if (keys_[k]) c[k] = decode(z_[k][p].load(std::memory_order_relaxed));
+      float* o = out_.colour.at(i, j);
+      o[0] = static_cast<float>(bg.x), o[1] = static_cast<float>(bg.y), o[2] = static_cast<float>(bg.z);
+      if (!c[0].valid && !c[1].valid) return;
+      out_.received[p] = 1;
+      const int best = !c[0].valid ? 1 : !c[1].valid ? 0 : (c[1].depth > c[0].depth ? 1 : 0);
+      Vec3 colour = key_colour(*keys_[best], c[best].src);
+      if (c[0].valid && c[1].valid) {
+        const PrimaryHit& a = prev->hits[c[0].src];
+        const PrimaryHit& b = next->hits[c[1].src];
+        const bool same_object = scene_.object_of(a.group, static_cast<PrimKind>(a.kind), a.prim) ==
+                                 scene_.object_of(b.group, static_cast<PrimKind>(b.kind), b.prim);
+        const double tol = kSameSurface * footprint_ * std::fabs(c[best].depth) + tiny_;
+        if (same_object && std::fabs(c[0].depth - c[1].depth) <= tol)
+          colour = key_colour(*prev, c[0].src) * (1 - w_next_) + key_colour(*next, c[1].src) * w_next_;
       }
-  });
-
-  // A mesh that deformed since a keyframe has no points to splat where it
-  // is now (splat_point leaves them out), so nothing there would hide what
-  // it now covers: every elemental image that can see it, where it is or
-  // where a keyframe saw it, is traced (lens_reach.hpp).
-  std::vector<BoundingSphere> deformed;
-  for (const PointImage* key : keys)
-    for (uint32_t g = 0; key && g < scene.accel().group_count(); ++g)
-      if (!key->same_pose(scene.accel(), g))
-        for (const Bounds3& b : {scene.accel().group_bounds(g, scene.accel().transform(g)), key->bounds[g]})
-          if (!b.empty()) deformed.push_back({b.centre(), 0.5 * length(b.diagonal())});
-  if (!deformed.empty()) {
-    const double half_angle = lens_half_angle(camera.desc());
-    for_each_tile(tiles, opt.threads, [&](int tile) {
-      const TileRect r = tiles.rect(tile);
-      for (int j = r.y0; j < r.y1; ++j)
-        for (int i = r.x0; i < r.x1; ++i) {
-          const size_t p = static_cast<size_t>(j) * W + i;
-          if (out.status[p] == PixelStatus::reprojected && lens_reaches(camera, camera.lens_of_pixel(i, j), deformed, half_angle))
-            out.status[p] = PixelStatus::missed;
-        }
+      o[0] = static_cast<float>(colour.x), o[1] = static_cast<float>(colour.y), o[2] = static_cast<float>(colour.z);
+      depth_[p] = c[best].depth;
+      winner_[p] = {static_cast<int8_t>(best), c[best].src};
+      if (c[0].valid && c[1].valid) runner_up_[p] = {static_cast<int8_t>(1 - best), c[1 - best].src};
+      const PrimaryHit& wh = keys_[best]->hits[c[best].src];
+      out_.object[p] = scene_.object_of(wh.group, static_cast<PrimKind>(wh.kind), wh.prim);
+      out_.status[p] = PixelStatus::reprojected;
     });
   }
-  out.seconds.merge = lap(clock);
 
-  // 4. Leaks: a point seen through a gap between a nearer surface's points
-  // has nearer neighbours on two opposite sides in its elemental image.
-  std::vector<uint8_t> leak(n, 0);
-  if (opt.detect_leaks) {
-    for_each_tile(tiles, opt.threads, [&](int tile) {
-      const TileRect r = tiles.rect(tile);
-      static constexpr int kPairs[4][2][2] = {{{-1, 0}, {1, 0}}, {{0, -1}, {0, 1}}, {{-1, -1}, {1, 1}}, {{-1, 1}, {1, -1}}};
-      for (int j = r.y0; j < r.y1; ++j)
-        for (int i = r.x0; i < r.x1; ++i) {
-          const size_t p = static_cast<size_t>(j) * W + i;
-          if (out.status[p] != PixelStatus::reprojected) continue;
-          const LensIndex lens = camera.lens_of_pixel(i, j);
-          const double tol = kLeakStep * footprint * std::fabs(depth[p]) + tiny;
-          auto nearer = [&](int di, int dj) {
-            const int ni = i + di, nj = j + dj;
-            if (ni < 0 || nj < 0 || ni >= W || nj >= H) return false;
-            const size_t q = static_cast<size_t>(nj) * W + ni;
-            return out.status[q] == PixelStatus::reprojected && depth[q] - depth[p] > tol &&
-                   camera.lens_of_pixel(ni, nj) == lens;
-          };
-          // Up to two pixels out on each side: gaps can be two pixels wide.
-          auto side = [&](int di, int dj) { return nearer(di, dj) || nearer(2 * di, 2 * dj); };
-          for (const auto& pair : kPairs) {
-            const bool a = side(pair[0][0], pair[0][1]), b = side(pair[1][0], pair[1][1]);
-            if (a && b) {
-              leak[p] = kLeak;
-              break;
-            }
-            if (a || b) leak[p] = kBehindStep;
-          }
-        }
+  /// A mesh that deformed since a keyframe has no points to splat where it
+  /// is now (splat_point leaves them out), so nothing there would hide what
+  /// it now covers: every elemental image that can see it, where it is or
+  /// where a keyframe saw it, is traced (lens_reach.hpp).
+  void trace_where_meshes_deformed() {
+    const AccelScene& accel = scene_.accel();
+    std::vector<BoundingSphere> deformed;
+    for (const PointImage* key : keys_)
+      for (uint32_t g = 0; key && g < accel.group_count(); ++g)
+        if (!key->same_pose(accel, g))
+          for (const Bounds3& b : {accel.group_bounds(g, accel.transform(g)), key->bounds[g]})
+            if (!b.empty()) deformed.push_back({b.centre(), 0.5 * length(b.diagonal())});
+    if (deformed.empty()) return;
+    const double half_angle = lens_half_angle(camera_.desc());
+    for_each_pixel([&](int i, int j, size_t p) {
+      if (out_.status[p] == PixelStatus::reprojected && lens_reaches(camera_, camera_.lens_of_pixel(i, j), deformed, half_angle))
+        out_.status[p] = PixelStatus::missed;
     });
   }
-  out.seconds.leaks = lap(clock);
 
-  // 5. Local visibility: the pixel's own centre ray against the primitives
-  // that landed here and around it (its winner, the other keyframe's
-  // candidate, the winners of its 8 neighbours in the same elemental image),
-  // each alone and exactly; the nearest hit wins. This resolves silhouettes
-  // and surfaces that cross without a BVH traversal. No hit: missed.
-  std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles.count()));
-  std::vector<double> depth_line(n, 0);  // line t of each checked hit
-  const bool ortho = camera.desc().mode == RecordingMode::orthoscopic;
-  const double gap = camera.desc().gap;
-  for_each_tile(tiles, opt.threads, [&](int tile) {
-    const TileRect r = tiles.rect(tile);
-    RayCounts counts;
-    Winner cands[10];
-    for (int j = r.y0; j < r.y1; ++j)
-      for (int i = r.x0; i < r.x1; ++i) {
-        const size_t p = static_cast<size_t>(j) * W + i;
-        if (out.status[p] != PixelStatus::reprojected) continue;
-        if (leak[p] == kLeak) {
-          out.status[p] = PixelStatus::leak;
-          continue;
+  /// 4. Leaks: a point seen through a gap between a nearer surface's points
+  /// has nearer neighbours on two opposite sides in its elemental image.
+  void find_leaks() {
+    leak_.assign(n_, 0);
+    if (!opt_.detect_leaks) return;
+    static constexpr int kPairs[4][2][2] = {{{-1, 0}, {1, 0}}, {{0, -1}, {0, 1}}, {{-1, -1}, {1, 1}}, {{-1, 1}, {1, -1}}};
+    for_each_pixel([&](int i, int j, size_t p) {
+      if (out_.status[p] != PixelStatus::reprojected) return;
+      const LensIndex lens = camera_.lens_of_pixel(i, j);
+      const double tol = kLeakStep * footprint_ * std::fabs(depth_[p]) + tiny_;
+      auto nearer = [&](int di, int dj) {
+        const int ni = i + di, nj = j + dj;
+        if (ni < 0 || nj < 0 || ni >= W_ || nj >= H_) return false;
+        const size_t q = static_cast<size_t>(nj) * W_ + ni;
+        return out_.status[q] == PixelStatus::reprojected && depth_[q] - depth_[p] > tol &&
+               camera_.lens_of_pixel(ni, nj) == lens;
+      };
+      // Up to two pixels out on each side: gaps can be two pixels wide.
+      auto side = [&](int di, int dj) { return nearer(di, dj) || nearer(2 * di, 2 * dj); };
+      for (const auto& pair : kPairs) {
+        const bool a = side(pair[0][0], pair[0][1]), b = side(pair[1][0], pair[1][1]);
+        if (a && b) {
+          leak_[p] = kLeak;
+          break;
         }
-        int nc = 0;
-        auto add = [&](const Winner& w) {
-          if (w.key < 0) return;
-          const PrimaryHit& h = keys[w.key]->hits[w.src];
-          for (int k = 0; k < nc; ++k) {
-            const PrimaryHit& o = keys[cands[k].key]->hits[cands[k].src];
-            if (o.prim == h.prim && o.group == h.group && o.kind == h.kind) return;
-          }
-          cands[nc++] = w;
-        };
-        add(winner[p]);
-        add(runner_up[p]);
-        const LensIndex lens = camera.lens_of_pixel(i, j);
-        for (int dj = -1; dj <= 1 && opt.local_visibility; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int ni = i + di, nj = j + dj;
-            if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W || nj >= H) continue;
-            const size_t q = static_cast<size_t>(nj) * W + ni;
-            if (winner[q].key >= 0 && leak[q] != kLeak && camera.lens_of_pixel(ni, nj) == lens) add(winner[q]);
-          }
-        const auto pr = primary_ray(camera, scene.bounds(), scene.epsilon(), i, j);
-        Hit best, hit;
-        int chosen = -1;
-        for (int k = 0; pr && k < nc; ++k) {
-          const PrimaryHit& h = keys[cands[k].key]->hits[cands[k].src];
-          if (scene.accel().intersect_primitive(pr->ray, h.group, static_cast<PrimKind>(h.kind), h.prim, hit) &&
-              hit.t < best.t) {
-            best = hit;
-            chosen = k;
-          }
-        }
-        if (chosen < 0) {
-          out.status[p] = PixelStatus::rejected;
-          continue;
-        }
-        // The slab |t| < g about the array is seen by at most one lens per
-        // point (cones narrower than the pitch), so keyframes sample it with
-        // gaps: a surface there may have left no point. One short occlusion
-        // ray across the slab, in front of the hit, settles it.
-        // Behind a depth step, the nearer surface may cover the pixel centre
-        // with none of its primitives nearby: check the whole way to the hit.
-        if (leak[p] == kBehindStep) {
-          Ray front = pr->ray;
-          front.tfar = best.t - scene.epsilon();
-          if (front.tfar > front.tnear && scene.accel().occluded(front)) {
-            out.status[p] = PixelStatus::leak;
-            continue;
-          }
-        } else if (opt.check_near_slab) {
-          const double t_line = pr->t_offset + pr->t_sign * best.t;
-          const double eps = scene.epsilon();
-          Ray slab = pr->ray;
-          if (ortho) {
-            slab.tnear = std::fmax(pr->ray.tnear, pr->t_offset - gap);
-            slab.tfar = pr->t_offset - std::fmax(t_line, -gap) - eps;
-          } else {
-            slab.tfar = std::fmin(best.t, gap) - eps;
-          }
-          if (slab.tfar > slab.tnear && scene.accel().occluded(slab)) {
-            out.status[p] = PixelStatus::rejected;
-            continue;
-          }
-        }
-        float* o = out.colour.at(i, j);
-        if (opt.reuse == Reuse::geometry) {
-          const Vec3 c = shade(scene, pr->ray, scene.surface(pr->ray, best), 1, counts);
-          o[0] = static_cast<float>(c.x), o[1] = static_cast<float>(c.y), o[2] = static_cast<float>(c.z);
-        } else if (chosen > 0) {
-          const PointImage& key = *keys[cands[chosen].key];
-          const float* c = key.colour.at(cands[chosen].src % key.camera.width(), cands[chosen].src / key.camera.width());
-          o[0] = c[0], o[1] = c[1], o[2] = c[2];
-        }
-        out.object[p] = scene.object_of(best.group, best.kind, best.prim);
-        depth_line[p] = pr->t_offset + pr->t_sign * best.t;
+        if (a || b) leak_[p] = kBehindStep;
       }
-    tile_rays[static_cast<size_t>(tile)] = counts;
-  });
-  for (const RayCounts& c : tile_rays) out.rays += c;
+    });
+  }
 
-  // 6. Grow the occluded regions: a pixel found hidden behind a silhouette
-  // makes its neighbours in the same elemental image suspect too (a nearer
-  // surface that grew since the keyframe covers a patch, not a pixel). Each
-  // suspect gets the same occlusion ray; the flood stops where none is hidden.
-  if (opt.detect_leaks) {
-    for_each_tile(tiles, opt.threads, [&](int tile) {
-      const TileRect r = tiles.rect(tile);
+  /// 5. Local visibility: the pixel's own centre ray against the primitives
+  /// that landed here and around it (its winner, the other keyframe's
+  /// candidate, the winners of its 8 neighbours in the same elemental
+  /// image), each alone and exactly; the nearest hit wins. This resolves
+  /// silhouettes and surfaces that cross without a BVH traversal. No hit:
+  /// missed.
+  void check_visibility() {
+    std::vector<RayCounts> tile_rays(static_cast<size_t>(tiles_.count()));
+    depth_line_.assign(n_, 0);
+    for_each_tile(tiles_, opt_.threads, [&](int tile) {
+      const TileRect r = tiles_.rect(tile);
+      RayCounts counts;
+      for (int j = r.y0; j < r.y1; ++j)
+        for (int i = r.x0; i < r.x1; ++i) check_pixel(i, j, counts);
+      tile_rays[static_cast<size_t>(tile)] = counts;
+    });
+    for (const RayCounts& c : tile_rays) out_.rays += c;
+  }
+
+  /// 6. The occluded regions grown: a pixel found hidden behind a silhouette
+  /// makes its neighbours in the same elemental image suspect too (a nearer
+  /// surface that grew since the keyframe covers a patch, not a pixel). Each
+  /// suspect gets the same occlusion ray; the flood stops where none is hidden.
+  void grow_occlusions() {
+    if (!opt_.detect_leaks) return;
+    for_each_tile(tiles_, opt_.threads, [&](int tile) {
+      const TileRect r = tiles_.rect(tile);
       std::vector<size_t> queue;
       for (int j = r.y0; j < r.y1; ++j)
         for (int i = r.x0; i < r.x1; ++i)
-          if (out.status[static_cast<size_t>(j) * W + i] == PixelStatus::leak) queue.push_back(static_cast<size_t>(j) * W + i);
+          if (out_.status[static_cast<size_t>(j) * W_ + i] == PixelStatus::leak) queue.push_back(static_cast<size_t>(j) * W_ + i);
       std::vector<uint8_t> tested(static_cast<size_t>(r.x1 - r.x0) * (r.y1 - r.y0), 0);
       while (!queue.empty()) {
         const size_t p = queue.back();
         queue.pop_back();
-        const int i = static_cast<int>(p % W), j = static_cast<int>(p / W);
-        const LensIndex lens = camera.lens_of_pixel(i, j);
+        const int i = static_cast<int>(p % W_), j = static_cast<int>(p / W_);
+        const LensIndex lens = camera_.lens_of_pixel(i, j);
         for (int dj = -1; dj <= 1; ++dj)
           for (int di = -1; di <= 1; ++di) {
             const int ni = i + di, nj = j + dj;
             if (ni < r.x0 || nj < r.y0 || ni >= r.x1 || nj >= r.y1) continue;
-            const size_t q = static_cast<size_t>(nj) * W + ni;
+            const size_t q = static_cast<size_t>(nj) * W_ + ni;
             uint8_t& seen = tested[static_cast<size_t>(nj - r.y0) * (r.x1 - r.x0) + (ni - r.x0)];
-            if (seen || out.status[q] != PixelStatus::reprojected || !(camera.lens_of_pixel(ni, nj) == lens)) continue;
+            if (seen || out_.status[q] != PixelStatus::reprojected || !(camera_.lens_of_pixel(ni, nj) == lens)) continue;
             seen = 1;
-            const auto pr = primary_ray(camera, scene.bounds(), scene.epsilon(), ni, nj);
+            const auto pr = primary_ray(camera_, scene_.bounds(), scene_.epsilon(), ni, nj);
             if (!pr) continue;
             // The shown surface's line t, back to this ray's parameter.
             Ray front = pr->ray;
-            front.tfar = (depth_line[q] - pr->t_offset) / pr->t_sign - scene.epsilon();
-            if (front.tfar > front.tnear && scene.accel().occluded(front)) {
-              out.status[q] = PixelStatus::leak;
+            front.tfar = (depth_line_[q] - pr->t_offset) / pr->t_sign - scene_.epsilon();
+            if (front.tfar > front.tnear && scene_.accel().occluded(front)) {
+              out_.status[q] = PixelStatus::leak;
               queue.push_back(q);
             }
           }
       }
     });
   }
-  out.seconds.check = lap(clock);
-  return out;
+
+  ReprojectedFrame& frame() { return out_; }
+
+ private:
+  struct Winner {
+    int8_t key = -1;
+    uint32_t src = 0;
+  };
+
+  // fn(i, j, p) for every pixel, tile by tile (elemental images) on the workers.
+  template <class Fn>
+  void for_each_pixel(Fn&& fn) {
+    for_each_tile(tiles_, opt_.threads, [&](int tile) {
+      const TileRect r = tiles_.rect(tile);
+      for (int j = r.y0; j < r.y1; ++j)
+        for (int i = r.x0; i < r.x1; ++i) fn(i, j, static_cast<size_t>(j) * W_ + i);
+    });
+  }
+
+  static Vec3 key_colour(const PointImage& key, uint32_t src) {
+    const float* c = key.colour.at(src % key.camera.width(), src / key.camera.width());
+    return {c[0], c[1], c[2]};
+  }
+
+  // Step 5 for pixel (i, j).
+  void check_pixel(int i, int j, RayCounts& counts) {
+    const size_t p = static_cast<size_t>(j) * W_ + i;
+    if (out_.status[p] != PixelStatus::reprojected) return;
+    if (leak_[p] == kLeak) {
+      out_.status[p] = PixelStatus::leak;
+      return;
+    }
+    Winner cands[10];
+    int nc = 0;
+    auto add = [&](const Winner& w) {
+      if (w.key < 0) return;
+      const PrimaryHit& h = keys_[w.key]->hits[w.src];
+      for (int k = 0; k < nc; ++k) {
+        const PrimaryHit& o = keys_[cands[k].key]->hits[cands[k].src];
+        if (o.prim == h.prim && o.group == h.group && o.kind == h.kind) return;
+      }
+      cands[nc++] = w;
+    };
+    add(winner_[p]);
+    add(runner_up_[p]);
+    const LensIndex lens = camera_.lens_of_pixel(i, j);
+    for (int dj = -1; dj <= 1 && opt_.local_visibility; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int ni = i + di, nj = j + dj;
+        if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= W_ || nj >= H_) continue;
+        const size_t q = static_cast<size_t>(nj) * W_ + ni;
+        if (winner_[q].key >= 0 && leak_[q] != kLeak && camera_.lens_of_pixel(ni, nj) == lens) add(winner_[q]);
+      }
+    const auto pr = primary_ray(camera_, scene_.bounds(), scene_.epsilon(), i, j);
+    Hit best, hit;
+    int chosen = -1;
+    for (int k = 0; pr && k < nc; ++k) {
+      const PrimaryHit& h = keys_[cands[k].key]->hits[cands[k].src];
+      if (scene_.accel().intersect_primitive(pr->ray, h.group, static_cast<PrimKind>(h.kind), h.prim, hit) &&
+          hit.t < best.t) {
+        best = hit;
+        chosen = k;
+      }
+    }
+    if (chosen < 0) {
+      out_.status[p] = PixelStatus::rejected;
+      return;
+    }
+    if (hidden_in_front(*pr, best, leak_[p] == kBehindStep, out_.status[p])) return;
+    float* o = out_.colour.at(i, j);
+    if (opt_.reuse == Reuse::geometry) {
+      const Vec3 c = shade(scene_, pr->ray, scene_.surface(pr->ray, best), 1, counts);
+      o[0] = static_cast<float>(c.x), o[1] = static_cast<float>(c.y), o[2] = static_cast<float>(c.z);
+    } else if (chosen > 0) {
+      const Vec3 c = key_colour(*keys_[cands[chosen].key], cands[chosen].src);
+      o[0] = static_cast<float>(c.x), o[1] = static_cast<float>(c.y), o[2] = static_cast<float>(c.z);
+    }
+    out_.object[p] = scene_.object_of(best.group, best.kind, best.prim);
+    depth_line_[p] = pr->t_offset + pr->t_sign * best.t;
+  }
+
+  // Whether something the keyframes missed stands in front of `best` on the
+  // pixel's ray (then `status` says leak or rejected). The slab |t| < g
+  // about the array is seen by at most one lens per point (cones narrower
+  // than the pitch), so keyframes sample it with gaps: a surface there may
+  // have left no point; one short occlusion ray across the slab, in front of
+  // the hit, settles it. Behind a depth step (`behind_step`), the nearer
+  // surface may cover the pixel centre with none of its primitives nearby:
+  // the ray checks the whole way to the hit.
+  bool hidden_in_front(const PrimaryRay& pr, const Hit& best, bool behind_step, PixelStatus& status) const {
+    const double eps = scene_.epsilon();
+    if (behind_step) {
+      Ray front = pr.ray;
+      front.tfar = best.t - eps;
+      if (front.tfar > front.tnear && scene_.accel().occluded(front)) {
+        status = PixelStatus::leak;
+        return true;
+      }
+      return false;
+    }
+    if (!opt_.check_near_slab) return false;
+    const double gap = camera_.desc().gap;
+    const double t_line = pr.t_offset + pr.t_sign * best.t;
+    Ray slab = pr.ray;
+    if (camera_.desc().mode == RecordingMode::orthoscopic) {
+      slab.tnear = std::fmax(pr.ray.tnear, pr.t_offset - gap);
+      slab.tfar = pr.t_offset - std::fmax(t_line, -gap) - eps;
+    } else {
+      slab.tfar = std::fmin(best.t, gap) - eps;
+    }
+    if (slab.tfar > slab.tnear && scene_.accel().occluded(slab)) {
+      status = PixelStatus::rejected;
+      return true;
+    }
+    return false;
+  }
+
+  const RenderContext& scene_;
+  const LensArray& camera_;
+  const ReprojectOptions& opt_;
+  const PointImage* keys_[2];
+  const int W_, H_;
+  const size_t n_;
+  const ElementalTiles tiles_;
+  const double footprint_;  // a pixel's angle through its lens
+  const double tiny_;       // depth tolerance floor, scaled to the scene
+  double w_next_ = 0;       // the next keyframe's weight in a blend
+  ZBuffer z_[2];
+  ReprojectedFrame out_;
+  std::vector<float> depth_;          // the winner's depth
+  std::vector<Winner> winner_, runner_up_;
+  std::vector<uint8_t> leak_;         // kLeak, kBehindStep or 0
+  std::vector<double> depth_line_;    // line t of each checked hit
+};
+
+}  // namespace
+
+ReprojectedFrame reproject(const RenderContext& scene, const LensArray& camera, int frame, const PointImage* prev,
+                           const PointImage* next, const ReprojectOptions& opt) {
+  if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
+  check_key(scene, prev);
+  check_key(scene, next);
+  Reprojection r(scene, camera, frame, prev, next, opt);
+  auto clock = Clock::now();
+  r.splat();
+  r.frame().seconds.splat = lap(clock);
+  r.merge();
+  r.trace_where_meshes_deformed();
+  r.frame().seconds.merge = lap(clock);
+  r.find_leaks();
+  r.frame().seconds.leaks = lap(clock);
+  r.check_visibility();
+  r.grow_occlusions();
+  r.frame().seconds.check = lap(clock);
+  return std::move(r.frame());
 }
 
 }  // namespace holoray
