@@ -115,48 +115,6 @@ void render_packet(const RenderContext& scene, const LensArray& camera, const Pi
                    PacketScratch& scratch, RayCounts& counts, Vec3 colours[], PrimaryHit primary[] = nullptr,
                    SurfacePoint surface[] = nullptr, ShadeParts parts[] = nullptr);
 
-/// Renders the pixels of `block` (single-ray styles: at most P x P, one
-/// elemental image, or a P x P piece of a lenticule's strip or hex lens; the
-/// packet styles: any P-aligned block, for sub-aperture packets ideally 4 or
-/// more lenses across) in `style`, calling
-/// store(i, j, colour, primary, surface) once per pixel; `surface` is filled
-/// only when want_surface and primary.status is kHit. The one place where the
-/// styles differ (paper §6), shared by render_frame and the benchmarks.
-template <class Store>
-void render_block(const RenderContext& scene, const LensArray& camera, const TileRect& block, TraceStyle style,
-                  int spp, bool want_surface, RayCounts& counts, Store&& store) {
-  auto single = [&](int i, int j) {
-    PrimaryHit ph;
-    SurfacePoint sp;
-    const Vec3 c = render_pixel(scene, camera, i, j, spp, counts, &ph, want_surface ? &sp : nullptr);
-    store(i, j, c, ph, sp);
-  };
-  switch (style) {
-    case TraceStyle::horizontal:
-      for (int j = block.y0; j < block.y1; ++j)
-        for (int i = block.x0; i < block.x1; ++i) single(i, j);
-      return;
-    case TraceStyle::vertical:
-      for (int i = block.x0; i < block.x1; ++i)
-        for (int j = block.y0; j < block.y1; ++j) single(i, j);
-      return;
-    case TraceStyle::packet:
-    case TraceStyle::subaperture: {
-      // Once per block, not per packet: the arrays' members have initialisers.
-      Vec3 c[kPacketSize];
-      PrimaryHit ph[kPacketSize];
-      SurfacePoint sp[kPacketSize];
-      PacketScratch scratch;
-      for_each_packet_of(block, camera.desc().pixels_per_lens, style == TraceStyle::subaperture,
-                         [&](const PixelXY* px, int m) {
-                           render_packet(scene, camera, px, m, spp, scratch, counts, c, ph, want_surface ? sp : nullptr);
-                           for (int l = 0; l < m; ++l) store(px[l].i, px[l].j, c[l], ph[l], sp[l]);
-                         });
-      return;
-    }
-  }
-}
-
 /// Bytes the buffers of a frame of `pixels` take (colour plus requested
 /// AOVs), computed without allocating; lets callers refuse absurd sizes up front.
 uint64_t frame_bytes(int64_t pixels, const AovSet& aovs);
@@ -223,5 +181,47 @@ struct PacketScratch {
   EyePacket eye;
   ShadeParts lane_parts[kPacketSize];
 };
+
+/// Renders the pixels of `block` (single-ray styles: at most P x P, one
+/// elemental image, or a P x P piece of a lenticule's strip or hex lens; the
+/// packet styles: any P-aligned block, for sub-aperture packets ideally 4 or
+/// more lenses across) in `style`, calling
+/// store(i, j, colour, primary, surface) once per pixel; `surface` is filled
+/// only when want_surface and primary.status is kHit. The one place where the
+/// styles differ (paper §6), shared by render_frame and the benchmarks.
+template <class Store>
+void render_block(const RenderContext& scene, const LensArray& camera, const TileRect& block, TraceStyle style,
+                  int spp, bool want_surface, RayCounts& counts, Store&& store) {
+  auto single = [&](int i, int j) {
+    PrimaryHit ph;
+    SurfacePoint sp;
+    const Vec3 c = render_pixel(scene, camera, i, j, spp, counts, &ph, want_surface ? &sp : nullptr);
+    store(i, j, c, ph, sp);
+  };
+  switch (style) {
+    case TraceStyle::horizontal:
+      for (int j = block.y0; j < block.y1; ++j)
+        for (int i = block.x0; i < block.x1; ++i) single(i, j);
+      return;
+    case TraceStyle::vertical:
+      for (int i = block.x0; i < block.x1; ++i)
+        for (int j = block.y0; j < block.y1; ++j) single(i, j);
+      return;
+    case TraceStyle::packet:
+    case TraceStyle::subaperture: {
+      // Once per block, not per packet: the arrays' members have initialisers.
+      Vec3 c[kPacketSize];
+      PrimaryHit ph[kPacketSize];
+      SurfacePoint sp[kPacketSize];
+      PacketScratch scratch;
+      for_each_packet_of(block, camera.desc().pixels_per_lens, style == TraceStyle::subaperture,
+                         [&](const PixelXY* px, int m) {
+                           render_packet(scene, camera, px, m, spp, scratch, counts, c, ph, want_surface ? sp : nullptr);
+                           for (int l = 0; l < m; ++l) store(px[l].i, px[l].j, c[l], ph[l], sp[l]);
+                         });
+      return;
+    }
+  }
+}
 
 }  // namespace holoray
