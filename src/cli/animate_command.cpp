@@ -246,58 +246,76 @@ void write_report(const AnimateCommandOptions& o, const cluster::World& world, c
   if (!o.quiet) fmt::print("report     {}\n", o.report);
 }
 
+// The options as the API takes them, with the words the summary and the
+// report repeat. Each word is checked here; the rules between them are the
+// API's (api::Animation), which names what it refuses by its own names,
+// said here as options (error_words.hpp).
+struct AnimateChoice {
+  api::AnimateOptions options;
+  std::string method, reuse, ext;  ///< --method, --reuse (defaults resolved), --format
+  api::VideoOptions video;
+  bool auto_keys = false;  ///< --keyframe-interval auto
+};
+
+AnimateChoice choose(const AnimateCommandOptions& o) {
+  AnimateChoice c;
+  api::AnimateOptions& ao = c.options;
+  camera_desc_rules(o.view, false, false);
+  const bool pinhole = o.view.camera == "pinhole";
+  const bool glass = !o.view.looking_glass.empty();
+  const bool panel = glass || !o.view.display.empty();
+  c.method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
+  ao.method = pick<api::Method>("--method", c.method,
+                                {{"full", api::Method::full}, {"reproject", api::Method::reproject}, {"reverse", api::Method::reverse}});
+  if (glass) {
+    ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views, std::nullopt};  // the viewpoint's focus
+  } else if (panel) {
+    ao.camera = api::Display{o.view.display, std::nullopt, std::nullopt};
+  } else if (pinhole) {
+    api::Pinhole p;
+    if (!o.view.resolution.empty()) parse_resolution(o.view.resolution, p.width, p.height);
+    ao.camera = p;
+  }
+  c.reuse = !o.reuse.empty() ? o.reuse : ao.method == api::Method::reverse ? "color" : "geometry";
+  if (ao.method == api::Method::reverse) pick<int>("--reuse", c.reuse, {{"visibility", 0}, {"color", 1}});
+  else pick<int>("--reuse", c.reuse, {{"geometry", 0}, {"color", 1}});
+  ao.reuse = o.reuse;
+  ao.reach = pick<std::string>("--reach", o.reach, {{"near", "near"}, {"all", "all"}});
+  ao.fill = pick<std::string>("--fill", o.fill, {{"trace", "trace"}, {"interpolate", "interpolate"}});
+  ao.leak_check = !o.no_leak_check;
+  c.ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
+  if (!o.video.empty()) {
+    const bool h264 = !api::is_lossless_video(o.video);
+    if (o.crf != -1 && !h264) throw std::invalid_argument("--crf: goes with an .mp4 video (FFV1 is lossless)");
+    if (o.crf != -1) c.video.crf = o.crf;
+  }
+  const api::Encoding encoding_choice = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
+  if (o.encoding != "auto") ao.encoding = encoding_choice;
+  c.auto_keys = o.keyframe_interval == "auto";
+  const int interval = c.auto_keys ? 0 : keyframe_interval_of(o.keyframe_interval);
+  if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
+    throw std::invalid_argument(fmt::format("--keyframe-motion: must be a positive number of pixels, got {}", o.keyframe_motion));
+  ao.keyframe_interval = interval;
+  ao.keyframe_motion = o.keyframe_motion;
+  ao.max_keyframe_interval = o.max_keyframe_interval;
+  ao.rebuild_above_percent = o.rebuild_above;
+  ao.threads = o.threads;
+  ao.reference = !o.report.empty();
+  ao.cache = cache_options(o.cache);  // checked before the shot is read
+  return c;
+}
+
 }  // namespace
 
 int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
   bool rendering = false;  // past setup: an error now stops every rank (World::fail)
   try {
-    // The options' words checked here; the rules between them are the API's
-    // (api::Animation), which names what it refuses by its own names, said
-    // here as options (error_words.hpp).
-    api::AnimateOptions ao;
-    camera_desc_rules(o.view, false, false);
-    const bool pinhole = o.view.camera == "pinhole";
-    const bool glass = !o.view.looking_glass.empty();
-    const bool panel = glass || !o.view.display.empty();
-    const std::string method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
-    ao.method = pick<api::Method>("--method", method,
-                                  {{"full", api::Method::full}, {"reproject", api::Method::reproject}, {"reverse", api::Method::reverse}});
-    if (glass) {
-      ao.camera = api::LookingGlass{o.view.looking_glass, o.view.looking_glass_views, std::nullopt};  // the viewpoint's focus
-    } else if (panel) {
-      ao.camera = api::Display{o.view.display, std::nullopt, std::nullopt};
-    } else if (pinhole) {
-      api::Pinhole p;
-      if (!o.view.resolution.empty()) parse_resolution(o.view.resolution, p.width, p.height);
-      ao.camera = p;
-    }
-    const std::string reuse = !o.reuse.empty() ? o.reuse : ao.method == api::Method::reverse ? "color" : "geometry";
-    if (ao.method == api::Method::reverse) pick<int>("--reuse", reuse, {{"visibility", 0}, {"color", 1}});
-    else pick<int>("--reuse", reuse, {{"geometry", 0}, {"color", 1}});
-    ao.reuse = o.reuse;
-    ao.reach = pick<std::string>("--reach", o.reach, {{"near", "near"}, {"all", "all"}});
-    ao.fill = pick<std::string>("--fill", o.fill, {{"trace", "trace"}, {"interpolate", "interpolate"}});
-    ao.leak_check = !o.no_leak_check;
-    const std::string ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
-    api::VideoOptions vo;
-    if (!o.video.empty()) {
-      const bool h264 = !api::is_lossless_video(o.video);
-      if (o.crf != -1 && !h264) throw std::invalid_argument("--crf: goes with an .mp4 video (FFV1 is lossless)");
-      if (o.crf != -1) vo.crf = o.crf;
-    }
-    const api::Encoding encoding_choice = parse_encoding(o.encoding, "");  // checked now; "auto" is resolved once the shot is read
-    if (o.encoding != "auto") ao.encoding = encoding_choice;
-    const bool auto_keys = o.keyframe_interval == "auto";
-    const int interval = auto_keys ? 0 : keyframe_interval_of(o.keyframe_interval);
-    if (!(o.keyframe_motion > 0) || !std::isfinite(o.keyframe_motion))
-      throw std::invalid_argument(fmt::format("--keyframe-motion: must be a positive number of pixels, got {}", o.keyframe_motion));
-    ao.keyframe_interval = interval;
-    ao.keyframe_motion = o.keyframe_motion;
-    ao.max_keyframe_interval = o.max_keyframe_interval;
-    ao.rebuild_above_percent = o.rebuild_above;
-    ao.threads = o.threads;
-    ao.reference = !o.report.empty();
-    ao.cache = cache_options(o.cache);  // checked before the shot is read
+    const AnimateChoice c = choose(o);
+    api::AnimateOptions ao = c.options;
+    const std::string &method = c.method, &reuse = c.reuse, &ext = c.ext;
+    api::VideoOptions vo = c.video;
+    const bool auto_keys = c.auto_keys;
+    const int interval = ao.keyframe_interval;
     std::unique_ptr<tbb::global_control> thread_cap;
     if (o.threads > 0)
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "image/parallel_each.hpp"
+#include "util/parallel.hpp"
 
 namespace holoray {
 
@@ -10,7 +10,8 @@ ImageBuffer::ImageBuffer(int w, int h, int c, float fill) : ImageBuffer(unset(w,
   const size_t n = data.size();
   // In pieces of one 2 MiB page: each page is first touched by one thread.
   constexpr size_t kPiece = (size_t{2} << 20) / sizeof(float);
-  parallel_each((n + kPiece - 1) / kPiece, [&](size_t k) {
+  parallel_for_n(static_cast<int>((n + kPiece - 1) / kPiece), 0, [&](int slot) {
+    const size_t k = static_cast<size_t>(slot);
     std::fill(data.begin() + static_cast<std::ptrdiff_t>(k * kPiece),
               data.begin() + static_cast<std::ptrdiff_t>(std::min(n, (k + 1) * kPiece)), fill);
   });

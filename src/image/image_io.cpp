@@ -1,7 +1,7 @@
 #include "image/image_io.hpp"
 
 #include "image/formats.hpp"
-#include "image/parallel_each.hpp"
+#include "util/parallel.hpp"
 #include "image/srgb_code.hpp"
 
 #include <emmintrin.h>
@@ -86,7 +86,8 @@ void encode_8bit_here(const float* values, size_t count, uint8_t* codes, Encodin
 
 void encode_8bit(const float* values, size_t count, uint8_t* codes, Encoding encoding) {
   constexpr size_t kChunk = size_t{1} << 16;
-  parallel_each((count + kChunk - 1) / kChunk, [&](size_t k) {
+  parallel_for_n(static_cast<int>((count + kChunk - 1) / kChunk), 0, [&](int slot) {
+    const size_t k = static_cast<size_t>(slot);
     const size_t begin = k * kChunk;
     encode_8bit_here(values + begin, std::min(count, begin + kChunk) - begin, codes + begin, encoding);
   });

@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "image/parallel_each.hpp"
+#include "util/parallel.hpp"
 
 namespace holoray::formats {
 
@@ -120,7 +120,8 @@ void ParallelDeflate::add_rows(size_t rows, size_t row_bytes, const RowSource& s
   std::vector<std::vector<uint8_t>> out(count);
   std::vector<uLong> adlers(count);
   const size_t header = started_ ? 0 : 2;
-  parallel_each(count, [&](size_t k) {
+  parallel_for_n(static_cast<int>(count), 0, [&](int slot) {
+    const size_t k = static_cast<size_t>(slot);
     const size_t first = k * per_segment;
     // The rows before the segment (its dictionary) and the segment's, made
     // in one buffer per thread; the window of the input already deflated

@@ -9,6 +9,8 @@
 
 namespace holoray {
 
+class ShadowCache;  // render/shadow_cache.hpp
+
 /// What one render asks of a built scene.
 struct RenderSettings {
   /// Ray-tree depth limit, eye ray = 1, from 1 to kDepthCap (16: past that a

@@ -84,8 +84,6 @@ inline Vec3 albedo_of(const SurfacePoint& sp) {
   return sp.colour;
 }
 
-class ShadowCache;
-
 /// One scene file of a shot: its description and whether it ever moves
 /// (rigidly: set_transforms) or deforms (its mesh vertices: set_vertices).
 struct ScenePart {
