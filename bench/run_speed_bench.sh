@@ -77,7 +77,7 @@ def ratio(num, den):
     return f"{statistics.median(r):.2f}x ({r[0]:.2f}-{r[-1]:.2f})"
 
 print(f"# Speed: holoray {head} against {base_commit} and Tachyon\n")
-print(f"`bash bench/run_speed_bench.sh` on {machine}; every figure from this one run.\n")
+print(f"`BASE={base_commit} ROUNDS={rounds} bash bench/run_speed_bench.sh` on {machine}; every figure from this one run.\n")
 
 # 1. start-up
 small = ["render", "examples/primitives.nff", "--lenses", "4x4", "-o", f"{tmp}/small.png", "-q"]
@@ -128,9 +128,12 @@ print()
 # 4. cycle shares
 PERF_HZ = 2000  # perf's samples per second of one thread's CPU time
 
-# The executables' own names (a BASE_BIN may be called anything): their
-# samples are holoray's.
+# The executables' own names (a BASE_BIN may be called anything) and the
+# library the front ends link (libholoray.so since issue 54): their samples
+# are holoray's.
 own = {os.path.basename(new), os.path.basename(base)}
+def is_own(dso):
+    return dso in own or dso.startswith("libholoray.so")
 def shares(binary, f, view=None, seconds=False):
     """The whole command's cycles by component: % of perf's samples, or
     CPU seconds (`seconds`). `view`: the camera options (default: the EIA)."""
@@ -145,7 +148,7 @@ def shares(binary, f, view=None, seconds=False):
         if not m:
             continue
         pct, dso = (int(m.group(2)) / PERF_HZ if seconds else float(m.group(1))), m.group(3)
-        key = ("embree" if "embree" in dso else "holoray" if dso in own else "loader" if dso.startswith("ld-linux")
+        key = ("embree" if "embree" in dso else "holoray" if is_own(dso) else "loader" if dso.startswith("ld-linux")
                else "kernel" if "kernel" in dso else "libc" if dso.startswith("libc.") else "zlib" if dso.startswith("libz") else "other")
         got[key] += pct
     return got

@@ -62,7 +62,7 @@ struct LensIndex {
 /// An integral camera. Immutable after construction; safe to share between threads.
 /// The angle (radians) one pixel of an elemental image subtends through its
 /// lens: pixel size / gap. What a mesh texture's MIP level is chosen by
-/// (RenderScene::set_pixel_footprint).
+/// (RenderSettings::footprint).
 inline double pixel_angle(const LensArrayDesc& d) { return d.pitch / d.pixels_per_lens / d.gap; }
 
 class LensArray final : public Camera {

@@ -56,7 +56,7 @@ struct PinholeDesc {
 /// The view a scene's viewpoint describes (NFF `v`, or a Tachyon camera,
 /// mirrored), at `width` x `height` pixels.
 /// The angle (radians) one pixel of a pinhole view subtends at the centre:
-/// 2 tan(fov / 2) / height (RenderScene::set_pixel_footprint).
+/// 2 tan(fov / 2) / height (RenderSettings::footprint).
 /// An orthographic view's pixel subtends no angle: its width seen from the
 /// focal distance |at - from| stands in.
 inline double pixel_angle(const PinholeDesc& d) {

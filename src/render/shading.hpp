@@ -14,8 +14,10 @@
 
 namespace holoray {
 
-// The ray-tree depth limit (kMaxRayDepth, kDepthCap) lives with
-// RenderScene::set_max_depth in render_scene.hpp.
+// The ray-tree depth limit: kMaxRayDepth and kDepthCap (render_scene.hpp),
+// a render's own in RenderSettings::max_depth (render_context.hpp). Each
+// material's terms are its shading model's (render/models/, dispatched in
+// shading_models.hpp).
 
 /// Colour (linear RGB) seen along `ray` (world, unit dir) at ray-tree `depth`.
 Vec3 trace(const RenderContext& scene, const Ray& ray, int depth, RayCounts& counts);
