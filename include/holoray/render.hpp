@@ -11,6 +11,7 @@
 #include <optional>
 #include <stop_token>
 #include <string>
+#include <vector>
 
 #include "holoray/camera.hpp"
 #include "holoray/export.hpp"
@@ -60,6 +61,12 @@ struct RenderOptions {
   std::function<void(double)> progress;
   /// Checked between tiles: once stop is requested, render() throws Cancelled.
   std::stop_token stop;
+  /// Where the rays are traced: "cpu" (Embree, the default), "gpu" (the
+  /// first Vulkan device that is a GPU, else the first device: lavapipe
+  /// where there is no GPU) or "gpu:N" (the Nth Vulkan device). The GPU
+  /// path (docs/guide/gpu.md) takes lens-array cameras and NFF and
+  /// Blinn-Phong materials for now; anything else is refused naming it.
+  std::string device = "cpu";
   /// The rows of the image this process holds, for the memory bound (a
   /// rank's bands under mpirun): asked once the camera is placed, with the
   /// image's height and Renderer::band_rows(). Null: the whole image.
@@ -78,7 +85,10 @@ struct RayCounts {
 struct RenderStats {
   RayCounts rays;
   double build_seconds = 0;  ///< the scene's acceleration structure and the camera (Renderer)
-  double trace_seconds = 0;
+  double trace_seconds = 0;  ///< on the GPU: the dispatches alone (ray generation, traversal, shading)
+  double readback_seconds = 0;  ///< on the GPU: the image copied back to the host
+  /// On the GPU: BVH nodes visited and primitives tested, over all rays.
+  uint64_t nodes_visited = 0, primitives_tested = 0;
 };
 
 /// One rendered image. colour: (H, W, 3) linear RGB; the requested AOVs,
@@ -119,6 +129,9 @@ class HOLORAY_API Renderer {
   size_t skipped_polygons() const;
   /// The pixel-tracing style in use ("packet", "subaperture", ...).
   const char* style_name() const;
+  /// The GPU the render runs on, e.g. "NVIDIA H100 80GB HBM3 (Vulkan 1.3)";
+  /// empty on the CPU.
+  std::string device_name() const;
   /// Renders the image, or rows [rows[0], rows[1]) of it (pixels exactly as
   /// in the whole image). Throws Cancelled when options.stop was requested.
   Result render(std::optional<std::array<int, 2>> rows = std::nullopt) const;
@@ -130,6 +143,16 @@ class HOLORAY_API Renderer {
 
 /// Renderer(scene, camera, options).render().
 HOLORAY_API Result render(const Scene& scene, const Camera& camera, const RenderOptions& options = {});
+
+/// Checks a RenderOptions::device value: throws std::invalid_argument
+/// naming `device` unless it is cpu, gpu or gpu:N (N >= 0).
+HOLORAY_API void check_device(const std::string& device);
+
+/// The Vulkan devices of this machine ("0: llvmpipe (LLVM 15.0.6, 256
+/// bits), CPU, Vulkan 1.3"), in the order gpu:N counts them. Throws
+/// std::runtime_error saying what to install when there is no loader or no
+/// device, or that this build has no GPU path.
+HOLORAY_API std::vector<std::string> gpu_devices();
 
 /// Installed memory in bytes; 0 when unknown (the bound on buffers).
 HOLORAY_API uint64_t physical_memory_bytes();

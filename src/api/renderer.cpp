@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
 #include "holoray/errors.hpp"
 #include "holoray/render.hpp"
@@ -38,6 +39,7 @@ void check_options(const RenderOptions& o) {
   if (o.spp < 1) throw std::invalid_argument(fmt::format("spp: expected at least 1 sample per pixel, got {}", o.spp));
   if (o.threads < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", o.threads));
   static_assert(kMaxDepth == kDepthCap, "the API's depth limit is the renderer's");
+  parse_device(o.device);
   if (o.max_depth < 0 || o.max_depth > kDepthCap)
     throw std::invalid_argument(fmt::format("max_depth: expected 1 to {} (0: the scene's), got {}", kDepthCap, o.max_depth));
   if (!(o.cache.cell > 0) || !std::isfinite(o.cache.cell))
@@ -122,6 +124,7 @@ struct RendererState {
   RenderOptions options;
   TraceStyle style = TraceStyle::packet;
   RenderStats build;
+  std::unique_ptr<GpuExecutor> gpu;  // set for `device` gpu
 };
 
 Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options)
@@ -188,6 +191,8 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.settings.shadow_cache = s.cache.get();
   }
   s.style = trace_style(options.style, frame_camera);
+  if (const DeviceChoice device = parse_device(options.device); device.gpu)
+    s.gpu = std::make_unique<GpuExecutor>(device, *s.render_scene, frame_camera, options);
   s.build.build_seconds = seconds_since(t_build);
 }
 
@@ -211,6 +216,8 @@ std::string Renderer::describe() const {
 
 const char* Renderer::style_name() const { return to_string(state_->style); }
 
+std::string Renderer::device_name() const { return state_->gpu ? state_->gpu->name() : ""; }
+
 Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
   const RendererState& s = *state_;
   const std::stop_token stop = s.options.stop;
@@ -230,16 +237,23 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
       if (progress) progress(f);
     };
   holoray::RenderStats st;
-  FrameBuffers fb = render_through(RenderContext(*s.render_scene, s.settings), s.camera(), ro, st);
+  RenderStats on_gpu;
+  const RenderContext context(*s.render_scene, s.settings);
+  FrameBuffers fb = s.gpu ? s.gpu->render(context, *s.camera().lens_array(), ro.aovs, ro.spp, rows, on_gpu)
+                          : render_through(context, s.camera(), ro, st);
   Result out;
   out.colour = detail::ImageAccess::wrap(std::move(fb.colour));
   if (!fb.albedo.empty()) out.albedo = detail::ImageAccess::wrap(std::move(fb.albedo));
   if (!fb.depth.empty()) out.depth = detail::ImageAccess::wrap(std::move(fb.depth));
   if (!fb.normal.empty()) out.normal = detail::ImageAccess::wrap(std::move(fb.normal));
   if (!fb.id.empty()) out.id = detail::ImageAccess::wrap(std::move(fb.id));
-  out.stats.rays = to_api(st.rays);
+  if (s.gpu) {
+    out.stats = on_gpu;
+  } else {
+    out.stats.rays = to_api(st.rays);
+    out.stats.trace_seconds = st.trace_seconds;
+  }
   out.stats.build_seconds = s.build.build_seconds;
-  out.stats.trace_seconds = st.trace_seconds;
   if (s.cache) {
     const ShadowCache& cache = *s.cache;
     const holoray::RayCounts& r = st.rays;

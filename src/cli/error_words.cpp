@@ -12,7 +12,7 @@ namespace {
 
 // The API's names (include/holoray/camera.hpp, render.hpp, animate.hpp) and
 // the options that set them.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 14> kOptions{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 15> kOptions{{
     {"origin", "--origin"},
     {"normal", "--normal"},
     {"up", "--up"},
@@ -23,6 +23,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 14> kOptions
     {"method", "--method"},
     {"reference", "--report"},
     {"cache", "--cache"},
+    {"device", "--device"},
     {"Display", "--display"},
     {"LookingGlass", "--looking-glass"},
     {"Quilt", "--quilt"},

@@ -155,6 +155,9 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")
       ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
       ->capture_default_str();
+  cmd->add_option("--device", o.device, "Where rays are traced: cpu (Embree), gpu (the first Vulkan GPU, else the first Vulkan device: lavapipe on a machine without one) or gpu:N (the Nth Vulkan device, as `holoray devices` lists them); the GPU path takes lens arrays with NFF and Blinn-Phong materials for now (docs/guide/gpu.md)")
+      ->check(parsed_by([](const std::string& t) { api::check_device(t); }, "DEVICE"))
+      ->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
       ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")
@@ -177,7 +180,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                             "--view-cone", "--quilt-view", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
-                {"Tracing", {"--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}}},
+                {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}}},
                {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
                 "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
                "docs/guide/stills.md, docs/guide/displays.md");
@@ -241,7 +244,14 @@ void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const
   fmt::print("{}", renderer.describe());
   const api::RenderStats& st = result.stats;
   fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + st.build_seconds, parse_s, st.build_seconds);
-  fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", st.trace_seconds, o.spp,
+  const std::string gpu = renderer.device_name();
+  const double per_ray = st.rays.total() ? 1.0 / double(st.rays.total()) : 0.0;
+  if (!gpu.empty())
+    fmt::print("trace      {:.3f} s on {}, {} spp (readback {:.3f} s; {:.1f} nodes and {:.1f} primitives per ray)\n",
+               st.trace_seconds, gpu, o.spp, st.readback_seconds, double(st.nodes_visited) * per_ray,
+               double(st.primitives_tested) * per_ray);
+  else
+    fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", st.trace_seconds, o.spp,
              o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), renderer.style_name(),
              world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
                                                world.size(), gather_s, band_bytes / 1048576.0)
@@ -280,6 +290,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.max_depth = o.max_depth;
     ropt.aovs = aovs;
     ropt.style = style;
+    ropt.device = o.device;
     ropt.cache = cache_options(o.cache);
     // Under mpirun: bands of whole lens rows of an EIA, else rows of 32 (the
     // line renderers' tile); the image never depends on them. A rank holds

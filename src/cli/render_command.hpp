@@ -17,7 +17,7 @@ namespace holoray::cli {
 /// cannot say.
 struct RenderCommandOptions {
   std::string scene, output;
-  std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "auto", style = "auto";
+  std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "auto", style = "auto", device = "cpu";
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;

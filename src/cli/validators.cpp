@@ -52,7 +52,9 @@ CLI::Validator parsed_by(std::function<void(const std::string&)> parse, std::str
           const std::string m = e.what();
           // "--lenses: expected ..." -> "expected ...": CLI11 names the option.
           const auto colon = m.find(": ");
-          return m.rfind("-", 0) == 0 && colon != std::string::npos ? m.substr(colon + 2) : m;
+          // The API's "`device`: expected ..." likewise.
+          const bool named = m.rfind("-", 0) == 0 || m.rfind("`", 0) == 0;
+          return named && colon != std::string::npos ? m.substr(colon + 2) : m;
         }
       },
       description, "parsed_by");

@@ -184,6 +184,21 @@ class RenderScene {
   /// Object id of a primitive (as in SurfacePoint::object).
   int object_of(uint32_t group, PrimKind kind, uint32_t prim) const;
 
+  // What another executor (the GPU path, src/gpu/) reads to lay the scene
+  // out in its own arrays; the CPU path reads these through surface().
+  /// The resolved materials, and which one each object wears.
+  const std::vector<Material>& materials() const { return materials_; }
+  uint32_t material_of_object(int object) const { return object_material_[static_cast<size_t>(object)]; }
+  /// A triangle's winding normal (object space of its group, unit).
+  const Vec3& winding_normal(uint32_t group, uint32_t prim) const { return tri_normal_[group_base_[group][0] + prim]; }
+  /// A smooth triangle's vertex normals (object space), null for a flat one.
+  const std::array<Vec3, 3>* vertex_normals(uint32_t group, uint32_t prim) const {
+    const int32_t p = tri_patch_[group_base_[group][0] + prim];
+    return p >= 0 ? &patch_normals_[static_cast<size_t>(p)] : nullptr;
+  }
+  /// Whether any triangle carries vertex colours (Tachyon vcstri).
+  bool has_vertex_colours() const { return !tri_colours_.empty(); }
+
  private:
   void update_epsilon();
   /// Appends a triangle mesh (one object, id `id`) to a group's triangles.

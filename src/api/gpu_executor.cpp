@@ -1,0 +1,117 @@
+#include "api/gpu_executor.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <stdexcept>
+
+#include "api/internal.hpp"
+#ifdef HOLORAY_GPU
+#include "gpu/gpu_renderer.hpp"
+#endif
+
+namespace holoray::api {
+
+DeviceChoice parse_device(const std::string& device) {
+  if (device == "cpu") return {};
+  if (device == "gpu") return {true, -1};
+  if (device.rfind("gpu:", 0) == 0) {
+    int n = -1;
+    const char* first = device.data() + 4;
+    const char* last = device.data() + device.size();
+    const auto [end, ec] = std::from_chars(first, last, n);
+    if (ec == std::errc() && end == last && first != last && n >= 0) return {true, n};
+  }
+  throw std::invalid_argument(fmt::format("`device`: expected cpu, gpu or gpu:N (N from 0), got '{}'", device));
+}
+
+void check_device(const std::string& device) { parse_device(device); }
+
+#ifdef HOLORAY_GPU
+
+std::vector<std::string> gpu_devices() {
+  std::vector<std::string> out;
+  try {
+    const auto all = gpu::list_devices();
+    for (size_t k = 0; k < all.size(); ++k)
+      out.push_back(fmt::format("{}: {}, {}, {}, {:.1f} GiB", k, all[k].name, all[k].is_gpu ? "GPU" : "CPU", all[k].api,
+                                all[k].memory_bytes / 1073741824.0));
+  } catch (const gpu::GpuError& e) {
+    throw std::runtime_error(e.what());
+  }
+  return out;
+}
+
+struct GpuExecutor::Impl {
+  std::unique_ptr<gpu::GpuRenderer> renderer;
+};
+
+GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera,
+                         const RenderOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  if (!camera.lens_array())
+    throw std::invalid_argument("`device` gpu: the GPU path renders lens arrays (square, hex, lenticular) for now; "
+                                "render pinhole views, quilts and panels with `device` cpu");
+  if (options.cache.enabled)
+    throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
+  // What the scene holds is checked before any device is opened.
+  if (const std::string missing = gpu::unsupported_features(scene); !missing.empty())
+    throw std::invalid_argument(fmt::format("`device` gpu: the GPU path does not render {} yet; use `device` cpu", missing));
+  try {
+    impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index);
+    const gpu::SceneArrays arrays = gpu::lay_out(scene);
+    const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;
+    impl_->renderer->load(arrays, gpu::GpuRenderer::frame_bytes(camera.width(), camera.height(), aovs));
+  } catch (const gpu::GpuError& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+GpuExecutor::~GpuExecutor() = default;
+
+std::string GpuExecutor::name() const { return impl_->renderer->describe(); }
+
+FrameBuffers GpuExecutor::render(const RenderContext& context, const holoray::LensArray& camera, const AovSet& aovs, int spp,
+                                 std::optional<std::array<int, 2>> rows, RenderStats& stats) {
+  const int y0 = rows ? (*rows)[0] : 0, y1 = rows ? (*rows)[1] : camera.height();
+  if (y0 < 0 || y1 > camera.height() || y0 >= y1)
+    throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the EIA", y0, y1, camera.height()));
+  FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
+  gpu::GpuFrameStats g;
+  try {
+    impl_->renderer->render(gpu::frame_constants(context, camera, aovs, spp, y0, y1), aovs, fb, g);
+  } catch (const gpu::GpuError& e) {
+    throw std::runtime_error(e.what());
+  }
+  stats.trace_seconds = g.trace_seconds;
+  stats.readback_seconds = g.readback_seconds;
+  stats.nodes_visited = g.nodes_visited;
+  stats.primitives_tested = g.primitives_tested;
+  stats.rays = {g.eye_rays, g.shadow_rays, g.reflected_rays, g.refracted_rays, 0, 0};
+  return fb;
+}
+
+#else  // built without the GPU path
+
+namespace {
+constexpr const char* kNoGpu =
+    "`device` gpu: this holoray was built without the GPU path (CMake found no Vulkan headers or glslc): "
+    "install libvulkan-dev and glslc and build again, or use `device` cpu";
+}
+
+std::vector<std::string> gpu_devices() { throw std::runtime_error(kNoGpu); }
+
+struct GpuExecutor::Impl {};
+GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderScene&, const FrameCamera&, const RenderOptions&) {
+  throw std::runtime_error(kNoGpu);
+}
+GpuExecutor::~GpuExecutor() = default;
+std::string GpuExecutor::name() const { return ""; }
+FrameBuffers GpuExecutor::render(const RenderContext&, const holoray::LensArray&, const AovSet&, int,
+                                 std::optional<std::array<int, 2>>, RenderStats&) {
+  throw std::runtime_error(kNoGpu);
+}
+
+#endif
+
+}  // namespace holoray::api

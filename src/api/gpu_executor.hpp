@@ -1,0 +1,46 @@
+// holoray/api: the GPU path behind Renderer (issue 55): the device named by
+// RenderOptions::device, the scene laid out and uploaded once, frames of a
+// lens-array camera rendered there. Built without the GPU path (no Vulkan
+// headers or glslc), it refuses, saying how to get it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "holoray/render.hpp"
+#include "render/frame_camera.hpp"
+#include "render/render_context.hpp"
+#include "render/renderer.hpp"
+
+namespace holoray::api {
+
+/// RenderOptions::device parsed: the CPU, or a GPU (index -1: the first GPU).
+struct DeviceChoice {
+  bool gpu = false;
+  int index = -1;
+};
+/// Throws std::invalid_argument naming `device` for anything but cpu, gpu, gpu:N.
+DeviceChoice parse_device(const std::string& device);
+
+class GpuExecutor {
+ public:
+  /// Chooses the device and uploads `scene`. Throws std::invalid_argument
+  /// for what the GPU path does not render yet (a camera other than a lens
+  /// array, the shadow cache, a material or feature it names), and
+  /// std::runtime_error when the GPU cannot run (no loader, no device, not
+  /// enough memory: the message says what to do).
+  GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options);
+  ~GpuExecutor();
+  /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
+  std::string name() const;
+  /// The frame, or rows [rows[0], rows[1]) of it; colour and the AOVs asked for.
+  FrameBuffers render(const RenderContext& context, const holoray::LensArray& camera, const AovSet& aovs, int spp,
+                      std::optional<std::array<int, 2>> rows, RenderStats& stats);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace holoray::api

@@ -1,0 +1,365 @@
+#include "gpu/gpu_renderer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+
+#include <dlfcn.h>
+
+// The loader is opened here with dlopen, not linked, so that a machine
+// without libvulkan.so.1 still runs the CPU path.
+#define VULKAN_HPP_NO_CONSTRUCTORS
+#define VULKAN_HPP_ENABLE_DYNAMIC_LOADER_TOOL 0
+#include <vulkan/vulkan_raii.hpp>
+
+namespace holoray::gpu {
+
+namespace {
+
+// SPIR-V of shaders/trace.comp, made by glslc at build time.
+const uint32_t kTraceSpirv[] = {
+#include "trace.spv.inc"
+};
+
+constexpr const char* kFix =
+    "install mesa-vulkan-drivers (lavapipe, Vulkan on the CPU) or the GPU's own driver, or render with `device` cpu";
+
+std::string api_version(uint32_t v) { return fmt::format("Vulkan {}.{}", VK_API_VERSION_MAJOR(v), VK_API_VERSION_MINOR(v)); }
+
+// The loader's library: HOLORAY_VULKAN_LOADER names another (a loader
+// outside the library path; the tests name a missing one), else the
+// system's libvulkan.so.1. Opened once and kept for the process.
+PFN_vkGetInstanceProcAddr loader_entry() {
+  static void* library = nullptr;
+  static std::string opened;
+  const char* env = std::getenv("HOLORAY_VULKAN_LOADER");
+  const std::string name = env && *env ? env : "libvulkan.so.1";
+  if (!library || opened != name) {
+    library = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+    opened = name;
+  }
+  auto entry = library ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(::dlsym(library, "vkGetInstanceProcAddr")) : nullptr;
+  if (!entry)
+    throw GpuError(fmt::format("the GPU path needs the Vulkan loader ({}), and this machine has none: install libvulkan1 "
+                               "with mesa-vulkan-drivers (lavapipe, Vulkan on the CPU) or the GPU's own driver, or render "
+                               "with `device` cpu", name));
+  return entry;
+}
+
+vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
+
+vk::raii::Instance make_instance(const vk::raii::Context& context) {
+  vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
+  try {
+    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
+  } catch (const vk::SystemError& e) {
+    throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
+  }
+}
+
+DeviceInfo info_of(const vk::raii::PhysicalDevice& pd) {
+  const auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceSubgroupProperties>();
+  const vk::PhysicalDeviceProperties& p = chain.get<vk::PhysicalDeviceProperties2>().properties;
+  DeviceInfo d;
+  d.name = p.deviceName.data();
+  d.api = api_version(p.apiVersion);
+  d.is_gpu = p.deviceType == vk::PhysicalDeviceType::eDiscreteGpu || p.deviceType == vk::PhysicalDeviceType::eIntegratedGpu ||
+             p.deviceType == vk::PhysicalDeviceType::eVirtualGpu;
+  const vk::PhysicalDeviceMemoryProperties m = pd.getMemoryProperties();
+  for (uint32_t h = 0; h < m.memoryHeapCount; ++h)
+    if (m.memoryHeaps[h].flags & vk::MemoryHeapFlagBits::eDeviceLocal) d.memory_bytes = std::max<uint64_t>(d.memory_bytes, m.memoryHeaps[h].size);
+  d.subgroup_size = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
+  return d;
+}
+
+std::vector<vk::raii::PhysicalDevice> physical_devices(const vk::raii::Instance& instance) {
+  std::vector<vk::raii::PhysicalDevice> all;
+  try {
+    all = instance.enumeratePhysicalDevices();
+  } catch (const vk::SystemError&) {
+  }
+  if (all.empty()) throw GpuError(fmt::format("Vulkan lists no device on this machine: {}", kFix));
+  return all;
+}
+
+// A buffer and its memory; `mapped` when host-visible.
+struct Buffer {
+  vk::raii::Buffer buffer = nullptr;
+  vk::raii::DeviceMemory memory = nullptr;
+  vk::DeviceSize size = 0;
+  void* mapped = nullptr;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// A Vulkan failure mid-render in the user's words.
+[[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device) {
+  if (e.code() == vk::Result::eErrorDeviceLost)
+    throw GpuError(fmt::format("the GPU ({}) was lost during the render (VK_ERROR_DEVICE_LOST): its driver reset it; "
+                               "nothing was written", device));
+  if (e.code() == vk::Result::eErrorOutOfDeviceMemory || e.code() == vk::Result::eErrorOutOfHostMemory)
+    throw GpuError(fmt::format("the GPU ({}) ran out of memory: {}; nothing was written", device, e.what()));
+  throw GpuError(fmt::format("the GPU ({}) failed: {}", device, e.what()));
+}
+
+constexpr int kBindings = 13;
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  vk::raii::Context context = open_loader();
+  vk::raii::Instance instance = make_instance(context);
+  std::vector<DeviceInfo> out;
+  for (const auto& pd : physical_devices(instance)) out.push_back(info_of(pd));
+  return out;
+}
+
+struct GpuRenderer::Impl {
+  vk::raii::Context context = open_loader();
+  vk::raii::Instance instance = make_instance(context);
+  vk::raii::PhysicalDevice physical = nullptr;
+  DeviceInfo info;
+  uint32_t family = 0;
+  vk::raii::Device device = nullptr;
+  vk::raii::Queue queue = nullptr;
+  vk::raii::CommandPool pool = nullptr;
+  vk::raii::DescriptorSetLayout set_layout = nullptr;
+  vk::raii::PipelineLayout pipeline_layout = nullptr;
+  vk::raii::Pipeline pipeline = nullptr;
+  vk::raii::DescriptorPool descriptor_pool = nullptr;
+  vk::raii::DescriptorSet set = nullptr;
+  vk::PhysicalDeviceMemoryProperties memory_types;
+  Buffer scene[10];  // bindings 0 (the frame) to 9
+  Buffer colour, aov, counts;
+  uint64_t scene_bytes = 0;
+
+  uint32_t memory_type(uint32_t allowed, vk::MemoryPropertyFlags want, vk::MemoryPropertyFlags prefer = {}) const {
+    std::optional<uint32_t> fallback;
+    for (uint32_t t = 0; t < memory_types.memoryTypeCount; ++t) {
+      if (!(allowed & (1u << t)) || (memory_types.memoryTypes[t].propertyFlags & want) != want) continue;
+      if ((memory_types.memoryTypes[t].propertyFlags & prefer) == prefer) return t;
+      if (!fallback) fallback = t;
+    }
+    if (!fallback) throw GpuError(fmt::format("the device {} offers no memory the GPU path can use", info.name));
+    return *fallback;
+  }
+
+  Buffer make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, bool host) {
+    Buffer b;
+    b.size = std::max<vk::DeviceSize>(size, 16);
+    b.buffer = vk::raii::Buffer(device, vk::BufferCreateInfo{.size = b.size, .usage = usage});
+    const vk::MemoryRequirements req = b.buffer.getMemoryRequirements();
+    const uint32_t type = host ? memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
+                                             vk::MemoryPropertyFlagBits::eHostCached)
+                               : memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
+    b.memory = vk::raii::DeviceMemory(device, vk::MemoryAllocateInfo{.allocationSize = req.size, .memoryTypeIndex = type});
+    b.buffer.bindMemory(*b.memory, 0);
+    if (host) b.mapped = b.memory.mapMemory(0, b.size);
+    return b;
+  }
+
+  // Runs `record` in a one-time command buffer and waits for it.
+  template <class F>
+  void run_once(F&& record) {
+    vk::raii::CommandBuffers cbs(device, vk::CommandBufferAllocateInfo{.commandPool = *pool, .commandBufferCount = 1});
+    vk::raii::CommandBuffer& cb = cbs[0];
+    cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    record(cb);
+    cb.end();
+    vk::raii::Fence fence(device, vk::FenceCreateInfo{});
+    vk::CommandBuffer raw = *cb;
+    queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
+    if (device.waitForFences({*fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+      throw GpuError(fmt::format("the GPU ({}) did not finish", info.name));
+  }
+
+  // A device-local storage buffer holding `bytes` from the host (through a staging buffer).
+  Buffer upload(const void* data, size_t bytes) {
+    Buffer dst = make_buffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    Buffer staging = make_buffer(bytes, vk::BufferUsageFlagBits::eTransferSrc, true);
+    std::memcpy(staging.mapped, data, bytes);
+    run_once([&](vk::raii::CommandBuffer& cb) { cb.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy{0, 0, bytes}); });
+    return dst;
+  }
+
+  void bind(int binding, const Buffer& b) {
+    vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};
+    device.updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set, .dstBinding = uint32_t(binding), .descriptorCount = 1,
+                                                       .descriptorType = vk::DescriptorType::eStorageBuffer, .pBufferInfo = &bi},
+                                nullptr);
+  }
+};
+
+GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  std::vector<vk::raii::PhysicalDevice> all = physical_devices(m.instance);
+  size_t pick = 0;
+  if (device_index < 0) {
+    for (size_t k = 0; k < all.size(); ++k)
+      if (info_of(all[k]).is_gpu) {
+        pick = k;
+        break;
+      }
+  } else if (size_t(device_index) >= all.size()) {
+    std::string names;
+    for (size_t k = 0; k < all.size(); ++k) names += fmt::format("{}{} {}", k ? ", " : "", k, info_of(all[k]).name);
+    throw GpuError(fmt::format("`device` gpu:{}: this machine has {} Vulkan device{}: {}", device_index, all.size(),
+                               all.size() == 1 ? "" : "s", names));
+  } else {
+    pick = size_t(device_index);
+  }
+  m.physical = std::move(all[pick]);
+  m.info = info_of(m.physical);
+  m.memory_types = m.physical.getMemoryProperties();
+  const auto families = m.physical.getQueueFamilyProperties();
+  auto family = std::find_if(families.begin(), families.end(), [](const vk::QueueFamilyProperties& f) {
+    return bool(f.queueFlags & vk::QueueFlagBits::eCompute);
+  });
+  if (family == families.end()) throw GpuError(fmt::format("the device {} has no compute queue", m.info.name));
+  m.family = uint32_t(family - families.begin());
+  const float priority = 1;
+  vk::DeviceQueueCreateInfo qi{.queueFamilyIndex = m.family, .queueCount = 1, .pQueuePriorities = &priority};
+  m.device = vk::raii::Device(m.physical, vk::DeviceCreateInfo{.queueCreateInfoCount = 1, .pQueueCreateInfos = &qi});
+  m.queue = vk::raii::Queue(m.device, m.family, 0);
+  m.pool = vk::raii::CommandPool(m.device, vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                                                                     .queueFamilyIndex = m.family});
+  std::vector<vk::DescriptorSetLayoutBinding> bindings;
+  for (uint32_t b = 0; b < kBindings; ++b)
+    bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
+  m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
+                                                             .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 8};
+  vk::DescriptorSetLayout raw_layout = *m.set_layout;
+  m.pipeline_layout = vk::raii::PipelineLayout(
+      m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
+                                             .pPushConstantRanges = &push});
+  vk::raii::ShaderModule module(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
+  vk::ComputePipelineCreateInfo pi{
+      .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main"},
+      .layout = *m.pipeline_layout};
+  m.pipeline = vk::raii::Pipeline(m.device, nullptr, pi);
+  vk::DescriptorPoolSize size{vk::DescriptorType::eStorageBuffer, kBindings};
+  m.descriptor_pool = vk::raii::DescriptorPool(
+      m.device, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, .maxSets = 1,
+                                             .poolSizeCount = 1, .pPoolSizes = &size});
+  vk::raii::DescriptorSets sets(m.device, vk::DescriptorSetAllocateInfo{.descriptorPool = *m.descriptor_pool,
+                                                                        .descriptorSetCount = 1, .pSetLayouts = &raw_layout});
+  m.set = std::move(sets[0]);
+}
+
+GpuRenderer::~GpuRenderer() = default;
+
+const DeviceInfo& GpuRenderer::device() const { return impl_->info; }
+
+std::string GpuRenderer::describe() const { return fmt::format("{} ({})", impl_->info.name, impl_->info.api); }
+
+uint64_t GpuRenderer::frame_bytes(int width, int height, bool aovs) {
+  return uint64_t(width) * uint64_t(height) * (aovs ? 12 + 32 : 12);
+}
+
+void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
+  Impl& m = *impl_;
+  const uint64_t need = s.bytes() + image_bytes;
+  if (m.info.memory_bytes && need > m.info.memory_bytes)
+    throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
+                               s.bytes() / 1048576.0, image_bytes / 1048576.0, m.info.memory_bytes / 1048576.0, m.info.name));
+  try {
+    auto put = [&](int binding, const auto& v) {
+      m.scene[binding] = m.upload(v.data(), v.size() * sizeof(v[0]));
+      m.bind(binding, m.scene[binding]);
+    };
+    put(1, s.nodes), put(2, s.refs), put(3, s.triangles), put(4, s.patches), put(5, s.spheres), put(6, s.cones);
+    put(7, s.object_material), put(8, s.materials), put(9, s.lights);
+    m.scene[0] = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
+    m.bind(0, m.scene[0]);
+    m.counts = m.make_buffer(32, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    m.bind(12, m.counts);
+    m.scene_bytes = s.bytes();
+  } catch (const vk::SystemError& e) {
+    rethrow_vulkan(e, m.info.name);
+  }
+}
+
+void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
+  Impl& m = *impl_;
+  if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
+  const int W = frame.size.x, y0 = frame.rows.x, H = frame.rows.y - frame.rows.x;
+  const bool want_aovs = frame.counts.y != 0;
+  const uint64_t pixels = uint64_t(W) * uint64_t(H);
+  const uint64_t need = frame_bytes(W, H, want_aovs);
+  if (m.info.memory_bytes && m.scene_bytes + need > m.info.memory_bytes)
+    throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
+                               m.scene_bytes / 1048576.0, need / 1048576.0, m.info.memory_bytes / 1048576.0, m.info.name));
+  try {
+    const vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc;
+    if (m.colour.size < pixels * 12) {
+      m.colour = m.make_buffer(pixels * 12, usage, false);
+      m.bind(10, m.colour);
+    }
+    const uint64_t aov_size = want_aovs ? pixels * 32 : 16;
+    if (m.aov.size < aov_size) {
+      m.aov = m.make_buffer(aov_size, usage, false);
+      m.bind(11, m.aov);
+    }
+    std::memcpy(m.scene[0].mapped, &frame, sizeof frame);
+    std::memset(m.counts.mapped, 0, 32);
+    stats = GpuFrameStats{};
+    // Bands of about 2^20 pixels: each dispatch well inside a watchdog's seconds.
+    const int band_rows = std::max(8, int((1 << 20) / std::max(1, W)) / 8 * 8);
+    vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
+    vk::raii::CommandBuffer& cb = cbs[0];
+    vk::raii::Fence fence(m.device, vk::FenceCreateInfo{});
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int row0 = y0; row0 < y0 + H; row0 += band_rows) {
+      const int32_t band[2] = {row0, std::min(band_rows, y0 + H - row0)};
+      cb.reset();
+      cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
+      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {band[0], band[1]});
+      cb.dispatch(uint32_t((W + 7) / 8), uint32_t((band[1] + 7) / 8), 1);
+      cb.end();
+      vk::CommandBuffer raw = *cb;
+      m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
+      if (m.device.waitForFences({*fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+        throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
+      m.device.resetFences({*fence});
+      // The counters are 32 bits: summed here, band by band, in 64.
+      uint32_t* c = static_cast<uint32_t*>(m.counts.mapped);
+      stats.nodes_visited += c[0], stats.primitives_tested += c[1];
+      stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
+      std::memset(c, 0, 32);
+    }
+    stats.trace_seconds = seconds_since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    Buffer staging = m.make_buffer(pixels * 12 + (want_aovs ? pixels * 32 : 0), vk::BufferUsageFlagBits::eTransferDst, true);
+    m.run_once([&](vk::raii::CommandBuffer& c) {
+      c.copyBuffer(*m.colour.buffer, *staging.buffer, vk::BufferCopy{0, 0, pixels * 12});
+      if (want_aovs) c.copyBuffer(*m.aov.buffer, *staging.buffer, vk::BufferCopy{0, pixels * 12, pixels * 32});
+    });
+    const float* colour = static_cast<const float*>(staging.mapped);
+    std::memcpy(out.colour.at(0, 0), colour, pixels * 12);
+    if (want_aovs) {
+      const float* a = colour + pixels * 3;
+      for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+          const float* p = a + (uint64_t(j) * W + i) * 8;
+          if (aovs.albedo) std::memcpy(out.albedo.at(i, j), p, 12);
+          if (aovs.depth) *out.depth.at(i, j) = p[3];
+          if (aovs.normal) std::memcpy(out.normal.at(i, j), p + 4, 12);
+          if (aovs.id) *out.id.at(i, j) = p[7];
+        }
+    }
+    stats.readback_seconds = seconds_since(t1);
+  } catch (const vk::SystemError& e) {
+    rethrow_vulkan(e, m.info.name);
+  }
+}
+
+}  // namespace holoray::gpu

@@ -1,0 +1,80 @@
+// holoray/gpu: the GPU path's executor, the only place that includes
+// Vulkan (gpu_renderer.cpp). A Vulkan device chosen once, the scene's
+// arrays uploaded once (gpu_scene.hpp), then frames rendered by the
+// compute shader shaders/trace.comp, band by band of rows (each dispatch
+// short enough for a desktop GPU's watchdog), and read back into the CPU
+// path's FrameBuffers. The loader is opened at run time: a machine without
+// Vulkan runs everything else.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gpu/gpu_scene.hpp"
+
+namespace holoray::gpu {
+
+/// The GPU path cannot run here or failed: no loader, no device, not enough
+/// memory, a lost device. The message names the fix where there is one.
+class GpuError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A Vulkan device as the loader lists it.
+struct DeviceInfo {
+  std::string name;          ///< e.g. "NVIDIA H100 80GB HBM3", "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string api;           ///< "Vulkan 1.3"
+  bool is_gpu = false;       ///< integrated, discrete or virtual GPU (not a CPU device such as lavapipe)
+  uint64_t memory_bytes = 0; ///< its largest device-local heap
+  uint32_t subgroup_size = 0;
+};
+
+/// The devices of this machine, in the loader's order. Throws GpuError
+/// when there is no loader or it lists no device.
+std::vector<DeviceInfo> list_devices();
+
+/// What one frame cost and did: seconds of the dispatches alone (ray
+/// generation, traversal, shading), of the readback, and the work counts.
+struct GpuFrameStats {
+  double trace_seconds = 0, readback_seconds = 0;
+  uint64_t eye_rays = 0, shadow_rays = 0, reflected_rays = 0, refracted_rays = 0;
+  uint64_t nodes_visited = 0, primitives_tested = 0;
+};
+
+class GpuRenderer {
+ public:
+  /// `device`: -1 takes the first device that is a GPU, else the first
+  /// device (lavapipe where there is no GPU); N >= 0 the Nth of
+  /// list_devices(). Throws GpuError (no loader, no such device).
+  explicit GpuRenderer(int device = -1);
+  ~GpuRenderer();
+  GpuRenderer(const GpuRenderer&) = delete;
+  GpuRenderer& operator=(const GpuRenderer&) = delete;
+
+  const DeviceInfo& device() const;
+  /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
+  std::string describe() const;
+
+  /// Uploads the scene, replacing any before. `image_bytes`: what the
+  /// frames to come will need beside it. Throws GpuError, before
+  /// allocating, when the two pass the device's memory, naming all three
+  /// sizes.
+  void load(const SceneArrays& scene, uint64_t image_bytes);
+  /// Device bytes a width x height frame takes (colour, and the AOVs when wanted).
+  static uint64_t frame_bytes(int width, int height, bool aovs);
+
+  /// Renders one frame of the loaded scene with `frame`'s camera into
+  /// `out` (allocated by the caller, W x H as in `frame`; the AOVs that
+  /// `aovs` names). Throws GpuError on a lost device or failed allocation.
+  void render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace holoray::gpu

@@ -1,0 +1,223 @@
+#include "gpu/gpu_scene.hpp"
+
+#include <fmt/format.h>
+
+#include <bit>
+#include <cmath>
+#include <stdexcept>
+
+#include "accel/bvh_builder.hpp"
+
+namespace holoray::gpu {
+
+namespace {
+
+vec4 v4(const Vec3& v, float w = 0) { return {float(v.x), float(v.y), float(v.z), w}; }
+float bits(int32_t i) { return std::bit_cast<float>(i); }
+
+void extend(PrimitiveBox& b, const Vec3& p) {
+  const float q[3] = {float(p.x), float(p.y), float(p.z)};
+  for (int a = 0; a < 3; ++a) b.lo[a] = std::fmin(b.lo[a], q[a]), b.hi[a] = std::fmax(b.hi[a], q[a]);
+}
+
+PrimitiveBox box_of(const Bounds3& b) {
+  // Rounded outward: the float box holds the double one.
+  PrimitiveBox out;
+  const double lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+  for (int a = 0; a < 3; ++a) {
+    out.lo[a] = std::nextafter(float(lo[a]), -INFINITY);
+    out.hi[a] = std::nextafter(float(hi[a]), INFINITY);
+  }
+  return out;
+}
+
+GpuMaterial material_of(const Material& m) {
+  GpuMaterial g;
+  g.colour_kd = v4(m.colour, float(m.kd));
+  g.ks_shine_t_ior = {float(m.ks), float(m.shine), float(m.transmittance), float(m.ior)};
+  g.emission_model = v4(m.emission, float(m.model == ShadingModel::blinn_phong ? HR_MODEL_BLINN_PHONG : HR_MODEL_NFF));
+  g.specular = v4(m.specular);
+  return g;
+}
+
+GpuLight light_of(const PointLight& l) {
+  GpuLight g;
+  const int kind = l.kind == LightKind::directional ? HR_LIGHT_DIRECTIONAL : l.kind == LightKind::spot ? HR_LIGHT_SPOT : HR_LIGHT_POINT;
+  g.position_kind = v4(l.position, float(kind));
+  g.intensity_unit = v4(l.intensity, l.unit_falloff ? 1.0f : 0.0f);
+  g.direction = v4(l.direction);
+  g.attenuation = {float(l.kc), float(l.kl), float(l.kq), float(l.range)};
+  g.cone = {float(l.fall_start), float(l.fall_end), float(l.cos_fall_start), float(l.cos_fall_end)};
+  g.flags = {l.smooth_cone ? 1 : 0, 0, 0, 0};
+  return g;
+}
+
+}  // namespace
+
+uint64_t SceneArrays::bytes() const {
+  return nodes.size() * sizeof(GpuNode) + refs.size() * 4 + triangles.size() * sizeof(GpuTriangle) +
+         patches.size() * sizeof(GpuPatch) + spheres.size() * sizeof(GpuSphere) + cones.size() * sizeof(GpuCone) +
+         object_material.size() * 4 + materials.size() * sizeof(GpuMaterial) + lights.size() * sizeof(GpuLight);
+}
+
+std::string unsupported_features(const RenderScene& scene) {
+  std::vector<std::string> what;
+  bool tachyon = false, gltf = false, textures = false, alpha = false;
+  for (const Material& m : scene.materials()) {
+    tachyon |= m.model == ShadingModel::tachyon;
+    gltf |= m.model == ShadingModel::gltf;
+    textures |= m.texture >= 0 || m.emission_texture >= 0 || m.normal_texture >= 0 || m.metal_rough_texture >= 0 ||
+                m.specular_texture >= 0;
+    alpha |= m.alpha_mask || m.alpha_texture >= 0 || (m.model != ShadingModel::gltf && m.alpha < 1);
+  }
+  if (tachyon) what.push_back("Tachyon materials");
+  if (gltf) what.push_back("glTF metallic-roughness materials");
+  if (textures) what.push_back("textures");
+  if (alpha) what.push_back("alpha masks");
+  if (scene.has_vertex_colours()) what.push_back("vertex colours");
+  if (scene.fog()) what.push_back("fog");
+  std::string out;
+  for (size_t k = 0; k < what.size(); ++k) out += (k ? (k + 1 == what.size() ? " and " : ", ") : "") + what[k];
+  return out;
+}
+
+SceneArrays lay_out(const RenderScene& scene) {
+  if (const std::string missing = unsupported_features(scene); !missing.empty())
+    throw std::invalid_argument(fmt::format("the GPU path does not render {} yet", missing));
+  const AccelScene& accel = scene.accel();
+  SceneArrays out;
+  std::vector<PrimitiveBox> boxes;
+  auto add_ref = [&](uint32_t kind, size_t index, const PrimitiveBox& box) {
+    if (index >= (size_t{1} << HR_PRIM_SHIFT))
+      throw std::length_error(fmt::format("the GPU path holds at most {} primitives of a kind, the scene has more",
+                                          size_t{1} << HR_PRIM_SHIFT));
+    out.refs.push_back(kind << HR_PRIM_SHIFT | static_cast<uint32_t>(index));
+    boxes.push_back(box);
+  };
+  for (uint32_t g = 0; g < accel.group_count(); ++g) {
+    const GeometryGroup& geo = accel.geometry(g);
+    const Affine& xf = accel.transform(g);
+    const bool moved = !accel.is_identity(g);
+    const auto& pos = geo.triangles.positions;
+    const auto& idx = geo.triangles.indices;
+    for (uint32_t t = 0; t * 3 < idx.size(); ++t) {
+      Vec3 v[3];
+      for (int c = 0; c < 3; ++c) {
+        const size_t at = size_t{idx[t * 3 + c]} * 3;
+        const Vec3 p{pos[at], pos[at + 1], pos[at + 2]};
+        v[c] = moved ? xf.point(p) : p;
+      }
+      GpuTriangle tri;
+      tri.v0 = v4(v[0]);
+      int32_t patch = -1;
+      if (const auto* n = scene.vertex_normals(g, t)) {
+        patch = static_cast<int32_t>(out.patches.size());
+        GpuPatch pn;
+        const Vec3 nn[3] = {moved ? xf.normal((*n)[0]) : (*n)[0], moved ? xf.normal((*n)[1]) : (*n)[1],
+                            moved ? xf.normal((*n)[2]) : (*n)[2]};
+        pn.n0 = v4(nn[0]), pn.n1 = v4(nn[1]), pn.n2 = v4(nn[2]);
+        out.patches.push_back(pn);
+      }
+      tri.e1 = v4(v[1] - v[0], bits(patch));
+      tri.e2 = v4(v[2] - v[0]);
+      const Vec3& wn = scene.winding_normal(g, t);
+      tri.ng = v4(moved ? xf.normal(wn) : wn, bits(scene.object_of(g, PrimKind::triangle, t)));
+      PrimitiveBox b{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+      for (const Vec3& p : v) extend(b, p);
+      add_ref(HR_PRIM_TRIANGLE, out.triangles.size(), b);
+      out.triangles.push_back(tri);
+    }
+    for (uint32_t s = 0; s < geo.spheres.size(); ++s) {
+      Sphere sp = geo.spheres[s];
+      if (moved) {  // a rigid motion with uniform scale keeps a sphere one
+        const Vec3 c = xf.point(sp.centre);
+        const double scale = length(xf.dir(Vec3{1, 0, 0}));
+        sp.centre = c, sp.radius *= scale;
+      }
+      GpuSphere gs;
+      gs.centre_radius = v4(sp.centre, float(sp.radius));
+      gs.info = {scene.object_of(g, PrimKind::sphere, s), sp.casts_shadow ? 1 : 0, 0, 0};
+      add_ref(HR_PRIM_SPHERE, out.spheres.size(), box_of(bounds_of(sp)));
+      out.spheres.push_back(gs);
+    }
+    for (uint32_t c = 0; c < geo.cones.size(); ++c) {
+      Cone cone = geo.cones[c];
+      if (moved) {
+        const double scale = length(xf.dir(Vec3{1, 0, 0}));
+        cone.base = xf.point(cone.base), cone.apex = xf.point(cone.apex);
+        cone.base_radius *= scale, cone.apex_radius *= scale;
+      }
+      const PreparedCone pc = prepare_cone(cone);
+      GpuCone gc;
+      gc.base_rb = v4(pc.cone.base, float(pc.rb));
+      gc.axis_len = v4(pc.a, float(pc.len));
+      gc.k_sign = {float(pc.k), cone.base_radius < 0 ? -1.0f : 1.0f, bits(scene.object_of(g, PrimKind::cone, c)), 0};
+      add_ref(HR_PRIM_CONE, out.cones.size(), box_of(bounds_of(cone)));
+      out.cones.push_back(gc);
+    }
+  }
+  // Embree's builder over the primitives' boxes; the leaves' references
+  // in its order.
+  const Bvh bvh = build_bvh(boxes, 4);
+  out.bvh_depth = bvh.depth;
+  std::vector<uint32_t> refs;
+  refs.reserve(bvh.order.size());
+  for (uint32_t k : bvh.order) refs.push_back(out.refs[k]);
+  out.refs = std::move(refs);
+  out.nodes.reserve(bvh.nodes.size());
+  for (const BvhNode& n : bvh.nodes) {
+    GpuNode g;
+    float* lo[3] = {&g.lo_x.x, &g.lo_y.x, &g.lo_z.x};
+    float* hi[3] = {&g.hi_x.x, &g.hi_y.x, &g.hi_z.x};
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < kBvhWidth; ++c) lo[a][c] = n.lo[a][c], hi[a][c] = n.hi[a][c];
+    g.index = {n.index[0], n.index[1], n.index[2], n.index[3]};
+    g.count = {n.count[0], n.count[1], n.count[2], n.count[3]};
+    out.nodes.push_back(g);
+  }
+  for (size_t o = 0; o < scene.object_count(); ++o) out.object_material.push_back(scene.material_of_object(int(o)));
+  for (const Material& m : scene.materials()) out.materials.push_back(material_of(m));
+  for (const PointLight& l : scene.lights()) out.lights.push_back(light_of(l));
+  // Empty arrays still bind a buffer: one zero record each.
+  if (out.refs.empty()) out.refs.push_back(0);
+  if (out.triangles.empty()) out.triangles.emplace_back();
+  if (out.patches.empty()) out.patches.emplace_back();
+  if (out.spheres.empty()) out.spheres.emplace_back();
+  if (out.cones.empty()) out.cones.emplace_back();
+  if (out.object_material.empty()) out.object_material.push_back(0);
+  if (out.materials.empty()) out.materials.emplace_back();
+  if (out.lights.empty()) out.lights.emplace_back();
+  return out;
+}
+
+GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
+                         int row1) {
+  const LensArrayDesc& d = camera.desc();
+  GpuFrame f;
+  f.origin = v4(d.frame.origin), f.axis_x = v4(d.frame.x), f.axis_y = v4(d.frame.y), f.axis_z = v4(d.frame.z);
+  f.lens = {float(d.pitch), float(d.gap), float(camera.pixel_pitch()),
+            d.grid == Grid::lenticular && std::isfinite(d.view_distance) ? float(d.view_distance) : 0.0f};
+  const double s = camera.pixel_pitch();
+  const double eps = context.epsilon();
+  f.extent = {float(camera.width() * s / 2), float(camera.height() * s / 2), float(d.pitch * std::sqrt(3.0) / 2), float(eps)};
+  f.size = {camera.width(), camera.height(), d.pixels_per_lens, d.lenses_x};
+  const int grid = d.grid == Grid::square ? HR_GRID_SQUARE : d.grid == Grid::hex ? HR_GRID_HEX : HR_GRID_LENTICULAR;
+  f.mode = {d.lenses_y, grid, d.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
+  const int bits_ = (aovs.albedo ? HR_AOV_ALBEDO : 0) | (aovs.depth ? HR_AOV_DEPTH : 0) | (aovs.normal ? HR_AOV_NORMAL : 0) |
+                    (aovs.id ? HR_AOV_ID : 0);
+  f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
+  f.rows = {row0, row1, 0, 0};
+  // The renderer's box: the scene's bounds grown by epsilon (renderer.cpp, grown()).
+  const Bounds3& b = context.bounds();
+  if (b.empty()) {  // nothing to meet: a box no line crosses
+    f.box_lo = {0, 0, 0, float(eps)}, f.box_hi = {0, 0, 0, 1};  // w = 1: the shader traces nothing
+  } else {
+    f.box_lo = v4(b.lo - Vec3{eps, eps, eps}, float(eps));
+    f.box_hi = v4(b.hi + Vec3{eps, eps, eps});
+  }
+  f.background = v4(context.background());
+  f.ambient = v4(context.ambient());
+  return f;
+}
+
+}  // namespace holoray::gpu

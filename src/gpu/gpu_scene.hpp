@@ -1,0 +1,52 @@
+// holoray/gpu: the built scene and one frame's camera laid out as the
+// compute shaders read them (shaders/layout.h): flat arrays of triangles,
+// spheres, cones, materials and lights in world space at the scene's
+// current transforms, and the hierarchy Embree's builder made over them
+// (accel/bvh_builder.hpp). Plain data, no Vulkan: built and checked on any
+// machine.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "camera/lens_array.hpp"
+#include "render/render_context.hpp"
+#include "render/renderer.hpp"
+
+#include "gpu/shaders/layout.h"
+
+namespace holoray::gpu {
+
+/// The scene's arrays; `bvh_depth` the hierarchy's levels (its stack need).
+struct SceneArrays {
+  std::vector<GpuNode> nodes;
+  std::vector<uint32_t> refs;  ///< leaves' primitive references (HR_PRIM_* << HR_PRIM_SHIFT | index)
+  std::vector<GpuTriangle> triangles;
+  std::vector<GpuPatch> patches;
+  std::vector<GpuSphere> spheres;
+  std::vector<GpuCone> cones;
+  std::vector<uint32_t> object_material;
+  std::vector<GpuMaterial> materials;
+  std::vector<GpuLight> lights;
+  int bvh_depth = 0;
+  /// Bytes the arrays take on the device.
+  uint64_t bytes() const;
+};
+
+/// What of `scene` the GPU path cannot render yet, in words ("Tachyon
+/// materials", "textures", ...), empty when it renders all of it.
+std::string unsupported_features(const RenderScene& scene);
+
+/// The scene laid out for the device. Throws std::invalid_argument naming
+/// what unsupported_features() names, std::length_error when a count passes
+/// the 2^30 a reference holds, std::runtime_error when Embree's builder fails.
+SceneArrays lay_out(const RenderScene& scene);
+
+/// One frame's constants: the lens array (any grid, either recording
+/// mode), the scene's box grown by its epsilon, depth limit, background,
+/// ambient, spp, the AOVs wanted and the rows [row0, row1) rendered.
+GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
+                         int row1);
+
+}  // namespace holoray::gpu

@@ -1,0 +1,118 @@
+// holoray/gpu: the records the host writes and the compute shaders read,
+// declared once for both (std430: every member a 16-byte vector, so C++ and
+// GLSL agree on every offset). Included by gpu_scene.hpp (C++) and by
+// trace.comp (GLSL, through glslc's #include). World frame, scene units,
+// float; the CPU path keeps doubles, and the tests hold the two together.
+#ifndef HOLORAY_GPU_LAYOUT_H
+#define HOLORAY_GPU_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace holoray::gpu {
+struct vec4 { float x = 0, y = 0, z = 0, w = 0; };
+struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
+#define HR_STRUCT struct alignas(16)
+#else
+#define HR_STRUCT struct
+#endif
+
+// Primitive references in a leaf: the kind in the top two bits.
+#define HR_PRIM_TRIANGLE 0u
+#define HR_PRIM_SPHERE 1u
+#define HR_PRIM_CONE 2u
+#define HR_PRIM_SHIFT 30
+
+// Grid and recording mode (camera/lens_array.hpp's enums).
+#define HR_GRID_SQUARE 0
+#define HR_GRID_HEX 1
+#define HR_GRID_LENTICULAR 2
+#define HR_ORTHOSCOPIC 0
+#define HR_PSEUDOSCOPIC 1
+
+// Material models the GPU path shades (scene_desc.hpp, ShadingModel).
+#define HR_MODEL_NFF 0
+#define HR_MODEL_BLINN_PHONG 1
+
+// Light kinds (scene_desc.hpp, LightKind).
+#define HR_LIGHT_POINT 0
+#define HR_LIGHT_DIRECTIONAL 1
+#define HR_LIGHT_SPOT 2
+
+// AOV bits of GpuFrame::aovs.
+#define HR_AOV_ALBEDO 1
+#define HR_AOV_DEPTH 2
+#define HR_AOV_NORMAL 4
+#define HR_AOV_ID 8
+
+// The deepest ray tree (render.hpp kMaxDepth) and the traversal stack.
+#define HR_MAX_DEPTH 16
+#define HR_STACK 64
+
+/// One 4-wide BVH node (accel/bvh_builder.hpp, BvhNode): the children's
+/// boxes axis by axis, then per child an index (inner node, or first
+/// reference of a leaf) and a count (0 inner, > 0 leaf, -1 empty).
+HR_STRUCT GpuNode {
+  vec4 lo_x, hi_x, lo_y, hi_y, lo_z, hi_z;
+  ivec4 index, count;
+};
+
+/// A triangle: vertex 0 and its two edges (Moller-Trumbore), the winding
+/// normal (w: the object id's bits), and in e1.w the index of its three
+/// vertex normals in the patch buffer (-1: flat) as float bits.
+HR_STRUCT GpuTriangle {
+  vec4 v0, e1, e2, ng;
+};
+
+/// Vertex normals of a smooth triangle (NFF `pp`, a mesh's normals).
+HR_STRUCT GpuPatch {
+  vec4 n0, n1, n2;
+};
+
+/// A sphere: centre and signed radius (negative: inside only); x of
+/// `info`: object id, y: 1 when it casts shadows.
+HR_STRUCT GpuSphere {
+  vec4 centre_radius;
+  ivec4 info;
+};
+
+/// An open cone prepared as accel/shapes.hpp's PreparedCone: base and |base
+/// radius|, unit axis and length, x: k (radius change per height), y: sign
+/// of the base radius (negative: inside only), z: the object id's bits.
+HR_STRUCT GpuCone {
+  vec4 base_rb, axis_len, k_sign;
+};
+
+/// A material: colour and kd; ks, shine, transmittance, ior; emission and
+/// model; Blinn-Phong's specular colour.
+HR_STRUCT GpuMaterial {
+  vec4 colour_kd, ks_shine_t_ior, emission_model, specular;
+};
+
+/// A light (render_scene.hpp, PointLight): position and kind, intensity and
+/// whether it reaches every point whole, direction, attenuation kc, kl, kq
+/// and range, the spot cone (start, end, cos start, cos end) and whether
+/// its edge is glTF's smooth one (x of `flags`).
+HR_STRUCT GpuLight {
+  vec4 position_kind, intensity_unit, direction, attenuation, cone;
+  ivec4 flags;
+};
+
+/// What one frame's dispatches share: the lens array (camera-model.md),
+/// the scene's box and constants, and the output's size and AOVs.
+HR_STRUCT GpuFrame {
+  vec4 origin, axis_x, axis_y, axis_z;  // the array's frame (world)
+  vec4 lens;       // pitch, gap, pixel pitch s, lenticular view distance (0: infinite)
+  vec4 extent;      // half width, half height (W s / 2, H s / 2), hex row step, epsilon
+  ivec4 size;      // W, H, P (pixels per lens), lenses_x
+  ivec4 mode;      // lenses_y, grid, recording mode, spp
+  ivec4 counts;    // lights, AOV bits, max depth, objects
+  ivec4 rows;      // the rows rendered: first, end (the image's buffers hold these alone)
+  vec4 box_lo, box_hi;  // the scene's bounds (world) grown by the margin; w: margin
+  vec4 background, ambient;
+};
+
+#ifdef __cplusplus
+}  // namespace holoray::gpu
+#endif
+
+#endif

@@ -1,0 +1,471 @@
+// holoray/gpu: one invocation per EIA pixel of one band of rows. The
+// pixel's line from the lens array's parameters (camera-model.md, as
+// camera/lens_array.cpp), its primary ray clipped to the scene's box
+// (render/renderer.cpp, primary_over), a 4-wide BVH traversal of our own,
+// and NFF's Whitted shading (nff-notes §4, §10; render/models/nff_model.hpp)
+// with shadows, mirror and refracted rays to the frame's depth, walked
+// depth first on a short stack (no recursion in GLSL). Float throughout.
+// One ray tree per invocation: Mesa's lavapipe cuts a shader's loops after
+// 65535 iterations in all (gpu-notes.md), so nothing loops over pixels.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#include "layout.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame F; };
+layout(std430, binding = 1) readonly buffer NodeBlock { GpuNode nodes[]; };
+layout(std430, binding = 2) readonly buffer RefBlock { uint refs[]; };
+layout(std430, binding = 3) readonly buffer TriBlock { GpuTriangle tris[]; };
+layout(std430, binding = 4) readonly buffer PatchBlock { GpuPatch patches[]; };
+layout(std430, binding = 5) readonly buffer SphereBlock { GpuSphere spheres[]; };
+layout(std430, binding = 6) readonly buffer ConeBlock { GpuCone cones[]; };
+layout(std430, binding = 7) readonly buffer ObjectBlock { uint object_material[]; };
+layout(std430, binding = 8) readonly buffer MaterialBlock { GpuMaterial materials[]; };
+layout(std430, binding = 9) readonly buffer LightBlock { GpuLight lights[]; };
+// Colour (3 floats a pixel) and the AOVs (albedo 3, depth 1, normal 3, id 1),
+// for the whole image; each dispatch writes its band's rows.
+layout(std430, binding = 10) writeonly buffer ColourBlock { float colour_out[]; };
+layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
+// Statistics, summed with one atomic per subgroup: nodes visited,
+// primitives tested, then rays by kind: eye, shadow, reflected, refracted.
+layout(std430, binding = 12) buffer CountBlock { uvec4 counts; uvec4 rays; };
+
+layout(push_constant) uniform Band { int row0; int rows; } band;
+
+const float kInf = 1.0 / 0.0;
+
+struct Hit {
+  float t;
+  uint ref;  // HR_PRIM_* << HR_PRIM_SHIFT | index
+  float u, v;
+  vec3 ng;   // geometric normal (outward or winding; not yet unit for triangles)
+};
+
+uint visited = 0u, tested = 0u;
+
+// ---- primitives (accel/shapes.cpp's tests, in float) ----
+
+bool hit_triangle(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
+  GpuTriangle tri = tris[k];
+  vec3 e1 = tri.e1.xyz, e2 = tri.e2.xyz;
+  vec3 p = cross(d, e2);
+  float det = dot(e1, p);
+  if (det == 0.0) return false;
+  float inv = 1.0 / det;
+  vec3 s = o - tri.v0.xyz;
+  float u = dot(s, p) * inv;
+  if (u < 0.0 || u > 1.0) return false;
+  vec3 q = cross(s, e1);
+  float v = dot(d, q) * inv;
+  if (v < 0.0 || u + v > 1.0) return false;
+  float t = dot(e2, q) * inv;
+  if (!(t > tmin && t < h.t)) return false;
+  h.t = t, h.u = u, h.v = v, h.ng = tri.ng.xyz;
+  h.ref = (HR_PRIM_TRIANGLE << HR_PRIM_SHIFT) | k;
+  return true;
+}
+
+bool hit_sphere(uint k, vec3 o, vec3 d, float tmin, bool shadow, inout Hit h) {
+  vec4 cr = spheres[k].centre_radius;
+  if (shadow && spheres[k].info.y == 0) return false;  // a light's sphere casts no shadow
+  float r = abs(cr.w);
+  vec3 oc = o - cr.xyz;
+  float tc = -dot(oc, d);  // d is unit
+  vec3 q = oc + d * tc;
+  float h2 = r * r - dot(q, q);
+  if (h2 < 0.0) return false;
+  float hh = sqrt(h2);
+  for (int n = 0; n < 2; ++n) {
+    float root = n == 0 ? tc - hh : tc + hh;
+    if (!(root > tmin && root < h.t)) continue;
+    vec3 nn = (oc + d * root) / r;
+    if (cr.w < 0.0 && dot(nn, d) <= 0.0) continue;  // inside only
+    h.t = root, h.u = 0.0, h.v = 0.0, h.ng = nn;
+    h.ref = (HR_PRIM_SPHERE << HR_PRIM_SHIFT) | k;
+    return true;
+  }
+  return false;
+}
+
+bool hit_cone(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
+  GpuCone c = cones[k];
+  vec3 a = c.axis_len.xyz;
+  float len = c.axis_len.w, kk = c.k_sign.x, rb = c.base_rb.w;
+  // Solved from the point of the ray nearest the base, not from its origin:
+  // in float, |wp|^2 - r0^2 from an origin far from a thin cone loses the
+  // radius to cancellation (tree_s11's twigs: 30 dB against the CPU's doubles).
+  float shift = dot(c.base_rb.xyz - o, d);  // d is unit
+  vec3 w = o + d * shift - c.base_rb.xyz;
+  float hw = dot(w, a), hd = dot(d, a);
+  vec3 wp = w - a * hw, dp = d - a * hd;
+  float r0 = rb + kk * hw;
+  float qa = dot(dp, dp) - kk * kk * hd * hd;
+  float qb = dot(wp, dp) - kk * hd * r0;
+  float qc = dot(wp, wp) - r0 * r0;
+  float t0, t1;
+  if (qa == 0.0) {
+    if (qb == 0.0) return false;
+    t0 = t1 = -qc / (2.0 * qb);
+  } else {
+    float disc = qb * qb - qa * qc;
+    if (disc < 0.0) return false;
+    float q = -(qb + (qb >= 0.0 ? sqrt(disc) : -sqrt(disc)));
+    if (q == 0.0) {
+      t0 = t1 = 0.0;
+    } else {
+      t0 = q / qa;
+      t1 = qc / q;
+      if (t0 > t1) { float x = t0; t0 = t1; t1 = x; }
+    }
+  }
+  for (int n = 0; n < 2; ++n) {
+    float local = n == 0 ? t0 : t1, root = local + shift;
+    if (!(root > tmin && root < h.t)) continue;
+    float hh = hw + local * hd;
+    if (hh < 0.0 || hh > len) continue;
+    if (rb + kk * hh < 0.0) continue;  // the mirrored nappe
+    vec3 nn = normalize(normalize(wp + dp * local) - a * kk);
+    if (c.k_sign.y < 0.0 && dot(nn, d) <= 0.0) continue;  // inside only
+    h.t = root, h.u = 0.0, h.v = 0.0, h.ng = nn;
+    h.ref = (HR_PRIM_CONE << HR_PRIM_SHIFT) | k;
+    return true;
+  }
+  return false;
+}
+
+bool hit_ref(uint ref, vec3 o, vec3 d, float tmin, bool shadow, inout Hit h) {
+  ++tested;
+  uint kind = ref >> HR_PRIM_SHIFT, k = ref & ((1u << HR_PRIM_SHIFT) - 1u);
+  if (kind == HR_PRIM_TRIANGLE) return hit_triangle(k, o, d, tmin, h);
+  if (kind == HR_PRIM_SPHERE) return hit_sphere(k, o, d, tmin, shadow, h);
+  return hit_cone(k, o, d, tmin, h);
+}
+
+// ---- traversal: nearest hit in (tmin, tmax), or any hit for shadows ----
+
+bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
+  h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
+  vec3 inv = 1.0 / d;  // an axis-parallel ray gives infinities, which the slabs take
+  int stack[HR_STACK];
+  int sp = 0;
+  stack[sp++] = 0;
+  bool found = false;
+  while (sp > 0) {
+    GpuNode n = nodes[stack[--sp]];
+    ++visited;
+    vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
+    vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
+    vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
+    vec4 t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(tmin)));
+    vec4 t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(h.t)));
+    // Children met, nearest last on the stack (popped first).
+    int order[4];
+    float near_t[4];
+    int m = 0;
+    for (int c = 0; c < 4; ++c) {
+      if (n.count[c] < 0 || !(t0[c] <= t1[c])) continue;
+      if (n.count[c] > 0) {  // a leaf: test it now
+        for (int r = 0; r < n.count[c]; ++r)
+          if (hit_ref(refs[n.index[c] + r], o, d, tmin, any, h)) {
+            found = true;
+            if (any) return true;
+          }
+        continue;
+      }
+      int at = m++;
+      while (at > 0 && near_t[at - 1] < t0[c]) {  // descending near t
+        near_t[at] = near_t[at - 1], order[at] = order[at - 1];
+        --at;
+      }
+      near_t[at] = t0[c], order[at] = n.index[c];
+    }
+    for (int c = 0; c < m && sp < HR_STACK; ++c) stack[sp++] = order[c];
+  }
+  return found;
+}
+
+// ---- the camera (camera/lens_array.cpp) ----
+
+ivec2 hex_lens(int i, int j) {
+  int P = F.size.z, nx = F.size.w, ny = F.mode.x;
+  float px = float(i) + 0.5, py = float(j) + 0.5;
+  float row_step = float(P) * 0.8660254037844386;
+  int ly0 = clamp(int(round((py - float(P) / 2.0) / row_step)), 0, ny - 1);
+  ivec2 best = ivec2(0);
+  float best_d2 = kInf;
+  for (int ly = max(0, ly0 - 1); ly <= min(ny - 1, ly0 + 1); ++ly) {
+    float shift = (ly & 1) != 0 ? 0.5 : 0.0;
+    float cy = float(P) / 2.0 + float(ly) * row_step;
+    int lx0 = clamp(int(round(px / float(P) - 0.5 - shift)), 0, nx - 1);
+    for (int lx = max(0, lx0 - 1); lx <= min(nx - 1, lx0 + 1); ++lx) {
+      float dx = px - (float(lx) + 0.5 + shift) * float(P), dy = py - cy;
+      float d2 = dx * dx + dy * dy;
+      if (d2 < best_d2) best_d2 = d2, best = ivec2(lx, ly);
+    }
+  }
+  return best;
+}
+
+// The pixel's line (world): origin at its lens centre, unit direction.
+void pixel_line(int i, int j, float u, float v, out vec3 origin, out vec3 dir) {
+  float pitch = F.lens.x, gap = F.lens.y, s = F.lens.z;
+  int P = F.size.z, grid = F.mode.y;
+  vec3 p = vec3((float(i) + u) * s - F.extent.x, F.extent.y - (float(j) + v) * s, -gap);
+  float half_array_w = float(F.size.w) * pitch / 2.0;
+  vec3 c, d;
+  if (grid == HR_GRID_LENTICULAR) {
+    c = vec3((float(i / P) + 0.5) * pitch - half_array_w, p.y, 0.0);
+    float dy = F.lens.w > 0.0 ? -p.y / F.lens.w : 0.0;
+    d = normalize(vec3((c.x - p.x) / gap, dy, 1.0));
+  } else {
+    if (grid == HR_GRID_SQUARE) {
+      ivec2 l = ivec2(i / P, j / P);
+      c = vec3((float(l.x) + 0.5) * pitch - half_array_w, float(F.mode.x) * pitch / 2.0 - (float(l.y) + 0.5) * pitch, 0.0);
+    } else {
+      ivec2 l = hex_lens(i, j);
+      c = vec3((float(l.x) + 0.5 + ((l.y & 1) != 0 ? 0.5 : 0.0)) * pitch - half_array_w,
+               F.extent.y - pitch / 2.0 - float(l.y) * F.extent.z, 0.0);
+    }
+    d = normalize(c - p);
+  }
+  origin = F.origin.xyz + F.axis_x.xyz * c.x + F.axis_y.xyz * c.y + F.axis_z.xyz * c.z;
+  dir = normalize(F.axis_x.xyz * d.x + F.axis_y.xyz * d.y + F.axis_z.xyz * d.z);
+}
+
+// renderer.cpp's sample_offset: the pixel centre first, then a hashed
+// rotation of the R2 sequence.
+uint hash32(uint x) {
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return x;
+}
+vec2 sample_offset(int i, int j, int k) {
+  if (k == 0) return vec2(0.5);
+  uint h = hash32(uint(i) * 73856093u ^ hash32(uint(j) * 19349663u));
+  vec2 r = vec2(float(h & 0xffffu), float(h >> 16)) / 65536.0;
+  return fract(r + float(k) * vec2(0.7548776662466927, 0.5698402909980532));
+}
+
+// ---- shading (render/models/nff_model.hpp, blinn_phong_model.cpp) ----
+
+struct Surface {
+  vec3 p, ng, ns;  // position; unit normals, ng outward or winding, ns beside it
+  int object;
+  uint material;
+};
+
+Surface surface_of(vec3 o, vec3 d, Hit h) {
+  Surface s;
+  s.p = o + d * h.t;
+  uint kind = h.ref >> HR_PRIM_SHIFT, k = h.ref & ((1u << HR_PRIM_SHIFT) - 1u);
+  if (kind == HR_PRIM_TRIANGLE) {
+    GpuTriangle tri = tris[k];
+    s.ng = tri.ng.xyz;
+    s.ns = s.ng;
+    int patch_at = floatBitsToInt(tri.e1.w);
+    if (patch_at >= 0) {
+      GpuPatch pn = patches[patch_at];
+      vec3 ns = pn.n0.xyz * (1.0 - h.u - h.v) + pn.n1.xyz * h.u + pn.n2.xyz * h.v;
+      if (length(ns) > 0.0) s.ns = normalize(ns);
+    }
+    s.object = floatBitsToInt(tri.ng.w);
+  } else if (kind == HR_PRIM_SPHERE) {
+    s.ng = s.ns = normalize(h.ng);
+    s.object = spheres[k].info.x;
+  } else {
+    s.ng = s.ns = normalize(h.ng);
+    s.object = floatBitsToInt(cones[k].k_sign.z);
+  }
+  s.material = object_material[s.object];
+  return s;
+}
+
+// Light's falloff toward a point (shading.cpp, light_falloff).
+float falloff_of(GpuLight L, vec3 to_light, float dist) {
+  int kind = int(L.position_kind.w);
+  if (kind == HR_LIGHT_DIRECTIONAL) return 1.0;
+  float a = 1.0;
+  vec4 at = L.attenuation;
+  if (at.x != 1.0 || at.y != 0.0 || at.z != 0.0) a = 1.0 / (at.x + (at.y + at.z * dist) * dist);
+  if (at.w > 0.0) {
+    float x2 = (dist / at.w) * (dist / at.w);
+    float w = clamp(1.0 - x2 * x2, 0.0, 1.0);
+    a *= w * w;
+  }
+  if (kind == HR_LIGHT_SPOT) {
+    float cos_a = -dot(L.direction.xyz, to_light);
+    if (L.flags.x != 0) {
+      float t = clamp((cos_a - L.cone.w) / max(1e-3, L.cone.z - L.cone.w), 0.0, 1.0);
+      a *= t * t;
+    } else {
+      float angle = acos(clamp(cos_a, -1.0, 1.0));
+      if (angle > L.cone.y) a = 0.0;
+      else if (angle > L.cone.x) a *= 1.0 - (angle - L.cone.x) / (L.cone.y - L.cone.x);
+    }
+  }
+  return a;
+}
+
+vec3 reflect_about(vec3 d, vec3 n) { return d - n * (2.0 * dot(d, n)); }
+
+struct Pending {
+  vec3 o, d, weight;
+  int depth;
+};
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
+  int W = F.size.x;
+  if (i >= W || int(gl_GlobalInvocationID.y) >= band.rows) return;
+  float eps = F.extent.w, margin = F.box_lo.w;
+  int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
+  uint eye_rays = 0u, shadow_rays = 0u, reflected_rays = 0u, refracted_rays = 0u;
+  vec3 sum = vec3(0.0);
+  bool first_hit = false;
+  float first_t = 0.0;
+  Surface first;
+  vec3 first_albedo = vec3(0.0), first_dir = vec3(0.0);
+  for (int k = 0; k < spp; ++k) {
+    vec2 uv = sample_offset(i, j, k);
+    vec3 lo, ld;
+    pixel_line(i, j, uv.x, uv.y, lo, ld);
+    // The line against the scene's box (renderer.cpp, clip_primary).
+    vec3 inv = 1.0 / ld;
+    vec3 ta = (F.box_lo.xyz - lo) * inv, tb = (F.box_hi.xyz - lo) * inv;
+    float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
+    float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
+    vec3 c = F.background.xyz;
+    bool ortho = F.mode.z == HR_ORTHOSCOPIC;
+    if (F.box_hi.w == 0.0 && t0 <= t1 && (ortho || t1 > 0.0)) {
+      Pending stack[HR_MAX_DEPTH + 2];
+      int sp = 0;
+      float t_offset = 0.0, t_sign = 1.0, tmin0 = 0.0, tmax0;
+      if (ortho) {
+        float start = t1 + margin;
+        stack[sp++] = Pending(lo + ld * start, -ld, vec3(1.0), 1);
+        t_offset = start, t_sign = -1.0, tmax0 = start - t0 + margin;
+      } else {
+        stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
+        tmin0 = max(0.0, t0 - margin), tmax0 = t1 + margin;
+      }
+      c = vec3(0.0);
+      ++eye_rays;
+      while (sp > 0) {
+        Pending r = stack[--sp];
+        bool primary = r.depth == 1;
+        Hit h;
+        if (!trace_ray(r.o, r.d, primary ? tmin0 : 0.0, primary ? tmax0 : kInf, false, h)) {
+          c += r.weight * F.background.xyz;
+          continue;
+        }
+        Surface s = surface_of(r.o, r.d, h);
+        GpuMaterial m = materials[s.material];
+        vec3 colour = m.colour_kd.xyz;
+        if (primary && k == 0) {
+          first_hit = true, first = s, first_albedo = colour, first_dir = ld;
+          first_t = t_offset + t_sign * h.t;
+        }
+        // Both normals turned to the side the ray came from (nff-notes §10.2).
+        vec3 view = -r.d;
+        bool front = dot(s.ng, view) >= 0.0;
+        vec3 ng = front ? s.ng : -s.ng, ns = front ? s.ns : -s.ns;
+        vec3 above = s.p + ng * eps;
+        float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
+        vec3 local = F.ambient.xyz * colour * kd + m.emission_model.xyz;
+        for (int l = 0; l < F.counts.x; ++l) {
+          GpuLight L = lights[l];
+          int kind = int(L.position_kind.w);
+          vec3 to_light;
+          float dist, falloff = 1.0;
+          if (kind == HR_LIGHT_DIRECTIONAL) {
+            to_light = -L.direction.xyz;
+            dist = kInf;
+            if (dot(ns, to_light) <= 0.0) continue;
+          } else {
+            to_light = L.position_kind.xyz - s.p;
+            dist = length(to_light);
+            if (!(dist > eps)) continue;
+            to_light /= dist;
+            if (dot(ns, to_light) <= 0.0) continue;
+            if (L.intensity_unit.w == 0.0) {
+              falloff = falloff_of(L, to_light, dist);
+              if (!(falloff > 0.0)) continue;
+            }
+            dist -= eps;
+          }
+          ++shadow_rays;
+          Hit sh;
+          if (trace_ray(above, to_light, 0.0, dist, true, sh)) continue;
+          vec3 term = colour * (kd * dot(ns, to_light));
+          if (ks > 0.0) {
+            float r_dot_v = dot(reflect_about(-to_light, ns), view);
+            if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
+          }
+          if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
+            float n_dot_h = dot(ns, normalize(to_light + view));
+            if (n_dot_h > 0.0) term += m.specular.xyz * pow(n_dot_h, shine);
+          }
+          local += L.intensity_unit.xyz * falloff * term;
+        }
+        c += r.weight * local;
+        if (r.depth >= max_depth) continue;
+        float T = m.ks_shine_t_ior.z, ior = m.ks_shine_t_ior.w;
+        // The mirror ray (the true normal where the shading one sends it in).
+        if (ks > 0.0) {
+          vec3 rd = reflect_about(r.d, ns);
+          if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
+          stack[sp++] = Pending(above, normalize(rd), r.weight * ks, r.depth + 1);
+          ++reflected_rays;
+        }
+        if (T > 0.0) {
+          float eta = front ? 1.0 / ior : ior;
+          float cos_i = dot(view, ns);
+          float kk = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+          vec3 o2, d2;
+          if (kk < 0.0) {  // total internal reflection
+            vec3 rd = reflect_about(r.d, ns);
+            if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
+            o2 = above, d2 = normalize(rd);
+            ++reflected_rays;
+          } else {
+            d2 = normalize(r.d * eta + ns * (eta * cos_i - sqrt(kk)));
+            if (dot(d2, ng) >= 0.0) d2 = r.d;
+            o2 = s.p - ng * eps;
+            ++refracted_rays;
+          }
+          stack[sp++] = Pending(o2, d2, r.weight * T, r.depth + 1);
+        }
+      }
+    }
+    sum += c;
+  }
+  uint pixel = uint(j - F.rows.x) * uint(W) + uint(i);
+  vec3 colour = sum / float(spp);
+  colour_out[pixel * 3u + 0u] = colour.x;
+  colour_out[pixel * 3u + 1u] = colour.y;
+  colour_out[pixel * 3u + 2u] = colour.z;
+  if (aovs != 0) {
+    uint a = pixel * 8u;
+    vec3 n = vec3(0.0);
+    if (first_hit) {
+      vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? first_dir : -first_dir;
+      n = dot(first.ns, toward) >= 0.0 ? first.ns : -first.ns;
+    }
+    aov_out[a + 0u] = first_albedo.x, aov_out[a + 1u] = first_albedo.y, aov_out[a + 2u] = first_albedo.z;
+    aov_out[a + 3u] = first_hit ? first_t : uintBitsToFloat(0x7fc00000u);  // NaN: background
+    aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
+    aov_out[a + 7u] = first_hit ? float(first.object) : -1.0;
+  }
+  // One atomic per subgroup, whatever its size (NVIDIA 32, lavapipe 8).
+  uvec2 work = subgroupAdd(uvec2(visited, tested));
+  uvec4 kinds = subgroupAdd(uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays));
+  if (subgroupElect()) {
+    atomicAdd(counts.x, work.x);
+    atomicAdd(counts.y, work.y);
+    atomicAdd(rays.x, kinds.x);
+    atomicAdd(rays.y, kinds.y);
+    atomicAdd(rays.z, kinds.z);
+    atomicAdd(rays.w, kinds.w);
+  }
+}
