@@ -134,7 +134,7 @@ Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf) {
   RTCBuildArguments a = rtcDefaultBuildArguments();
   a.buildQuality = RTC_BUILD_QUALITY_HIGH;
   a.maxBranchingFactor = kBvhWidth;
-  a.maxDepth = 48;
+  a.maxDepth = 20;  // the GPU traversal's stack holds 3 (depth - 1) + 1 entries (HR_STACK)
   a.minLeafSize = 1;
   a.maxLeafSize = static_cast<unsigned>(max_leaf);
   a.traversalCost = 1.0f;

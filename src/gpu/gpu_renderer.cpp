@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
 
 #include <dlfcn.h>
+#include <unistd.h>
 
 // The loader is opened here with dlopen, not linked, so that a machine
 // without libvulkan.so.1 still runs the CPU path.
@@ -52,11 +54,48 @@ PFN_vkGetInstanceProcAddr loader_entry() {
 
 vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
 
+// NVIDIA's driver registers libGLX_nvidia.so.0 as its Vulkan driver, and
+// in a headless container that library gives no vkCreateInstance (measured
+// on an H200, driver 580: "Found no drivers!") while libEGL_nvidia.so.0,
+// the same driver's EGL face, serves Vulkan. Where the loader finds no
+// driver, no driver list was given (VK_ICD_FILENAMES, VK_DRIVER_FILES) and
+// libEGL_nvidia.so.0 is there, holoray tries once more with a manifest
+// naming it (a temporary file, removed once the loader has read it).
+bool retry_with_nvidia_egl() {
+  if (std::getenv("VK_ICD_FILENAMES") || std::getenv("VK_DRIVER_FILES")) return false;
+  void* egl = ::dlopen("libEGL_nvidia.so.0", RTLD_NOW | RTLD_LOCAL);
+  if (!egl) return false;
+  ::dlclose(egl);
+  return true;
+}
+
 vk::raii::Instance make_instance(const vk::raii::Context& context) {
   vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
+  const vk::InstanceCreateInfo info{.pApplicationInfo = &app};
   try {
-    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
+    return vk::raii::Instance(context, info);
   } catch (const vk::SystemError& e) {
+    if (e.code() == vk::Result::eErrorIncompatibleDriver && retry_with_nvidia_egl()) {
+      char path[] = "/tmp/holoray-nvidia-icd-XXXXXX";
+      const int fd = ::mkstemp(path);
+      if (fd >= 0) {
+        const std::string manifest =
+            R"({"file_format_version": "1.0.0", "ICD": {"library_path": "libEGL_nvidia.so.0", "api_version": "1.3.0"}})";
+        const bool written = ::write(fd, manifest.data(), manifest.size()) == ssize_t(manifest.size());
+        ::close(fd);
+        std::optional<vk::raii::Instance> instance;
+        if (written) {
+          ::setenv("VK_ICD_FILENAMES", path, 1);
+          try {
+            instance.emplace(context, info);
+          } catch (const vk::SystemError&) {
+          }
+          ::unsetenv("VK_ICD_FILENAMES");
+        }
+        ::unlink(path);
+        if (instance) return std::move(*instance);
+      }
+    }
     throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
   }
 }
@@ -110,6 +149,29 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 constexpr int kBindings = 13;
 
+bool has_extension(const vk::raii::PhysicalDevice& pd, std::string_view name) {
+  for (const auto& e : pd.enumerateDeviceExtensionProperties())
+    if (name == e.extensionName.data()) return true;
+  return false;
+}
+
+void print_statistics(const vk::raii::Device& device, const vk::raii::Pipeline& pipeline) {
+  const auto executables = device.getPipelineExecutablePropertiesKHR(vk::PipelineInfoKHR{.pipeline = *pipeline});
+  for (uint32_t k = 0; k < executables.size(); ++k) {
+    std::fprintf(stderr, "holoray gpu: kernel %s\n", executables[k].name.data());
+    for (const auto& st : device.getPipelineExecutableStatisticsKHR(vk::PipelineExecutableInfoKHR{.pipeline = *pipeline, .executableIndex = k})) {
+      std::string value;
+      switch (st.format) {
+        case vk::PipelineExecutableStatisticFormatKHR::eBool32: value = st.value.b32 ? "true" : "false"; break;
+        case vk::PipelineExecutableStatisticFormatKHR::eInt64: value = std::to_string(st.value.i64); break;
+        case vk::PipelineExecutableStatisticFormatKHR::eUint64: value = std::to_string(st.value.u64); break;
+        case vk::PipelineExecutableStatisticFormatKHR::eFloat64: value = std::to_string(st.value.f64); break;
+      }
+      std::fprintf(stderr, "holoray gpu:   %s = %s\n", st.name.data(), value.c_str());
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<DeviceInfo> list_devices() {
@@ -136,7 +198,10 @@ struct GpuRenderer::Impl {
   vk::raii::DescriptorSet set = nullptr;
   vk::PhysicalDeviceMemoryProperties memory_types;
   Buffer scene[10];  // bindings 0 (the frame) to 9
-  Buffer colour, aov, counts;
+  Buffer colour, aov, counts, staging;
+  vk::raii::CommandBuffer commands = nullptr;
+  vk::raii::Fence fence = nullptr;
+  uint32_t workgroup[2] = {8, 8};
   uint64_t scene_bytes = 0;
 
   uint32_t memory_type(uint32_t allowed, vk::MemoryPropertyFlags want, vk::MemoryPropertyFlags prefer = {}) const {
@@ -225,7 +290,15 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   m.family = uint32_t(family - families.begin());
   const float priority = 1;
   vk::DeviceQueueCreateInfo qi{.queueFamilyIndex = m.family, .queueCount = 1, .pQueuePriorities = &priority};
-  m.device = vk::raii::Device(m.physical, vk::DeviceCreateInfo{.queueCreateInfoCount = 1, .pQueueCreateInfos = &qi});
+  // HOLORAY_GPU_STATS=1 (for tuning): the driver's statistics of the
+  // compiled kernel (registers, local memory) on stderr, where it offers them.
+  const bool stats = std::getenv("HOLORAY_GPU_STATS") != nullptr && has_extension(m.physical, "VK_KHR_pipeline_executable_properties");
+  const char* stats_extension = "VK_KHR_pipeline_executable_properties";
+  vk::PhysicalDevicePipelineExecutablePropertiesFeaturesKHR stats_feature{.pipelineExecutableInfo = VK_TRUE};
+  m.device = vk::raii::Device(m.physical, vk::DeviceCreateInfo{.pNext = stats ? &stats_feature : nullptr,
+                                                               .queueCreateInfoCount = 1, .pQueueCreateInfos = &qi,
+                                                               .enabledExtensionCount = stats ? 1u : 0u,
+                                                               .ppEnabledExtensionNames = &stats_extension});
   m.queue = vk::raii::Queue(m.device, m.family, 0);
   m.pool = vk::raii::CommandPool(m.device, vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
                                                                      .queueFamilyIndex = m.family});
@@ -234,16 +307,33 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
     bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
   m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
                                                              .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
-  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 8};
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 12};
   vk::DescriptorSetLayout raw_layout = *m.set_layout;
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
                                              .pPushConstantRanges = &push});
   vk::raii::ShaderModule module(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
+  // Specialization (shaders/trace.comp): the workgroup's size, 8x8 unless
+  // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning), and whether
+  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=0: not).
+  if (const char* wg = std::getenv("HOLORAY_GPU_WORKGROUP")) {
+    unsigned w = 0, h = 0;
+    if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
+  }
+  const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
+  const uint32_t spec_values[3] = {m.workgroup[0], m.workgroup[1], sort_env && std::string(sort_env) == "0" ? 0u : 1u};
+  const vk::SpecializationMapEntry entries[3] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}};
+  const vk::SpecializationInfo spec{.mapEntryCount = 3, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                                    .pData = spec_values};
   vk::ComputePipelineCreateInfo pi{
-      .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main"},
+      .flags = stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
+      .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec},
       .layout = *m.pipeline_layout};
   m.pipeline = vk::raii::Pipeline(m.device, nullptr, pi);
+  if (stats) print_statistics(m.device, m.pipeline);
+  vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
+  m.commands = std::move(cbs[0]);
+  m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
   vk::DescriptorPoolSize size{vk::DescriptorType::eStorageBuffer, kBindings};
   m.descriptor_pool = vk::raii::DescriptorPool(
       m.device, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, .maxSets = 1,
@@ -307,38 +397,45 @@ void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers
       m.aov = m.make_buffer(aov_size, usage, false);
       m.bind(11, m.aov);
     }
-    std::memcpy(m.scene[0].mapped, &frame, sizeof frame);
-    std::memset(m.counts.mapped, 0, 32);
-    stats = GpuFrameStats{};
-    // Bands of about 2^20 pixels: each dispatch well inside a watchdog's seconds.
+    // Bands of about 2^20 pixels, each its own dispatch (well inside a
+    // desktop watchdog's seconds), all in one submission; each band its
+    // own pair of 32-bit counters, summed here in 64 bits.
     const int band_rows = std::max(8, int((1 << 20) / std::max(1, W)) / 8 * 8);
-    vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
-    vk::raii::CommandBuffer& cb = cbs[0];
-    vk::raii::Fence fence(m.device, vk::FenceCreateInfo{});
+    const int bands = (H + band_rows - 1) / band_rows;
+    if (m.counts.size < uint64_t(bands) * 32) {
+      m.counts = m.make_buffer(uint64_t(bands) * 32, vk::BufferUsageFlagBits::eStorageBuffer, true);
+      m.bind(12, m.counts);
+    }
+    std::memcpy(m.scene[0].mapped, &frame, sizeof frame);
+    std::memset(m.counts.mapped, 0, size_t(bands) * 32);
+    stats = GpuFrameStats{};
+    vk::raii::CommandBuffer& cb = m.commands;
+    cb.reset();
+    cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline);
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
+    for (int b = 0; b < bands; ++b) {
+      const int row0 = y0 + b * band_rows, rows = std::min(band_rows, y0 + H - row0);
+      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {row0, rows, b});
+      cb.dispatch((uint32_t(W) + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
+    }
+    cb.end();
+    vk::CommandBuffer raw = *cb;
     const auto t0 = std::chrono::steady_clock::now();
-    for (int row0 = y0; row0 < y0 + H; row0 += band_rows) {
-      const int32_t band[2] = {row0, std::min(band_rows, y0 + H - row0)};
-      cb.reset();
-      cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline);
-      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
-      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {band[0], band[1]});
-      cb.dispatch(uint32_t((W + 7) / 8), uint32_t((band[1] + 7) / 8), 1);
-      cb.end();
-      vk::CommandBuffer raw = *cb;
-      m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
-      if (m.device.waitForFences({*fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-        throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
-      m.device.resetFences({*fence});
-      // The counters are 32 bits: summed here, band by band, in 64.
-      uint32_t* c = static_cast<uint32_t*>(m.counts.mapped);
+    m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *m.fence);
+    if (m.device.waitForFences({*m.fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+      throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
+    stats.trace_seconds = seconds_since(t0);
+    m.device.resetFences({*m.fence});
+    const uint32_t* c = static_cast<const uint32_t*>(m.counts.mapped);
+    for (int b = 0; b < bands; ++b, c += 8) {
       stats.nodes_visited += c[0], stats.primitives_tested += c[1];
       stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
-      std::memset(c, 0, 32);
     }
-    stats.trace_seconds = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    Buffer staging = m.make_buffer(pixels * 12 + (want_aovs ? pixels * 32 : 0), vk::BufferUsageFlagBits::eTransferDst, true);
+    const uint64_t readback = pixels * 12 + (want_aovs ? pixels * 32 : 0);
+    if (m.staging.size < readback) m.staging = m.make_buffer(readback, vk::BufferUsageFlagBits::eTransferDst, true);
+    Buffer& staging = m.staging;
     m.run_once([&](vk::raii::CommandBuffer& c) {
       c.copyBuffer(*m.colour.buffer, *staging.buffer, vk::BufferCopy{0, 0, pixels * 12});
       if (want_aovs) c.copyBuffer(*m.aov.buffer, *staging.buffer, vk::BufferCopy{0, pixels * 12, pixels * 32});

@@ -160,6 +160,11 @@ SceneArrays lay_out(const RenderScene& scene) {
   // in its order.
   const Bvh bvh = build_bvh(boxes, 4);
   out.bvh_depth = bvh.depth;
+  // A node pushes at most 3 more children than it pops: the traversal's
+  // stack (HR_STACK entries) must hold 3 (depth - 1) + 1.
+  if (3 * (bvh.depth - 1) + 1 > HR_STACK)
+    throw std::length_error(fmt::format("the scene's hierarchy is {} levels deep, more than the GPU path's stack holds ({})",
+                                        bvh.depth, (HR_STACK - 1) / 3 + 1));
   std::vector<uint32_t> refs;
   refs.reserve(bvh.order.size());
   for (uint32_t k : bvh.order) refs.push_back(out.refs[k]);

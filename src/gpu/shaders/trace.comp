@@ -12,7 +12,14 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "layout.h"
 
+// Workgroup size: 8x8 by default, a specialization constant so that it can
+// be tuned per device without another SPIR-V (gpu_renderer.cpp). No
+// subgroup size is assumed (NVIDIA 32, lavapipe 8).
 layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x_id = 0, local_size_y_id = 1) in;
+// Whether a shadow ray visits a node's children nearest first (any hit
+// ends it, so order matters less than for the nearest hit).
+layout(constant_id = 2) const bool kSortShadowChildren = true;
 
 layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame F; };
 layout(std430, binding = 1) readonly buffer NodeBlock { GpuNode nodes[]; };
@@ -30,9 +37,10 @@ layout(std430, binding = 10) writeonly buffer ColourBlock { float colour_out[]; 
 layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
 // Statistics, summed with one atomic per subgroup: nodes visited,
 // primitives tested, then rays by kind: eye, shadow, reflected, refracted.
-layout(std430, binding = 12) buffer CountBlock { uvec4 counts; uvec4 rays; };
+// One pair of counters per band (32 bits each: a band is short enough).
+layout(std430, binding = 12) buffer CountBlock { uvec4 band_counts[]; };
 
-layout(push_constant) uniform Band { int row0; int rows; } band;
+layout(push_constant) uniform Band { int row0; int rows; int index; } band;
 
 const float kInf = 1.0 / 0.0;
 
@@ -175,7 +183,7 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
         continue;
       }
       int at = m++;
-      while (at > 0 && near_t[at - 1] < t0[c]) {  // descending near t
+      while ((kSortShadowChildren || !any) && at > 0 && near_t[at - 1] < t0[c]) {  // descending near t
         near_t[at] = near_t[at - 1], order[at] = order[at - 1];
         --at;
       }
@@ -461,11 +469,12 @@ void main() {
   uvec2 work = subgroupAdd(uvec2(visited, tested));
   uvec4 kinds = subgroupAdd(uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays));
   if (subgroupElect()) {
-    atomicAdd(counts.x, work.x);
-    atomicAdd(counts.y, work.y);
-    atomicAdd(rays.x, kinds.x);
-    atomicAdd(rays.y, kinds.y);
-    atomicAdd(rays.z, kinds.z);
-    atomicAdd(rays.w, kinds.w);
+    int at = 2 * band.index;
+    atomicAdd(band_counts[at].x, work.x);
+    atomicAdd(band_counts[at].y, work.y);
+    atomicAdd(band_counts[at + 1].x, kinds.x);
+    atomicAdd(band_counts[at + 1].y, kinds.y);
+    atomicAdd(band_counts[at + 1].z, kinds.z);
+    atomicAdd(band_counts[at + 1].w, kinds.w);
   }
 }

@@ -1,0 +1,113 @@
+// bench/gpu_frames: one scene's EIA rendered again and again by one built
+// Renderer on one device, for bench/run_gpu_bench.sh (issue 55). Through
+// the public API alone. Prints one line of key=value pairs: the device, the
+// median and range of the dispatch time per frame (ray generation,
+// traversal and shading; the scene's upload and the image's readback
+// apart), rays per second, BVH nodes visited and primitives tested per ray,
+// and with --cpu the PSNR of the last frame against the CPU path's image,
+// with the depth and id AOVs' agreement where both hit.
+//
+// Usage: holoray_gpu_frames SCENE [--device gpu] [--lenses 240x135] [--ppl 16] [--frames 20] [--warmup 3] [--cpu]
+#include <holoray/holoray.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace holoray::api;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s SCENE [--device gpu] [--lenses NXxNY] [--ppl P] [--frames N] [--warmup K] [--cpu]\n", argv[0]);
+    return 2;
+  }
+  std::string scene_path = argv[1], device = "gpu";
+  int lx = 240, ly = 135, ppl = 16, frames = 20, warmup = 3;
+  bool cpu = false;
+  for (int k = 2; k < argc; ++k) {
+    const std::string a = argv[k];
+    auto next = [&] { return k + 1 < argc ? std::string(argv[++k]) : std::string(); };
+    if (a == "--device") device = next();
+    else if (a == "--lenses") std::sscanf(next().c_str(), "%dx%d", &lx, &ly);
+    else if (a == "--ppl") ppl = std::atoi(next().c_str());
+    else if (a == "--frames") frames = std::atoi(next().c_str());
+    else if (a == "--warmup") warmup = std::atoi(next().c_str());
+    else if (a == "--cpu") cpu = true;
+    else {
+      std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  try {
+    const Scene scene = Scene::load(scene_path);
+    LensArray array;
+    array.lenses_x = lx, array.lenses_y = ly, array.pixels_per_lens = ppl;
+    RenderOptions options;
+    options.device = device;
+    options.aovs.depth = options.aovs.id = cpu;
+    const auto t0 = std::chrono::steady_clock::now();
+    const Renderer renderer(scene, array, options);
+    const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<double> trace, readback;
+    Result last;
+    for (int f = 0; f < warmup + frames; ++f) {
+      last = renderer.render();
+      if (f < warmup) continue;
+      trace.push_back(last.stats.trace_seconds);
+      readback.push_back(last.stats.readback_seconds);
+    }
+    const RenderStats& st = last.stats;
+    const double rays = double(st.rays.total()), ms = median(trace) * 1e3;
+    std::printf("scene=%s device=\"%s\" size=%dx%d frames=%d setup_s=%.3f ms_median=%.3f ms_min=%.3f ms_max=%.3f "
+                "fps=%.1f readback_ms=%.3f rays=%.0f mrays_s=%.1f nodes_per_ray=%.2f prims_per_ray=%.2f",
+                scene_path.c_str(), renderer.device_name().empty() ? "cpu" : renderer.device_name().c_str(),
+                renderer.width(), renderer.height(), frames, setup, ms, *std::min_element(trace.begin(), trace.end()) * 1e3,
+                *std::max_element(trace.begin(), trace.end()) * 1e3, 1e3 / ms, median(readback) * 1e3, rays,
+                rays / (ms * 1e-3) / 1e6, double(st.nodes_visited) / rays, double(st.primitives_tested) / rays);
+    if (cpu) {
+      RenderOptions on_cpu = options;
+      on_cpu.device = "cpu";
+      const auto tc = std::chrono::steady_clock::now();
+      const Result ref = render(scene, array, on_cpu);
+      const double cpu_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
+      // Depth within 1e-4 relative where both hit (relative to 1 % of the
+      // image's largest |t| at least: t is signed, 0 on the lens plane);
+      // ids equal.
+      size_t both = 0, depth_off = 0, id_same = 0, n = size_t(ref.id.width()) * ref.id.height();
+      float t_max = 0;
+      for (size_t k = 0; k < n; ++k)
+        if (!std::isnan(ref.depth.data()[k])) t_max = std::fmax(t_max, std::fabs(ref.depth.data()[k]));
+      for (size_t k = 0; k < n; ++k) {
+        const float a = ref.depth.data()[k], b = last.depth.data()[k];
+        if (!std::isnan(a) && !std::isnan(b)) {
+          ++both;
+          if (std::fabs(a - b) > 1e-4 * std::fmax(std::fabs(a), 0.01f * t_max)) ++depth_off;
+        }
+        id_same += ref.id.data()[k] == last.id.data()[k];
+      }
+      std::printf(" cpu_trace_s=%.3f cpu_total_s=%.3f psnr_db=%.2f depth_off_pct=%.4f id_equal_pct=%.4f", ref.stats.trace_seconds,
+                  cpu_s, psnr(ref.colour, last.colour), 100.0 * depth_off / std::max<size_t>(both, 1),
+                  100.0 * id_same / std::max<size_t>(n, 1));
+    }
+    std::printf("\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "holoray_gpu_frames: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

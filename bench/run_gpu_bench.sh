@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The GPU path's frames (issue 55): 3840x2160 EIAs (240x135 lenses x 16 px)
+# of the four SPD scenes (teapot_s6, balls_s4, gears_s4, tree_s11), each
+# rendered WARMUP + FRAMES times by one built Renderer on DEVICE
+# (bench/gpu_frames.cpp, the public API). Per scene: the dispatches' time
+# per frame (ray generation, traversal and shading: median, min, max of
+# FRAMES after the warm-up; the scene's upload and the image's readback
+# apart), frames per second, rays per second, BVH nodes visited and
+# primitives tested per ray, and against the CPU path on the same machine in
+# the same run: its trace seconds, the PSNR of the GPU's image (8-bit
+# scale), the share of pixels whose depth differs by more than 1e-4
+# relative where both hit, and the share whose object id is equal. The
+# do-nothing baseline: the same EIA of an empty scene (the dispatches, the
+# lines clipped against no box, the image written).
+# Prints a markdown table. Not a timed test: on lavapipe (no GPU), QUICK=1
+# runs it as a check at 30x17 lenses.
+# Usage: bash bench/run_gpu_bench.sh  (DEVICE=gpu FRAMES=20 WARMUP=3 QUICK=1
+#        FRAMES_BIN=build/bench/holoray_gpu_frames HOLORAY_SHARED=../shared)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+shared=${HOLORAY_SHARED:-../shared}
+frames_bin=${FRAMES_BIN:-build/bench/holoray_gpu_frames}
+device=${DEVICE:-gpu}
+frames=${FRAMES:-20}
+warmup=${WARMUP:-3}
+lenses=240x135
+if [[ -n ${QUICK:-} ]]; then lenses=30x17 frames=2 warmup=1; fi
+[[ -d $shared/scenes/nff ]] || { echo "run_gpu_bench.sh: needs $shared/scenes" >&2; exit 1; }
+[[ -x $frames_bin ]] || { echo "run_gpu_bench.sh: build $frames_bin first (cmake --build build)" >&2; exit 1; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+# An empty scene: a viewpoint and a light, nothing to meet.
+printf 'v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 512 512\nl 5 5 5\nb 0.1 0.1 0.1\n' > "$tmp/empty.nff"
+run() { "$frames_bin" "$1" --device "$device" --lenses "$lenses" --ppl 16 --frames "$frames" --warmup "$warmup" "${@:2}"; }
+field() { sed -n "s/.* $1=\\([^ ]*\\).*/\\1/p"; }
+echo "Command: DEVICE=$device FRAMES=$frames WARMUP=$warmup${QUICK:+ QUICK=1} bash bench/run_gpu_bench.sh"
+echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+nothing=$(run "$tmp/empty.nff")
+echo "Device: $(echo "$nothing" | sed -n 's/.*device="\([^"]*\)".*/\1/p'); image $(echo "$nothing" | field size)"
+echo "Do-nothing baseline (an empty scene): $(echo "$nothing" | field ms_median) ms per frame"
+echo
+echo "| scene | ms/frame median (min-max) | fps | Mrays/s | nodes/ray | prims/ray | readback ms | upload+build s | CPU trace s (same machine) | PSNR dB vs CPU | depth off % | id equal % |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do
+  line=$(run "$shared/scenes/nff/$scene.nff" --cpu)
+  f() { echo "$line" | field "$1"; }
+  echo "| $scene | $(f ms_median) ($(f ms_min)-$(f ms_max)) | $(f fps) | $(f mrays_s) | $(f nodes_per_ray) | $(f prims_per_ray) | $(f readback_ms) | $(f setup_s) | $(f cpu_trace_s) | $(f psnr_db) | $(f depth_off_pct) | $(f id_equal_pct) |"
+done
