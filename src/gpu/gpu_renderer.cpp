@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -56,46 +57,49 @@ vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
 
 // NVIDIA's driver registers libGLX_nvidia.so.0 as its Vulkan driver, and
 // in a headless container that library gives no vkCreateInstance (measured
-// on an H200, driver 580: "Found no drivers!") while libEGL_nvidia.so.0,
-// the same driver's EGL face, serves Vulkan. Where the loader finds no
-// driver, no driver list was given (VK_ICD_FILENAMES, VK_DRIVER_FILES) and
-// libEGL_nvidia.so.0 is there, holoray tries once more with a manifest
-// naming it (a temporary file, removed once the loader has read it).
-bool retry_with_nvidia_egl() {
-  if (std::getenv("VK_ICD_FILENAMES") || std::getenv("VK_DRIVER_FILES")) return false;
-  void* egl = ::dlopen("libEGL_nvidia.so.0", RTLD_NOW | RTLD_LOCAL);
-  if (!egl) return false;
-  ::dlclose(egl);
-  return true;
-}
+// on an H200, driver 580: "Found no drivers!"), while libEGL_nvidia.so.0,
+// the same driver's EGL face, serves Vulkan. A second attempt in the same
+// process after the first failed still found none, so where
+// libEGL_nvidia.so.0 is there and no driver list is given
+// (VK_ICD_FILENAMES, VK_DRIVER_FILES, VK_ADD_DRIVER_FILES), holoray adds a
+// manifest naming it to the loader's search from the start (a temporary
+// file, removed once the instance exists); a GPU both drivers list is
+// listed once (physical_devices, by its UUID).
+struct NvidiaEglManifest {
+  std::string path;
+  NvidiaEglManifest() {
+    for (const char* v : {"VK_ICD_FILENAMES", "VK_DRIVER_FILES", "VK_ADD_DRIVER_FILES"})
+      if (std::getenv(v)) return;
+    void* egl = ::dlopen("libEGL_nvidia.so.0", RTLD_NOW | RTLD_LOCAL);
+    if (!egl) return;
+    ::dlclose(egl);
+    char name[] = "/tmp/holoray-nvidia-icd-XXXXXX";
+    const int fd = ::mkstemp(name);
+    if (fd < 0) return;
+    const std::string manifest =
+        R"({"file_format_version": "1.0.0", "ICD": {"library_path": "libEGL_nvidia.so.0", "api_version": "1.3.0"}})";
+    const bool written = ::write(fd, manifest.data(), manifest.size()) == ssize_t(manifest.size());
+    ::close(fd);
+    if (!written) {
+      ::unlink(name);
+      return;
+    }
+    path = name;
+    ::setenv("VK_ADD_DRIVER_FILES", name, 1);
+  }
+  ~NvidiaEglManifest() {
+    if (path.empty()) return;
+    ::unsetenv("VK_ADD_DRIVER_FILES");
+    ::unlink(path.c_str());
+  }
+};
 
 vk::raii::Instance make_instance(const vk::raii::Context& context) {
   vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
-  const vk::InstanceCreateInfo info{.pApplicationInfo = &app};
+  const NvidiaEglManifest egl;
   try {
-    return vk::raii::Instance(context, info);
+    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
   } catch (const vk::SystemError& e) {
-    if (e.code() == vk::Result::eErrorIncompatibleDriver && retry_with_nvidia_egl()) {
-      char path[] = "/tmp/holoray-nvidia-icd-XXXXXX";
-      const int fd = ::mkstemp(path);
-      if (fd >= 0) {
-        const std::string manifest =
-            R"({"file_format_version": "1.0.0", "ICD": {"library_path": "libEGL_nvidia.so.0", "api_version": "1.3.0"}})";
-        const bool written = ::write(fd, manifest.data(), manifest.size()) == ssize_t(manifest.size());
-        ::close(fd);
-        std::optional<vk::raii::Instance> instance;
-        if (written) {
-          ::setenv("VK_ICD_FILENAMES", path, 1);
-          try {
-            instance.emplace(context, info);
-          } catch (const vk::SystemError&) {
-          }
-          ::unsetenv("VK_ICD_FILENAMES");
-        }
-        ::unlink(path);
-        if (instance) return std::move(*instance);
-      }
-    }
     throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
   }
 }
@@ -122,7 +126,18 @@ std::vector<vk::raii::PhysicalDevice> physical_devices(const vk::raii::Instance&
   } catch (const vk::SystemError&) {
   }
   if (all.empty()) throw GpuError(fmt::format("Vulkan lists no device on this machine: {}", kFix));
-  return all;
+  // One GPU listed by two drivers (NvidiaEglManifest) counts once.
+  std::vector<vk::raii::PhysicalDevice> unique;
+  std::vector<std::array<uint8_t, VK_UUID_SIZE>> seen;
+  for (auto& pd : all) {
+    const auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceIDProperties>();
+    std::array<uint8_t, VK_UUID_SIZE> uuid;
+    std::copy_n(chain.get<vk::PhysicalDeviceIDProperties>().deviceUUID.data(), VK_UUID_SIZE, uuid.begin());
+    if (std::find(seen.begin(), seen.end(), uuid) != seen.end()) continue;
+    seen.push_back(uuid);
+    unique.push_back(std::move(pd));
+  }
+  return unique;
 }
 
 // A buffer and its memory; `mapped` when host-visible.
@@ -315,13 +330,13 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   vk::raii::ShaderModule module(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
   // Specialization (shaders/trace.comp): the workgroup's size, 8x8 unless
   // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning), and whether
-  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=0: not).
+  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1: they do).
   if (const char* wg = std::getenv("HOLORAY_GPU_WORKGROUP")) {
     unsigned w = 0, h = 0;
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  const uint32_t spec_values[3] = {m.workgroup[0], m.workgroup[1], sort_env && std::string(sort_env) == "0" ? 0u : 1u};
+  const uint32_t spec_values[3] = {m.workgroup[0], m.workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u};
   const vk::SpecializationMapEntry entries[3] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}};
   const vk::SpecializationInfo spec{.mapEntryCount = 3, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                     .pData = spec_values};
@@ -402,12 +417,13 @@ void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers
     // own pair of 32-bit counters, summed here in 64 bits.
     const int band_rows = std::max(8, int((1 << 20) / std::max(1, W)) / 8 * 8);
     const int bands = (H + band_rows - 1) / band_rows;
-    if (m.counts.size < uint64_t(bands) * 32) {
-      m.counts = m.make_buffer(uint64_t(bands) * 32, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    const uint64_t count_bytes = uint64_t(bands) * HR_COUNT_SLOTS * 32;
+    if (m.counts.size < count_bytes) {
+      m.counts = m.make_buffer(count_bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
       m.bind(12, m.counts);
     }
     std::memcpy(m.scene[0].mapped, &frame, sizeof frame);
-    std::memset(m.counts.mapped, 0, size_t(bands) * 32);
+    std::memset(m.counts.mapped, 0, count_bytes);
     stats = GpuFrameStats{};
     vk::raii::CommandBuffer& cb = m.commands;
     cb.reset();
@@ -428,7 +444,7 @@ void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers
     stats.trace_seconds = seconds_since(t0);
     m.device.resetFences({*m.fence});
     const uint32_t* c = static_cast<const uint32_t*>(m.counts.mapped);
-    for (int b = 0; b < bands; ++b, c += 8) {
+    for (int b = 0; b < bands * HR_COUNT_SLOTS; ++b, c += 8) {
       stats.nodes_visited += c[0], stats.primitives_tested += c[1];
       stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
     }

@@ -48,6 +48,9 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_MAX_DEPTH 16
 #define HR_STACK 64
 
+// Pairs of work counters per band of rows (gpu_renderer.cpp sums them).
+#define HR_COUNT_SLOTS 64
+
 /// One 4-wide BVH node (accel/bvh_builder.hpp, BvhNode): the children's
 /// boxes axis by axis, then per child an index (inner node, or first
 /// reference of a leaf) and a count (0 inner, > 0 leaf, -1 empty).
