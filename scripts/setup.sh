@@ -22,6 +22,8 @@ packages=(
   assimp-testmodels         # glTF and OBJ sample models: docs/guide/scenes.md and the README pictures
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev  # animate --video: FFV1 and H.264
   nlohmann-json3-dev        # Looking Glass calibration files (JSON)
+  libvulkan-dev glslc       # the GPU path (--device gpu): Vulkan-Hpp's headers and the loader, the shader compiler
+  mesa-vulkan-drivers       # lavapipe, a Vulkan device on the CPU: the GPU path's tests run on it where there is no GPU
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (build/python) and its pytest suite, against Debian's python3
   blender                   # the add-on's tests (tests/blender), headless: Debian's Blender, which embeds Debian's python3
   xvfb                      # docs/blender/screenshots.sh: Blender's real interface, for the guide's pictures

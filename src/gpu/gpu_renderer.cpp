@@ -11,7 +11,6 @@
 #include <optional>
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 // The loader is opened here with dlopen, not linked, so that a machine
 // without libvulkan.so.1 still runs the CPU path.
@@ -58,47 +57,37 @@ vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
 // NVIDIA's driver registers libGLX_nvidia.so.0 as its Vulkan driver, and
 // in a headless container that library gives no vkCreateInstance (measured
 // on an H200, driver 580: "Found no drivers!"), while libEGL_nvidia.so.0,
-// the same driver's EGL face, serves Vulkan. A second attempt in the same
-// process after the first failed still found none, so where
-// libEGL_nvidia.so.0 is there and no driver list is given
-// (VK_ICD_FILENAMES, VK_DRIVER_FILES, VK_ADD_DRIVER_FILES), holoray adds a
-// manifest naming it to the loader's search from the start (a temporary
-// file, removed once the instance exists); a GPU both drivers list is
-// listed once (physical_devices, by its UUID).
-struct NvidiaEglManifest {
-  std::string path;
-  NvidiaEglManifest() {
-    for (const char* v : {"VK_ICD_FILENAMES", "VK_DRIVER_FILES", "VK_ADD_DRIVER_FILES"})
-      if (std::getenv(v)) return;
-    void* egl = ::dlopen("libEGL_nvidia.so.0", RTLD_NOW | RTLD_LOCAL);
-    if (!egl) return;
-    ::dlclose(egl);
-    char name[] = "/tmp/holoray-nvidia-icd-XXXXXX";
-    const int fd = ::mkstemp(name);
-    if (fd < 0) return;
-    const std::string manifest =
-        R"({"file_format_version": "1.0.0", "ICD": {"library_path": "libEGL_nvidia.so.0", "api_version": "1.3.0"}})";
-    const bool written = ::write(fd, manifest.data(), manifest.size()) == ssize_t(manifest.size());
-    ::close(fd);
-    if (!written) {
-      ::unlink(name);
-      return;
-    }
-    path = name;
-    ::setenv("VK_ADD_DRIVER_FILES", name, 1);
-  }
-  ~NvidiaEglManifest() {
-    if (path.empty()) return;
-    ::unsetenv("VK_ADD_DRIVER_FILES");
-    ::unlink(path.c_str());
-  }
-};
+// the same driver's EGL face, serves Vulkan (VK_ADD_DRIVER_FILES naming a
+// manifest of it, set before holoray started, found the GPU). So where that
+// library is there, no driver list is given (VK_ICD_FILENAMES,
+// VK_DRIVER_FILES) and the loader offers VK_LUNARG_direct_driver_loading,
+// holoray hands the loader its entry point beside the drivers it finds
+// itself; a GPU both list is counted once (physical_devices, by UUID).
+PFN_vkGetInstanceProcAddrLUNARG nvidia_egl_entry(const vk::raii::Context& context) {
+  if (std::getenv("VK_ICD_FILENAMES") || std::getenv("VK_DRIVER_FILES")) return nullptr;
+  static void* library = ::dlopen("libEGL_nvidia.so.0", RTLD_NOW | RTLD_LOCAL);  // kept for the process
+  if (!library) return nullptr;
+  auto entry = reinterpret_cast<PFN_vkGetInstanceProcAddrLUNARG>(::dlsym(library, "vk_icdGetInstanceProcAddr"));
+  if (!entry) return nullptr;
+  for (const auto& e : context.enumerateInstanceExtensionProperties())
+    if (std::string_view(e.extensionName.data()) == VK_LUNARG_DIRECT_DRIVER_LOADING_EXTENSION_NAME) return entry;
+  return nullptr;
+}
 
 vk::raii::Instance make_instance(const vk::raii::Context& context) {
   vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
-  const NvidiaEglManifest egl;
+  vk::InstanceCreateInfo info{.pApplicationInfo = &app};
+  VkDirectDriverLoadingInfoLUNARG driver{VK_STRUCTURE_TYPE_DIRECT_DRIVER_LOADING_INFO_LUNARG, nullptr, 0, nullptr};
+  VkDirectDriverLoadingListLUNARG drivers{VK_STRUCTURE_TYPE_DIRECT_DRIVER_LOADING_LIST_LUNARG, nullptr,
+                                          VK_DIRECT_DRIVER_LOADING_MODE_INCLUSIVE_LUNARG, 1, &driver};
+  const char* extension = VK_LUNARG_DIRECT_DRIVER_LOADING_EXTENSION_NAME;
+  if ((driver.pfnGetInstanceProcAddr = nvidia_egl_entry(context))) {
+    info.pNext = &drivers;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &extension;
+  }
   try {
-    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
+    return vk::raii::Instance(context, info);
   } catch (const vk::SystemError& e) {
     throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
   }
