@@ -84,6 +84,7 @@ py::array id_array(const api::Image& id) {
 struct Rendered {
   api::Result result;
   std::string description;
+  std::string device;  // the GPU's name; "cpu"
 };
 
 }  // namespace
@@ -197,8 +198,9 @@ void bind_render(py::module_& m) {
   m.def(
       "render",
       [](const api::Scene& scene, const py::handle& camera, std::optional<int> threads, int spp, std::optional<int> max_depth,
-         const std::vector<std::string>& aovs, const py::object& progress) {
+         const std::vector<std::string>& aovs, const py::object& progress, const std::string& device) {
         api::RenderOptions o;
+        o.device = device;
         const api::Camera cam = camera_of(camera, "camera");
         if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
         if (max_depth && *max_depth < 1) throw py::value_error("max_depth: expected at least 1");
@@ -237,7 +239,8 @@ void bind_render(py::module_& m) {
               api::RenderOptions ro = o;
               ro.stop = stop;
               const api::Renderer r(snapshot, cam, ro);
-              return Rendered{r.render(), r.describe()};
+              const std::string name = r.device_name();
+              return Rendered{r.render(), r.describe(), name.empty() ? "cpu" : name};
             },
             waker, progress.is_none() ? std::function<void()>{} : std::function<void()>(tick));
         PyResult res;
@@ -248,13 +251,16 @@ void bind_render(py::module_& m) {
         if (!rr.normal.empty()) res.aovs["normal"] = image_to_numpy(rr.normal);
         if (!rr.id.empty()) res.aovs["id"] = id_array(rr.id);
         res.stats = stats_dict(rr.stats);
+        res.stats["device"] = out.device;
         res.description = out.description;
         return res;
       },
       py::arg("scene"), py::arg("camera"), py::kw_only(), py::arg("threads") = py::none(), py::arg("spp") = 1,
       py::arg("max_depth") = py::none(), py::arg("aovs") = std::vector<std::string>{}, py::arg("progress") = py::none(),
+      py::arg("device") = "cpu",
       "Renders scene through camera: Result. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
-      "progress(fraction) is called on the calling thread.");
+      "progress(fraction) is called on the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else lavapipe) "
+      "or 'gpu:N'; stats['device'] names it.");
 }
 
 }  // namespace holoray::python

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include <dlfcn.h>
+#include <unistd.h>
 
 // The loader is opened here with dlopen, not linked, so that a machine
 // without libvulkan.so.1 still runs the CPU path.
@@ -57,37 +58,55 @@ vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
 // NVIDIA's driver registers libGLX_nvidia.so.0 as its Vulkan driver, and
 // in a headless container that library gives no vkCreateInstance (measured
 // on an H200, driver 580: "Found no drivers!"), while libEGL_nvidia.so.0,
-// the same driver's EGL face, serves Vulkan (VK_ADD_DRIVER_FILES naming a
-// manifest of it, set before holoray started, found the GPU). So where that
-// library is there, no driver list is given (VK_ICD_FILENAMES,
-// VK_DRIVER_FILES) and the loader offers VK_LUNARG_direct_driver_loading,
-// holoray hands the loader its entry point beside the drivers it finds
-// itself; a GPU both list is counted once (physical_devices, by UUID).
-PFN_vkGetInstanceProcAddrLUNARG nvidia_egl_entry(const vk::raii::Context& context) {
-  if (std::getenv("VK_ICD_FILENAMES") || std::getenv("VK_DRIVER_FILES")) return nullptr;
-  static void* library = ::dlopen("libEGL_nvidia.so.0", RTLD_NOW | RTLD_LOCAL);  // kept for the process
-  if (!library) return nullptr;
-  auto entry = reinterpret_cast<PFN_vkGetInstanceProcAddrLUNARG>(::dlsym(library, "vk_icdGetInstanceProcAddr"));
-  if (!entry) return nullptr;
-  for (const auto& e : context.enumerateInstanceExtensionProperties())
-    if (std::string_view(e.extensionName.data()) == VK_LUNARG_DIRECT_DRIVER_LOADING_EXTENSION_NAME) return entry;
-  return nullptr;
-}
+// the same driver's EGL face, serves Vulkan (a manifest naming it in
+// VK_ADD_DRIVER_FILES, set before the process started, found the GPU).
+// So where NVIDIA's manifest is installed and no driver list is given
+// (VK_ICD_FILENAMES, VK_DRIVER_FILES, VK_ADD_DRIVER_FILES), holoray adds a
+// manifest naming libEGL_nvidia.so.0 to the loader's search while the
+// instance is made (a temporary file, removed after; the loader ignores it
+// where that library is missing), and counts a GPU both drivers list once
+// (physical_devices, by UUID). Nothing of the library is opened first:
+// opening and closing it before the loader did left it unable to serve.
+class NvidiaEglManifest {
+ public:
+  NvidiaEglManifest() {
+    for (const char* v : {"VK_ICD_FILENAMES", "VK_DRIVER_FILES", "VK_ADD_DRIVER_FILES"})
+      if (std::getenv(v)) return;
+    bool nvidia = false;
+    for (const char* dir : {"/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d", "/usr/local/share/vulkan/icd.d"})
+      nvidia |= ::access((std::string(dir) + "/nvidia_icd.json").c_str(), R_OK) == 0;
+    if (!nvidia) return;
+    char name[] = "/tmp/holoray-nvidia-egl-XXXXXX";
+    const int fd = ::mkstemp(name);
+    if (fd < 0) return;
+    const std::string manifest =
+        R"({"file_format_version": "1.0.0", "ICD": {"library_path": "libEGL_nvidia.so.0", "api_version": "1.3.0"}})";
+    const bool written = ::write(fd, manifest.data(), manifest.size()) == ssize_t(manifest.size());
+    ::close(fd);
+    if (!written) {
+      ::unlink(name);
+      return;
+    }
+    path_ = name;
+    ::setenv("VK_ADD_DRIVER_FILES", name, 1);
+  }
+  ~NvidiaEglManifest() {
+    if (path_.empty()) return;
+    ::unsetenv("VK_ADD_DRIVER_FILES");
+    ::unlink(path_.c_str());
+  }
+  NvidiaEglManifest(const NvidiaEglManifest&) = delete;
+  NvidiaEglManifest& operator=(const NvidiaEglManifest&) = delete;
+
+ private:
+  std::string path_;
+};
 
 vk::raii::Instance make_instance(const vk::raii::Context& context) {
   vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
-  vk::InstanceCreateInfo info{.pApplicationInfo = &app};
-  VkDirectDriverLoadingInfoLUNARG driver{VK_STRUCTURE_TYPE_DIRECT_DRIVER_LOADING_INFO_LUNARG, nullptr, 0, nullptr};
-  VkDirectDriverLoadingListLUNARG drivers{VK_STRUCTURE_TYPE_DIRECT_DRIVER_LOADING_LIST_LUNARG, nullptr,
-                                          VK_DIRECT_DRIVER_LOADING_MODE_INCLUSIVE_LUNARG, 1, &driver};
-  const char* extension = VK_LUNARG_DIRECT_DRIVER_LOADING_EXTENSION_NAME;
-  if ((driver.pfnGetInstanceProcAddr = nvidia_egl_entry(context))) {
-    info.pNext = &drivers;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &extension;
-  }
+  const NvidiaEglManifest egl;
   try {
-    return vk::raii::Instance(context, info);
+    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
   } catch (const vk::SystemError& e) {
     throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
   }
