@@ -323,124 +323,108 @@ struct Pending {
   int depth;
 };
 
-// What a ray being traced is for.
-const int kFetch = 0;   // none: take the next one from the stack, or the next sample
-const int kPath = 1;    // an eye, mirror or refracted ray: shade what it meets
-const int kShadow = 2;  // a shadow ray toward light `light` of the hit being shaded
-
-// One invocation walks its pixel's ray trees (one per sample) with one
-// call of the traversal for every kind of ray: a state machine, not nested
-// loops, so that the lanes of a subgroup traverse together whichever ray
-// each holds (a shadow ray beside an eye ray), and the traversal's code
-// and registers exist once.
 void main() {
   int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
   int W = F.size.x;
   if (i >= W || int(gl_GlobalInvocationID.y) >= band.rows) return;
   float eps = F.extent.w, margin = F.box_lo.w;
   int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
-  bool ortho = F.mode.z == HR_ORTHOSCOPIC;
   uint eye_rays = 0u, shadow_rays = 0u, reflected_rays = 0u, refracted_rays = 0u;
-
-  vec3 sum = vec3(0.0), c = vec3(0.0);
-  int k = 0;  // samples begun
-  Pending stack[HR_MAX_DEPTH + 2];
-  int sp = 0;
-  // The sample's line and how its primary ray's t maps back to the line's.
-  vec3 lo, ld;
-  float t_offset = 0.0, t_sign = 1.0, tmin0 = 0.0, tmax0 = 0.0;
-  // The AOVs: the first sample's first hit.
+  vec3 sum = vec3(0.0);
   bool first_hit = false;
   float first_t = 0.0;
-  vec3 first_ns = vec3(0.0), first_albedo = vec3(0.0), first_dir = vec3(0.0);
-  int first_object = -1;
-  // The ray being traced.
-  int phase = kFetch;
-  vec3 ro, rd;
-  float rtmin = 0.0, rtmax = 0.0;
-  // The hit being shaded: its path ray's weight and depth, frame, material,
-  // the colour gathered so far, and the light its shadow ray aims at.
-  Pending path;
-  vec3 p, ng, ns, view, above, colour, local, to_light;
-  bool front = true;
-  float falloff = 1.0;
-  int light = 0;
-  GpuMaterial m;
-
-  // No break or continue: with them, lavapipe (Mesa 22, LLVM 15) was
-  // measured to run `sum += c` again for a lane that had left the loop
-  // while others of its subgroup looped on (background pixels beside a
-  // sphere came out twice as bright). The loop's one exit is its condition.
-  bool done = false;
-  while (!done) {
-    if (phase == kFetch && sp == 0) {
-      if (k > 0) sum += c;
-      if (k == spp) {
-        done = true;
+  Surface first;
+  vec3 first_albedo = vec3(0.0), first_dir = vec3(0.0);
+  for (int k = 0; k < spp; ++k) {
+    vec2 uv = sample_offset(i, j, k);
+    vec3 lo, ld;
+    pixel_line(i, j, uv.x, uv.y, lo, ld);
+    // The line against the scene's box (renderer.cpp, clip_primary).
+    vec3 inv = 1.0 / ld;
+    vec3 ta = (F.box_lo.xyz - lo) * inv, tb = (F.box_hi.xyz - lo) * inv;
+    float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
+    float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
+    vec3 c = F.background.xyz;
+    bool ortho = F.mode.z == HR_ORTHOSCOPIC;
+    if (F.box_hi.w == 0.0 && t0 <= t1 && (ortho || t1 > 0.0)) {
+      Pending stack[HR_MAX_DEPTH + 2];
+      int sp = 0;
+      float t_offset = 0.0, t_sign = 1.0, tmin0 = 0.0, tmax0;
+      if (ortho) {
+        float start = t1 + margin;
+        stack[sp++] = Pending(lo + ld * start, -ld, vec3(1.0), 1);
+        t_offset = start, t_sign = -1.0, tmax0 = start - t0 + margin;
       } else {
-        // Sample k's line, clipped to the scene's box (renderer.cpp, clip_primary).
-        vec2 uv = sample_offset(i, j, k);
-        pixel_line(i, j, uv.x, uv.y, lo, ld);
-        vec3 inv = 1.0 / ld;
-        vec3 ta = (F.box_lo.xyz - lo) * inv, tb = (F.box_hi.xyz - lo) * inv;
-        float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
-        float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
-        ++k;
-        c = F.background.xyz;
-        if (F.box_hi.w == 0.0 && t0 <= t1 && (ortho || t1 > 0.0)) {
-          c = vec3(0.0);
-          ++eye_rays;
-          if (ortho) {
-            float start = t1 + margin;
-            stack[sp++] = Pending(lo + ld * start, -ld, vec3(1.0), 1);
-            t_offset = start, t_sign = -1.0, tmin0 = 0.0, tmax0 = start - t0 + margin;
-          } else {
-            stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
-            t_offset = 0.0, t_sign = 1.0, tmin0 = max(0.0, t0 - margin), tmax0 = t1 + margin;
-          }
+        stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
+        tmin0 = max(0.0, t0 - margin), tmax0 = t1 + margin;
+      }
+      c = vec3(0.0);
+      ++eye_rays;
+      while (sp > 0) {
+        Pending r = stack[--sp];
+        bool primary = r.depth == 1;
+        Hit h;
+        if (!trace_ray(r.o, r.d, primary ? tmin0 : 0.0, primary ? tmax0 : kInf, false, h)) {
+          c += r.weight * F.background.xyz;
+          continue;
         }
-      }
-    }
-    if (phase == kFetch && sp > 0) {
-      path = stack[--sp];
-      ro = path.o, rd = path.d;
-      rtmin = path.depth == 1 ? tmin0 : 0.0;
-      rtmax = path.depth == 1 ? tmax0 : kInf;
-      phase = kPath;
-    }
-    // Nothing to trace: the sample's line missed the scene (the next
-    // sample, or done, on the next turn).
-    bool traced = phase != kFetch, met = false;
-    Hit h;
-    if (traced) met = trace_ray(ro, rd, rtmin, rtmax, phase == kShadow, h);
-    bool shading = traced;  // a hit whose lights are being gathered
-    if (phase == kPath && traced && !met) {
-      c += path.weight * F.background.xyz;
-      phase = kFetch;
-      shading = false;
-    } else if (phase == kPath && traced) {
-      Surface s = surface_of(ro, rd, h);
-      m = materials[s.material];
-      colour = m.colour_kd.xyz;
-      p = s.p;
-      if (path.depth == 1 && k == 1) {
-        first_hit = true, first_ns = s.ns, first_albedo = colour, first_dir = ld, first_object = s.object;
-        first_t = t_offset + t_sign * h.t;
-      }
-      // Both normals turned to the side the ray came from (nff-notes §10.2).
-      view = -rd;
-      front = dot(s.ng, view) >= 0.0;
-      ng = front ? s.ng : -s.ng;
-      ns = front ? s.ns : -s.ns;
-      above = p + ng * eps;
-      local = F.ambient.xyz * colour * m.colour_kd.w + m.emission_model.xyz;
-      // The mirror and transmitted rays wait on the stack.
-      if (path.depth < max_depth) {
-        float ks = m.ks_shine_t_ior.x, T = m.ks_shine_t_ior.z, ior = m.ks_shine_t_ior.w;
-        if (ks > 0.0) {  // the true normal where the shading one sends it in
-          vec3 r = reflect_about(rd, ns);
-          if (dot(r, ng) <= 0.0) r = reflect_about(rd, ng);
-          stack[sp++] = Pending(above, normalize(r), path.weight * ks, path.depth + 1);
+        Surface s = surface_of(r.o, r.d, h);
+        GpuMaterial m = materials[s.material];
+        vec3 colour = m.colour_kd.xyz;
+        if (primary && k == 0) {
+          first_hit = true, first = s, first_albedo = colour, first_dir = ld;
+          first_t = t_offset + t_sign * h.t;
+        }
+        // Both normals turned to the side the ray came from (nff-notes §10.2).
+        vec3 view = -r.d;
+        bool front = dot(s.ng, view) >= 0.0;
+        vec3 ng = front ? s.ng : -s.ng, ns = front ? s.ns : -s.ns;
+        vec3 above = s.p + ng * eps;
+        float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
+        vec3 local = F.ambient.xyz * colour * kd + m.emission_model.xyz;
+        for (int l = 0; l < F.counts.x; ++l) {
+          GpuLight L = lights[l];
+          int kind = int(L.position_kind.w);
+          vec3 to_light;
+          float dist, falloff = 1.0;
+          if (kind == HR_LIGHT_DIRECTIONAL) {
+            to_light = -L.direction.xyz;
+            dist = kInf;
+            if (dot(ns, to_light) <= 0.0) continue;
+          } else {
+            to_light = L.position_kind.xyz - s.p;
+            dist = length(to_light);
+            if (!(dist > eps)) continue;
+            to_light /= dist;
+            if (dot(ns, to_light) <= 0.0) continue;
+            if (L.intensity_unit.w == 0.0) {
+              falloff = falloff_of(L, to_light, dist);
+              if (!(falloff > 0.0)) continue;
+            }
+            dist -= eps;
+          }
+          ++shadow_rays;
+          Hit sh;
+          if (trace_ray(above, to_light, 0.0, dist, true, sh)) continue;
+          vec3 term = colour * (kd * dot(ns, to_light));
+          if (ks > 0.0) {
+            float r_dot_v = dot(reflect_about(-to_light, ns), view);
+            if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
+          }
+          if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
+            float n_dot_h = dot(ns, normalize(to_light + view));
+            if (n_dot_h > 0.0) term += m.specular.xyz * pow(n_dot_h, shine);
+          }
+          local += L.intensity_unit.xyz * falloff * term;
+        }
+        c += r.weight * local;
+        if (r.depth >= max_depth) continue;
+        float T = m.ks_shine_t_ior.z, ior = m.ks_shine_t_ior.w;
+        // The mirror ray (the true normal where the shading one sends it in).
+        if (ks > 0.0) {
+          vec3 rd = reflect_about(r.d, ns);
+          if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
+          stack[sp++] = Pending(above, normalize(rd), r.weight * ks, r.depth + 1);
           ++reflected_rays;
         }
         if (T > 0.0) {
@@ -449,83 +433,38 @@ void main() {
           float kk = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
           vec3 o2, d2;
           if (kk < 0.0) {  // total internal reflection
-            vec3 r = reflect_about(rd, ns);
-            if (dot(r, ng) <= 0.0) r = reflect_about(rd, ng);
-            o2 = above, d2 = normalize(r);
+            vec3 rd = reflect_about(r.d, ns);
+            if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
+            o2 = above, d2 = normalize(rd);
             ++reflected_rays;
           } else {
-            d2 = normalize(rd * eta + ns * (eta * cos_i - sqrt(kk)));
-            if (dot(d2, ng) >= 0.0) d2 = rd;
-            o2 = p - ng * eps;
+            d2 = normalize(r.d * eta + ns * (eta * cos_i - sqrt(kk)));
+            if (dot(d2, ng) >= 0.0) d2 = r.d;
+            o2 = s.p - ng * eps;
             ++refracted_rays;
           }
-          stack[sp++] = Pending(o2, d2, path.weight * T, path.depth + 1);
+          stack[sp++] = Pending(o2, d2, r.weight * T, r.depth + 1);
         }
       }
-      light = -1;
-    } else if (phase == kShadow && !met) {  // a shadow ray that reached its light
-      float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
-      vec3 term = colour * (kd * dot(ns, to_light));
-      if (ks > 0.0) {
-        float r_dot_v = dot(reflect_about(-to_light, ns), view);
-        if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
-      }
-      if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
-        float n_dot_h = dot(ns, normalize(to_light + view));
-        if (n_dot_h > 0.0) term += m.specular.xyz * pow(n_dot_h, shine);
-      }
-      local += lights[light].intensity_unit.xyz * falloff * term;
     }
-
-    // The next light this hit casts a shadow ray to (render/shading_terms.hpp,
-    // shadow_ray), else the hit is done.
-    if (shading) phase = kFetch;
-    for (++light; shading && light < F.counts.x && phase == kFetch; ++light) {
-      GpuLight L = lights[light];
-      int kind = int(L.position_kind.w);
-      float dist = kInf;
-      bool casts = true;
-      falloff = 1.0;
-      if (kind == HR_LIGHT_DIRECTIONAL) {
-        to_light = -L.direction.xyz;
-        casts = dot(ns, to_light) > 0.0;
-      } else {
-        to_light = L.position_kind.xyz - p;
-        dist = length(to_light);
-        to_light /= dist;
-        casts = dist > eps && dot(ns, to_light) > 0.0;
-        if (casts && L.intensity_unit.w == 0.0) {
-          falloff = falloff_of(L, to_light, dist);
-          casts = falloff > 0.0;
-        }
-        dist -= eps;
-      }
-      if (casts) {
-        ro = above, rd = to_light, rtmin = 0.0, rtmax = dist;
-        phase = kShadow;
-        ++shadow_rays;
-      }
-    }
-    if (shading && phase == kShadow) --light;  // the loop's step went past the light being traced
-    if (shading && phase == kFetch) c += path.weight * local;
+    sum += c;
   }
-
   uint pixel = uint(j - F.rows.x) * uint(W) + uint(i);
-  vec3 mean = sum / float(spp);
-  colour_out[pixel * 3u + 0u] = mean.x;
-  colour_out[pixel * 3u + 1u] = mean.y;
-  colour_out[pixel * 3u + 2u] = mean.z;
+  vec3 colour = sum / float(spp);
+  colour_out[pixel * 3u + 0u] = colour.x;
+  colour_out[pixel * 3u + 1u] = colour.y;
+  colour_out[pixel * 3u + 2u] = colour.z;
   if (aovs != 0) {
     uint a = pixel * 8u;
     vec3 n = vec3(0.0);
     if (first_hit) {
-      vec3 toward = ortho ? first_dir : -first_dir;
-      n = dot(first_ns, toward) >= 0.0 ? first_ns : -first_ns;
+      vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? first_dir : -first_dir;
+      n = dot(first.ns, toward) >= 0.0 ? first.ns : -first.ns;
     }
     aov_out[a + 0u] = first_albedo.x, aov_out[a + 1u] = first_albedo.y, aov_out[a + 2u] = first_albedo.z;
     aov_out[a + 3u] = first_hit ? first_t : uintBitsToFloat(0x7fc00000u);  // NaN: background
     aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
-    aov_out[a + 7u] = float(first_object);
+    aov_out[a + 7u] = first_hit ? float(first.object) : -1.0;
   }
   // One atomic per subgroup, whatever its size (NVIDIA 32, lavapipe 8).
   uvec2 work = subgroupAdd(uvec2(visited, tested));
