@@ -33,40 +33,19 @@ constexpr const char* kFix =
 
 std::string api_version(uint32_t v) { return fmt::format("Vulkan {}.{}", VK_API_VERSION_MAJOR(v), VK_API_VERSION_MINOR(v)); }
 
-// The loader's library: HOLORAY_VULKAN_LOADER names another (a loader
-// outside the library path; the tests name a missing one), else the
-// system's libvulkan.so.1. Opened once and kept for the process.
-PFN_vkGetInstanceProcAddr loader_entry() {
-  static void* library = nullptr;
-  static std::string opened;
-  const char* env = std::getenv("HOLORAY_VULKAN_LOADER");
-  const std::string name = env && *env ? env : "libvulkan.so.1";
-  if (!library || opened != name) {
-    library = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
-    opened = name;
-  }
-  auto entry = library ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(::dlsym(library, "vkGetInstanceProcAddr")) : nullptr;
-  if (!entry)
-    throw GpuError(fmt::format("the GPU path needs the Vulkan loader ({}), and this machine has none: install libvulkan1 "
-                               "with mesa-vulkan-drivers (lavapipe, Vulkan on the CPU) or the GPU's own driver, or render "
-                               "with `device` cpu", name));
-  return entry;
-}
-
-vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
 
 // NVIDIA's driver registers libGLX_nvidia.so.0 as its Vulkan driver, and
 // in a headless container that library gives no vkCreateInstance (measured
 // on an H200, driver 580: "Found no drivers!"), while libEGL_nvidia.so.0,
 // the same driver's EGL face, serves Vulkan (a manifest naming it in
-// VK_ADD_DRIVER_FILES, set before the process started, found the GPU).
+// VK_ADD_DRIVER_FILES, set before the process started, found the GPU; set
+// by the process after the loader was opened, the loader never saw it).
 // So where NVIDIA's manifest is installed and no driver list is given
-// (VK_ICD_FILENAMES, VK_DRIVER_FILES, VK_ADD_DRIVER_FILES), holoray adds a
-// manifest naming libEGL_nvidia.so.0 to the loader's search while the
-// instance is made (a temporary file, removed after; the loader ignores it
-// where that library is missing), and counts a GPU both drivers list once
-// (physical_devices, by UUID). Nothing of the library is opened first:
-// opening and closing it before the loader did left it unable to serve.
+// (VK_ICD_FILENAMES, VK_DRIVER_FILES, VK_ADD_DRIVER_FILES), holoray writes
+// a manifest naming libEGL_nvidia.so.0 and adds it to the loader's search
+// before it opens the loader (the file is removed at exit; the loader
+// ignores it where that library is missing), and counts a GPU both drivers
+// list once (physical_devices, by UUID).
 class NvidiaEglManifest {
  public:
   NvidiaEglManifest() {
@@ -76,8 +55,9 @@ class NvidiaEglManifest {
     for (const char* dir : {"/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d", "/usr/local/share/vulkan/icd.d"})
       nvidia |= ::access((std::string(dir) + "/nvidia_icd.json").c_str(), R_OK) == 0;
     if (!nvidia) return;
-    char name[] = "/tmp/holoray-nvidia-egl-XXXXXX";
-    const int fd = ::mkstemp(name);
+    // The loader takes a path for a manifest only when it ends in .json.
+    char name[] = "/tmp/holoray-nvidia-egl-XXXXXX.json";
+    const int fd = ::mkstemps(name, 5);
     if (fd < 0) return;
     const std::string manifest =
         R"({"file_format_version": "1.0.0", "ICD": {"library_path": "libEGL_nvidia.so.0", "api_version": "1.3.0"}})";
@@ -91,9 +71,7 @@ class NvidiaEglManifest {
     ::setenv("VK_ADD_DRIVER_FILES", name, 1);
   }
   ~NvidiaEglManifest() {
-    if (path_.empty()) return;
-    ::unsetenv("VK_ADD_DRIVER_FILES");
-    ::unlink(path_.c_str());
+    if (!path_.empty()) ::unlink(path_.c_str());
   }
   NvidiaEglManifest(const NvidiaEglManifest&) = delete;
   NvidiaEglManifest& operator=(const NvidiaEglManifest&) = delete;
@@ -104,13 +82,35 @@ class NvidiaEglManifest {
 
 vk::raii::Instance make_instance(const vk::raii::Context& context) {
   vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
-  const NvidiaEglManifest egl;
   try {
     return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
   } catch (const vk::SystemError& e) {
     throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
   }
 }
+
+// The loader's library: HOLORAY_VULKAN_LOADER names another (a loader
+// outside the library path; the tests name a missing one), else the
+// system's libvulkan.so.1. Opened once and kept for the process.
+PFN_vkGetInstanceProcAddr loader_entry() {
+  static void* library = nullptr;
+  static std::string opened;
+  const char* env = std::getenv("HOLORAY_VULKAN_LOADER");
+  const std::string name = env && *env ? env : "libvulkan.so.1";
+  if (!library || opened != name) {
+    static const NvidiaEglManifest nvidia_egl;  // before the loader reads its environment
+    library = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+    opened = name;
+  }
+  auto entry = library ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(::dlsym(library, "vkGetInstanceProcAddr")) : nullptr;
+  if (!entry)
+    throw GpuError(fmt::format("the GPU path needs the Vulkan loader ({}), and this machine has none: install libvulkan1 "
+                               "with mesa-vulkan-drivers (lavapipe, Vulkan on the CPU) or the GPU's own driver, or render "
+                               "with `device` cpu", name));
+  return entry;
+}
+
+vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
 
 DeviceInfo info_of(const vk::raii::PhysicalDevice& pd) {
   const auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceSubgroupProperties>();
