@@ -49,9 +49,9 @@ struct GpuExecutor::Impl {
 GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera,
                          const RenderOptions& options)
     : impl_(std::make_unique<Impl>()) {
-  if (!camera.lens_array())
-    throw std::invalid_argument("`device` gpu: the GPU path renders lens arrays (square, hex, lenticular) for now; "
-                                "render pinhole views, quilts and panels with `device` cpu");
+  if (!camera.lens_array() && !camera.get<PinholeCamera>())
+    throw std::invalid_argument("`device` gpu: the GPU path renders lens arrays (square, hex, lenticular) and pinhole "
+                                "views for now; render quilts and panels with `device` cpu");
   if (options.cache.enabled)
     throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
   // What the scene holds is checked before any device is opened.
@@ -71,15 +71,18 @@ GpuExecutor::~GpuExecutor() = default;
 
 std::string GpuExecutor::name() const { return impl_->renderer->describe(); }
 
-FrameBuffers GpuExecutor::render(const RenderContext& context, const holoray::LensArray& camera, const AovSet& aovs, int spp,
+FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
                                  std::optional<std::array<int, 2>> rows, RenderStats& stats) {
   const int y0 = rows ? (*rows)[0] : 0, y1 = rows ? (*rows)[1] : camera.height();
   if (y0 < 0 || y1 > camera.height() || y0 >= y1)
-    throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the EIA", y0, y1, camera.height()));
+    throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the image", y0, y1, camera.height()));
   FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
   gpu::GpuFrameStats g;
+  const auto* view = camera.get<PinholeCamera>();
   try {
-    impl_->renderer->render(gpu::frame_constants(context, camera, aovs, spp, y0, y1), aovs, fb, g);
+    impl_->renderer->render(view ? gpu::frame_constants(context, *view, aovs, spp, y0, y1)
+                                 : gpu::frame_constants(context, *camera.lens_array(), aovs, spp, y0, y1),
+                            aovs, fb, g);
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());
   }
@@ -107,7 +110,7 @@ GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderScene&, const FrameCam
 }
 GpuExecutor::~GpuExecutor() = default;
 std::string GpuExecutor::name() const { return ""; }
-FrameBuffers GpuExecutor::render(const RenderContext&, const holoray::LensArray&, const AovSet&, int,
+FrameBuffers GpuExecutor::render(const RenderContext&, const FrameCamera&, const AovSet&, int,
                                  std::optional<std::array<int, 2>>, RenderStats&) {
   throw std::runtime_error(kNoGpu);
 }

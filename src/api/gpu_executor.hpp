@@ -27,7 +27,8 @@ class GpuExecutor {
  public:
   /// Chooses the device and uploads `scene`. Throws std::invalid_argument
   /// for what the GPU path does not render yet (a camera other than a lens
-  /// array, the shadow cache, a material or feature it names), and
+  /// array or a pinhole view, the shadow cache, a material or feature it
+  /// names), and
   /// std::runtime_error when the GPU cannot run (no loader, no device, not
   /// enough memory: the message says what to do).
   GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options);
@@ -35,7 +36,7 @@ class GpuExecutor {
   /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
   std::string name() const;
   /// The frame, or rows [rows[0], rows[1]) of it; colour and the AOVs asked for.
-  FrameBuffers render(const RenderContext& context, const holoray::LensArray& camera, const AovSet& aovs, int spp,
+  FrameBuffers render(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
                       std::optional<std::array<int, 2>> rows, RenderStats& stats);
 
  private:

@@ -239,7 +239,7 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
   holoray::RenderStats st;
   RenderStats on_gpu;
   const RenderContext context(*s.render_scene, s.settings);
-  FrameBuffers fb = s.gpu ? s.gpu->render(context, *s.camera().lens_array(), ro.aovs, ro.spp, rows, on_gpu)
+  FrameBuffers fb = s.gpu ? s.gpu->render(context, s.camera(), ro.aovs, ro.spp, rows, on_gpu)
                           : render_through(context, s.camera(), ro, st);
   Result out;
   out.colour = detail::ImageAccess::wrap(std::move(fb.colour));

@@ -88,6 +88,11 @@ class PinholeCamera final : public Camera {
   int64_t pixel_count() const { return static_cast<int64_t>(desc_.width) * desc_.height; }
   /// The view axis d (unit, world): the clipping planes are perpendicular to it.
   Vec3 axis() const { return -frame_.z; }
+  /// The eye's frame (world): x image right, y image up, z toward the eye.
+  const Frame& frame() const { return frame_; }
+  /// One pixel's size on the image plane at distance 1 (orthographic: in
+  /// scene units): what line() steps by.
+  double pixel_size() const { return pixel_; }
 
   /// The ray of pixel (i, j) at offset (u, v): origin `from`, unit direction
   /// (world frame). The line parameter t is the distance from the eye.

@@ -225,4 +225,26 @@ GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, 
   return f;
 }
 
+GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& camera, const AovSet& aovs, int spp, int row0,
+                         int row1) {
+  const PinholeDesc& d = camera.desc();
+  const Frame& fr = camera.frame();
+  GpuFrame f;
+  f.origin = v4(fr.origin), f.axis_x = v4(fr.x), f.axis_y = v4(fr.y), f.axis_z = v4(fr.z);
+  f.extent = {0, 0, 0, float(context.epsilon())};
+  f.size = {camera.width(), camera.height(), 1, 1};
+  // The normals face the eye, as a pseudoscopic array's face the lens.
+  f.mode = {1, HR_PINHOLE, HR_PSEUDOSCOPIC, spp};
+  const int bits_ = (aovs.albedo ? HR_AOV_ALBEDO : 0) | (aovs.depth ? HR_AOV_DEPTH : 0) | (aovs.normal ? HR_AOV_NORMAL : 0) |
+                    (aovs.id ? HR_AOV_ID : 0);
+  f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
+  f.rows = {row0, row1, 0, 0};
+  f.box_lo = {0, 0, 0, 0}, f.box_hi = {0, 0, 0, context.bounds().empty() ? 1.0f : 0.0f};
+  f.background = v4(context.background());
+  f.ambient = v4(context.ambient());
+  f.view = {float(camera.pixel_size()), float(d.shift_x), float(d.shift_y), float(d.sample_u)};
+  f.view_clip = {float(d.sample_v), float(d.clip_near), float(d.clip_far), d.ortho_height > 0 ? 1.0f : 0.0f};
+  return f;
+}
+
 }  // namespace holoray::gpu

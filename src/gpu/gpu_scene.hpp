@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "camera/lens_array.hpp"
+#include "camera/pinhole.hpp"
 #include "render/render_context.hpp"
 #include "render/renderer.hpp"
 
@@ -47,6 +48,10 @@ SceneArrays lay_out(const RenderScene& scene);
 /// mode), the scene's box grown by its epsilon, depth limit, background,
 /// ambient, spp, the AOVs wanted and the rows [row0, row1) rendered.
 GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
+                         int row1);
+/// The same for a pinhole view (camera/pinhole.hpp: shift, orthographic,
+/// clipping, the sample's place in its pixel).
+GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& camera, const AovSet& aovs, int spp, int row0,
                          int row1);
 
 }  // namespace holoray::gpu

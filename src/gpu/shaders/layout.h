@@ -26,6 +26,7 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_GRID_SQUARE 0
 #define HR_GRID_HEX 1
 #define HR_GRID_LENTICULAR 2
+#define HR_PINHOLE 3  // not a grid: the scene's pinhole view (camera/pinhole.hpp)
 #define HR_ORTHOSCOPIC 0
 #define HR_PSEUDOSCOPIC 1
 
@@ -112,6 +113,11 @@ HR_STRUCT GpuFrame {
   ivec4 rows;      // the rows rendered: first, end (the image's buffers hold these alone)
   vec4 box_lo, box_hi;  // the scene's bounds (world) grown by the margin; w: margin
   vec4 background, ambient;
+  // A pinhole view (grid HR_PINHOLE): pixel size at distance 1 (or in scene
+  // units, orthographic), window shift x and y, the sample's offset in u;
+  // its offset in v, the clipping range along the axis (near, far: 0 and
+  // infinity for none), 1 for an orthographic view.
+  vec4 view, view_clip;
 };
 
 #ifdef __cplusplus

@@ -154,9 +154,18 @@ bool hit_ref(uint ref, vec3 o, vec3 d, float tmin, bool shadow, inout Hit h) {
 
 // ---- traversal: nearest hit in (tmin, tmax), or any hit for shadows ----
 
+// 1 / d with each zero component taken as +-1e-30: an exact 0 gives an
+// infinity, and a slab whose plane holds the origin then gives 0 * inf =
+// NaN, which min() and max() may drop or keep (a ray straight down x = 0
+// lost the boxes that end at x = 0).
+vec3 safe_inverse(vec3 d) {
+  vec3 tiny = vec3(1e-30);
+  return 1.0 / mix(d, mix(-tiny, tiny, greaterThanEqual(d, vec3(0.0))), lessThan(abs(d), tiny));
+}
+
 bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
   h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
-  vec3 inv = 1.0 / d;  // an axis-parallel ray gives infinities, which the slabs take
+  vec3 inv = safe_inverse(d);
   int stack[HR_STACK];
   int sp = 0;
   stack[sp++] = 0;
@@ -219,8 +228,20 @@ ivec2 hex_lens(int i, int j) {
 
 // The pixel's line (world): origin at its lens centre, unit direction.
 void pixel_line(int i, int j, float u, float v, out vec3 origin, out vec3 dir) {
-  float pitch = F.lens.x, gap = F.lens.y, s = F.lens.z;
   int P = F.size.z, grid = F.mode.y;
+  if (grid == HR_PINHOLE) {  // camera/pinhole.cpp: the image plane at distance 1 (orthographic: the eye's plane)
+    float x = (float(i) + u + (F.view.w - 0.5) - 0.5 * float(F.size.x)) * F.view.x + F.view.y;
+    float y = (0.5 * float(F.size.y) - (float(j) + v + (F.view_clip.x - 0.5))) * F.view.x + F.view.z;
+    if (F.view_clip.w != 0.0) {
+      origin = F.origin.xyz + F.axis_x.xyz * x + F.axis_y.xyz * y;
+      dir = -F.axis_z.xyz;
+    } else {
+      origin = F.origin.xyz;
+      dir = normalize(F.axis_x.xyz * x + F.axis_y.xyz * y - F.axis_z.xyz);
+    }
+    return;
+  }
+  float pitch = F.lens.x, gap = F.lens.y, s = F.lens.z;
   vec3 p = vec3((float(i) + u) * s - F.extent.x, F.extent.y - (float(j) + v) * s, -gap);
   float half_array_w = float(F.size.w) * pitch / 2.0;
   vec3 c, d;
@@ -340,13 +361,21 @@ void main() {
     vec3 lo, ld;
     pixel_line(i, j, uv.x, uv.y, lo, ld);
     // The line against the scene's box (renderer.cpp, clip_primary).
-    vec3 inv = 1.0 / ld;
+    vec3 inv = safe_inverse(ld);
     vec3 ta = (F.box_lo.xyz - lo) * inv, tb = (F.box_hi.xyz - lo) * inv;
     float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
     float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
     vec3 c = F.background.xyz;
     bool ortho = F.mode.z == HR_ORTHOSCOPIC;
-    if (F.box_hi.w == 0.0 && t0 <= t1 && (ortho || t1 > 0.0)) {
+    bool pinhole = F.mode.y == HR_PINHOLE;
+    // A pinhole view's ray is not clipped to the box but to the view's
+    // clipping planes, perpendicular to its axis (view_renderer.cpp): a ray at
+    // cosine ca to the axis meets them at clip / ca.
+    float ca = dot(ld, -F.axis_z.xyz);
+    bool aimed = ca > 0.0 || (F.view_clip.y == 0.0 && isinf(F.view_clip.z));
+    bool traced = pinhole ? F.box_hi.w == 0.0 && aimed : F.box_hi.w == 0.0 && t0 <= t1 && (ortho || t1 > 0.0);
+    if (pinhole && aimed && !traced) ++eye_rays;  // an empty scene: the CPU counts the ray it traces through nothing
+    if (traced) {
       Pending stack[HR_MAX_DEPTH + 2];
       int sp = 0;
       float t_offset = 0.0, t_sign = 1.0, tmin0 = 0.0, tmax0;
@@ -354,6 +383,10 @@ void main() {
         float start = t1 + margin;
         stack[sp++] = Pending(lo + ld * start, -ld, vec3(1.0), 1);
         t_offset = start, t_sign = -1.0, tmax0 = start - t0 + margin;
+      } else if (pinhole) {
+        stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
+        bool clipped = !(F.view_clip.y == 0.0 && isinf(F.view_clip.z));
+        tmin0 = clipped ? F.view_clip.y / ca : 0.0, tmax0 = clipped ? F.view_clip.z / ca : kInf;
       } else {
         stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
         tmin0 = max(0.0, t0 - margin), tmax0 = t1 + margin;
