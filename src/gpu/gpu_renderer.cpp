@@ -224,7 +224,7 @@ struct GpuRenderer::Impl {
   Buffer colour, aov, counts, staging;
   vk::raii::CommandBuffer commands = nullptr;
   vk::raii::Fence fence = nullptr;
-  uint32_t workgroup[2] = {8, 8};
+  uint32_t workgroup[2] = {32, 2};  // shaders/trace.comp says why
   uint64_t scene_bytes = 0;
 
   uint32_t memory_type(uint32_t allowed, vk::MemoryPropertyFlags want, vk::MemoryPropertyFlags prefer = {}) const {
@@ -336,7 +336,7 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
                                              .pPushConstantRanges = &push});
   vk::raii::ShaderModule module(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
-  // Specialization (shaders/trace.comp): the workgroup's size, 8x8 unless
+  // Specialization (shaders/trace.comp): the workgroup's size, 32x2 unless
   // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning), and whether
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1: they do).
   if (const char* wg = std::getenv("HOLORAY_GPU_WORKGROUP")) {
