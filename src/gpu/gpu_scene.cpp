@@ -158,6 +158,8 @@ SceneArrays lay_out(const RenderScene& scene) {
   }
   // Embree's builder over the primitives' boxes; the leaves' references
   // in its order.
+  // Leaves of up to 4 primitives: 2 and 8 measured the same (within 0.5 %
+  // on balls_s4 and gears_s4, 3840x2160, H200).
   const Bvh bvh = build_bvh(boxes, 4);
   out.bvh_depth = bvh.depth;
   // A node pushes at most 3 more children than it pops: the traversal's
