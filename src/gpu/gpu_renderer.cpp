@@ -304,6 +304,13 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   }
   m.physical = std::move(all[pick]);
   m.info = info_of(m.physical);
+  // The kernel sums its counters per subgroup (subgroupAdd).
+  const auto subgroups = m.physical.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceSubgroupProperties>()
+                             .get<vk::PhysicalDeviceSubgroupProperties>();
+  if (!(subgroups.supportedStages & vk::ShaderStageFlagBits::eCompute) ||
+      !(subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eArithmetic))
+    throw GpuError(fmt::format("the device {} has no subgroup arithmetic in compute shaders, which the GPU path needs: "
+                               "render with `device` cpu, or choose another device (`device` gpu:N)", m.info.name));
   m.memory_types = m.physical.getMemoryProperties();
   const auto families = m.physical.getQueueFamilyProperties();
   auto family = std::find_if(families.begin(), families.end(), [](const vk::QueueFamilyProperties& f) {
