@@ -265,6 +265,19 @@ TEST(GpuPath, NamesTheDevicesWhenAskedForOneItLacks) {
   EXPECT_NE(m.find("Vulkan device"), std::string::npos) << m;
 }
 
+TEST(GpuPath, DevicesCommandListsWhatGpuNCounts) {
+  const CommandResult listed = run_cli("devices");
+  EXPECT_EQ(listed.status, 0) << listed.output;
+  EXPECT_EQ(listed.output.rfind("0: ", 0), 0u) << listed.output;
+  EXPECT_NE(listed.output.find(", Vulkan 1."), std::string::npos) << listed.output;
+  const CommandResult none = run_shell("HOLORAY_VULKAN_LOADER=/nonexistent.so " + std::string(HOLORAY_CLI) + " devices");
+  EXPECT_EQ(none.status, 1);
+  EXPECT_EQ(none.output,
+            "holoray: error: the GPU path needs the Vulkan loader (/nonexistent.so), and this machine has none: install "
+            "libvulkan1 with mesa-vulkan-drivers (lavapipe, Vulkan on the CPU) or the GPU's own driver, or render with "
+            "--device cpu\n");
+}
+
 // An environment variable set for one test and restored after it.
 struct ScopedEnv {
   std::string name;

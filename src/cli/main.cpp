@@ -5,6 +5,7 @@
 
 #include "cli/animate_command.hpp"
 #include "cli/compare_command.hpp"
+#include "cli/devices_command.hpp"
 #include "cli/completion.hpp"
 #include "cli/interlace_command.hpp"
 #include "cli/launch_check.hpp"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
   CLI::App* interlace = holoray::cli::add_interlace_command(app, interlace_opts);
   holoray::cli::ViewsCommandOptions views_opts;
   CLI::App* views = holoray::cli::add_views_command(app, views_opts);
+  CLI::App* devices = holoray::cli::add_devices_command(app);
   holoray::cli::add_completion_option(app);
   app.footer(
       "\nExamples:\n"
@@ -59,7 +61,7 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, compare, simulate, views or interlace)\n", argv[1]);
+    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, compare, simulate, views, interlace or devices)\n", argv[1]);
     return 2;
   }
   try {
@@ -83,5 +85,6 @@ int main(int argc, char** argv) {
   if (simulate->parsed()) return holoray::cli::run_simulate(simulate_opts);
   if (views->parsed()) return holoray::cli::run_views(views_opts);
   if (interlace->parsed()) return holoray::cli::run_interlace(interlace_opts);
+  if (devices->parsed()) return holoray::cli::run_devices();
   return 2;
 }
