@@ -127,6 +127,17 @@ TEST(GpuPath, PinholeViewsMatchTheCpuPath) {
   expect_agreement(both_ways(Scene::load(source_dir() + "/examples/primitives.nff"), shifted, 2), "shifted, 2 spp");
 }
 
+TEST(GpuPath, QuiltsMatchTheCpuPath) {
+  if (!have_shared_scenes()) GTEST_SKIP() << "needs ../shared/scenes";
+  api::Quilt quilt;
+  quilt.columns = 4, quilt.rows = 3, quilt.view_width = 40, quilt.view_height = 30;
+  for (const char* name : {"teapot_s6", "balls_s4"}) {
+    const Scene scene = Scene::load(shared_dir() + "/scenes/nff/" + name + ".nff");
+    expect_agreement(both_ways(scene, quilt), name);
+    expect_agreement(both_ways(scene, quilt, 2), std::string(name) + ", 2 spp");
+  }
+}
+
 // What only a file's camera sets: an orthographic view, a clipping range,
 // Tachyon's mirrored screen and its sample at the pixel's corner; rendered
 // by the renderers themselves (render_view against the GPU's frame).
@@ -239,11 +250,9 @@ TEST(GpuPath, RefusesWhatItDoesNotRenderYet) {
   const Scene nff = Scene::load(source_dir() + "/examples/primitives.nff");
   RenderOptions o;
   o.device = "gpu";
-  api::Quilt quilt;
-  quilt.columns = 2, quilt.rows = 2, quilt.view_width = 16, quilt.view_height = 16;
-  EXPECT_EQ(error_of([&] { api::render(nff, quilt, o); }),
-            "`device` gpu: the GPU path renders lens arrays (square, hex, lenticular) and pinhole views for now; render "
-            "quilts and panels with `device` cpu");
+  EXPECT_EQ(error_of([&] { api::render(nff, api::Display{source_dir() + "/examples/displays/lenticular_4k.toml"}, o); }),
+            "`device` gpu: the GPU path renders lens arrays (square, hex, lenticular), pinhole views and quilts for now; "
+            "render display panels and Looking Glass images with `device` cpu");
   RenderOptions cached = o;
   cached.cache.enabled = true;
   EXPECT_EQ(error_of([&] { api::render(nff, array_of(api::Grid::square), cached); }),

@@ -337,7 +337,7 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
     bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
   m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
                                                              .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
-  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 12};
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 16};
   vk::DescriptorSetLayout raw_layout = *m.set_layout;
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
@@ -407,10 +407,15 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
 }
 
 void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
+  render(std::vector<GpuFrame>{frame}, frame.size.x, frame.rows.y - frame.rows.x, aovs, out, stats);
+}
+
+void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
+                         GpuFrameStats& stats) {
   Impl& m = *impl_;
   if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
-  const int W = frame.size.x, y0 = frame.rows.x, H = frame.rows.y - frame.rows.x;
-  const bool want_aovs = frame.counts.y != 0;
+  if (frames.empty()) throw std::logic_error("GpuRenderer::render without a frame");
+  const bool want_aovs = frames[0].counts.y != 0;
   const uint64_t pixels = uint64_t(W) * uint64_t(H);
   const uint64_t need = frame_bytes(W, H, want_aovs);
   if (m.info.memory_bytes && m.scene_bytes + need > m.info.memory_bytes)
@@ -427,17 +432,31 @@ void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers
       m.aov = m.make_buffer(aov_size, usage, false);
       m.bind(11, m.aov);
     }
-    // Bands of about 2^20 pixels, each its own dispatch (well inside a
-    // desktop watchdog's seconds), all in one submission; each band its
-    // own pair of 32-bit counters, summed here in 64 bits.
-    const int band_rows = std::max(8, int((1 << 20) / std::max(1, W)) / 8 * 8);
-    const int bands = (H + band_rows - 1) / band_rows;
+    // Each camera's rows in bands of about 2^20 pixels, each its own
+    // dispatch (well inside a desktop watchdog's seconds), all in one
+    // submission; each band its own 32-bit counters, summed here in 64 bits.
+    struct Band {
+      int32_t row0, rows, frame;
+      uint32_t width;
+    };
+    std::vector<Band> band_list;
+    for (size_t f = 0; f < frames.size(); ++f) {
+      const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
+      const int band_rows = std::max(8, int((1 << 20) / std::max(1, w)) / 8 * 8);
+      for (int row0 = y0; row0 < y1; row0 += band_rows)
+        band_list.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
+    }
+    const int bands = int(band_list.size());
     const uint64_t count_bytes = uint64_t(bands) * HR_COUNT_SLOTS * 32;
     if (m.counts.size < count_bytes) {
       m.counts = m.make_buffer(count_bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
       m.bind(12, m.counts);
     }
-    std::memcpy(m.scene[0].mapped, &frame, sizeof frame);
+    if (m.scene[0].size < frames.size() * sizeof(GpuFrame)) {
+      m.scene[0] = m.make_buffer(frames.size() * sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
+      m.bind(0, m.scene[0]);
+    }
+    std::memcpy(m.scene[0].mapped, frames.data(), frames.size() * sizeof(GpuFrame));
     std::memset(m.counts.mapped, 0, count_bytes);
     stats = GpuFrameStats{};
     vk::raii::CommandBuffer& cb = m.commands;
@@ -446,9 +465,10 @@ void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {
-      const int row0 = y0 + b * band_rows, rows = std::min(band_rows, y0 + H - row0);
-      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {row0, rows, b});
-      cb.dispatch((uint32_t(W) + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
+      const Band& band = band_list[size_t(b)];
+      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                {band.row0, band.rows, b, band.frame});
+      cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
     }
     cb.end();
     vk::CommandBuffer raw = *cb;

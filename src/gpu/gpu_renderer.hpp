@@ -71,6 +71,10 @@ class GpuRenderer {
   /// `out` (allocated by the caller, W x H as in `frame`; the AOVs that
   /// `aovs` names). Throws GpuError on a lost device or failed allocation.
   void render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats);
+  /// Several cameras into one W x H image, each into its tile
+  /// (GpuFrame::tile: a quilt's views), in one submission.
+  void render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
+              GpuFrameStats& stats);
 
  private:
   struct Impl;

@@ -214,6 +214,7 @@ GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, 
                     (aovs.id ? HR_AOV_ID : 0);
   f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
   f.rows = {row0, row1, 0, 0};
+  f.tile = {0, 0, camera.width(), 0};
   // The renderer's box: the scene's bounds grown by epsilon (renderer.cpp, grown()).
   const Bounds3& b = context.bounds();
   if (b.empty()) {  // nothing to meet: a box no line crosses
@@ -241,12 +242,25 @@ GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& came
                     (aovs.id ? HR_AOV_ID : 0);
   f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
   f.rows = {row0, row1, 0, 0};
+  f.tile = {0, 0, camera.width(), 0};
   f.box_lo = {0, 0, 0, 0}, f.box_hi = {0, 0, 0, context.bounds().empty() ? 1.0f : 0.0f};
   f.background = v4(context.background());
   f.ambient = v4(context.ambient());
   f.view = {float(camera.pixel_size()), float(d.shift_x), float(d.shift_y), float(d.sample_u)};
   f.view_clip = {float(d.sample_v), float(d.clip_near), float(d.clip_far), d.ortho_height > 0 ? 1.0f : 0.0f};
   return f;
+}
+
+std::vector<GpuFrame> quilt_frames(const RenderContext& context, const QuiltCamera& camera, const AovSet& aovs, int spp) {
+  const QuiltDesc& q = camera.desc();
+  std::vector<GpuFrame> out;
+  for (int k = 0; k < q.columns * q.rows; ++k) {
+    GpuFrame f = frame_constants(context, camera.view(k), aovs, spp, 0, q.view_height);
+    // View 0 is the bottom left tile (QuiltCamera::view_at).
+    f.tile = {k % q.columns * q.view_width, (q.rows - 1 - k / q.columns) * q.view_height, camera.width(), 0};
+    out.push_back(f);
+  }
+  return out;
 }
 
 }  // namespace holoray::gpu

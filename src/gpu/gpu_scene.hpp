@@ -12,6 +12,7 @@
 
 #include "camera/lens_array.hpp"
 #include "camera/pinhole.hpp"
+#include "camera/quilt_camera.hpp"
 #include "render/render_context.hpp"
 #include "render/renderer.hpp"
 
@@ -49,6 +50,9 @@ SceneArrays lay_out(const RenderScene& scene);
 /// ambient, spp, the AOVs wanted and the rows [row0, row1) rendered.
 GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
                          int row1);
+/// A quilt's views (camera/quilt_camera.hpp), each a pinhole view with its
+/// tile of the whole quilt image (GpuFrame::tile).
+std::vector<GpuFrame> quilt_frames(const RenderContext& context, const QuiltCamera& camera, const AovSet& aovs, int spp);
 /// The same for a pinhole view (camera/pinhole.hpp: shift, orthographic,
 /// clipping, the sample's place in its pixel).
 GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& camera, const AovSet& aovs, int spp, int row0,

@@ -118,6 +118,10 @@ HR_STRUCT GpuFrame {
   // its offset in v, the clipping range along the axis (near, far: 0 and
   // infinity for none), 1 for an orthographic view.
   vec4 view, view_clip;
+  // Where the camera's pixels go in the image: pixel (i, j) is image pixel
+  // (x + i, y + j), rows `z` pixels apart (a quilt's view in its tile;
+  // 0, 0, width for the others).
+  ivec4 tile;
 };
 
 #ifdef __cplusplus

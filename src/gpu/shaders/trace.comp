@@ -23,7 +23,9 @@ layout(local_size_x_id = 0, local_size_y_id = 1) in;
 // gears_s4 at 3840x2160 on an H200).
 layout(constant_id = 2) const bool kSortShadowChildren = false;
 
-layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame F; };
+// One frame's constants per camera dispatched: a quilt's views are several.
+layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame frames[]; };
+#define F frames[band.frame]
 layout(std430, binding = 1) readonly buffer NodeBlock { GpuNode nodes[]; };
 layout(std430, binding = 2) readonly buffer RefBlock { uint refs[]; };
 layout(std430, binding = 3) readonly buffer TriBlock { GpuTriangle tris[]; };
@@ -42,7 +44,7 @@ layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
 // Counters: HR_COUNT_SLOTS pairs per band (32 bits each: a band is short enough).
 layout(std430, binding = 12) buffer CountBlock { uvec4 band_counts[]; };
 
-layout(push_constant) uniform Band { int row0; int rows; int index; } band;
+layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
 
 const float kInf = 1.0 / 0.0;
 
@@ -340,6 +342,10 @@ float falloff_of(GpuLight L, vec3 to_light, float dist) {
 
 vec3 reflect_about(vec3 d, vec3 n) { return d - n * (2.0 * dot(d, n)); }
 
+// Where the camera's pixel (i, j) goes in the output: its tile of the image
+// (a quilt's view) and the rows this render holds.
+uint out_pixel(int i, int j) { return uint(F.tile.y + j - F.rows.x) * uint(F.tile.z) + uint(F.tile.x + i); }
+
 // Shadow rays prepared at once (their terms in a small array), then traced.
 const int kLightChunk = 8;
 
@@ -358,7 +364,7 @@ void main() {
   vec3 sum = vec3(0.0);
   bool first_hit = false;
   for (int k = 0; k < spp; ++k) {
-    vec2 uv = sample_offset(i, j, k);
+    vec2 uv = sample_offset(F.tile.x + i, F.tile.y + j, k);  // the image's pixel: a quilt's, not its view's
     vec3 lo, ld;
     pixel_line(i, j, uv.x, uv.y, lo, ld);
     // The line against the scene's box (renderer.cpp, clip_primary).
@@ -415,7 +421,7 @@ void main() {
         if (primary && k == 0) {
           first_hit = true;
           if (aovs != 0) {
-            uint a = (uint(j - F.rows.x) * uint(W) + uint(i)) * 8u;
+            uint a = out_pixel(i, j) * 8u;
             vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? ld : -ld;
             vec3 n = dot(s.ns, toward) >= 0.0 ? s.ns : -s.ns;
             aov_out[a + 0u] = colour.x, aov_out[a + 1u] = colour.y, aov_out[a + 2u] = colour.z;
@@ -507,7 +513,7 @@ void main() {
     }
     sum += c;
   }
-  uint pixel = uint(j - F.rows.x) * uint(W) + uint(i);
+  uint pixel = out_pixel(i, j);
   vec3 colour = sum / float(spp);
   colour_out[pixel * 3u + 0u] = colour.x;
   colour_out[pixel * 3u + 1u] = colour.y;
