@@ -276,20 +276,12 @@ struct GpuRenderer::Impl {
     return dst;
   }
 
-  // Binding 0 (the frame's constants) is dynamic: one GpuFrame seen at the
-  // offset each dispatch names.
   void bind(int binding, const Buffer& b) {
-    vk::DescriptorBufferInfo bi{*b.buffer, 0, binding == 0 ? sizeof(GpuFrame) : VK_WHOLE_SIZE};
-    device.updateDescriptorSets(
-        vk::WriteDescriptorSet{.dstSet = *set, .dstBinding = uint32_t(binding), .descriptorCount = 1,
-                               .descriptorType = binding == 0 ? vk::DescriptorType::eStorageBufferDynamic
-                                                              : vk::DescriptorType::eStorageBuffer,
-                               .pBufferInfo = &bi},
-        nullptr);
+    vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};
+    device.updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set, .dstBinding = uint32_t(binding), .descriptorCount = 1,
+                                                       .descriptorType = vk::DescriptorType::eStorageBuffer, .pBufferInfo = &bi},
+                                nullptr);
   }
-  // Bytes between two frames' constants: GpuFrame rounded up to the
-  // device's alignment of dynamic storage offsets.
-  vk::DeviceSize frame_stride = sizeof(GpuFrame);
 };
 
 GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
@@ -342,11 +334,10 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
                                                                      .queueFamilyIndex = m.family});
   std::vector<vk::DescriptorSetLayoutBinding> bindings;
   for (uint32_t b = 0; b < kBindings; ++b)
-    bindings.push_back({b, b == 0 ? vk::DescriptorType::eStorageBufferDynamic : vk::DescriptorType::eStorageBuffer, 1,
-                        vk::ShaderStageFlagBits::eCompute});
+    bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
   m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
                                                              .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
-  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 12};
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 16};
   vk::DescriptorSetLayout raw_layout = *m.set_layout;
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
@@ -373,13 +364,10 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
-  const vk::DescriptorPoolSize sizes[2] = {{vk::DescriptorType::eStorageBuffer, kBindings - 1},
-                                           {vk::DescriptorType::eStorageBufferDynamic, 1}};
-  const vk::DeviceSize align = m.physical.getProperties().limits.minStorageBufferOffsetAlignment;
-  m.frame_stride = (sizeof(GpuFrame) + align - 1) / align * align;
+  vk::DescriptorPoolSize size{vk::DescriptorType::eStorageBuffer, kBindings};
   m.descriptor_pool = vk::raii::DescriptorPool(
       m.device, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, .maxSets = 1,
-                                             .poolSizeCount = 2, .pPoolSizes = sizes});
+                                             .poolSizeCount = 1, .pPoolSizes = &size});
   vk::raii::DescriptorSets sets(m.device, vk::DescriptorSetAllocateInfo{.descriptorPool = *m.descriptor_pool,
                                                                         .descriptorSetCount = 1, .pSetLayouts = &raw_layout});
   m.set = std::move(sets[0]);
@@ -464,24 +452,22 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
       m.counts = m.make_buffer(count_bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
       m.bind(12, m.counts);
     }
-    if (m.scene[0].size < frames.size() * m.frame_stride) {
-      m.scene[0] = m.make_buffer(frames.size() * m.frame_stride, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    if (m.scene[0].size < frames.size() * sizeof(GpuFrame)) {
+      m.scene[0] = m.make_buffer(frames.size() * sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
       m.bind(0, m.scene[0]);
     }
-    for (size_t f = 0; f < frames.size(); ++f)
-      std::memcpy(static_cast<char*>(m.scene[0].mapped) + f * m.frame_stride, &frames[f], sizeof(GpuFrame));
+    std::memcpy(m.scene[0].mapped, frames.data(), frames.size() * sizeof(GpuFrame));
     std::memset(m.counts.mapped, 0, count_bytes);
     stats = GpuFrameStats{};
     vk::raii::CommandBuffer& cb = m.commands;
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline);
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {
       const Band& band = band_list[size_t(b)];
-      if (b == 0 || band.frame != band_list[size_t(b - 1)].frame)
-        cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set},
-                              {uint32_t(band.frame * m.frame_stride)});
-      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {band.row0, band.rows, b});
+      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                {band.row0, band.rows, b, band.frame});
       cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
     }
     cb.end();

@@ -23,10 +23,9 @@ layout(local_size_x_id = 0, local_size_y_id = 1) in;
 // gears_s4 at 3840x2160 on an H200).
 layout(constant_id = 2) const bool kSortShadowChildren = false;
 
-// The constants of the camera dispatched (a quilt's views are several: each
-// dispatch sees its own at a dynamic offset, so the kernel reads one struct,
-// not an array indexed by a push constant, which cost it 8 registers).
-layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame F; };
+// One frame's constants per camera dispatched: a quilt's views are several.
+layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame frames[]; };
+#define F frames[band.frame]
 layout(std430, binding = 1) readonly buffer NodeBlock { GpuNode nodes[]; };
 layout(std430, binding = 2) readonly buffer RefBlock { uint refs[]; };
 layout(std430, binding = 3) readonly buffer TriBlock { GpuTriangle tris[]; };
@@ -45,7 +44,7 @@ layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
 // Counters: HR_COUNT_SLOTS pairs per band (32 bits each: a band is short enough).
 layout(std430, binding = 12) buffer CountBlock { uvec4 band_counts[]; };
 
-layout(push_constant) uniform Band { int row0; int rows; int index; } band;
+layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
 
 const float kInf = 1.0 / 0.0;
 
