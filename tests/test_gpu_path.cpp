@@ -237,15 +237,6 @@ TEST(GpuPath, SummaryNamesTheDevice) {
 
 // ---- refusals and faults, each with its message ----
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(GpuPath, RefusesWhatItDoesNotRenderYet) {
   const Scene nff = Scene::load(source_dir() + "/examples/primitives.nff");
   RenderOptions o;

@@ -20,15 +20,6 @@ namespace holoray {
 namespace {
 using namespace test;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Transform, InverseUndoesTheKeyAndNormalsStayPerpendicular) {
   TransformKey k;
   k.translate = {1, -2, 3};

@@ -55,6 +55,16 @@ inline void write_image_of(const std::string& path, int width, int height,
   write_image(path, img);
 }
 
+/// What `f` throws (std::exception::what()), "" when it throws nothing.
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 inline bool have_shared_scenes() { return std::filesystem::is_directory(shared_dir() + "/scenes/nff"); }
 
 /// Two spheres on a floor under one light, with a viewpoint (NFF text), for
