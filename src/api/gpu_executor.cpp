@@ -49,9 +49,6 @@ struct GpuExecutor::Impl {
 GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera,
                          const RenderOptions& options)
     : impl_(std::make_unique<Impl>()) {
-  if (!camera.lens_array() && !camera.get<PinholeCamera>() && !camera.get<QuiltCamera>())
-    throw std::invalid_argument("`device` gpu: the GPU path renders lens arrays (square, hex, lenticular), pinhole "
-                                "views and quilts for now; render display panels and Looking Glass images with `device` cpu");
   if (options.cache.enabled)
     throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
   // What the scene holds is checked before any device is opened.
@@ -76,18 +73,22 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
   const int y0 = rows ? (*rows)[0] : 0, y1 = rows ? (*rows)[1] : camera.height();
   if (y0 < 0 || y1 > camera.height() || y0 >= y1)
     throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the image", y0, y1, camera.height()));
-  FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
-  gpu::GpuFrameStats g;
   const auto* view = camera.get<PinholeCamera>();
   const auto* quilt = camera.get<QuiltCamera>();
+  const auto* panel = camera.get<PanelView>();
+  const auto* looking_glass = camera.get<LookingGlassCamera>();
   if (quilt && (y0 != 0 || y1 != camera.height()))
     throw std::invalid_argument("`device` gpu: a quilt renders whole on the GPU, not in bands of rows");
+  FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
+  gpu::GpuFrameStats g;
   try {
     if (quilt)
       impl_->renderer->render(gpu::quilt_frames(context, *quilt, aovs, spp), camera.width(), camera.height(), aovs, fb, g);
     else
-      impl_->renderer->render(view ? gpu::frame_constants(context, *view, aovs, spp, y0, y1)
-                                   : gpu::frame_constants(context, *camera.lens_array(), aovs, spp, y0, y1),
+      impl_->renderer->render(view    ? gpu::frame_constants(context, *view, aovs, spp, y0, y1)
+                              : panel ? gpu::frame_constants(context, panel->camera, panel->red_first, spp, y0, y1)
+                              : looking_glass ? gpu::frame_constants(context, *looking_glass, spp, y0, y1)
+                                              : gpu::frame_constants(context, *camera.lens_array(), aovs, spp, y0, y1),
                               aovs, fb, g);
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());

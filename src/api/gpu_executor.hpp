@@ -1,6 +1,6 @@
 // holoray/api: the GPU path behind Renderer (issue 55): the device named by
-// RenderOptions::device, the scene laid out and uploaded once, frames of a
-// lens-array camera rendered there. Built without the GPU path (no Vulkan
+// RenderOptions::device, the scene laid out and uploaded once, frames of any
+// camera rendered there. Built without the GPU path (no Vulkan
 // headers or glslc), it refuses, saying how to get it.
 #pragma once
 
@@ -26,9 +26,8 @@ DeviceChoice parse_device(const std::string& device);
 class GpuExecutor {
  public:
   /// Chooses the device and uploads `scene`. Throws std::invalid_argument
-  /// for what the GPU path does not render yet (a camera other than a lens
-  /// array or a pinhole view, the shadow cache, a material or feature it
-  /// names), and
+  /// for what the GPU path does not render yet (the shadow cache, a
+  /// material or feature it names), and
   /// std::runtime_error when the GPU cannot run (no loader, no device, not
   /// enough memory: the message says what to do).
   GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options);

@@ -103,6 +103,15 @@ class LookingGlassCamera final : public Camera {
   /// Forward projection is not offered (one view per subpixel): throws std::logic_error.
   void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
   const LookingGlassCalibration& calibration() const { return c_; }
+  /// The centre view (the panel's size), its frame (x right, y up, z toward
+  /// the eye; world), |at - from| (scene units), one pixel's size on the
+  /// image plane at distance 1, and the quilt's views: what line() reads,
+  /// for a renderer that generates the lines elsewhere (the GPU path).
+  const PinholeDesc& centre() const { return centre_; }
+  const Frame& frame() const { return frame_; }
+  double distance() const { return distance_; }
+  double pixel_size() const { return pixel_; }
+  int views() const { return views_; }
 
  private:
   LookingGlassCalibration c_;

@@ -216,7 +216,10 @@ struct GpuRenderer::Impl {
   vk::raii::CommandPool pool = nullptr;
   vk::raii::DescriptorSetLayout set_layout = nullptr;
   vk::raii::PipelineLayout pipeline_layout = nullptr;
-  vk::raii::Pipeline pipeline = nullptr;
+  vk::raii::ShaderModule module = nullptr;
+  vk::raii::Pipeline pipeline = nullptr;        // lens arrays, pinhole views, quilts
+  vk::raii::Pipeline panel_pipeline = nullptr;  // display panels and Looking Glass native panels, made when first asked for
+  bool capture_stats = false;
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
   vk::PhysicalDeviceMemoryProperties memory_types;
@@ -274,6 +277,25 @@ struct GpuRenderer::Impl {
     std::memcpy(staging.mapped, data, bytes);
     run_once([&](vk::raii::CommandBuffer& cb) { cb.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy{0, 0, bytes}); });
     return dst;
+  }
+
+  // The kernel specialised (shaders/trace.comp): workgroup size, whether
+  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
+  // they do; for tuning), and whether it renders the panels.
+  vk::raii::Pipeline make_pipeline(bool panel) {
+    const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
+    const uint32_t spec_values[4] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
+                                     panel ? 1u : 0u};
+    const vk::SpecializationMapEntry entries[4] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}};
+    const vk::SpecializationInfo spec{.mapEntryCount = 4, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                                      .pData = spec_values};
+    vk::ComputePipelineCreateInfo pi{
+        .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
+        .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec},
+        .layout = *pipeline_layout};
+    vk::raii::Pipeline p(device, nullptr, pi);
+    if (capture_stats) print_statistics(device, p);
+    return p;
   }
 
   void bind(int binding, const Buffer& b) {
@@ -342,25 +364,15 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
                                              .pPushConstantRanges = &push});
-  vk::raii::ShaderModule module(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
+  m.module = vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
   // Specialization (shaders/trace.comp): the workgroup's size, 32x2 unless
-  // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning), and whether
-  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1: they do).
+  // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning).
   if (const char* wg = std::getenv("HOLORAY_GPU_WORKGROUP")) {
     unsigned w = 0, h = 0;
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
-  const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  const uint32_t spec_values[3] = {m.workgroup[0], m.workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u};
-  const vk::SpecializationMapEntry entries[3] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}};
-  const vk::SpecializationInfo spec{.mapEntryCount = 3, .pMapEntries = entries, .dataSize = sizeof spec_values,
-                                    .pData = spec_values};
-  vk::ComputePipelineCreateInfo pi{
-      .flags = stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
-      .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec},
-      .layout = *m.pipeline_layout};
-  m.pipeline = vk::raii::Pipeline(m.device, nullptr, pi);
-  if (stats) print_statistics(m.device, m.pipeline);
+  m.capture_stats = stats;
+  m.pipeline = m.make_pipeline(false);
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
@@ -407,7 +419,7 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
 }
 
 void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
-  render(std::vector<GpuFrame>{frame}, frame.size.x, frame.rows.y - frame.rows.x, aovs, out, stats);
+  render(std::vector<GpuFrame>{frame}, frame.tile.z, frame.rows.y - frame.rows.x, aovs, out, stats);
 }
 
 void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
@@ -462,7 +474,9 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
     vk::raii::CommandBuffer& cb = m.commands;
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline);
+    const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
+    if (panel && !*m.panel_pipeline) m.panel_pipeline = m.make_pipeline(true);
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, panel ? *m.panel_pipeline : *m.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {
       const Band& band = band_list[size_t(b)];

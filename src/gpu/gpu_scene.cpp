@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "accel/bvh_builder.hpp"
@@ -197,25 +198,19 @@ SceneArrays lay_out(const RenderScene& scene) {
   return out;
 }
 
-GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
-                         int row1) {
-  const LensArrayDesc& d = camera.desc();
+namespace {
+
+// What every camera's frame holds: the scene's constants, the AOVs wanted,
+// the rows rendered, and the renderer's box (the scene's bounds grown
+// by epsilon: renderer.cpp, grown()) that lens arrays and panels clip to.
+GpuFrame scene_frame(const RenderContext& context, const AovSet& aovs, int row0, int row1) {
   GpuFrame f;
-  f.origin = v4(d.frame.origin), f.axis_x = v4(d.frame.x), f.axis_y = v4(d.frame.y), f.axis_z = v4(d.frame.z);
-  f.lens = {float(d.pitch), float(d.gap), float(camera.pixel_pitch()),
-            d.grid == Grid::lenticular && std::isfinite(d.view_distance) ? float(d.view_distance) : 0.0f};
-  const double s = camera.pixel_pitch();
   const double eps = context.epsilon();
-  f.extent = {float(camera.width() * s / 2), float(camera.height() * s / 2), float(d.pitch * std::sqrt(3.0) / 2), float(eps)};
-  f.size = {camera.width(), camera.height(), d.pixels_per_lens, d.lenses_x};
-  const int grid = d.grid == Grid::square ? HR_GRID_SQUARE : d.grid == Grid::hex ? HR_GRID_HEX : HR_GRID_LENTICULAR;
-  f.mode = {d.lenses_y, grid, d.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
+  f.extent.w = float(eps);
   const int bits_ = (aovs.albedo ? HR_AOV_ALBEDO : 0) | (aovs.depth ? HR_AOV_DEPTH : 0) | (aovs.normal ? HR_AOV_NORMAL : 0) |
                     (aovs.id ? HR_AOV_ID : 0);
   f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
   f.rows = {row0, row1, 0, 0};
-  f.tile = {0, 0, camera.width(), 0};
-  // The renderer's box: the scene's bounds grown by epsilon (renderer.cpp, grown()).
   const Bounds3& b = context.bounds();
   if (b.empty()) {  // nothing to meet: a box no line crosses
     f.box_lo = {0, 0, 0, float(eps)}, f.box_hi = {0, 0, 0, 1};  // w = 1: the shader traces nothing
@@ -228,26 +223,104 @@ GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, 
   return f;
 }
 
+void set_frame(GpuFrame& f, const Frame& fr) {
+  f.origin = v4(fr.origin), f.axis_x = v4(fr.x), f.axis_y = v4(fr.y), f.axis_z = v4(fr.z);
+}
+
+int grid_of(Grid g) { return g == Grid::square ? HR_GRID_SQUARE : g == Grid::hex ? HR_GRID_HEX : HR_GRID_LENTICULAR; }
+
+// x's leading 10 significant bits: i x_hi is exact in float for i < 2^14.
+double high_part(double x) {
+  if (x == 0 || !std::isfinite(x)) return 0;
+  const double scale = std::ldexp(1.0, 9 - std::ilogb(x));
+  return std::trunc(x * scale) / scale;
+}
+double fraction(double x) { return x - std::floor(x); }
+
+}  // namespace
+
+GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
+                         int row1) {
+  const LensArrayDesc& d = camera.desc();
+  GpuFrame f = scene_frame(context, aovs, row0, row1);
+  set_frame(f, d.frame);
+  f.lens = {float(d.pitch), float(d.gap), float(camera.pixel_pitch()),
+            d.grid == Grid::lenticular && std::isfinite(d.view_distance) ? float(d.view_distance) : 0.0f};
+  const double s = camera.pixel_pitch();
+  f.extent = {float(camera.width() * s / 2), float(camera.height() * s / 2), float(d.pitch * std::sqrt(3.0) / 2), f.extent.w};
+  f.size = {camera.width(), camera.height(), d.pixels_per_lens, d.lenses_x};
+  f.mode = {d.lenses_y, grid_of(d.grid), d.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
+  f.tile = {0, 0, camera.width(), 0};
+  return f;
+}
+
 GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& camera, const AovSet& aovs, int spp, int row0,
                          int row1) {
   const PinholeDesc& d = camera.desc();
-  const Frame& fr = camera.frame();
-  GpuFrame f;
-  f.origin = v4(fr.origin), f.axis_x = v4(fr.x), f.axis_y = v4(fr.y), f.axis_z = v4(fr.z);
-  f.extent = {0, 0, 0, float(context.epsilon())};
+  GpuFrame f = scene_frame(context, aovs, row0, row1);
+  set_frame(f, camera.frame());
   f.size = {camera.width(), camera.height(), 1, 1};
   // The normals face the eye, as a pseudoscopic array's face the lens.
   f.mode = {1, HR_PINHOLE, HR_PSEUDOSCOPIC, spp};
-  const int bits_ = (aovs.albedo ? HR_AOV_ALBEDO : 0) | (aovs.depth ? HR_AOV_DEPTH : 0) | (aovs.normal ? HR_AOV_NORMAL : 0) |
-                    (aovs.id ? HR_AOV_ID : 0);
-  f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
-  f.rows = {row0, row1, 0, 0};
   f.tile = {0, 0, camera.width(), 0};
+  // Not clipped to the box: w of box_hi alone says whether the scene is empty.
   f.box_lo = {0, 0, 0, 0}, f.box_hi = {0, 0, 0, context.bounds().empty() ? 1.0f : 0.0f};
-  f.background = v4(context.background());
-  f.ambient = v4(context.ambient());
   f.view = {float(camera.pixel_size()), float(d.shift_x), float(d.shift_y), float(d.sample_u)};
   f.view_clip = {float(d.sample_v), float(d.clip_near), float(d.clip_far), d.ortho_height > 0 ? 1.0f : 0.0f};
+  return f;
+}
+
+GpuFrame frame_constants(const RenderContext& context, const DisplayCamera& camera, bool red_first, int spp, int row0,
+                         int row1) {
+  const DisplayGeometry& g = camera.geometry();
+  GpuFrame f = scene_frame(context, AovSet{}, row0, row1);
+  set_frame(f, g.frame);
+  f.lens = {float(g.pitch), float(g.gap), float(g.pixel_pitch),
+            g.grid == Grid::lenticular && std::isfinite(g.view_distance) ? float(g.view_distance) : 0.0f};
+  f.extent = {float(g.width * g.pixel_pitch / 2), float(g.height * g.pixel_pitch / 2), float(g.pitch * std::sqrt(3.0) / 2),
+              f.extent.w};
+  f.size = {camera.width(), camera.height(), 1, 1};
+  f.mode = {1, HR_DISPLAY, g.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
+  f.tile = {0, 0, g.width, 0};
+  // DisplayCamera's left_: the grid starts at the panel's left edge moved
+  // by the offset, measured across the lenticules for a sheet.
+  const double half_w = g.width * g.pixel_pitch / 2;
+  const double left = g.grid == Grid::lenticular ? (-half_w + g.offset) * std::cos(g.slant_rad) : -half_w + g.offset;
+  f.panel = {float(camera.sample_width()), float(left), float(std::sin(g.slant_rad)), float(std::cos(g.slant_rad))};
+  f.panel_kind = {g.samples_per_pixel, red_first ? 1 : 0, grid_of(g.grid), g.width};
+  return f;
+}
+
+GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera& camera, int spp, int row0, int row1) {
+  const LookingGlassCalibration& c = camera.calibration();
+  const PinholeDesc& centre = camera.centre();
+  GpuFrame f = scene_frame(context, AovSet{}, row0, row1);
+  set_frame(f, camera.frame());
+  f.size = {camera.width(), camera.height(), 1, 1};
+  f.mode = {1, HR_LOOKING_GLASS, HR_PSEUDOSCOPIC, spp};
+  f.tile = {0, 0, c.width, 0};
+  f.box_lo = {0, 0, 0, 0}, f.box_hi = {0, 0, 0, context.bounds().empty() ? 1.0f : 0.0f};  // eye rays, unclipped
+  f.view = {float(camera.pixel_size()), float(centre.shift_x), 0, float(centre.sample_u)};
+  f.view_clip = {float(centre.sample_v), 0, INFINITY, 0};
+  // looking_glass_view()'s phase, a = (u + s subp + v tilt) L - center
+  // with u = (i + 1/2) / W and v = (H - j - 1/2) / H, as i A + j B + K_s
+  // with K_s (the cell's subpixel offsets and the constant) taken mod 1 here,
+  // in double: the shader's float sees only fractions.
+  const double W = c.width, H = c.height, flip = c.flip_x ? -1 : 1;
+  const double tilt = H / (W * c.slope) * flip;
+  const double L = c.pitch * W / c.dpi * std::cos(std::atan(1 / c.slope));
+  const double A = L / W, B = -tilt * L / H, C = 0.5 * L / W + (H - 0.5) / H * tilt * L - c.center;
+  f.panel = {float(high_part(A)), float(A - high_part(A)), float(high_part(B)), float(B - high_part(B))};
+  f.panel_kind = {3, 1, camera.views(), c.width};
+  f.cell_kind = {c.cell_pattern, int(c.cells.size()), 0, 0};
+  if (c.cells.empty()) {
+    for (int s = 0; s < 3; ++s) (&f.cells[0].x)[s] = float(fraction(s * (flip / (3 * W)) * L + C));
+  } else {
+    for (size_t k = 0; k < c.cells.size(); ++k)
+      for (int s = 0; s < 3; ++s)
+        (&f.cells[k].x)[s] = float(fraction((c.cells[k].dx[s] / W + c.cells[k].dy[s] / H * tilt) * L + C));
+  }
+  f.panel_view = {0, float(c.view_cone_deg * std::numbers::pi / 180), float(camera.distance()), 0};
   return f;
 }
 

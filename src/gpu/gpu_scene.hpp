@@ -12,7 +12,9 @@
 
 #include "camera/lens_array.hpp"
 #include "camera/pinhole.hpp"
+#include "camera/display_camera.hpp"
 #include "camera/quilt_camera.hpp"
+#include "display/looking_glass.hpp"
 #include "render/render_context.hpp"
 #include "render/renderer.hpp"
 
@@ -57,5 +59,14 @@ std::vector<GpuFrame> quilt_frames(const RenderContext& context, const QuiltCame
 /// clipping, the sample's place in its pixel).
 GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& camera, const AovSet& aovs, int spp, int row0,
                          int row1);
+/// A display's panel (camera/display_camera.hpp): one sample per subpixel
+/// (or pixel), each written into its channel of the W x H pixel image as
+/// render/display_renderer.cpp packs them (`red_first`: RGB, else BGR).
+/// Colour only, as on the CPU path.
+GpuFrame frame_constants(const RenderContext& context, const DisplayCamera& camera, bool red_first, int spp, int row0,
+                         int row1);
+/// A Looking Glass's native panel (display/looking_glass.hpp): each
+/// subpixel's view from the calibration, computed on the device. Colour only.
+GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera& camera, int spp, int row0, int row1);
 
 }  // namespace holoray::gpu

@@ -27,6 +27,8 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_GRID_HEX 1
 #define HR_GRID_LENTICULAR 2
 #define HR_PINHOLE 3  // not a grid: the scene's pinhole view (camera/pinhole.hpp)
+#define HR_DISPLAY 4  // a display's panel (camera/display_camera.hpp): its grid in GpuFrame::panel_kind
+#define HR_LOOKING_GLASS 5  // a Looking Glass's native panel (display/looking_glass.hpp)
 #define HR_ORTHOSCOPIC 0
 #define HR_PSEUDOSCOPIC 1
 
@@ -48,6 +50,9 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 // The deepest ray tree (render.hpp kMaxDepth) and the traversal stack.
 #define HR_MAX_DEPTH 16
 #define HR_STACK 64
+
+// Subpixel cells of a Looking Glass calibration (looking_glass.hpp, kMaxSubpixelCells).
+#define HR_MAX_CELLS 10
 
 // Pairs of work counters per band of rows (gpu_renderer.cpp sums them).
 #define HR_COUNT_SLOTS 64
@@ -122,6 +127,22 @@ HR_STRUCT GpuFrame {
   // (x + i, y + j), rows `z` pixels apart (a quilt's view in its tile;
   // 0, 0, width for the others).
   ivec4 tile;
+  // The panels, whose samples are subpixels (HR_DISPLAY, HR_LOOKING_GLASS;
+  // size.x counts samples, tile.z pixels). panel_kind: samples per pixel
+  // (1 or 3), 1 when red is the leftmost subpixel, the display's grid or
+  // the Looking Glass's views, the panel's width in pixels.
+  // HR_DISPLAY: panel = sample width, the lens grid's left edge (across the
+  // lenticules for a sheet), sine and cosine of the slant.
+  // HR_LOOKING_GLASS: the view phase a = i A + j B + cells[cell][s] (mod 1)
+  // of subpixel s of pixel (i, j), with panel = A and B each split in two
+  // (hi, lo; i A_hi and j B_hi exact in float, so that the phase keeps its
+  // fraction across a whole panel); cell_kind = cell pattern, cells (0:
+  // none, cells[0] serves); panel_view = -, view cone (radians), |at - from|.
+  vec4 panel;
+  ivec4 panel_kind;
+  ivec4 cell_kind;
+  vec4 panel_view;
+  vec4 cells[HR_MAX_CELLS];
 };
 
 #ifdef __cplusplus

@@ -22,6 +22,10 @@ layout(local_size_x_id = 0, local_size_y_id = 1) in;
 // ends it, and not sorting measured 12 % faster per frame (balls_s4 and
 // gears_s4 at 3840x2160 on an H200).
 layout(constant_id = 2) const bool kSortShadowChildren = false;
+// A pipeline of its own for the panels (display files, Looking Glass native
+// images), whose samples are subpixels: their camera code is left out of
+// the kernel the other cameras run, which keeps its registers.
+layout(constant_id = 3) const bool kPanel = false;
 
 // One frame's constants per camera dispatched: a quilt's views are several.
 layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame frames[]; };
@@ -229,9 +233,81 @@ ivec2 hex_lens(int i, int j) {
   return best;
 }
 
+// ---- the panels (camera/display_camera.cpp, display/looking_glass.cpp) ----
+
+// Sample c of row j of a display's panel: through its lens centre (square,
+// hex: the nearest, ties to the lower row then column) or its lenticule's
+// axis (lenticular, rotated by the slant), toward +z of the array (local).
+void display_line(int c, int j, float u, float v, out vec3 o, out vec3 d) {
+  float P = F.lens.x, gap = F.lens.y, half_h = F.extent.y, left = F.panel.y;
+  vec3 p = vec3((float(c) + u) * F.panel.x - F.extent.x, half_h - (float(j) + v) * F.lens.z, -gap);
+  int grid = F.panel_kind.z;
+  if (grid == HR_GRID_LENTICULAR) {
+    float sn = F.panel.z, cs = F.panel.w;
+    float across_p = p.x * cs - p.y * sn, along_p = p.x * sn + p.y * cs;
+    float a = left + (floor((across_p - left) / P) + 0.5) * P;  // the axis, across
+    o = vec3(a * cs + along_p * sn, -a * sn + along_p * cs, 0.0);
+    float k = (a - across_p) / gap;
+    float dy = F.lens.w > 0.0 ? -o.y / F.lens.w : 0.0;
+    d = normalize(vec3(k * cs, -k * sn + dy, 1.0));
+    return;
+  }
+  if (grid == HR_GRID_SQUARE) {
+    o = vec3(left + (floor((p.x - left) / P) + 0.5) * P, half_h - (floor((half_h - p.y) / P) + 0.5) * P, 0.0);
+  } else {
+    float row_step = F.extent.z, best_d2 = kInf;
+    int row0 = int(floor((half_h - P / 2.0 - p.y) / row_step));
+    for (int ly = row0; ly <= row0 + 1; ++ly) {
+      float shift = (ly & 1) != 0 ? 0.5 : 0.0;
+      float lx = ceil((p.x - left) / P - shift) - 1.0;
+      vec2 centre = vec2(left + (lx + 0.5 + shift) * P, half_h - P / 2.0 - float(ly) * row_step);
+      vec2 off = p.xy - centre;
+      if (dot(off, off) < best_d2) best_d2 = dot(off, off), o = vec3(centre, 0.0);
+    }
+  }
+  d = normalize(o - p);
+}
+
+// Subpixel c (s = c mod 3 of pixel i) of row j of a Looking Glass: its view
+// value from the calibration's phase, then the sheared view of that
+// continuous quilt index through the pixel (LookingGlassCamera::line).
+void looking_glass_line(int c, int j, float u, float v, out vec3 origin, out vec3 dir) {
+  int i = c / 3, s = c - 3 * i, W = F.panel_kind.w, H = F.size.y, views = F.panel_kind.z;
+  int cell = 0;
+  if (F.cell_kind.y > 0) {  // the shader's GetCellForPixel: the row counted from the bottom
+    int x = i, y = H - 1 - j;
+    int pattern = F.cell_kind.x;
+    cell = pattern == 1 ? ((y % 2 == 0) == (x % 2 == 0) ? 0 : 1)
+         : pattern == 2 ? x % 2
+         : pattern == 3 ? (y + (x % 2) * 2) % 4
+         : pattern == 4 ? y % 2 : 0;
+    cell %= F.cell_kind.y;
+  }
+  float a = fract(float(i) * F.panel.x) + float(i) * F.panel.y + fract(float(j) * F.panel.z) + float(j) * F.panel.w +
+            F.cells[cell][s];
+  float x = clamp(1.0 - fract(a), 0.00001, 0.999999);
+  float along = views == 1 ? 0.5 : x * float(views) / float(views - 1);
+  float t = tan((along - 0.5) * F.panel_view.y);
+  float px = (float(i) + u + (F.view.w - 0.5) - 0.5 * float(W)) * F.view.x + (F.view.y - t);
+  float py = (0.5 * float(H) - (float(j) + v + (F.view_clip.x - 0.5))) * F.view.x;
+  origin = F.origin.xyz + F.axis_x.xyz * (F.panel_view.z * t);
+  dir = normalize(F.axis_x.xyz * px + F.axis_y.xyz * py - F.axis_z.xyz);
+}
+
 // The pixel's line (world): origin at its lens centre, unit direction.
 void pixel_line(int i, int j, float u, float v, out vec3 origin, out vec3 dir) {
   int P = F.size.z, grid = F.mode.y;
+  if (kPanel) {
+    if (grid == HR_LOOKING_GLASS) {
+      looking_glass_line(i, j, u, v, origin, dir);
+      return;
+    }
+    vec3 c, d;
+    display_line(i, j, u, v, c, d);
+    origin = F.origin.xyz + F.axis_x.xyz * c.x + F.axis_y.xyz * c.y + F.axis_z.xyz * c.z;
+    dir = normalize(F.axis_x.xyz * d.x + F.axis_y.xyz * d.y + F.axis_z.xyz * d.z);
+    return;
+  }
   if (grid == HR_PINHOLE) {  // camera/pinhole.cpp: the image plane at distance 1 (orthographic: the eye's plane)
     float x = (float(i) + u + (F.view.w - 0.5) - 0.5 * float(F.size.x)) * F.view.x + F.view.y;
     float y = (0.5 * float(F.size.y) - (float(j) + v + (F.view_clip.x - 0.5))) * F.view.x + F.view.z;
@@ -374,7 +450,7 @@ void main() {
     float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
     vec3 c = F.background.xyz;
     bool ortho = F.mode.z == HR_ORTHOSCOPIC;
-    bool pinhole = F.mode.y == HR_PINHOLE;
+    bool pinhole = F.mode.y == HR_PINHOLE || (kPanel && F.mode.y == HR_LOOKING_GLASS);
     // A pinhole view's ray is not clipped to the box but to the view's
     // clipping planes, perpendicular to its axis (view_renderer.cpp): a ray at
     // cosine ca to the axis meets them at clip / ca.
@@ -513,13 +589,18 @@ void main() {
     }
     sum += c;
   }
-  uint pixel = out_pixel(i, j);
   vec3 colour = sum / float(spp);
-  colour_out[pixel * 3u + 0u] = colour.x;
-  colour_out[pixel * 3u + 1u] = colour.y;
-  colour_out[pixel * 3u + 2u] = colour.z;
+  if (kPanel && F.panel_kind.x == 3) {  // one channel of the pixel (display_renderer.cpp, pack_subpixels)
+    int k = i % 3, ch = F.panel_kind.y != 0 ? k : 2 - k;
+    colour_out[out_pixel(i / 3, j) * 3u + uint(ch)] = colour[ch];
+  } else {
+    uint pixel = out_pixel(i, j);
+    colour_out[pixel * 3u + 0u] = colour.x;
+    colour_out[pixel * 3u + 1u] = colour.y;
+    colour_out[pixel * 3u + 2u] = colour.z;
+  }
   if (aovs != 0 && !first_hit) {  // background (a hit's were written where it was met)
-    uint a = pixel * 8u;
+    uint a = out_pixel(i, j) * 8u;
     for (uint q = 0u; q < 8u; ++q) aov_out[a + q] = 0.0;
     aov_out[a + 3u] = uintBitsToFloat(0x7fc00000u);  // depth NaN
     aov_out[a + 7u] = -1.0;
