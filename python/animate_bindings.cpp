@@ -67,6 +67,7 @@ api::AnimateOptions options_of(const py::dict& kw) {
     else if (k == "camera") { if (!value.is_none()) o.camera = camera_of(value, "camera"); }
     else if (k == "report") o.reference = value.cast<bool>();
     else if (k == "cache") o.cache.enabled = value.cast<bool>();
+    else if (k == "device") o.device = py::str(value);
     else if (k == "camera_name") o.load.camera_name = py::str(value);
     else if (k == "texture_path") {
       // One folder (a str or a path-like), or a sequence of them.

@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "accel/accel_scene.hpp"
+#include "accel/bvh_builder.hpp"
 #include "math/transform.hpp"
 
 namespace holoray {
@@ -133,6 +134,58 @@ TEST(IntersectPackets, RefinedHitsEqualSingleRaysBitForBit) {
   // Pairs of unmoved triangles, and the other kinds, were all compared.
   EXPECT_GT(triangles, 200);
   EXPECT_GT(compared, triangles + 100);
+}
+
+// Embree's builder into our nodes (the GPU path's hierarchy), at both
+// qualities: every primitive reachable from the root, each child box holding
+// what is under it (the fast build, without spatial splits: each primitive's
+// whole box, and in exactly one leaf), and no deeper than the GPU's stack allows.
+TEST(BvhBuilder, EveryPrimitiveSitsUnderBoxesThatHoldIt) {
+  std::vector<PrimitiveBox> boxes;
+  uint32_t seed = 7;
+  auto next = [&] { return (seed = seed * 1664525u + 1013904223u) / 4294967296.0f; };
+  for (int k = 0; k < 5000; ++k) {
+    const float x = 100 * next(), y = 100 * next(), z = 10 * next(), w = 0.1f + 3 * next();
+    boxes.push_back({{x, y, z}, {x + w, y + w * next(), z + w}});
+  }
+  for (const BvhQuality q : {BvhQuality::high, BvhQuality::fast}) {
+    const Bvh bvh = build_bvh(boxes, 4, q);
+    EXPECT_LE(bvh.depth, 20);
+    std::vector<int> seen(boxes.size(), 0);
+    // Depth first from the root, each child checked against its parent's slot.
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const BvhNode& n = bvh.nodes[size_t(stack.back())];
+      stack.pop_back();
+      for (int c = 0; c < kBvhWidth; ++c) {
+        if (n.count[c] < 0) continue;
+        if (n.count[c] == 0) {
+          const BvhNode& child = bvh.nodes[size_t(n.index[c])];
+          for (int g = 0; g < kBvhWidth; ++g)
+            for (int a = 0; a < 3 && child.count[g] >= 0; ++a) {
+              EXPECT_GE(child.lo[a][g], n.lo[a][c]);
+              EXPECT_LE(child.hi[a][g], n.hi[a][c]);
+            }
+          stack.push_back(n.index[c]);
+          continue;
+        }
+        ASSERT_LE(n.count[c], 4);
+        for (int r = 0; r < n.count[c]; ++r) {
+          const uint32_t p = bvh.order[size_t(n.index[c] + r)];
+          ++seen[p];
+          if (q == BvhQuality::fast)
+            for (int a = 0; a < 3; ++a) {
+              EXPECT_GE(boxes[p].lo[a], n.lo[a][c]);
+              EXPECT_LE(boxes[p].hi[a], n.hi[a][c]);
+            }
+        }
+      }
+    }
+    for (size_t p = 0; p < boxes.size(); ++p) {
+      ASSERT_GE(seen[p], 1) << "primitive " << p;
+      if (q == BvhQuality::fast) ASSERT_EQ(seen[p], 1) << "primitive " << p;
+    }
+  }
 }
 
 }  // namespace

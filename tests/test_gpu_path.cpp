@@ -209,6 +209,76 @@ TEST(GpuPath, LookingGlassPanelsMatchTheCpuPath) {
   EXPECT_GE(api::psnr(cpu.colour, gpu.colour), 50.0) << "portrait";
 }
 
+// An animated shot on the GPU: every frame traced in full there, the
+// scene laid out again where an object moved, each frame the CPU's.
+std::vector<api::Image> animate_frames(const std::string& shot, const std::string& device,
+                                       std::optional<Camera> camera = std::nullopt) {
+  api::AnimateOptions o;
+  o.method = api::Method::full;
+  o.device = device;
+  o.camera = camera;
+  api::Animation a(shot, o);
+  EXPECT_EQ(a.device_name().empty(), device == "cpu");
+  std::vector<api::Image> frames;
+  a.run([&](int, const api::Image& colour, const api::FrameRow&) { frames.push_back(colour); });
+  return frames;
+}
+
+TEST(GpuPath, AnimatedFramesMatchTheCpuPathAsObjectsMove) {
+  TempDir dir;
+  write_text(dir.file("s.nff"), read_bytes(source_dir() + "/examples/primitives.nff"));
+  write_text(dir.file("shot.toml"), "frames = 3\n[array]\nlenses = [16, 16]\npixels_per_lens = 6\n"
+                                    "[[object]]\nscene = \"s.nff\"\n"
+                                    "[[object.key]]\nframe = 0\ntranslate = [0, 0, 0]\n"
+                                    "[[object.key]]\nframe = 2\ntranslate = [0.3, 0.1, 0]\nrotate = [0, 20, 0]\n");
+  for (const std::optional<Camera>& camera : {std::optional<Camera>{}, std::optional<Camera>{api::Pinhole{64, 48}}}) {
+    const std::vector<api::Image> cpu = animate_frames(dir.file("shot.toml"), "cpu", camera);
+    const std::vector<api::Image> gpu = animate_frames(dir.file("shot.toml"), "gpu", camera);
+    ASSERT_EQ(gpu.size(), 3u);
+    ASSERT_EQ(cpu.size(), 3u);
+    for (size_t f = 0; f < 3; ++f) EXPECT_GE(api::psnr(cpu[f], gpu[f]), 50.0) << "frame " << f;
+    // The object moved: a GPU that kept frame 0's scene would show it still.
+    EXPECT_LT(api::psnr(gpu[0], gpu[2]), 30.0);
+  }
+}
+
+// The guide's example shot, from the command line: its last frame (the
+// object moved furthest from where frame 0 laid it out) as the CPU traces it.
+TEST(GpuPath, TheExampleShotAnimatesOnTheGpu) {
+  TempDir dir;
+  const std::string shot = source_dir() + "/examples/shots/sliding_primitives.toml";
+  const CommandResult gpu = run_cli("animate " + shot + " --device gpu --frames 23 -o " + dir.file("gpu"));
+  ASSERT_EQ(gpu.status, 0) << gpu.output;
+  EXPECT_NE(gpu.output.find("\ndevice     "), std::string::npos) << gpu.output;
+  EXPECT_NE(gpu.output.find("method     full ray tracing\n"), std::string::npos) << gpu.output;
+  const CommandResult cpu = run_cli("animate " + shot + " --method full --frames 23 -q -o " + dir.file("cpu"));
+  ASSERT_EQ(cpu.status, 0) << cpu.output;
+  EXPECT_GE(api::psnr(api::read_image(dir.file("cpu/frame_0023.png")), api::read_image(dir.file("gpu/frame_0023.png"))), 50.0);
+}
+
+TEST(GpuPath, AnimateRefusesReuseSayingWhy) {
+  const std::string shot = source_dir() + "/examples/shots/room.toml";
+  auto refusal = [&](const std::function<void(api::AnimateOptions&)>& set) {
+    api::AnimateOptions o;
+    o.device = "gpu";
+    set(o);
+    return error_of([&] { api::Animation a(shot, o); });
+  };
+  const std::string why = "goes with `device` cpu (the GPU path traces every frame in full; reuse reprojects point "
+                          "images on the CPU)";
+  EXPECT_EQ(refusal([](api::AnimateOptions& o) { o.method = api::Method::reverse; }), "`method` reverse: " + why);
+  EXPECT_EQ(refusal([](api::AnimateOptions& o) { o.method = api::Method::reproject; }), "`method` reproject: " + why);
+  EXPECT_EQ(refusal([](api::AnimateOptions& o) { o.reuse = "color"; }), "`reuse`: " + why);
+  EXPECT_EQ(refusal([](api::AnimateOptions& o) { o.reference = true; }),
+            "`reference`: goes with `device` cpu (the GPU path traces every frame in full: no reuse to compare)");
+  // And from the command line, in its options' words.
+  TempDir dir;
+  const CommandResult cli = run_cli("animate " + shot + " -o " + dir.file("frames") + " --device gpu --reuse color");
+  EXPECT_EQ(cli.status, 1);
+  EXPECT_EQ(cli.output, "holoray: error: --reuse: goes with --device cpu (the GPU path traces every frame in full; reuse "
+                        "reprojects point images on the CPU)\n");
+}
+
 // What only a file's camera sets: an orthographic view, a clipping range,
 // Tachyon's mirrored screen and its sample at the pixel's corner; rendered
 // by the renderers themselves (render_view against the GPU's frame).

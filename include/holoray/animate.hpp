@@ -63,6 +63,11 @@ struct AnimateOptions {
   /// Asked before each frame: true ends the run after the frames already
   /// emitted (a signal, a closed iterator).
   std::function<bool()> stop;
+  /// Where frames are traced, as RenderOptions::device: "cpu", "gpu" or
+  /// "gpu:N". On a GPU every frame is traced in full (reuse, `reference` and
+  /// the cache are the CPU path's and refused), the scene laid out again on
+  /// the frames where something in it moved.
+  std::string device = "cpu";
 };
 
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).
@@ -116,6 +121,9 @@ class HOLORAY_API Animation {
   Encoding encoding() const;
   /// The camera and method, as `holoray animate` prints them.
   std::string describe() const;
+  /// The GPU the frames are traced on ("NVIDIA H100 80GB HBM3 (Vulkan 1.3)"),
+  /// empty on the CPU path.
+  std::string device_name() const;
   /// The shot's lens array at frame 0: "WxH px, G grid, NXxNY lenses x P px, MODE".
   std::string array_summary() const;
   /// The units of scheduling: frames [first, last] rendered together.

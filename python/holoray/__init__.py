@@ -120,7 +120,8 @@ def animate(shot_path, *, output=None, **options):
     keyframe_interval (int or 'auto'), keyframe_motion, max_keyframe_interval,
     reuse, fill, rebuild_above, reach, leak_check, threads, camera (Pinhole,
     Display or LookingGlass), report (also trace in full: row['psnr']), cache,
-    encoding, frames ('A:B', N or (a, b)), camera_name and texture_path (as
+    encoding, frames ('A:B', N or (a, b)), device ('cpu', 'gpu' or 'gpu:N':
+    every frame traced in full on that device), camera_name and texture_path (as
     load_scene's: they replace and extend the shot file's). output: a folder the frames are
     also written to, as the CLI names them (frame_NNNN.png). The render runs
     on its own thread, a frame or two ahead; Ctrl-C or leaving the loop stops it."""

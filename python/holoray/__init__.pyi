@@ -155,7 +155,8 @@ def animate(shot_path: PathLike, *, output: PathLike | None = None, **options: o
     keyframe_interval (int or 'auto'), keyframe_motion, max_keyframe_interval,
     reuse, fill, rebuild_above, reach, leak_check, threads, camera (Pinhole,
     Display or LookingGlass), report (bool: also trace in full, row['psnr']),
-    cache (bool), encoding, frames ('A:B', N or (a, b)). The row: frame,
+    cache (bool), encoding, frames ('A:B', N or (a, b)), device ('cpu', 'gpu'
+    or 'gpu:N': every frame traced in full there). The row: frame,
     keyframe, seconds, reference_seconds, pixels, reprojected, missed, leaks,
     rejected, traced, interpolated, rays, psnr, hold_psnr, copied_from,
     rebuilt. output: a folder the frames are also written to, as the CLI

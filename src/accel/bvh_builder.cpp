@@ -112,7 +112,7 @@ struct Flattener {
 
 }  // namespace
 
-Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf) {
+Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf, BvhQuality quality) {
   if (max_leaf < 1 || max_leaf > 8) throw std::invalid_argument(fmt::format("max_leaf: expected 1 to 8, got {}", max_leaf));
   Bvh out;
   if (boxes.empty()) {
@@ -121,7 +121,8 @@ Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf) {
     return out;
   }
   // Spatial splits duplicate references: room for twice as many.
-  std::vector<RTCBuildPrimitive> prims(boxes.size() * 2);
+  const bool high = quality == BvhQuality::high;
+  std::vector<RTCBuildPrimitive> prims(boxes.size() * (high ? 2 : 1));
   for (size_t k = 0; k < boxes.size(); ++k) {
     const PrimitiveBox& b = boxes[k];
     prims[k] = RTCBuildPrimitive{b.lo[0], b.lo[1], b.lo[2], 0, b.hi[0], b.hi[1], b.hi[2], static_cast<unsigned>(k)};
@@ -132,7 +133,7 @@ Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf) {
   rtcSetDeviceErrorFunction(device, on_error, &error);
   RTCBVH bvh = rtcNewBVH(device);
   RTCBuildArguments a = rtcDefaultBuildArguments();
-  a.buildQuality = RTC_BUILD_QUALITY_HIGH;
+  a.buildQuality = high ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
   a.maxBranchingFactor = kBvhWidth;
   a.maxDepth = 20;  // the GPU traversal's stack holds 3 (depth - 1) + 1 entries (HR_STACK)
   a.minLeafSize = 1;
@@ -147,7 +148,7 @@ Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf) {
   a.setNodeChildren = set_children;
   a.setNodeBounds = set_bounds;
   a.createLeaf = create_leaf;
-  a.splitPrimitive = split_primitive;
+  a.splitPrimitive = high ? split_primitive : nullptr;
   const auto* root = static_cast<const Node*>(rtcBuildBVH(&a));
   if (root) {
     if (root->prims) {  // a single leaf: give it a root node

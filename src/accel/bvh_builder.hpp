@@ -1,5 +1,5 @@
 // holoray/accel: a bounding volume hierarchy built by Embree's own builder
-// (rtcBuildBVH, RTC_BUILD_QUALITY_HIGH: SAH with spatial splits) into plain
+// (rtcBuildBVH: SAH, with spatial splits at high quality) into plain
 // arrays of ours, for a traversal that is not Embree's (the GPU path,
 // src/gpu/). Nodes are up to kBvhWidth wide; a leaf's primitives are a run
 // of `order`. Indices, no pointers: the arrays can be copied to a device.
@@ -35,10 +35,16 @@ struct Bvh {
   int depth = 0;  ///< levels of nodes, the root's counted
 };
 
+/// How hard the builder works: `high` is SAH with spatial splits (a
+/// primitive may sit in several leaves), for a scene traced many times;
+/// `fast` is Embree's medium quality without splits, for a hierarchy rebuilt
+/// every frame of an animation (docs/design/gpu.md has both measured).
+enum class BvhQuality { high, fast };
+
 /// Builds the hierarchy of `boxes` (at most `max_leaf` primitives a leaf,
 /// 1 to 8). Empty input: one node with no children. Throws
 /// std::runtime_error with Embree's message when its builder fails
 /// (out of memory), std::invalid_argument for a bad max_leaf.
-Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf = 4);
+Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf = 4, BvhQuality quality = BvhQuality::high);
 
 }  // namespace holoray

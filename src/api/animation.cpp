@@ -10,6 +10,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
 #include "holoray/pick.hpp"
 #include "holoray/animate.hpp"
@@ -77,6 +78,7 @@ struct AnimationState {
   FrameCameraDesc choice;
   int width = 0, height = 0;
   std::string describe, array_summary;
+  std::unique_ptr<GpuExecutor> gpu;  // `device` gpu
 };
 
 namespace {
@@ -96,7 +98,20 @@ void choose_method(const AnimateOptions& o, AnimationState& s) {
   const bool glass = choice.get<Desc::LookingGlass>() != nullptr;
   const bool panel = glass || choice.get<Desc::Display>();
   const char* what = glass ? "`LookingGlass`" : "`Display`";
-  s.method = o.method != Method::automatic ? o.method : pinhole || panel ? Method::full : Method::reverse;
+  if (parse_device(o.device).gpu) {
+    // Reuse keeps keyframes' point images in host memory and reprojects them
+    // on the CPU; on the GPU, tracing the frame is the cheaper of the two.
+    constexpr const char* kWhy = "goes with `device` cpu (the GPU path traces every frame in full; reuse reprojects "
+                                 "point images on the CPU)";
+    if (o.method == Method::reproject || o.method == Method::reverse)
+      throw std::invalid_argument(fmt::format("`method` {}: {}", o.method == Method::reproject ? "reproject" : "reverse", kWhy));
+    if (!o.reuse.empty()) throw std::invalid_argument(fmt::format("`reuse`: {}", kWhy));
+    if (o.reference)
+      throw std::invalid_argument("`reference`: goes with `device` cpu (the GPU path traces every frame in full: no reuse to compare)");
+  }
+  s.method = o.method != Method::automatic         ? o.method
+             : pinhole || panel || parse_device(o.device).gpu ? Method::full
+                                                              : Method::reverse;
   so.method = s.method == Method::reverse ? holoray::Method::reverse
               : s.method == Method::reproject ? holoray::Method::reproject
                                               : holoray::Method::full;
@@ -245,6 +260,21 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     so.cache = s.cache.get();
   }
   size_the_frames(first, s);
+  if (const DeviceChoice device = parse_device(o.device); device.gpu) {
+    RenderOptions ro;
+    ro.cache = o.cache;
+    const FrameCamera camera0 = so.frame_camera ? make_frame_camera(*so.frame_camera, shot.viewpoint(0), "the shot")
+                                                : FrameCamera{holoray::LensArray(shot.camera(0))};
+    s.gpu = std::make_unique<GpuExecutor>(device, shot.scene(), camera0, ro);
+    so.trace = [gpu = s.gpu.get()](const RenderContext& context, const FrameCamera& camera, const holoray::RenderOptions& o,
+                                   holoray::RenderStats& stats) {
+      RenderStats on_gpu;
+      FrameBuffers fb = gpu->render(context, camera, o.aovs, o.spp, std::nullopt, on_gpu);
+      stats.rays = {on_gpu.rays.eye, on_gpu.rays.shadow, on_gpu.rays.reflected, on_gpu.rays.refracted, 0, 0};
+      stats.trace_seconds = on_gpu.trace_seconds;
+      return fb;
+    };
+  }
   if (o.frames || o.done)
     so.done = [this](int f) {
       const AnimateOptions& opt = state_->options;
@@ -271,6 +301,7 @@ Method Animation::method() const { return state_->method; }
 std::string Animation::reuse() const { return state_->reuse; }
 std::string Animation::describe() const { return state_->describe; }
 std::string Animation::array_summary() const { return state_->array_summary; }
+std::string Animation::device_name() const { return state_->gpu ? state_->gpu->name() : ""; }
 Encoding Animation::encoding() const {
   return state_->so.encoding == holoray::Encoding::srgb ? Encoding::srgb : Encoding::linear;
 }

@@ -1,5 +1,6 @@
 #include "cli/animate_command.hpp"
 
+
 #include <algorithm>
 
 #include <fmt/format.h>
@@ -18,6 +19,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "cli/devices_command.hpp"
 #include "cli/error_words.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/machine.hpp"
@@ -129,6 +131,9 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
       ->check(in_range(0, 51))
       ->needs("--video");
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(in_range(0))->capture_default_str();
+  add_device_option(*cmd, o.device,
+                    "on a GPU every frame is traced in full (--method full; reuse stays on the CPU), the scene laid out "
+                    "again where something moved");
   add_cache_options(*cmd, o.cache);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
@@ -140,7 +145,8 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
                 {"Reuse", {"--method", "--reuse", "--fill", "--rebuild-above", "--reach", "--no-leak-check", "--cache",
                            "--cache-cell", "--cache-memory"}},
                 {"Keyframes", {"--keyframe-interval", "--keyframe-motion", "--max-keyframe-interval"}},
-                {"Farms and interruptions", {"--frames", "--resume", "--threads"}}},
+                {"Tracing", {"--device", "--threads"}},
+                {"Farms and interruptions", {"--frames", "--resume"}}},
                {"holoray animate examples/shots/swinging_box.toml -o frames/ --video frames/shot.mkv",
                 "holoray animate examples/shots/swinging_box.toml -o views/ --camera pinhole --resolution 256x256"},
                "docs/guide/animation.md, docs/guide/cluster.md");
@@ -264,7 +270,7 @@ AnimateChoice choose(const AnimateCommandOptions& o) {
   const bool pinhole = o.view.camera == "pinhole";
   const bool glass = !o.view.looking_glass.empty();
   const bool panel = glass || !o.view.display.empty();
-  c.method = !o.method.empty() ? o.method : pinhole || panel ? "full" : "reverse";
+  c.method = !o.method.empty() ? o.method : pinhole || panel || o.device != "cpu" ? "full" : "reverse";
   ao.method = pick<api::Method>("--method", c.method,
                                 {{"full", api::Method::full}, {"reproject", api::Method::reproject}, {"reverse", api::Method::reverse}});
   if (glass) {
@@ -300,6 +306,7 @@ AnimateChoice choose(const AnimateCommandOptions& o) {
   ao.max_keyframe_interval = o.max_keyframe_interval;
   ao.rebuild_above_percent = o.rebuild_above;
   ao.threads = o.threads;
+  ao.device = o.device;
   ao.reference = !o.report.empty();
   ao.cache = cache_options(o.cache);  // checked before the shot is read
   return c;
@@ -371,6 +378,7 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       fmt::print("shot       {}: {} frames at {:g} fps, {} scene file(s)\n", o.shot, frames, animation.fps(),
                  animation.object_count());
       fmt::print("{}", animation.describe());
+      if (const std::string gpu = animation.device_name(); !gpu.empty()) fmt::print("device     {}\n", gpu);
       if (world.distributed())
         fmt::print("ranks      {}: groups of frames (a keyframe and the frames up to the next) dealt by rank 0\n", world.size());
     }

@@ -14,6 +14,16 @@ CLI::App* add_devices_command(CLI::App& app) {
   return cmd;
 }
 
+CLI::Option* add_device_option(CLI::App& cmd, std::string& device, const std::string& what) {
+  return cmd
+      .add_option("--device", device,
+                  "Where rays are traced: cpu (Embree), gpu (the first Vulkan GPU, else the first Vulkan device: lavapipe on a "
+                  "machine without one) or gpu:N (the Nth Vulkan device, as `holoray devices` lists them); " + what +
+                      " (docs/guide/gpu.md)")
+      ->check(parsed_by([](const std::string& t) { api::check_device(t); }, "DEVICE"))
+      ->capture_default_str();
+}
+
 int run_devices() {
   try {
     for (const std::string& d : api::gpu_devices()) fmt::print("{}\n", d);

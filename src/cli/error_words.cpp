@@ -12,7 +12,7 @@ namespace {
 
 // The API's names (include/holoray/camera.hpp, render.hpp, animate.hpp) and
 // the options that set them.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 15> kOptions{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 16> kOptions{{
     {"origin", "--origin"},
     {"normal", "--normal"},
     {"up", "--up"},
@@ -21,6 +21,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 15> kOptions
     {"fov_lens_deg", "--fov-lens"},
     {"pixels_per_lens", "--pixels-per-lens"},
     {"method", "--method"},
+    {"reuse", "--reuse"},
     {"reference", "--report"},
     {"cache", "--cache"},
     {"device", "--device"},

@@ -1,5 +1,6 @@
 #include "cli/render_command.hpp"
 
+
 #include <fmt/format.h>
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/task_arena.h>
@@ -14,6 +15,7 @@
 #include <tuple>
 #include <utility>
 
+#include "cli/devices_command.hpp"
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
@@ -155,9 +157,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")
       ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
       ->capture_default_str();
-  cmd->add_option("--device", o.device, "Where rays are traced: cpu (Embree), gpu (the first Vulkan GPU, else the first Vulkan device: lavapipe on a machine without one) or gpu:N (the Nth Vulkan device, as `holoray devices` lists them); the GPU path takes every camera with NFF and Blinn-Phong materials for now (docs/guide/gpu.md)")
-      ->check(parsed_by([](const std::string& t) { api::check_device(t); }, "DEVICE"))
-      ->capture_default_str();
+  add_device_option(*cmd, o.device, "the GPU path takes every camera with NFF and Blinn-Phong materials for now");
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
       ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")

@@ -82,7 +82,7 @@ std::string unsupported_features(const RenderScene& scene) {
   return out;
 }
 
-SceneArrays lay_out(const RenderScene& scene) {
+SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
   if (const std::string missing = unsupported_features(scene); !missing.empty())
     throw std::invalid_argument(fmt::format("the GPU path does not render {} yet", missing));
   const AccelScene& accel = scene.accel();
@@ -161,7 +161,7 @@ SceneArrays lay_out(const RenderScene& scene) {
   // in its order.
   // Leaves of up to 4 primitives: 2 and 8 measured the same (within 0.5 %
   // on balls_s4 and gears_s4, 3840x2160, H200).
-  const Bvh bvh = build_bvh(boxes, 4);
+  const Bvh bvh = build_bvh(boxes, 4, quality);
   out.bvh_depth = bvh.depth;
   // A node pushes at most 3 more children than it pops: the traversal's
   // stack (HR_STACK entries) must hold 3 (depth - 1) + 1.

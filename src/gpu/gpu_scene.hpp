@@ -12,6 +12,7 @@
 
 #include "camera/lens_array.hpp"
 #include "camera/pinhole.hpp"
+#include "accel/bvh_builder.hpp"
 #include "camera/display_camera.hpp"
 #include "camera/quilt_camera.hpp"
 #include "display/looking_glass.hpp"
@@ -42,10 +43,10 @@ struct SceneArrays {
 /// materials", "textures", ...), empty when it renders all of it.
 std::string unsupported_features(const RenderScene& scene);
 
-/// The scene laid out for the device. Throws std::invalid_argument naming
+/// The scene laid out for the device, its hierarchy built at `quality`. Throws std::invalid_argument naming
 /// what unsupported_features() names, std::length_error when a count passes
 /// the 2^30 a reference holds, std::runtime_error when Embree's builder fails.
-SceneArrays lay_out(const RenderScene& scene);
+SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high);
 
 /// One frame's constants: the lens array (any grid, either recording
 /// mode), the scene's box grown by its epsilon, depth limit, background,

@@ -100,7 +100,7 @@ class SequenceRun {
       const int f = static_cast<int>(*g);
       if (done(f)) continue;
       if (stop()) return;
-      if (panel_frames_) {
+      if (panel_frames_ || opt_.trace) {
         trace_view(f);
         continue;
       }
@@ -196,7 +196,8 @@ class SequenceRun {
 
   // A view of frame f's viewpoint: a pinhole preview, a Looking Glass, or a
   // display's panel (through the integral camera when it is an ordinary
-  // EIA, as `render --display` does).
+  // EIA, as `render --display` does); or, traced by SequenceOptions::trace,
+  // the shot's own lens array.
   void trace_view(int f) {
     RenderContext scene = seek(f);
     const Viewpoint vp = shot_.viewpoint(f);
@@ -205,14 +206,15 @@ class SequenceRun {
     ro.threads = opt_.threads;
     RenderStats stats;
     const auto start = Clock::now();
-    const FrameCamera camera = make_frame_camera(*opt_.frame_camera, vp, "the shot");
+    const FrameCamera camera =
+        opt_.frame_camera ? make_frame_camera(*opt_.frame_camera, vp, "the shot") : FrameCamera{LensArray(shot_.camera(f))};
     // Mesh textures take the MIP level of what one pixel sees, as in `render`.
     if (const auto angle = camera.pixel_angle()) {
       RenderSettings s = scene.settings();
       s.footprint = {0, *angle};
       scene = RenderContext(scene.scene(), s);
     }
-    const FrameBuffers b = render_through(scene, camera, ro, stats);
+    const FrameBuffers b = opt_.trace ? opt_.trace(scene, camera, ro, stats) : render_through(scene, camera, ro, stats);
     emit_(f, b.colour, keyframe_report(f, b.colour, stats, seconds_since(start)));
   }
 

@@ -54,6 +54,10 @@ struct SequenceOptions {
   /// scene's, filled in by the caller), a display's native panel images, a
   /// Looking Glass's, as `render` renders them.
   std::optional<FrameCameraDesc> frame_camera;
+  /// Method::full only: traces each frame in place of the CPU path (the GPU
+  /// path: api/gpu_executor.hpp), given the frame's scene (moved there) and
+  /// camera; what render_through() gives. Null: the CPU path.
+  std::function<FrameBuffers(const RenderContext&, const FrameCamera&, const RenderOptions&, RenderStats&)> trace;
   /// Shadow cache (render/shadow_cache.hpp) for traced frames, filling and
   /// geometry reuse; null: trace every shadow ray. Built on the shot's scene;
   /// it lives across frames while nothing moves. The reference frames

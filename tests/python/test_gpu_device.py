@@ -35,3 +35,28 @@ def test_bad_device_names_the_keyword():
     scene = holoray.load_scene(str(REPO / "examples" / "primitives.nff"))
     with pytest.raises(ValueError, match=r"^device: expected cpu, gpu or gpu:N \(N from 0\), got 'tpu'$"):
         holoray.render(scene, holoray.LensArray(lenses=(4, 4)), device="tpu")
+
+
+def moving_shot(tmp_path):
+    """primitives.nff sliding and turning over 3 frames of a 16x16-lens EIA."""
+    (tmp_path / "s.nff").write_text((REPO / "examples" / "primitives.nff").read_text())
+    shot = tmp_path / "shot.toml"
+    shot.write_text('frames = 3\n[array]\nlenses = [16, 16]\npixels_per_lens = 6\n[[object]]\nscene = "s.nff"\n'
+                    '[[object.key]]\nframe = 0\ntranslate = [0, 0, 0]\n'
+                    '[[object.key]]\nframe = 2\ntranslate = [0.3, 0.1, 0]\nrotate = [0, 20, 0]\n')
+    return shot
+
+
+def test_animate_on_the_gpu_gives_the_cpu_frames(tmp_path):
+    shot = moving_shot(tmp_path)
+    cpu = [colour for _, colour, _ in holoray.animate(shot, method="full")]
+    gpu = [colour for _, colour, _ in holoray.animate(shot, device="gpu")]
+    assert len(gpu) == len(cpu) == 3
+    for a, b in zip(cpu, gpu):
+        assert psnr_8bit(a, b) >= 50
+    assert psnr_8bit(gpu[0], gpu[2]) < 30  # the object moved on the GPU too
+
+
+def test_animate_on_the_gpu_refuses_reuse_saying_why(tmp_path):
+    with pytest.raises(ValueError, match=r"^reuse: goes with device cpu \(the GPU path traces every frame in full"):
+        list(holoray.animate(moving_shot(tmp_path), device="gpu", reuse="color"))
