@@ -36,9 +36,39 @@ GpuMaterial material_of(const Material& m) {
   GpuMaterial g;
   g.colour_kd = v4(m.colour, float(m.kd));
   g.ks_shine_t_ior = {float(m.ks), float(m.shine), float(m.transmittance), float(m.ior)};
-  g.emission_model = v4(m.emission, float(m.model == ShadingModel::blinn_phong ? HR_MODEL_BLINN_PHONG : HR_MODEL_NFF));
+  const int model = m.model == ShadingModel::blinn_phong ? HR_MODEL_BLINN_PHONG
+                    : m.model == ShadingModel::tachyon   ? HR_MODEL_TACHYON
+                                                         : HR_MODEL_NFF;
+  g.emission_model = v4(m.emission, float(model));
   g.specular = v4(m.specular);
+  g.tachyon = {float(m.ambient), float(m.phong), m.phong_metal ? 1.0f : 0.0f, m.emitter ? 1.0f : 0.0f};
+  g.maps = {m.model == ShadingModel::tachyon ? m.texture : -1, 0, 0, 0};
   return g;
+}
+
+// Tachyon's texfuncs, and their image maps' levels as uints of RGB8.
+void lay_out_textures(const RenderScene& scene, SceneArrays& out) {
+  std::vector<int> first_level;  // per image map
+  for (const MipMap& mip : scene.mips()) {
+    first_level.push_back(static_cast<int>(out.levels.size()));
+    for (int k = 0; k < mip.levels(); ++k) {
+      const MipMap::Level& l = mip.level(k);
+      out.levels.push_back({{l.width, l.height, l.depth, static_cast<int32_t>(out.texels.size())}});
+      if (out.texels.size() + l.rgb.size() / 3 > uint64_t{INT32_MAX})
+        throw std::length_error("the GPU path holds at most 2^31 texels, the scene's image maps have more");
+      for (size_t t = 0; t + 2 < l.rgb.size(); t += 3)
+        out.texels.push_back(uint32_t{l.rgb[t]} | uint32_t{l.rgb[t + 1]} << 8 | uint32_t{l.rgb[t + 2]} << 16);
+    }
+  }
+  for (const TextureDesc& t : scene.textures()) {
+    GpuTexture g;
+    const bool mapped = t.image >= 0;
+    g.kind_level_count = {static_cast<int>(t.kind), mapped ? first_level[size_t(t.image)] : -1,
+                          mapped ? scene.mips()[size_t(t.image)].levels() : 0, 0};
+    g.centre = v4(t.centre), g.rotate = v4(t.rotate), g.scale = v4(t.scale);
+    g.uaxis = v4(t.uaxis), g.vaxis = v4(t.vaxis), g.waxis = v4(t.waxis);
+    out.textures.push_back(g);
+  }
 }
 
 GpuLight light_of(const PointLight& l) {
@@ -57,26 +87,24 @@ GpuLight light_of(const PointLight& l) {
 
 uint64_t SceneArrays::bytes() const {
   return nodes.size() * sizeof(GpuNode) + refs.size() * 4 + triangles.size() * sizeof(GpuTriangle) +
-         patches.size() * sizeof(GpuPatch) + spheres.size() * sizeof(GpuSphere) + cones.size() * sizeof(GpuCone) +
-         object_material.size() * 4 + materials.size() * sizeof(GpuMaterial) + lights.size() * sizeof(GpuLight);
+         (patches.size() + colours.size()) * sizeof(GpuPatch) + spheres.size() * sizeof(GpuSphere) + cones.size() * sizeof(GpuCone) +
+         object_material.size() * 4 + materials.size() * sizeof(GpuMaterial) + lights.size() * sizeof(GpuLight) +
+         textures.size() * sizeof(GpuTexture) + levels.size() * sizeof(GpuLevel) + texels.size() * 4;
 }
 
 std::string unsupported_features(const RenderScene& scene) {
   std::vector<std::string> what;
-  bool tachyon = false, gltf = false, textures = false, alpha = false;
+  bool gltf = false, textures = false, alpha = false;
   for (const Material& m : scene.materials()) {
-    tachyon |= m.model == ShadingModel::tachyon;
     gltf |= m.model == ShadingModel::gltf;
-    textures |= m.texture >= 0 || m.emission_texture >= 0 || m.normal_texture >= 0 || m.metal_rough_texture >= 0 ||
-                m.specular_texture >= 0;
+    // A Tachyon material's texfunc is rendered; a mesh's maps are not yet.
+    textures |= (m.texture >= 0 && m.model != ShadingModel::tachyon) || m.emission_texture >= 0 ||
+                m.normal_texture >= 0 || m.metal_rough_texture >= 0 || m.specular_texture >= 0;
     alpha |= m.alpha_mask || m.alpha_texture >= 0 || (m.model != ShadingModel::gltf && m.alpha < 1);
   }
-  if (tachyon) what.push_back("Tachyon materials");
   if (gltf) what.push_back("glTF metallic-roughness materials");
-  if (textures) what.push_back("textures");
+  if (textures) what.push_back("mesh textures");
   if (alpha) what.push_back("alpha masks");
-  if (scene.has_vertex_colours()) what.push_back("vertex colours");
-  if (scene.fog()) what.push_back("fog");
   std::string out;
   for (size_t k = 0; k < what.size(); ++k) out += (k ? (k + 1 == what.size() ? " and " : ", ") : "") + what[k];
   return out;
@@ -120,7 +148,12 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
         out.patches.push_back(pn);
       }
       tri.e1 = v4(v[1] - v[0], bits(patch));
-      tri.e2 = v4(v[2] - v[0]);
+      int32_t coloured = -1;
+      if (const auto* c = scene.vertex_colours(g, t)) {
+        coloured = static_cast<int32_t>(out.colours.size());
+        out.colours.push_back({v4((*c)[0]), v4((*c)[1]), v4((*c)[2])});
+      }
+      tri.e2 = v4(v[2] - v[0], bits(coloured));
       const Vec3& wn = scene.winding_normal(g, t);
       tri.ng = v4(moved ? xf.normal(wn) : wn, bits(scene.object_of(g, PrimKind::triangle, t)));
       PrimitiveBox b{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
@@ -186,15 +219,20 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
   for (size_t o = 0; o < scene.object_count(); ++o) out.object_material.push_back(scene.material_of_object(int(o)));
   for (const Material& m : scene.materials()) out.materials.push_back(material_of(m));
   for (const PointLight& l : scene.lights()) out.lights.push_back(light_of(l));
+  lay_out_textures(scene, out);
   // Empty arrays still bind a buffer: one zero record each.
   if (out.refs.empty()) out.refs.push_back(0);
   if (out.triangles.empty()) out.triangles.emplace_back();
   if (out.patches.empty()) out.patches.emplace_back();
+  if (out.colours.empty()) out.colours.emplace_back();
   if (out.spheres.empty()) out.spheres.emplace_back();
   if (out.cones.empty()) out.cones.emplace_back();
   if (out.object_material.empty()) out.object_material.push_back(0);
   if (out.materials.empty()) out.materials.emplace_back();
   if (out.lights.empty()) out.lights.emplace_back();
+  if (out.textures.empty()) out.textures.emplace_back();
+  if (out.levels.empty()) out.levels.emplace_back();
+  if (out.texels.empty()) out.texels.push_back(0);
   return out;
 }
 
@@ -220,6 +258,12 @@ GpuFrame scene_frame(const RenderContext& context, const AovSet& aovs, int row0,
   }
   f.background = v4(context.background());
   f.ambient = v4(context.ambient());
+  if (const auto& fog = context.fog()) {
+    const int mode = fog->mode == FogDesc::Mode::linear ? HR_FOG_LINEAR : fog->mode == FogDesc::Mode::exp ? HR_FOG_EXP : HR_FOG_EXP2;
+    f.fog = v4(fog->colour, float(mode));
+    f.fog_range = {float(fog->start), float(fog->end), float(fog->density), 0};
+  }
+  f.flags = {context.has_tachyon_transparency() ? 1 : 0, 0, 0, 0};
   return f;
 }
 

@@ -29,18 +29,23 @@ struct SceneArrays {
   std::vector<uint32_t> refs;  ///< leaves' primitive references (HR_PRIM_* << HR_PRIM_SHIFT | index)
   std::vector<GpuTriangle> triangles;
   std::vector<GpuPatch> patches;
+  std::vector<GpuPatch> colours;  ///< vertex colours (GpuTriangle::e2.w)
   std::vector<GpuSphere> spheres;
   std::vector<GpuCone> cones;
   std::vector<uint32_t> object_material;
   std::vector<GpuMaterial> materials;
   std::vector<GpuLight> lights;
+  std::vector<GpuTexture> textures;  ///< Tachyon's texfuncs
+  std::vector<GpuLevel> levels;      ///< their image maps' MIP levels
+  std::vector<uint32_t> texels;      ///< the levels' texels, RGB8 in a uint each
   int bvh_depth = 0;
   /// Bytes the arrays take on the device.
   uint64_t bytes() const;
 };
 
-/// What of `scene` the GPU path cannot render yet, in words ("Tachyon
-/// materials", "textures", ...), empty when it renders all of it.
+/// What of `scene` the GPU path cannot render yet, in words ("glTF
+/// metallic-roughness materials", "mesh textures", "alpha masks"), empty
+/// when it renders all of it.
 std::string unsupported_features(const RenderScene& scene);
 
 /// The scene laid out for the device, its hierarchy built at `quality`. Throws std::invalid_argument naming

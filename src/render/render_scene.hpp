@@ -188,6 +188,10 @@ class RenderScene {
   // out in its own arrays; the CPU path reads these through surface().
   /// The resolved materials, and which one each object wears.
   const std::vector<Material>& materials() const { return materials_; }
+  /// The textures (Material::texture indexes them) and their image maps'
+  /// MIP levels (TextureDesc::image indexes these).
+  const std::vector<TextureDesc>& textures() const { return textures_; }
+  const std::vector<MipMap>& mips() const { return mips_; }
   uint32_t material_of_object(int object) const { return object_material_[static_cast<size_t>(object)]; }
   /// A triangle's winding normal (object space of its group, unit).
   const Vec3& winding_normal(uint32_t group, uint32_t prim) const { return tri_normal_[group_base_[group][0] + prim]; }
@@ -198,6 +202,11 @@ class RenderScene {
   }
   /// Whether any triangle carries vertex colours (Tachyon vcstri).
   bool has_vertex_colours() const { return !tri_colours_.empty(); }
+  /// A triangle's vertex colours (linear RGB), null for one without.
+  const std::array<Vec3, 3>* vertex_colours(uint32_t group, uint32_t prim) const {
+    const size_t t = group_base_[group][0] + prim;
+    return t < tri_colour_.size() && tri_colour_[t] >= 0 ? &tri_colours_[static_cast<size_t>(tri_colour_[t])] : nullptr;
+  }
 
  private:
   void update_epsilon();

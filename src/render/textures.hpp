@@ -42,11 +42,15 @@ class MipMap {
   /// The image has an alpha channel (alpha_uv reads it; else it is 1).
   bool has_alpha() const { return !alpha_.empty(); }
 
- private:
+  /// One level: width x height x depth texels of 8-bit RGB, x fastest.
   struct Level {
     int width, height, depth;
     std::vector<unsigned char> rgb;
   };
+  /// Level k (0 the finest), for an executor that samples elsewhere (the GPU path).
+  const Level& level(int k) const { return levels_[static_cast<size_t>(k)]; }
+
+ private:
   static Vec3 trilinear(const Level& l, double u, double v, double w);
   template <class Lookup>
   Vec3 blend_levels(double d, Lookup lookup) const;

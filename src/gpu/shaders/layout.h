@@ -35,6 +35,21 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 // Material models the GPU path shades (scene_desc.hpp, ShadingModel).
 #define HR_MODEL_NFF 0
 #define HR_MODEL_BLINN_PHONG 1
+#define HR_MODEL_TACHYON 2
+
+// Tachyon's texfuncs (scene_desc.hpp, TextureDesc::Kind).
+#define HR_TEX_CHECKER3D 1
+#define HR_TEX_WOOD 4
+#define HR_TEX_CYLINDER_CHECKER 6
+#define HR_TEX_CYLINDRICAL_IMAGE 7
+#define HR_TEX_SPHERICAL_IMAGE 8
+#define HR_TEX_PLANAR_IMAGE 9
+#define HR_TEX_VOLUME_IMAGE 10
+
+// Fog modes (scene_desc.hpp, FogDesc), 0 for none.
+#define HR_FOG_LINEAR 1
+#define HR_FOG_EXP 2
+#define HR_FOG_EXP2 3
 
 // Light kinds (scene_desc.hpp, LightKind).
 #define HR_LIGHT_POINT 0
@@ -67,12 +82,14 @@ HR_STRUCT GpuNode {
 
 /// A triangle: vertex 0 and its two edges (Moller-Trumbore), the winding
 /// normal (w: the object id's bits), and in e1.w the index of its three
-/// vertex normals in the patch buffer (-1: flat) as float bits.
+/// vertex normals in the patch buffer (-1: flat), in e2.w that of its
+/// vertex colours in the colour buffer (-1: none), as float bits.
 HR_STRUCT GpuTriangle {
   vec4 v0, e1, e2, ng;
 };
 
-/// Vertex normals of a smooth triangle (NFF `pp`, a mesh's normals).
+/// Vertex normals of a smooth triangle (NFF `pp`, a mesh's normals), or the
+/// vertex colours of a coloured one (Tachyon's vcstri; its own buffer).
 HR_STRUCT GpuPatch {
   vec4 n0, n1, n2;
 };
@@ -92,9 +109,26 @@ HR_STRUCT GpuCone {
 };
 
 /// A material: colour and kd; ks, shine, transmittance, ior; emission and
-/// model; Blinn-Phong's specular colour.
+/// model; Blinn-Phong's specular colour; Tachyon's ambient, highlight
+/// weight, 1 for a metal's highlight and 1 for a light's own sphere; x of
+/// `maps`: its texture (GpuTexture, -1 none).
 HR_STRUCT GpuMaterial {
-  vec4 colour_kd, ks_shine_t_ior, emission_model, specular;
+  vec4 colour_kd, ks_shine_t_ior, emission_model, specular, tachyon;
+  ivec4 maps;
+};
+
+/// A Tachyon texfunc (render/textures.hpp, texture_colour): kind, its image
+/// map's first level (GpuLevel) and level count; centre, rotate, scale and
+/// the u, v, w axes.
+HR_STRUCT GpuTexture {
+  ivec4 kind_level_count;
+  vec4 centre, rotate, scale, uaxis, vaxis, waxis;
+};
+
+/// One MIP level of an image map: width, height, depth (slices) and its
+/// first texel in the texel buffer (one uint a texel: R | G << 8 | B << 16).
+HR_STRUCT GpuLevel {
+  ivec4 size_offset;
 };
 
 /// A light (render_scene.hpp, PointLight): position and kind, intensity and
@@ -118,6 +152,11 @@ HR_STRUCT GpuFrame {
   ivec4 rows;      // the rows rendered: first, end (the image's buffers hold these alone)
   vec4 box_lo, box_hi;  // the scene's bounds (world) grown by the margin; w: margin
   vec4 background, ambient;
+  // Tachyon's fog (render/models/tachyon_model.cpp): colour and HR_FOG_* (0
+  // none); start, end, density. x of `flags`: 1 when a Tachyon surface is
+  // transparent, so that shadow rays filter through it (tachyon_shadow).
+  vec4 fog, fog_range;
+  ivec4 flags;
   // A pinhole view (grid HR_PINHOLE): pixel size at distance 1 (or in scene
   // units, orthographic), window shift x and y, the sample's offset in u;
   // its offset in v, the clipping range along the axis (near, far: 0 and

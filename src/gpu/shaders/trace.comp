@@ -47,6 +47,10 @@ layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
 // primitives tested, then rays by kind: eye, shadow, reflected, refracted.
 // Counters: HR_COUNT_SLOTS pairs per band (32 bits each: a band is short enough).
 layout(std430, binding = 12) buffer CountBlock { uvec4 band_counts[]; };
+layout(std430, binding = 13) readonly buffer TextureBlock { GpuTexture textures[]; };
+layout(std430, binding = 14) readonly buffer LevelBlock { GpuLevel levels[]; };
+layout(std430, binding = 15) readonly buffer TexelBlock { uint texels[]; };
+layout(std430, binding = 16) readonly buffer ColourPatchBlock { GpuPatch vertex_colours[]; };
 
 layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
 
@@ -418,6 +422,175 @@ float falloff_of(GpuLight L, vec3 to_light, float dist) {
 
 vec3 reflect_about(vec3 d, vec3 n) { return d - n * (2.0 * dot(d, n)); }
 
+// ---- Tachyon's texfuncs and shading (render/textures.cpp,
+// render/models/tachyon_model.cpp; docs/tachyon-notes.md §3) ----
+
+// Tachyon ignores a term below half an 8-bit step (MINCONTRIB).
+const float kMinContrib = 0.5 / 255.0;
+
+// A level's texel, 0 to 255 per channel.
+vec3 texel(ivec4 L, int x, int y, int z) {
+  uint t = texels[L.w + (z * L.y + y) * L.x + x];
+  return vec3(float(t & 0xffu), float((t >> 8) & 0xffu), float((t >> 16) & 0xffu));
+}
+
+// Tachyon's ImageMap and VolImageMapTrilinear (MipMap::trilinear).
+vec3 trilinear(ivec4 L, float u, float v, float w) {
+  float x = float(L.x - 1) * u, y = float(L.y - 1) * v, z = float(L.z - 1) * w;
+  int ix = int(x), iy = int(y), iz = int(z);
+  float px = x - float(ix), py = y - float(iy), pz = z - float(iz);
+  int ix1 = min(ix + 1, L.x - 1), iy1 = min(iy + 1, L.y - 1), iz1 = min(iz + 1, L.z - 1);
+  vec3 near_lo = mix(texel(L, ix, iy, iz), texel(L, ix1, iy, iz), px);
+  vec3 near_hi = mix(texel(L, ix, iy1, iz), texel(L, ix1, iy1, iz), px);
+  vec3 c = mix(near_lo, near_hi, py);
+  if (L.z > 1) {
+    vec3 far_lo = mix(texel(L, ix, iy, iz1), texel(L, ix1, iy, iz1), px);
+    vec3 far_hi = mix(texel(L, ix, iy1, iz1), texel(L, ix1, iy1, iz1), px);
+    c = mix(c, mix(far_lo, far_hi, py), pz);
+  }
+  return c / 255.0;
+}
+
+// Tachyon's MIPMap (MipMap::blend_levels): black outside the unit cube;
+// past the second-coarsest level the coarsest, unblended.
+vec3 mip_sample(GpuTexture t, float u, float v, float w, float d) {
+  if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0)) return vec3(0.0);
+  int first = t.kind_level_count.y, n = t.kind_level_count.z;
+  float level = clamp(d, 0.0, 1.0) * (float(n) - 0.9999);
+  int i = int(level);
+  if (i < n - 2)
+    return mix(trilinear(levels[first + i].size_offset, u, v, w), trilinear(levels[first + i + 1].size_offset, u, v, w),
+               level - float(i));
+  return trilinear(levels[first + n - 1].size_offset, u, v, w);
+}
+
+// u - trunc(u), wrapped into [0, 1): Tachyon's repeat.
+float tachyon_wrap(float u) {
+  u -= trunc(u);
+  return u < 0.0 ? u + 1.0 : u;
+}
+
+// The colour of texture k at p (world) seen at optic_dist along the ray
+// (textures.cpp, texture_colour), for a material of colour `base`.
+vec3 tachyon_texture(int k, vec3 base, vec3 p, float optic_dist) {
+  GpuTexture t = textures[k];
+  vec3 q = p - t.centre.xyz;
+  int kind = t.kind_level_count.x;
+  bool mapped = t.kind_level_count.y >= 0;
+  if (kind == HR_TEX_CHECKER3D) {
+    ivec3 cell = ivec3(abs(q) * 3.0 + 0.5) % 2;
+    return (cell.x + cell.y + cell.z) % 2 == 1 ? vec3(1.0, 0.2, 0.0) : vec3(0.0, 0.2, 1.0);
+  }
+  if (kind == HR_TEX_WOOD) {
+    vec3 x = q / t.scale.xyz;
+    float radius = sqrt(x.x * x.x + x.z * x.z);
+    float angle = x.z == 0.0 ? 3.1415926 / 2.0 : atan(x.x / x.z);
+    radius += 3.0 * sin(20.0 * angle + x.y / 150.0);
+    int g = int(radius + 0.5);  // truncated toward 0, as C++ does; a negative grain is light
+    return g < 0 || g % 60 < 40 ? vec3(0.8, 1.0, 0.2) : vec3(0.0);
+  }
+  if (kind == HR_TEX_CYLINDER_CHECKER || kind == HR_TEX_CYLINDRICAL_IMAGE || kind == HR_TEX_SPHERICAL_IMAGE) {
+    float u, v;
+    // The angles of Tachyon's acos(x / r) taken as atan(|y|, x), the same
+    // angle: float's acos loses it near 0 and pi, where a star map's single
+    // texels are.
+    if (kind == HR_TEX_SPHERICAL_IMAGE) {  // xyztospr: v from the -y pole, u about y in turns
+      float around = sqrt(q.x * q.x + q.z * q.z);
+      if (!(length(q) > 0.0)) {
+        u = 0.0, v = 0.0;
+      } else {
+        v = atan(around, -q.y) / 3.1415926;  // Tachyon's own truncated pi
+        float theta = around > 0.0 ? atan(abs(q.z), q.x) / 6.283185307179586 : 0.0;
+        u = q.z > 0.0 ? theta : 1.0 - theta;
+      }
+    } else {  // xyztocyl about z (the image's cylinder: the texture's y, so y and z swapped first)
+      vec3 c = kind == HR_TEX_CYLINDER_CHECKER ? q : q.xzy;
+      v = c.z;
+      float a = c.x != 0.0 || c.y != 0.0 ? atan(abs(c.y), c.x) / 6.283185307179586 : 0.0;
+      u = c.y < 0.0 ? 1.0 - a : a;
+    }
+    if (kind == HR_TEX_CYLINDER_CHECKER) {
+      int x = int(abs(u) * 18.0) % 2, y = int(abs(v) * 10.0) % 2;
+      return (x + y) % 2 == 1 ? vec3(1.0, 0.2, 0.0) : vec3(0.0, 0.2, 1.0);
+    }
+    if (!mapped) return base;
+    u = tachyon_wrap(u * t.scale.x + t.rotate.x);
+    v = tachyon_wrap(v * t.scale.y + t.rotate.y);
+    float max_scale = max(abs(t.scale.x), abs(t.scale.y));
+    return mip_sample(t, u, v, 0.0, 0.05 * optic_dist * max_scale / (1e-8 + 8.0 * length(q)));  // per 8 radii
+  }
+  if ((kind == HR_TEX_PLANAR_IMAGE || kind == HR_TEX_VOLUME_IMAGE) && mapped) {
+    float u = tachyon_wrap(dot(t.uaxis.xyz, q) * t.scale.x + t.rotate.x);
+    float v = tachyon_wrap(dot(t.vaxis.xyz, q) * t.scale.y + t.rotate.y);
+    float max_scale = max(abs(t.scale.x), abs(t.scale.y));
+    float w = 0.0;
+    if (kind == HR_TEX_VOLUME_IMAGE) {
+      w = tachyon_wrap(dot(t.waxis.xyz, q) * t.scale.z + t.rotate.z);
+      max_scale = max(max_scale, abs(t.scale.z));
+    }
+    return mip_sample(t, u, v, w, 0.05 * optic_dist * max_scale);
+  }
+  return base;
+}
+
+// Tachyon's light toward a point: N.L over the attenuation, the spot's
+// linear falloff in the angle (tachyon_light); xyz the direction, w the
+// intensity, and the distance in `dist`.
+vec4 tachyon_light(GpuLight L, vec3 p, vec3 n, out float dist) {
+  int kind = int(L.position_kind.w);
+  if (kind == HR_LIGHT_DIRECTIONAL) {
+    dist = kInf;
+    return vec4(-L.direction.xyz, dot(n, -L.direction.xyz));
+  }
+  vec3 d = L.position_kind.xyz - p;
+  dist = length(d);
+  if (!(dist > 0.0)) return vec4(0.0);
+  vec3 to_light = d / dist;
+  vec4 at = L.attenuation;
+  float intensity = dot(n, to_light) / (at.x + (at.y + at.z * dist) * dist);
+  if (kind == HR_LIGHT_SPOT) {
+    float angle = acos(clamp(-dot(L.direction.xyz, to_light), -1.0, 1.0));
+    if (angle > L.cone.y) intensity = 0.0;
+    else if (angle > L.cone.x) intensity *= 1.0 - (angle - L.cone.x) / (L.cone.y - L.cone.x);
+  }
+  return vec4(to_light, intensity);
+}
+
+// The fog's share of a hit at r along its ray (tachyon_finish): the hit's
+// colour is k of itself and 1 - k of the fog's.
+float fog_keep(float r) {
+  int mode = int(F.fog.w);
+  if (mode == 0) return 1.0;
+  float k = mode == HR_FOG_LINEAR ? (F.fog_range.y - r) / (F.fog_range.y - F.fog_range.x)
+          : mode == HR_FOG_EXP    ? exp(-F.fog_range.z * (r - F.fog_range.x))
+                                  : exp(-(F.fog_range.z * (r - F.fog_range.x)) * (F.fog_range.z * (r - F.fog_range.x)));
+  return clamp(k, 0.0, 1.0);
+}
+
+// How much of a light a Tachyon shadow ray from o toward d lets through
+// (tachyon_shadow): 0 when an opaque surface blocks it, else the product of
+// the transparent surfaces' transmittance, walked hit by hit where the
+// scene has any; lights' own spheres pass.
+float tachyon_shadow(vec3 o, vec3 d, float tmax, inout uint shadow_rays) {
+  ++shadow_rays;
+  Hit h;
+  if (F.flags.x == 0) return trace_ray(o, d, 0.0, tmax, true, h) ? 0.0 : 1.0;
+  float filter_ = 1.0, tnear = 0.0;
+  for (int step = 0; step < 64; ++step) {  // the CPU's cap: a ray grazing a stack of coincident surfaces
+    if (!trace_ray(o, d, tnear, tmax, false, h)) return filter_;
+    GpuMaterial m = materials[surface_of(o, d, h).material];
+    if (m.tachyon.w == 0.0) {
+      if (int(m.emission_model.w) != HR_MODEL_TACHYON || !(m.ks_shine_t_ior.z > 0.0)) return 0.0;
+      filter_ *= m.ks_shine_t_ior.z;
+      if (filter_ < kMinContrib) return 0.0;
+    }
+    tnear = max(h.t, tnear) + F.extent.w;
+    if (!(tnear < tmax)) return filter_;
+    ++shadow_rays;
+  }
+  return 0.0;
+}
+
 // Where the camera's pixel (i, j) goes in the output: its tile of the image
 // (a quilt's view) and the rows this render holds.
 uint out_pixel(int i, int j) { return uint(F.tile.y + j - F.rows.x) * uint(F.tile.z) + uint(F.tile.x + i); }
@@ -461,11 +634,19 @@ void main() {
     if (traced) {
       Pending stack[HR_MAX_DEPTH + 2];
       int sp = 0;
-      float t_offset = 0.0, t_sign = 1.0, tmin0 = 0.0, tmax0;
+      // t_sign: the line's parameter per unit of the primary ray's; optic0:
+      // how far the primary ray's origin lies behind where the CPU starts it
+      // (a Tachyon texture's MIP level and fog go by that distance).
+      float t_sign = 1.0, optic0 = 0.0, tmin0 = 0.0, tmax0;
       if (ortho) {
+        // The CPU starts it beyond the box and runs back along the line
+        // (renderer.cpp, primary_over); here it starts on the lens plane and
+        // runs back over negative distances, the same segment, so that float
+        // keeps the distances that the depth AOV is (a box thousands of
+        // units deep, as Room's, lost 1e-4 of them from the far start).
         float start = t1 + margin;
-        stack[sp++] = Pending(lo + ld * start, -ld, vec3(1.0), 1);
-        t_offset = start, t_sign = -1.0, tmax0 = start - t0 + margin;
+        stack[sp++] = Pending(lo, -ld, vec3(1.0), 1);
+        t_sign = -1.0, optic0 = start, tmin0 = -start, tmax0 = -(t0 - margin);
       } else if (pinhole) {
         stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
         bool clipped = !(F.view_clip.y == 0.0 && isinf(F.view_clip.z));
@@ -501,12 +682,60 @@ void main() {
             vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? ld : -ld;
             vec3 n = dot(s.ns, toward) >= 0.0 ? s.ns : -s.ns;
             aov_out[a + 0u] = colour.x, aov_out[a + 1u] = colour.y, aov_out[a + 2u] = colour.z;
-            aov_out[a + 3u] = t_offset + t_sign * h.t;
+            aov_out[a + 3u] = t_sign * h.t;
             aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
             aov_out[a + 7u] = float(s.object);
           }
         }
         float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
+        if (int(m.emission_model.w) == HR_MODEL_TACHYON) {  // tachyon_model.cpp, TachyonModel::shade
+          // A vertex-coloured triangle's colour, else the texfunc's (RenderScene::surface_colour).
+          int coloured = (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE
+                             ? floatBitsToInt(tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)].e2.w) : -1;
+          vec3 tex = coloured >= 0 ? vertex_colours[coloured].n0.xyz * (1.0 - h.u - h.v) +
+                                         vertex_colours[coloured].n1.xyz * h.u + vertex_colours[coloured].n2.xyz * h.v
+                   : m.maps.x >= 0 ? tachyon_texture(m.maps.x, colour, s.p, h.t + (primary ? optic0 : 0.0))
+                                   : colour;
+          if (m.tachyon.w != 0.0) {  // a light's sphere: its colour, unshaded
+            c += r.weight * tex;
+            continue;
+          }
+          // Fog takes its share of everything this hit shows, secondary rays included.
+          float keep = fog_keep(h.t + (primary ? optic0 : 0.0));
+          c += r.weight * ((1.0 - keep) * F.fog.xyz);
+          vec3 w = r.weight * keep;
+          float T = m.ks_shine_t_ior.z;
+          if (ks > kMinContrib) {  // past the depth limit a secondary ray sees the background
+            ++reflected_rays;
+            if (r.depth < max_depth) stack[sp++] = Pending(above, normalize(reflect_about(r.d, ns)), w * ks, r.depth + 1);
+            else c += w * ks * F.background.xyz;
+          }
+          if (T > kMinContrib) {  // straight through
+            ++refracted_rays;
+            if (r.depth < max_depth) stack[sp++] = Pending(s.p - ng * eps, r.d, w * T, r.depth + 1);
+            else c += w * T * F.background.xyz;
+          }
+          c += w * tex * m.tachyon.x;
+          if (kd > kMinContrib || m.tachyon.y > kMinContrib) {
+            for (int l = 0; l < F.counts.x; ++l) {
+              GpuLight L = lights[l];
+              float dist;
+              vec4 to_light = tachyon_light(L, s.p, ns, dist);
+              if (!(to_light.w > kMinContrib)) continue;
+              float seen = tachyon_shadow(above, to_light.xyz, dist - eps, shadow_rays);
+              if (seen == 0.0) continue;
+              vec3 term = tex * (kd * to_light.w * seen) * L.intensity_unit.xyz;
+              if (m.tachyon.y > kMinContrib) {  // Blinn's half vector, unnormalised until the dot
+                vec3 hv = to_light.xyz - r.d;
+                float spec = dot(ns, hv);
+                if (spec > kMinContrib)
+                  term += (m.tachyon.z != 0.0 ? tex : L.intensity_unit.xyz) * (pow(spec / length(hv), shine) * m.tachyon.y);
+              }
+              c += w * term;
+            }
+          }
+          continue;
+        }
         // The mirror and transmitted rays wait on the stack (pushed before
         // the shadow rays, so that what they need is not kept across them).
         if (r.depth < max_depth) {
