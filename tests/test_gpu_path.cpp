@@ -322,6 +322,29 @@ TEST(GpuPath, TheExampleShotAnimatesOnTheGpu) {
   EXPECT_GE(api::psnr(api::read_image(dir.file("cpu/frame_0023.png")), api::read_image(dir.file("gpu/frame_0023.png"))), 50.0);
 }
 
+// glTF's metallic-roughness BRDF (lit_spheres: metals, dielectrics and a
+// smooth mirror under point, spot and directional lights; Blender's scene,
+// tests/data/blender), and a skinned mesh and a morphed one posed per frame
+// (the scene laid out again on each), each frame as the CPU renders it.
+TEST(GpuPath, GltfMaterialsAndDeformingMeshesMatchTheCpuPath) {
+  const std::string data = source_dir() + "/tests/data/blender/";
+  const Scene spheres = Scene::load(data + "lit_spheres.gltf");
+  expect_agreement(both_ways(spheres, array_of(api::Grid::square)), "lit_spheres, square");
+  expect_agreement(both_ways(spheres, api::Pinhole{160, 120}), "lit_spheres, pinhole");
+  for (const char* name : {"skinned_arm", "morph_box"}) {
+    TempDir dir;
+    write_text(dir.file("shot.toml"), fmt::format("frames = 10\nfps = 24\n[array]\nlenses = 16\npixels_per_lens = 6\n"
+                                                  "[[object]]\nscene = \"{}{}.gltf\"\n",
+                                                  data, name));
+    const std::vector<api::Image> cpu = animate_frames(dir.file("shot.toml"), "cpu");
+    const std::vector<api::Image> gpu = animate_frames(dir.file("shot.toml"), "gpu");
+    ASSERT_EQ(gpu.size(), cpu.size());
+    for (const size_t f : {size_t{0}, size_t{5}, size_t{9}})
+      EXPECT_GE(api::psnr(cpu[f], gpu[f]), 50.0) << name << ", frame " << f;
+    EXPECT_LT(api::psnr(gpu[0], gpu[9]), 40.0) << name << ": the mesh moved";
+  }
+}
+
 TEST(GpuPath, AnimateRefusesReuseSayingWhy) {
   const std::string shot = source_dir() + "/examples/shots/room.toml";
   auto refusal = [&](const std::function<void(api::AnimateOptions&)>& set) {
@@ -456,9 +479,9 @@ TEST(GpuPath, RefusesWhatItDoesNotRenderYet) {
   cached.cache.enabled = true;
   EXPECT_EQ(error_of([&] { api::render(nff, array_of(api::Grid::square), cached); }),
             "`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
-  const Scene gltf = Scene::load(source_dir() + "/examples/swinging_box.gltf");
-  EXPECT_EQ(error_of([&] { api::render(gltf, array_of(api::Grid::square), o); }),
-            "`device` gpu: the GPU path does not render glTF metallic-roughness materials yet; use `device` cpu");
+  const Scene textured = Scene::load(source_dir() + "/tests/data/blender/textured_box.gltf");
+  EXPECT_EQ(error_of([&] { api::render(textured, array_of(api::Grid::square), o); }),
+            "`device` gpu: the GPU path does not render mesh textures yet; use `device` cpu");
   RenderOptions bad;
   bad.device = "gpu:x";
   EXPECT_EQ(error_of([&] { api::render(nff, array_of(api::Grid::square), bad); }),

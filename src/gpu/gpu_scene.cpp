@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "accel/bvh_builder.hpp"
+#include "render/gltf_brdf.hpp"
 
 namespace holoray::gpu {
 
@@ -38,10 +39,12 @@ GpuMaterial material_of(const Material& m) {
   g.ks_shine_t_ior = {float(m.ks), float(m.shine), float(m.transmittance), float(m.ior)};
   const int model = m.model == ShadingModel::blinn_phong ? HR_MODEL_BLINN_PHONG
                     : m.model == ShadingModel::tachyon   ? HR_MODEL_TACHYON
+                    : m.model == ShadingModel::gltf      ? HR_MODEL_GLTF
                                                          : HR_MODEL_NFF;
   g.emission_model = v4(m.emission, float(model));
   g.specular = v4(m.specular);
   g.tachyon = {float(m.ambient), float(m.phong), m.phong_metal ? 1.0f : 0.0f, m.emitter ? 1.0f : 0.0f};
+  g.pbr = {float(m.metallic), float(m.roughness), float(m.transmission), float(dielectric_f0(m.ior))};
   g.maps = {m.model == ShadingModel::tachyon ? m.texture : -1, 0, 0, 0};
   return g;
 }
@@ -94,15 +97,13 @@ uint64_t SceneArrays::bytes() const {
 
 std::string unsupported_features(const RenderScene& scene) {
   std::vector<std::string> what;
-  bool gltf = false, textures = false, alpha = false;
+  bool textures = false, alpha = false;
   for (const Material& m : scene.materials()) {
-    gltf |= m.model == ShadingModel::gltf;
     // A Tachyon material's texfunc is rendered; a mesh's maps are not yet.
     textures |= (m.texture >= 0 && m.model != ShadingModel::tachyon) || m.emission_texture >= 0 ||
                 m.normal_texture >= 0 || m.metal_rough_texture >= 0 || m.specular_texture >= 0;
     alpha |= m.alpha_mask || m.alpha_texture >= 0 || (m.model != ShadingModel::gltf && m.alpha < 1);
   }
-  if (gltf) what.push_back("glTF metallic-roughness materials");
   if (textures) what.push_back("mesh textures");
   if (alpha) what.push_back("alpha masks");
   std::string out;

@@ -36,6 +36,7 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_MODEL_NFF 0
 #define HR_MODEL_BLINN_PHONG 1
 #define HR_MODEL_TACHYON 2
+#define HR_MODEL_GLTF 3
 
 // Tachyon's texfuncs (scene_desc.hpp, TextureDesc::Kind).
 #define HR_TEX_CHECKER3D 1
@@ -110,10 +111,11 @@ HR_STRUCT GpuCone {
 
 /// A material: colour and kd; ks, shine, transmittance, ior; emission and
 /// model; Blinn-Phong's specular colour; Tachyon's ambient, highlight
-/// weight, 1 for a metal's highlight and 1 for a light's own sphere; x of
-/// `maps`: its texture (GpuTexture, -1 none).
+/// weight, 1 for a metal's highlight and 1 for a light's own sphere;
+/// glTF's metallic, roughness, transmission and dielectric F0; x of `maps`:
+/// its texture (GpuTexture, -1 none).
 HR_STRUCT GpuMaterial {
-  vec4 colour_kd, ks_shine_t_ior, emission_model, specular, tachyon;
+  vec4 colour_kd, ks_shine_t_ior, emission_model, specular, tachyon, pbr;
   ivec4 maps;
 };
 

@@ -422,6 +422,36 @@ float falloff_of(GpuLight L, vec3 to_light, float dist) {
 
 vec3 reflect_about(vec3 d, vec3 n) { return d - n * (2.0 * dot(d, n)); }
 
+// ---- glTF 2.0's metallic-roughness BRDF (render/gltf_brdf.cpp: the
+// specification's Appendix B) ----
+
+const float kPi = 3.141592653589793;
+const float kMirrorRoughness = 0.1;  // gltf_brdf.hpp: below it, one mirror ray
+
+float schlick_weight(float cos_theta) {
+  float m = 1.0 - clamp(cos_theta, 0.0, 1.0), m2 = m * m;
+  return m2 * m2 * m;
+}
+float smith_half(float n_dot_x, float a2) { return 1.0 / (n_dot_x + sqrt(a2 + (1.0 - a2) * n_dot_x * n_dot_x)); }
+
+// pi f(l, v) max(0, N.L) for base colour c and pbr = metallic, roughness,
+// transmission, F0 (gltf_direct).
+vec3 gltf_direct(vec3 c, vec4 pbr, vec3 n, vec3 view, vec3 to_light) {
+  float n_dot_l = dot(n, to_light);
+  if (!(n_dot_l > 0.0)) return vec3(0.0);
+  float n_dot_v = max(abs(dot(n, view)), 1e-6);
+  vec3 h = normalize(to_light + view);
+  float n_dot_h = max(dot(n, h), 0.0), v_dot_h = abs(dot(view, h));
+  float a = pbr.y * pbr.y, a2 = max(a * a, 1e-12);
+  float d_denom = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+  float specular = a2 / (kPi * d_denom * d_denom) * smith_half(n_dot_l, a2) * smith_half(n_dot_v, a2);
+  float w = schlick_weight(v_dot_h), f_d = pbr.w + (1.0 - pbr.w) * w;
+  vec3 f_m = c + (vec3(1.0) - c) * w;
+  float metal = clamp(pbr.x, 0.0, 1.0);
+  vec3 dielectric = c * ((1.0 - f_d) * (1.0 - clamp(pbr.z, 0.0, 1.0))) + vec3(f_d * specular * kPi);
+  return (dielectric * (1.0 - metal) + f_m * (specular * kPi) * metal) * n_dot_l;
+}
+
 // ---- Tachyon's texfuncs and shading (render/textures.cpp,
 // render/models/tachyon_model.cpp; docs/tachyon-notes.md §3) ----
 
@@ -738,7 +768,25 @@ void main() {
         }
         // The mirror and transmitted rays wait on the stack (pushed before
         // the shadow rays, so that what they need is not kept across them).
-        if (r.depth < max_depth) {
+        bool gltf = int(m.emission_model.w) == HR_MODEL_GLTF;
+        if (r.depth < max_depth && gltf) {  // GltfModel::secondary_rays
+          float T = m.ks_shine_t_ior.z, w = schlick_weight(abs(dot(ns, view)));
+          float f_d = m.pbr.w + (1.0 - m.pbr.w) * w, metal = clamp(m.pbr.x, 0.0, 1.0);
+          if (m.pbr.y < kMirrorRoughness) {  // the Fresnel mix at N.V
+            vec3 rd = reflect_about(r.d, ns);
+            if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
+            vec3 mirror = vec3(f_d) * (1.0 - metal) + (colour + (vec3(1.0) - colour) * w) * metal;
+            stack[sp++] = Pending(above, normalize(rd), r.weight * mirror * (1.0 - T), r.depth + 1);
+            ++reflected_rays;
+          }
+          // BLEND's uncovered share and the transmission's share of the covered
+          // part both go straight through (thin-walled): one ray.
+          if (T > 0.0 || m.pbr.z > 0.0) {
+            vec3 through = colour * ((1.0 - metal) * clamp(m.pbr.z, 0.0, 1.0) * (1.0 - f_d));
+            stack[sp++] = Pending(s.p - ng * eps, r.d, r.weight * (vec3(T) + through * (1.0 - T)), r.depth + 1);
+            ++refracted_rays;
+          }
+        } else if (r.depth < max_depth) {
           float T = m.ks_shine_t_ior.z, ior = m.ks_shine_t_ior.w;
           if (ks > 0.0) {  // the true normal where the shading one sends it in
             vec3 rd = reflect_about(r.d, ns);
@@ -765,7 +813,7 @@ void main() {
             stack[sp++] = Pending(o2, d2, r.weight * T, r.depth + 1);
           }
         }
-        c += r.weight * (F.ambient.xyz * colour * kd + m.emission_model.xyz);
+        c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * colour * kd) + m.emission_model.xyz);  // glTF: no ambient
         // The seen lights, kLightChunk at a time: each light's weighted term
         // computed before its shadow ray, so that only the ray and the term
         // cross the traversal (shading.cpp, shadow_ray and the models' terms).
@@ -794,14 +842,19 @@ void main() {
               dist -= eps;
             }
             if (casts) {
-              vec3 term = colour * (kd * dot(ns, to_light));
-              if (ks > 0.0) {
-                float r_dot_v = dot(reflect_about(-to_light, ns), view);
-                if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
-              }
-              if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
-                float n_dot_h = dot(ns, normalize(to_light + view));
-                if (n_dot_h > 0.0) term += m.specular.xyz * pow(n_dot_h, shine);
+              vec3 term;
+              if (gltf) {  // the BRDF times the part of the surface that is there
+                term = (1.0 - m.ks_shine_t_ior.z) * gltf_direct(colour, m.pbr, ns, view, to_light);
+              } else {
+                term = colour * (kd * dot(ns, to_light));
+                if (ks > 0.0) {
+                  float r_dot_v = dot(reflect_about(-to_light, ns), view);
+                  if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
+                }
+                if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
+                  float n_dot_h = dot(ns, normalize(to_light + view));
+                  if (n_dot_h > 0.0) term += m.specular.xyz * pow(n_dot_h, shine);
+                }
               }
               contrib[n] = r.weight * (L.intensity_unit.xyz * falloff * term);
               ray_to[n] = vec4(to_light, dist);
