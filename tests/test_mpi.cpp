@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "api/gpu_executor.hpp"
 #include "image/image_io.hpp"
 #include "test_util.hpp"
 
@@ -169,6 +170,43 @@ TEST(MpiRender, ThreeRanksWriteTheStillOfOneProcess) {
           << grid << aov;
     }
   }
+}
+
+// --device gpu over two ranks: each rank takes a device (lavapipe here, the
+// machine's GPUs in turn where it has several) and renders its bands there;
+// the still is one GPU process's, bit for bit (a pixel's rays do not depend
+// on the band it is in), and an animation's frames likewise.
+TEST(MpiRender, TwoRanksOnTheGpuWriteWhatOneProcessWrites) {
+  TempDir dir;
+  test::write_text(dir.file("scene.nff"), kScene);
+  auto args = [&](const std::string& out) {
+    return std::vector<std::string>{"render", dir.file("scene.nff"), "-o", out, "--lenses", "20", "--pixels-per-lens", "8",
+                                    "--device", "gpu", "-q"};
+  };
+  ASSERT_EQ(run(one_process(args(dir.file("one.exr"))), dir.file("log")), 0) << test::read_bytes(dir.file("log"));
+  ASSERT_EQ(run(mpirun(2, args(dir.file("two.exr"))), dir.file("log")), 0) << test::read_bytes(dir.file("log"));
+  const ImageBuffer a = read_image(dir.file("one.exr")), b = read_image(dir.file("two.exr"));
+  ASSERT_EQ(a.data.size(), b.data.size());
+  EXPECT_TRUE(std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0);
+  write_shot(dir, 4, 12);
+  ASSERT_EQ(run(one_process(animate(dir, dir.file("one"), "full", {"--device", "gpu"})), dir.file("log")), 0)
+      << test::read_bytes(dir.file("log"));
+  ASSERT_EQ(run(mpirun(2, animate(dir, dir.file("two"), "full", {"--device", "gpu"})), dir.file("log")), 0)
+      << test::read_bytes(dir.file("log"));
+  EXPECT_EQ(test::folder_bytes(dir.file("one")), test::folder_bytes(dir.file("two")));
+  EXPECT_EQ(test::folder_bytes(dir.file("one")).size(), 4u);
+}
+
+// The local rank's device: the machine's GPUs in turn, the first device
+// where there is no GPU.
+TEST(MpiRender, EachLocalRankTakesTheNextGpu) {
+  EXPECT_EQ(api::gpu_of_local_rank({false, true, true}, 0), 1);
+  EXPECT_EQ(api::gpu_of_local_rank({false, true, true}, 1), 2);
+  EXPECT_EQ(api::gpu_of_local_rank({false, true, true}, 2), 1);
+  EXPECT_EQ(api::gpu_of_local_rank({true, false, true, true}, 5), 3);  // GPUs 0, 2, 3: the third
+  EXPECT_EQ(api::gpu_of_local_rank({false}, 3), -1);
+  EXPECT_EQ(api::device_of_local_rank("cpu", 3), "cpu");
+  EXPECT_EQ(api::device_of_local_rank("gpu:7", 3), "gpu:7");
 }
 
 // The shipped Slurm scripts (examples/cluster/), run outside Slurm as a

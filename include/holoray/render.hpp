@@ -148,6 +148,13 @@ HOLORAY_API Result render(const Scene& scene, const Camera& camera, const Render
 /// naming `device` unless it is cpu, gpu or gpu:N (N >= 0).
 HOLORAY_API void check_device(const std::string& device);
 
+/// The device one of several processes on a machine takes (each rank of an
+/// `mpirun` launch): for "gpu", the machine's GPUs in gpu_devices() order,
+/// the (local_rank mod their number)th as "gpu:N", or "gpu" (the first
+/// device: lavapipe) where there is none; any other value as it is. Throws
+/// as gpu_devices() for "gpu" when there is no loader or device.
+HOLORAY_API std::string device_of_local_rank(const std::string& device, int local_rank);
+
 /// The Vulkan devices of this machine ("0: llvmpipe (LLVM 15.0.6, 256
 /// bits), CPU, Vulkan 1.3"), in the order gpu:N counts them. Throws
 /// std::runtime_error saying what to install when there is no loader or no

@@ -28,6 +28,14 @@ DeviceChoice parse_device(const std::string& device) {
 
 void check_device(const std::string& device) { parse_device(device); }
 
+int gpu_of_local_rank(const std::vector<bool>& is_gpu, int local_rank) {
+  std::vector<int> gpus;
+  for (size_t k = 0; k < is_gpu.size(); ++k)
+    if (is_gpu[k]) gpus.push_back(static_cast<int>(k));
+  if (gpus.empty()) return -1;
+  return gpus[static_cast<size_t>(std::max(0, local_rank)) % gpus.size()];
+}
+
 #ifdef HOLORAY_GPU
 
 std::vector<std::string> gpu_devices() {
@@ -59,6 +67,18 @@ struct ScenePose {
     return true;
   }
 };
+
+std::string device_of_local_rank(const std::string& device, int local_rank) {
+  if (device != "gpu") return device;
+  std::vector<bool> is_gpu;
+  try {
+    for (const gpu::DeviceInfo& d : gpu::list_devices()) is_gpu.push_back(d.is_gpu);
+  } catch (const gpu::GpuError& e) {
+    throw std::runtime_error(e.what());
+  }
+  const int n = gpu_of_local_rank(is_gpu, local_rank);
+  return n < 0 ? device : fmt::format("gpu:{}", n);
+}
 
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
@@ -146,6 +166,10 @@ constexpr const char* kNoGpu =
 }
 
 std::vector<std::string> gpu_devices() { throw std::runtime_error(kNoGpu); }
+std::string device_of_local_rank(const std::string& device, int) {
+  if (device == "gpu") throw std::runtime_error(kNoGpu);
+  return device;
+}
 
 struct GpuExecutor::Impl {};
 GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderScene&, const FrameCamera&, const RenderOptions&) {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "holoray/render.hpp"
 #include "render/frame_camera.hpp"
@@ -22,6 +23,11 @@ struct DeviceChoice {
 };
 /// Throws std::invalid_argument naming `device` for anything but cpu, gpu, gpu:N.
 DeviceChoice parse_device(const std::string& device);
+
+/// device_of_local_rank's choice among devices whose GPU-ness is `is_gpu`
+/// (in gpu_devices() order): the index of the (local_rank mod GPUs)th GPU,
+/// -1 when none is a GPU.
+int gpu_of_local_rank(const std::vector<bool>& is_gpu, int local_rank);
 
 class GpuExecutor {
  public:

@@ -337,7 +337,10 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
       return f < range_first || f > range_last || (o.resume && std::filesystem::exists(frame_path(o.output, f, frames, ext)));
     };
     std::optional<cluster::GroupDealer> dealer;
-    if (world.distributed()) ao.next_group = [&] { return dealer->next(); };
+    if (world.distributed()) {
+      ao.next_group = [&] { return dealer->next(); };
+      ao.device = api::device_of_local_rank(ao.device, world.local_rank());  // the machine's GPUs, one each in turn
+    }
     const StopOnSignal interrupt;
     ao.stop = [&] {
       if (!interrupt.requested()) return false;

@@ -290,7 +290,8 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.max_depth = o.max_depth;
     ropt.aovs = aovs;
     ropt.style = style;
-    ropt.device = o.device;
+    // Several ranks on a machine share its GPUs out, one each in turn.
+    ropt.device = world.distributed() ? api::device_of_local_rank(o.device, world.local_rank()) : o.device;
     ropt.cache = cache_options(o.cache);
     // Under mpirun: bands of whole lens rows of an EIA, else rows of 32 (the
     // line renderers' tile); the image never depends on them. A rank holds

@@ -38,6 +38,10 @@ World::World([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
   initialised_ = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+  MPI_Comm_rank(node, &local_rank_);
+  MPI_Comm_free(&node);
   if (provided < MPI_THREAD_SERIALIZED && size_ > 1) {
     if (rank_ == 0) std::fprintf(stderr, "holoray: error: this MPI library does not allow calls from a helper thread (MPI_THREAD_SERIALIZED)\n");
     MPI_Abort(MPI_COMM_WORLD, 1);

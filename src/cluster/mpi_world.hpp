@@ -34,6 +34,9 @@ class World {
 
   int rank() const { return rank_; }
   int size() const { return size_; }
+  /// This rank among the ranks on its machine (MPI_COMM_TYPE_SHARED), from
+  /// 0: which of the machine's GPUs it takes.
+  int local_rank() const { return local_rank_; }
   bool distributed() const { return size_ > 1; }
 
   /// Collective: true when every rank reached this point ok. After a failed
@@ -59,7 +62,7 @@ class World {
   [[noreturn]] void abort(const std::string& message, int status = 1) const;
 
  private:
-  int rank_ = 0, size_ = 1;
+  int rank_ = 0, size_ = 1, local_rank_ = 0;
   bool initialised_ = false;
 };
 
