@@ -150,6 +150,8 @@ class HOLORAY_OT_render_animation(bpy.types.Operator):
             cmd += ["--video", os.path.join(self._out_dir, "holoray.mkv")]
         if s.threads:
             cmd += ["--threads", str(s.threads)]
+        if s.device != "CPU":
+            cmd += ["--device", s.device.lower()]
         self._cmd = cmd
 
     def _start(self):

@@ -69,5 +69,5 @@ def render(hr, gltf, job, progress):
     `progress(fraction)` raises, after the render has stopped."""
     scene = hr.load_scene(gltf)
     result = hr.render(scene, camera(hr, job), threads=job["threads"] or None, max_depth=job["max_depth"] or None,
-                       aovs=job["aovs"], progress=progress)
+                       aovs=job["aovs"], progress=progress, device=job["device"])
     return result, list(scene.warnings)

@@ -17,9 +17,10 @@ def spec(scene, settings, camera_object, width, height):
     'display', 'looking_glass') with that camera's parameters (world
     positions and directions in the exported glTF's frame, lengths in scene
     units, angles in degrees), and 'max_depth', 'threads' (0: holoray's
-    defaults), 'aovs' (the AOVs the camera gives: none for panels)."""
+    defaults), 'device' ('cpu' or 'gpu'), 'aovs' (the AOVs the camera gives:
+    none for panels)."""
     s = settings
-    out = {"max_depth": s.max_depth, "threads": s.threads}
+    out = {"max_depth": s.max_depth, "threads": s.threads, "device": s.device.lower()}
     if s.camera == "INTEGRAL":
         place = placement.array_placement(camera_object, width / height, s.mode == "PSEUDOSCOPIC")
         out.update(camera="integral", grid=s.grid.lower(), lenses=(s.lenses_x, s.lenses_y if s.grid != "LENTICULAR" else 1),
@@ -73,6 +74,8 @@ def cli_args(job):
         args += ["--max-depth", str(job["max_depth"])]
     if job["threads"]:
         args += ["--threads", str(job["threads"])]
+    if job["device"] != "cpu":
+        args += ["--device", job["device"]]
     if job["aovs"]:
         args += ["--aov", ",".join(job["aovs"])]
     return args

@@ -108,6 +108,10 @@ class HoloraySettings(bpy.types.PropertyGroup):
     calibration_file: StringProperty(name="Calibration", subtype="FILE_PATH", update=follow_camera)
     max_depth: IntProperty(name="Ray depth", default=0, min=0, max=16, description="0: 5, holoray's default")
     threads: IntProperty(name="Threads", default=0, min=0, description="0: all cores")
+    device: EnumProperty(
+        name="Device", default="CPU",
+        items=[("CPU", "CPU", "Embree on the CPU's cores"),
+               ("GPU", "GPU", "The GPU path (Vulkan): the first GPU, else lavapipe; every frame traced in full")])
     backend: EnumProperty(
         name="Run holoray", default="AUTO",
         items=[("AUTO", "Automatic", "holoray's Python module inside Blender where it loads, else the holoray program"),

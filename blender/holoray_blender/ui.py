@@ -65,6 +65,7 @@ class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.prop(s, "max_depth")
+        layout.prop(s, "device")
         layout.prop(s, "threads")
         layout.prop(s, "backend")
         col = layout.column(heading="Passes")

@@ -189,6 +189,12 @@ elif case == "panel":
         ui.HOLORAY_PT_camera.draw(panel, bpy.context)
     print("RESULT " + json.dumps(shown), flush=True)
     raise SystemExit(0)
+elif case == "untextured":
+    # The cube's image texture unlinked (the GPU path reads no mesh textures yet).
+    mat = bpy.data.materials["cube"]
+    for link in list(mat.node_tree.links):
+        if link.from_node.type == "TEX_IMAGE":
+            mat.node_tree.links.remove(link)
 elif case == "hex":
     h.grid = "HEX"
 elif case == "quilt":

@@ -37,16 +37,17 @@ def build(case, tmp_path):
     return json.loads(lines[-1][len("RESULT "):])
 
 
-def render_args(tmp_path, backend=None, fmt="OPEN_EXR"):
-    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend set first when given."""
-    expr = ["--python-expr", f"import bpy; bpy.context.scene.holoray.backend = '{backend}'"] if backend else []
+def render_args(tmp_path, backend=None, fmt="OPEN_EXR", device=None):
+    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend (and device) set first when given."""
+    sets = [f"bpy.context.scene.holoray.{k} = '{v}'" for k, v in (("backend", backend), ("device", device)) if v]
+    expr = ["--python-expr", "import bpy; " + "; ".join(sets)] if sets else []
     return [BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "-E", "HOLORAY"] + expr + [
         "-o", str(tmp_path / "frame_####"), "-F", fmt, "-f", "1"]
 
 
-def render(tmp_path, with_holoray=True, backend=None, fmt="OPEN_EXR"):
-    run = subprocess.run(render_args(tmp_path, backend, fmt), env=env(with_holoray), capture_output=True, text=True,
-                         timeout=300)
+def render(tmp_path, with_holoray=True, backend=None, fmt="OPEN_EXR", device=None):
+    run = subprocess.run(render_args(tmp_path, backend, fmt, device), env=env(with_holoray), capture_output=True,
+                         text=True, timeout=300)
     return run.stdout + run.stderr
 
 
@@ -79,6 +80,21 @@ def test_the_module_in_blenders_process_and_the_program_give_the_same_render_res
     assert np.abs(module[both] - program[both]).max() <= 1.2e-7 * max(1.0, np.abs(program[both]).max())
     assert (module[:, :, 0] == 1).all()  # alpha: the module's way sets it, Blender keeps it
     assert np.isfinite(module[:, :, 1:4]).all() and module[:, :, 1:4].max() > 0.05
+
+
+def test_the_gpu_device_renders_the_cpus_eia_both_ways(tmp_path):
+    # Device GPU (lavapipe here) through the module and the program: the
+    # CPU's EIA to within float rounding (PSNR on the 8-bit scale).
+    build("untextured", tmp_path)
+    log = render(tmp_path)
+    cpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
+    for backend in ("MODULE", "PROGRAM"):
+        (tmp_path / "frame_0001.exr").unlink()
+        log = render(tmp_path, backend=backend, device="GPU")
+        assert f"({backend.lower()})" in log and "Traceback" not in log, log[-3000:]
+        gpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
+        assert gpu.shape == cpu.shape
+        assert holoray.psnr(cpu, gpu) >= 50, backend
 
 
 def test_the_shot_operators_array_is_the_one_f12_renders_with_a_lens_shift(tmp_path):
