@@ -64,8 +64,8 @@ struct RenderOptions {
   /// Where the rays are traced: "cpu" (Embree, the default), "gpu" (the
   /// first Vulkan device that is a GPU, else the first device: lavapipe
   /// where there is no GPU) or "gpu:N" (the Nth Vulkan device). The GPU
-  /// path (docs/guide/gpu.md) takes every camera with NFF, Blinn-Phong,
-  /// Tachyon and glTF materials, without a mesh's textures, for now; anything else is refused naming it.
+  /// path (docs/guide/gpu.md) renders every camera, material and texture
+  /// the CPU path does, in float; the shadow cache stays the CPU's.
   std::string device = "cpu";
   /// The rows of the image this process holds, for the memory bound (a
   /// rank's bands under mpirun): asked once the camera is placed, with the

@@ -106,9 +106,6 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
     : impl_(std::make_unique<Impl>()) {
   if (options.cache.enabled)
     throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
-  // What the scene holds is checked before any device is opened.
-  if (const std::string missing = gpu::unsupported_features(scene); !missing.empty())
-    throw std::invalid_argument(fmt::format("`device` gpu: the GPU path does not render {} yet; use `device` cpu", missing));
   try {
     impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index);
     const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;

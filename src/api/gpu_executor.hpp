@@ -32,10 +32,9 @@ int gpu_of_local_rank(const std::vector<bool>& is_gpu, int local_rank);
 class GpuExecutor {
  public:
   /// Chooses the device and uploads `scene`. Throws std::invalid_argument
-  /// for what the GPU path does not render yet (the shadow cache, a
-  /// material or feature it names), and
-  /// std::runtime_error when the GPU cannot run (no loader, no device, not
-  /// enough memory: the message says what to do).
+  /// for the shadow cache (the CPU path's), and std::runtime_error when the
+  /// GPU cannot run (no loader, no device, not enough memory: the message
+  /// says what to do).
   GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options);
   ~GpuExecutor();
   /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".

@@ -157,7 +157,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--style", o.style, "Pixel-tracing style: subaperture (16-ray packets of one pixel of 4x4 lenses), packet (16-ray packets of 4x4 pixels of one lens), horizontal or vertical (single rays, paper §6); auto picks the faster packets for the array")
       ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
       ->capture_default_str();
-  add_device_option(*cmd, o.device, "the GPU path takes every camera with NFF, Blinn-Phong, Tachyon and glTF materials, without a mesh's textures, for now");
+  add_device_option(*cmd, o.device, "the GPU path renders what the CPU path renders, in float, without the shadow cache");
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
       ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")

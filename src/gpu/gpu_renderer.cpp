@@ -170,7 +170,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   throw GpuError(fmt::format("the GPU ({}) failed: {}", device, e.what()));
 }
 
-constexpr int kBindings = 17;
+constexpr int kBindings = 18;
 
 bool has_extension(const vk::raii::PhysicalDevice& pd, std::string_view name) {
   for (const auto& e : pd.enumerateDeviceExtensionProperties())
@@ -223,7 +223,7 @@ struct GpuRenderer::Impl {
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
   vk::PhysicalDeviceMemoryProperties memory_types;
-  Buffer scene[17];  // bindings 0 (the frame) to 9 and 13 to 16 (10 to 12: colour, aov, counts below)
+  Buffer scene[18];  // bindings 0 (the frame) to 9 and 13 to 17 (10 to 12: colour, aov, counts below)
   Buffer colour, aov, counts, staging;
   vk::raii::CommandBuffer commands = nullptr;
   vk::raii::Fence fence = nullptr;
@@ -408,7 +408,7 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
     };
     put(1, s.nodes), put(2, s.refs), put(3, s.triangles), put(4, s.patches), put(5, s.spheres), put(6, s.cones);
     put(7, s.object_material), put(8, s.materials), put(9, s.lights);
-    put(13, s.textures), put(14, s.levels), put(15, s.texels), put(16, s.colours);
+    put(13, s.textures), put(14, s.levels), put(15, s.texels), put(16, s.colours), put(17, s.uvs);
     m.scene[0] = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
     m.bind(0, m.scene[0]);
     m.counts = m.make_buffer(32, vk::BufferUsageFlagBits::eStorageBuffer, true);

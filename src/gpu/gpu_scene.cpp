@@ -45,7 +45,9 @@ GpuMaterial material_of(const Material& m) {
   g.specular = v4(m.specular);
   g.tachyon = {float(m.ambient), float(m.phong), m.phong_metal ? 1.0f : 0.0f, m.emitter ? 1.0f : 0.0f};
   g.pbr = {float(m.metallic), float(m.roughness), float(m.transmission), float(dielectric_f0(m.ior))};
-  g.maps = {m.model == ShadingModel::tachyon ? m.texture : -1, 0, 0, 0};
+  g.alpha = {float(m.alpha), float(m.alpha_cutoff), float(m.normal_scale), 0};
+  g.maps = {m.texture, m.metal_rough_texture, m.normal_texture, m.emission_texture};
+  g.maps2 = {m.specular_texture, m.alpha_texture, m.alpha_mask ? 1 : 0, 0};
   return g;
 }
 
@@ -59,8 +61,10 @@ void lay_out_textures(const RenderScene& scene, SceneArrays& out) {
       out.levels.push_back({{l.width, l.height, l.depth, static_cast<int32_t>(out.texels.size())}});
       if (out.texels.size() + l.rgb.size() / 3 > uint64_t{INT32_MAX})
         throw std::length_error("the GPU path holds at most 2^31 texels, the scene's image maps have more");
+      const bool alpha = k == 0 && mip.alpha().size() == l.rgb.size() / 3;
       for (size_t t = 0; t + 2 < l.rgb.size(); t += 3)
-        out.texels.push_back(uint32_t{l.rgb[t]} | uint32_t{l.rgb[t + 1]} << 8 | uint32_t{l.rgb[t + 2]} << 16);
+        out.texels.push_back(uint32_t{l.rgb[t]} | uint32_t{l.rgb[t + 1]} << 8 | uint32_t{l.rgb[t + 2]} << 16 |
+                             uint32_t{alpha ? mip.alpha()[t / 3] : uint8_t{255}} << 24);
     }
   }
   for (const TextureDesc& t : scene.textures()) {
@@ -70,6 +74,15 @@ void lay_out_textures(const RenderScene& scene, SceneArrays& out) {
                           mapped ? scene.mips()[size_t(t.image)].levels() : 0, 0};
     g.centre = v4(t.centre), g.rotate = v4(t.rotate), g.scale = v4(t.scale);
     g.uaxis = v4(t.uaxis), g.vaxis = v4(t.vaxis), g.waxis = v4(t.waxis);
+    auto wrap = [](TextureWrap w) { return w == TextureWrap::clamp ? HR_WRAP_CLAMP : w == TextureWrap::mirror ? HR_WRAP_MIRROR : HR_WRAP_REPEAT; };
+    g.wrap_filter = {wrap(t.wrap_u), wrap(t.wrap_v), t.nearest ? 1 : 0, t.srgb ? 1 : 0};
+    if (mapped) {
+      const MipMap& mip = scene.mips()[size_t(t.image)];
+      g.alpha_size = {mip.has_alpha() ? 1 : 0, mip.width(), mip.height(), 0};
+    }
+    const auto& m = t.uv_transform;
+    g.uv_m0 = {float(m[0]), float(m[1]), float(m[2]), float(m[3])};
+    g.uv_m1 = {float(m[4]), float(m[5]), float(std::sqrt(std::fabs(m[0] * m[4] - m[1] * m[3]))), 0};
     out.textures.push_back(g);
   }
 }
@@ -90,30 +103,12 @@ GpuLight light_of(const PointLight& l) {
 
 uint64_t SceneArrays::bytes() const {
   return nodes.size() * sizeof(GpuNode) + refs.size() * 4 + triangles.size() * sizeof(GpuTriangle) +
-         (patches.size() + colours.size()) * sizeof(GpuPatch) + spheres.size() * sizeof(GpuSphere) + cones.size() * sizeof(GpuCone) +
+         (patches.size() + colours.size()) * sizeof(GpuPatch) + uvs.size() * sizeof(GpuUv) + spheres.size() * sizeof(GpuSphere) + cones.size() * sizeof(GpuCone) +
          object_material.size() * 4 + materials.size() * sizeof(GpuMaterial) + lights.size() * sizeof(GpuLight) +
          textures.size() * sizeof(GpuTexture) + levels.size() * sizeof(GpuLevel) + texels.size() * 4;
 }
 
-std::string unsupported_features(const RenderScene& scene) {
-  std::vector<std::string> what;
-  bool textures = false, alpha = false;
-  for (const Material& m : scene.materials()) {
-    // A Tachyon material's texfunc is rendered; a mesh's maps are not yet.
-    textures |= (m.texture >= 0 && m.model != ShadingModel::tachyon) || m.emission_texture >= 0 ||
-                m.normal_texture >= 0 || m.metal_rough_texture >= 0 || m.specular_texture >= 0;
-    alpha |= m.alpha_mask || m.alpha_texture >= 0 || (m.model != ShadingModel::gltf && m.alpha < 1);
-  }
-  if (textures) what.push_back("mesh textures");
-  if (alpha) what.push_back("alpha masks");
-  std::string out;
-  for (size_t k = 0; k < what.size(); ++k) out += (k ? (k + 1 == what.size() ? " and " : ", ") : "") + what[k];
-  return out;
-}
-
 SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
-  if (const std::string missing = unsupported_features(scene); !missing.empty())
-    throw std::invalid_argument(fmt::format("the GPU path does not render {} yet", missing));
   const AccelScene& accel = scene.accel();
   SceneArrays out;
   std::vector<PrimitiveBox> boxes;
@@ -138,7 +133,14 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
         v[c] = moved ? xf.point(p) : p;
       }
       GpuTriangle tri;
-      tri.v0 = v4(v[0]);
+      int32_t mapped = -1;
+      std::array<std::array<float, 2>, 3> uv;
+      float uv_per_world = 0;
+      if (scene.triangle_uv(g, t, uv, uv_per_world)) {
+        mapped = static_cast<int32_t>(out.uvs.size());
+        out.uvs.push_back({{uv[0][0], uv[0][1], uv[1][0], uv[1][1]}, {uv[2][0], uv[2][1], uv_per_world, 0}});
+      }
+      tri.v0 = v4(v[0], bits(mapped));
       int32_t patch = -1;
       if (const auto* n = scene.vertex_normals(g, t)) {
         patch = static_cast<int32_t>(out.patches.size());
@@ -226,6 +228,7 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
   if (out.triangles.empty()) out.triangles.emplace_back();
   if (out.patches.empty()) out.patches.emplace_back();
   if (out.colours.empty()) out.colours.emplace_back();
+  if (out.uvs.empty()) out.uvs.emplace_back();
   if (out.spheres.empty()) out.spheres.emplace_back();
   if (out.cones.empty()) out.cones.emplace_back();
   if (out.object_material.empty()) out.object_material.push_back(0);
@@ -264,7 +267,10 @@ GpuFrame scene_frame(const RenderContext& context, const AovSet& aovs, int row0,
     f.fog = v4(fog->colour, float(mode));
     f.fog_range = {float(fog->start), float(fog->end), float(fog->density), 0};
   }
-  f.flags = {context.has_tachyon_transparency() ? 1 : 0, 0, 0, 0};
+  bool masked = false;
+  for (const Material& m : context.scene().materials()) masked |= m.alpha_mask;
+  f.flags = {context.has_tachyon_transparency() ? 1 : 0, masked ? 1 : 0, 0, 0};
+  f.footprint = {float(context.settings().footprint.base), float(context.settings().footprint.spread), 0, 0};
   return f;
 }
 

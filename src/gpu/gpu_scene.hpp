@@ -30,27 +30,23 @@ struct SceneArrays {
   std::vector<GpuTriangle> triangles;
   std::vector<GpuPatch> patches;
   std::vector<GpuPatch> colours;  ///< vertex colours (GpuTriangle::e2.w)
+  std::vector<GpuUv> uvs;         ///< texture coordinates (GpuTriangle::v0.w)
   std::vector<GpuSphere> spheres;
   std::vector<GpuCone> cones;
   std::vector<uint32_t> object_material;
   std::vector<GpuMaterial> materials;
   std::vector<GpuLight> lights;
-  std::vector<GpuTexture> textures;  ///< Tachyon's texfuncs
-  std::vector<GpuLevel> levels;      ///< their image maps' MIP levels
+  std::vector<GpuTexture> textures;  ///< Tachyon's texfuncs and meshes' images
+  std::vector<GpuLevel> levels;      ///< the image maps' MIP levels
   std::vector<uint32_t> texels;      ///< the levels' texels, RGB8 in a uint each
   int bvh_depth = 0;
   /// Bytes the arrays take on the device.
   uint64_t bytes() const;
 };
 
-/// What of `scene` the GPU path cannot render yet, in words ("glTF
-/// metallic-roughness materials", "mesh textures", "alpha masks"), empty
-/// when it renders all of it.
-std::string unsupported_features(const RenderScene& scene);
-
-/// The scene laid out for the device, its hierarchy built at `quality`. Throws std::invalid_argument naming
-/// what unsupported_features() names, std::length_error when a count passes
-/// the 2^30 a reference holds, std::runtime_error when Embree's builder fails.
+/// The scene laid out for the device, its hierarchy built at `quality`.
+/// Throws std::length_error when a count passes the 2^30 a reference holds
+/// (or the texels 2^31), std::runtime_error when Embree's builder fails.
 SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high);
 
 /// One frame's constants: the lens array (any grid, either recording

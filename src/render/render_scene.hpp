@@ -202,6 +202,15 @@ class RenderScene {
   }
   /// Whether any triangle carries vertex colours (Tachyon vcstri).
   bool has_vertex_colours() const { return !tri_colours_.empty(); }
+  /// A triangle's texture coordinates (its vertices' u, v; v up) and its
+  /// texture units per world unit; false for a triangle without.
+  bool triangle_uv(uint32_t group, uint32_t prim, std::array<std::array<float, 2>, 3>& uv, float& uv_per_world) const {
+    const size_t t = group_base_[group][0] + prim;
+    if (t >= tri_uv_.size() || tri_uv_[t] < 0) return false;
+    const TriangleUv& tu = tri_uvs_[static_cast<size_t>(tri_uv_[t])];
+    uv = tu.uv, uv_per_world = tu.uv_per_world;
+    return true;
+  }
   /// A triangle's vertex colours (linear RGB), null for one without.
   const std::array<Vec3, 3>* vertex_colours(uint32_t group, uint32_t prim) const {
     const size_t t = group_base_[group][0] + prim;

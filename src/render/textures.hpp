@@ -41,6 +41,8 @@ class MipMap {
   double alpha_uv(double u, double v, TextureWrap wrap_u, TextureWrap wrap_v) const;
   /// The image has an alpha channel (alpha_uv reads it; else it is 1).
   bool has_alpha() const { return !alpha_.empty(); }
+  /// Level 0's alpha codes (width x height), or empty.
+  const std::vector<unsigned char>& alpha() const { return alpha_; }
 
   /// One level: width x height x depth texels of 8-bit RGB, x fastest.
   struct Level {

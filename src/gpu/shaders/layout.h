@@ -46,6 +46,12 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_TEX_SPHERICAL_IMAGE 8
 #define HR_TEX_PLANAR_IMAGE 9
 #define HR_TEX_VOLUME_IMAGE 10
+#define HR_TEX_UV_IMAGE 100  // a mesh's image, read at the hit's texture coordinates
+
+// A mesh texture's wrap modes (scene_desc.hpp, TextureWrap).
+#define HR_WRAP_REPEAT 0
+#define HR_WRAP_CLAMP 1
+#define HR_WRAP_MIRROR 2
 
 // Fog modes (scene_desc.hpp, FogDesc), 0 for none.
 #define HR_FOG_LINEAR 1
@@ -84,7 +90,8 @@ HR_STRUCT GpuNode {
 /// A triangle: vertex 0 and its two edges (Moller-Trumbore), the winding
 /// normal (w: the object id's bits), and in e1.w the index of its three
 /// vertex normals in the patch buffer (-1: flat), in e2.w that of its
-/// vertex colours in the colour buffer (-1: none), as float bits.
+/// vertex colours in the colour buffer (-1: none), in v0.w that of its
+/// texture coordinates (GpuUv, -1: none), as float bits.
 HR_STRUCT GpuTriangle {
   vec4 v0, e1, e2, ng;
 };
@@ -93,6 +100,13 @@ HR_STRUCT GpuTriangle {
 /// vertex colours of a coloured one (Tachyon's vcstri; its own buffer).
 HR_STRUCT GpuPatch {
   vec4 n0, n1, n2;
+};
+
+/// A triangle's texture coordinates: its vertices' (u, v), and its texture
+/// units per world unit (RenderScene, TriangleUv).
+HR_STRUCT GpuUv {
+  vec4 uv01;      // u0, v0, u1, v1
+  vec4 uv2_scale; // u2, v2, units per world unit
 };
 
 /// A sphere: centre and signed radius (negative: inside only); x of
@@ -112,23 +126,32 @@ HR_STRUCT GpuCone {
 /// A material: colour and kd; ks, shine, transmittance, ior; emission and
 /// model; Blinn-Phong's specular colour; Tachyon's ambient, highlight
 /// weight, 1 for a metal's highlight and 1 for a light's own sphere;
-/// glTF's metallic, roughness, transmission and dielectric F0; x of `maps`:
-/// its texture (GpuTexture, -1 none).
+/// glTF's metallic, roughness, transmission and dielectric F0; alpha,
+/// alpha cutoff and normal scale. Textures (GpuTexture, -1 none): in
+/// `maps` the colour texture (a Tachyon texfunc or a mesh's base colour),
+/// metallic-roughness, normal and emission maps; in `maps2` MTL's specular
+/// map and alpha map, and 1 when the material is alpha-masked.
 HR_STRUCT GpuMaterial {
-  vec4 colour_kd, ks_shine_t_ior, emission_model, specular, tachyon, pbr;
-  ivec4 maps;
+  vec4 colour_kd, ks_shine_t_ior, emission_model, specular, tachyon, pbr, alpha;
+  ivec4 maps, maps2;
 };
 
-/// A Tachyon texfunc (render/textures.hpp, texture_colour): kind, its image
-/// map's first level (GpuLevel) and level count; centre, rotate, scale and
-/// the u, v, w axes.
+/// A texture (render/textures.hpp): kind, its image map's first level
+/// (GpuLevel) and level count. A Tachyon texfunc: centre, rotate, scale and
+/// the u, v, w axes. A mesh's image (HR_TEX_UV_IMAGE): wrap modes in u and
+/// v, 1 for nearest magnification, 1 when its codes are sRGB; 1 when the
+/// image has alpha, its level 0 size; the texture transform's rows (m0 to
+/// m5) and the root of its determinant.
 HR_STRUCT GpuTexture {
   ivec4 kind_level_count;
   vec4 centre, rotate, scale, uaxis, vaxis, waxis;
+  ivec4 wrap_filter, alpha_size;
+  vec4 uv_m0, uv_m1;
 };
 
 /// One MIP level of an image map: width, height, depth (slices) and its
-/// first texel in the texel buffer (one uint a texel: R | G << 8 | B << 16).
+/// first texel in the texel buffer (one uint a texel: R | G << 8 | B << 16
+/// | A << 24, A 255 where the image has no alpha and past level 0).
 HR_STRUCT GpuLevel {
   ivec4 size_offset;
 };
@@ -159,6 +182,10 @@ HR_STRUCT GpuFrame {
   // transparent, so that shadow rays filter through it (tachyon_shadow).
   vec4 fog, fog_range;
   ivec4 flags;
+  // A mesh texture's footprint (RenderSettings::footprint): a pixel's width
+  // at distance d is x + y d, world units; y of `flags`: 1 when the scene
+  // has alpha-masked materials (tested at each triangle hit).
+  vec4 footprint;
   // A pinhole view (grid HR_PINHOLE): pixel size at distance 1 (or in scene
   // units, orthographic), window shift x and y, the sample's offset in u;
   // its offset in v, the clipping range along the axis (near, far: 0 and

@@ -51,6 +51,7 @@ layout(std430, binding = 13) readonly buffer TextureBlock { GpuTexture textures[
 layout(std430, binding = 14) readonly buffer LevelBlock { GpuLevel levels[]; };
 layout(std430, binding = 15) readonly buffer TexelBlock { uint texels[]; };
 layout(std430, binding = 16) readonly buffer ColourPatchBlock { GpuPatch vertex_colours[]; };
+layout(std430, binding = 17) readonly buffer UvBlock { GpuUv uvs[]; };
 
 layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
 
@@ -67,6 +68,101 @@ uint visited = 0u, tested = 0u;
 
 // ---- primitives (accel/shapes.cpp's tests, in float) ----
 
+// ---- a mesh's image textures (render/textures.cpp, MipMap::sample_uv;
+// render/hit_surface.cpp, texel_at) ----
+
+// Texel index i of an axis of n under a wrap mode (glTF 2.0 §5.26).
+int wrap_index(int i, int n, int mode) {
+  if (i >= 0 && i < n) return i;
+  if (mode == HR_WRAP_CLAMP) return clamp(i, 0, n - 1);
+  if (mode == HR_WRAP_MIRROR) {
+    int m = i - 2 * n * int(floor(float(i) / float(2 * n)));
+    return m < n ? m : 2 * n - 1 - m;
+  }
+  return i - n * int(floor(float(i) / float(n)));
+}
+
+// u or v kept near the unit square (the period under repeat and mirror is 2).
+float fold(float x, int mode) { return mode == HR_WRAP_CLAMP ? clamp(x, -1.0, 2.0) : x - 2.0 * floor(x / 2.0); }
+
+float srgb_decode(float c) { return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4); }
+
+// Texel (x, y) of a level, wrapped: RGB decoded (sRGB or code / 255), alpha.
+vec4 uv_texel(ivec4 L, int x, int y, ivec4 wrap_filter, bool srgb) {
+  uint t = texels[L.w + wrap_index(y, L.y, wrap_filter.y) * L.x + wrap_index(x, L.x, wrap_filter.x)];
+  vec4 c = vec4(float(t & 0xffu), float((t >> 8) & 0xffu), float((t >> 16) & 0xffu), float(t >> 24)) / 255.0;
+  if (srgb) c.rgb = vec3(srgb_decode(c.r), srgb_decode(c.g), srgb_decode(c.b));
+  return c;
+}
+
+// One level at folded (u, v): bilinear between texel centres, or the nearest texel.
+vec4 uv_level(ivec4 L, float u, float v, ivec4 wrap_filter, bool srgb, bool nearest) {
+  float x = u * float(L.x), y = v * float(L.y);
+  if (nearest) return uv_texel(L, int(floor(x)), int(floor(y)), wrap_filter, srgb);
+  int x0 = int(floor(x - 0.5)), y0 = int(floor(y - 0.5));
+  float fx = x - 0.5 - floor(x - 0.5), fy = y - 0.5 - floor(y - 0.5);
+  return mix(mix(uv_texel(L, x0, y0, wrap_filter, srgb), uv_texel(L, x0 + 1, y0, wrap_filter, srgb), fx),
+             mix(uv_texel(L, x0, y0 + 1, wrap_filter, srgb), uv_texel(L, x0 + 1, y0 + 1, wrap_filter, srgb), fx), fy);
+}
+
+// The image at (u, v), linear between the two levels around `level` (0 the finest).
+vec4 sample_uv(GpuTexture t, float u, float v, float level, bool srgb, bool nearest) {
+  if (isnan(u) || isinf(u) || isnan(v) || isinf(v)) return vec4(0.0);
+  u = fold(u, t.wrap_filter.x), v = fold(v, t.wrap_filter.y);
+  int first = t.kind_level_count.y;
+  float top = float(t.kind_level_count.z - 1);
+  float lv = isnan(level) || isinf(level) ? 0.0 : clamp(level, 0.0, top);
+  if (lv <= 0.0) return uv_level(levels[first].size_offset, u, v, t.wrap_filter, srgb, nearest);
+  int l0 = int(floor(lv));
+  float f = lv - float(l0);
+  vec4 a = uv_level(levels[first + l0].size_offset, u, v, t.wrap_filter, srgb, false);
+  if (float(l0) >= top || f == 0.0) return a;
+  return mix(a, uv_level(levels[first + l0 + 1].size_offset, u, v, t.wrap_filter, srgb, false), f);
+}
+
+// Texture k's (u, v) at barycentrics (bu, bv) of triangle coordinates `uv`
+// (texture_uv: interpolated, then the texture transform).
+vec2 texture_uv(GpuTexture t, GpuUv uv, float bu, float bv) {
+  float w0 = 1.0 - bu - bv;
+  float iu = uv.uv01.x * w0 + uv.uv01.z * bu + uv.uv2_scale.x * bv;
+  float iv = uv.uv01.y * w0 + uv.uv01.w * bu + uv.uv2_scale.y * bv;
+  return vec2(t.uv_m0.x * iu + t.uv_m0.y * iv + t.uv_m0.z, t.uv_m0.w * iu + t.uv_m1.x * iv + t.uv_m1.y);
+}
+
+// Texture k at a triangle's hit seen `width` wide (world units): its texel,
+// RGB linear; false when k is no image or the triangle has no coordinates.
+bool texel_at(int k, int uv_at, float bu, float bv, float width, out vec4 texel) {
+  texel = vec4(1.0);
+  if (k < 0 || uv_at < 0) return false;
+  GpuTexture t = textures[k];
+  if (t.kind_level_count.x != HR_TEX_UV_IMAGE || t.kind_level_count.y < 0) return false;
+  GpuUv uv = uvs[uv_at];
+  vec2 tuv = texture_uv(t, uv, bu, bv);
+  // The footprint in level-0 texels: world width x texture units per world
+  // unit x the transform's scale x texels per unit.
+  float texels_across = width * uv.uv2_scale.z * t.uv_m1.z * sqrt(float(t.alpha_size.y) * float(t.alpha_size.z));
+  float level = texels_across > 1.0 ? log2(texels_across) : 0.0;
+  texel = sample_uv(t, tuv.x, tuv.y, level, t.wrap_filter.w != 0, t.wrap_filter.z != 0);
+  return true;
+}
+
+// Whether an alpha-masked material cuts triangle k away at (bu, bv)
+// (RenderScene::AlphaCutout: MTL's map_d, else the colour texture's alpha,
+// read at level 0, times the material's alpha, against its cutoff).
+bool cut_away(GpuTriangle tri, float bu, float bv) {
+  GpuMaterial m = materials[object_material[floatBitsToInt(tri.ng.w)]];
+  if (m.maps2.z == 0) return false;
+  float alpha = m.alpha.x;
+  int k = m.maps2.y >= 0 ? m.maps2.y : m.maps.x, uv_at = floatBitsToInt(tri.v0.w);
+  if (k >= 0 && uv_at >= 0 && textures[k].kind_level_count.x == HR_TEX_UV_IMAGE && textures[k].kind_level_count.y >= 0) {
+    GpuTexture t = textures[k];
+    vec2 tuv = texture_uv(t, uvs[uv_at], bu, bv);
+    alpha *= m.maps2.y < 0 || t.alpha_size.x != 0 ? sample_uv(t, tuv.x, tuv.y, 0.0, false, false).a
+                                                  : sample_uv(t, tuv.x, tuv.y, 0.0, false, t.wrap_filter.z != 0).r;
+  }
+  return alpha < m.alpha.y;
+}
+
 bool hit_triangle(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
   GpuTriangle tri = tris[k];
   vec3 e1 = tri.e1.xyz, e2 = tri.e2.xyz;
@@ -82,6 +178,7 @@ bool hit_triangle(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
   if (v < 0.0 || u + v > 1.0) return false;
   float t = dot(e2, q) * inv;
   if (!(t > tmin && t < h.t)) return false;
+  if (F.flags.y != 0 && cut_away(tri, u, v)) return false;
   h.t = t, h.u = u, h.v = v, h.ng = tri.ng.xyz;
   h.ref = (HR_PRIM_TRIANGLE << HR_PRIM_SHIFT) | k;
   return true;
@@ -625,6 +722,25 @@ float tachyon_shadow(vec3 o, vec3 d, float tmax, inout uint shadow_rays) {
 // (a quilt's view) and the rows this render holds.
 uint out_pixel(int i, int j) { return uint(F.tile.y + j - F.rows.x) * uint(F.tile.z) + uint(F.tile.x + i); }
 
+// A tangent-space normal map's texel turned into the shading normal at a
+// triangle whose texture coordinates are `uv` (RenderScene::apply_normal_map:
+// the tangent along increasing u, the bitangent along increasing v, both
+// made orthonormal to the interpolated normal n; x and y times `scale`).
+vec3 normal_mapped(GpuTriangle tri, GpuUv uv, vec3 n, vec3 texel, float scale) {
+  vec3 e1 = tri.e1.xyz, e2 = tri.e2.xyz;
+  float du1 = uv.uv01.z - uv.uv01.x, dv1 = uv.uv01.w - uv.uv01.y;
+  float du2 = uv.uv2_scale.x - uv.uv01.x, dv2 = uv.uv2_scale.y - uv.uv01.y;
+  float det = du1 * dv2 - du2 * dv1;
+  if (!(abs(det) > 0.0)) return n;  // the texture is not spread over the triangle: no frame
+  vec3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
+  vec3 along = dpdu - n * dot(n, dpdu);
+  if (!(length(along) > 0.0)) return n;
+  vec3 tangent = normalize(along), bitangent = cross(n, tangent);
+  if (dot(bitangent, dpdv) < 0.0) bitangent = -bitangent;
+  vec3 mapped = tangent * ((2.0 * texel.x - 1.0) * scale) + bitangent * ((2.0 * texel.y - 1.0) * scale) + n * (2.0 * texel.z - 1.0);
+  return length(mapped) > 0.0 ? normalize(mapped) : n;
+}
+
 // Shadow rays prepared at once (their terms in a small array), then traced.
 const int kLightChunk = 8;
 
@@ -697,7 +813,27 @@ void main() {
         }
         Surface s = surface_of(r.o, r.d, h);
         GpuMaterial m = materials[s.material];
-        vec3 colour = m.colour_kd.xyz;
+        vec3 colour = m.colour_kd.xyz, emission = m.emission_model.xyz;
+        vec4 pbr = m.pbr;       // metallic and roughness, its maps applied
+        float highlight = 1.0;  // Blinn-Phong's specular map
+        // A mesh's maps at a triangle with texture coordinates, read at the
+        // MIP level of the pixel's footprint there (RenderScene::surface).
+        if ((h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE && int(m.emission_model.w) != HR_MODEL_TACHYON) {
+          GpuTriangle tri = tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)];
+          int uv_at = floatBitsToInt(tri.v0.w);
+          if (uv_at >= 0) {
+            float width = F.footprint.x + F.footprint.y * (h.t + (primary ? optic0 : 0.0));
+            vec4 texel;
+            if (texel_at(m.maps.x, uv_at, h.u, h.v, width, texel)) colour *= texel.rgb;
+            if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
+              if (texel_at(m.maps2.x, uv_at, h.u, h.v, width, texel)) highlight = texel.r;
+            } else if (texel_at(m.maps.y, uv_at, h.u, h.v, width, texel)) {  // blue metallic, green roughness
+              pbr.x = clamp(m.pbr.x * texel.b, 0.0, 1.0), pbr.y = clamp(m.pbr.y * texel.g, 0.0, 1.0);
+            }
+            if (texel_at(m.maps.z, uv_at, h.u, h.v, width, texel)) s.ns = normal_mapped(tri, uvs[uv_at], s.ns, texel.rgb, m.alpha.z);
+            if (texel_at(m.maps.w, uv_at, h.u, h.v, width, texel)) emission *= texel.rgb;
+          }
+        }
         // Both normals turned to the side the ray came from (nff-notes §10.2).
         vec3 view = -r.d;
         bool front = dot(s.ng, view) >= 0.0;
@@ -711,7 +847,9 @@ void main() {
             uint a = out_pixel(i, j) * 8u;
             vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? ld : -ld;
             vec3 n = dot(s.ns, toward) >= 0.0 ? s.ns : -s.ns;
-            aov_out[a + 0u] = colour.x, aov_out[a + 1u] = colour.y, aov_out[a + 2u] = colour.z;
+            // glTF's albedo: the diffuse share (render_scene.hpp, albedo_of).
+            vec3 albedo = int(m.emission_model.w) == HR_MODEL_GLTF ? colour * ((1.0 - pbr.x) * (1.0 - pbr.z)) : colour;
+            aov_out[a + 0u] = albedo.x, aov_out[a + 1u] = albedo.y, aov_out[a + 2u] = albedo.z;
             aov_out[a + 3u] = t_sign * h.t;
             aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
             aov_out[a + 7u] = float(s.object);
@@ -771,8 +909,8 @@ void main() {
         bool gltf = int(m.emission_model.w) == HR_MODEL_GLTF;
         if (r.depth < max_depth && gltf) {  // GltfModel::secondary_rays
           float T = m.ks_shine_t_ior.z, w = schlick_weight(abs(dot(ns, view)));
-          float f_d = m.pbr.w + (1.0 - m.pbr.w) * w, metal = clamp(m.pbr.x, 0.0, 1.0);
-          if (m.pbr.y < kMirrorRoughness) {  // the Fresnel mix at N.V
+          float f_d = pbr.w + (1.0 - pbr.w) * w, metal = clamp(pbr.x, 0.0, 1.0);
+          if (pbr.y < kMirrorRoughness) {  // the Fresnel mix at N.V
             vec3 rd = reflect_about(r.d, ns);
             if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
             vec3 mirror = vec3(f_d) * (1.0 - metal) + (colour + (vec3(1.0) - colour) * w) * metal;
@@ -781,8 +919,8 @@ void main() {
           }
           // BLEND's uncovered share and the transmission's share of the covered
           // part both go straight through (thin-walled): one ray.
-          if (T > 0.0 || m.pbr.z > 0.0) {
-            vec3 through = colour * ((1.0 - metal) * clamp(m.pbr.z, 0.0, 1.0) * (1.0 - f_d));
+          if (T > 0.0 || pbr.z > 0.0) {
+            vec3 through = colour * ((1.0 - metal) * clamp(pbr.z, 0.0, 1.0) * (1.0 - f_d));
             stack[sp++] = Pending(s.p - ng * eps, r.d, r.weight * (vec3(T) + through * (1.0 - T)), r.depth + 1);
             ++refracted_rays;
           }
@@ -813,7 +951,7 @@ void main() {
             stack[sp++] = Pending(o2, d2, r.weight * T, r.depth + 1);
           }
         }
-        c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * colour * kd) + m.emission_model.xyz);  // glTF: no ambient
+        c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * colour * kd) + emission);  // glTF: no ambient
         // The seen lights, kLightChunk at a time: each light's weighted term
         // computed before its shadow ray, so that only the ray and the term
         // cross the traversal (shading.cpp, shadow_ray and the models' terms).
@@ -844,7 +982,7 @@ void main() {
             if (casts) {
               vec3 term;
               if (gltf) {  // the BRDF times the part of the surface that is there
-                term = (1.0 - m.ks_shine_t_ior.z) * gltf_direct(colour, m.pbr, ns, view, to_light);
+                term = (1.0 - m.ks_shine_t_ior.z) * gltf_direct(colour, pbr, ns, view, to_light);
               } else {
                 term = colour * (kd * dot(ns, to_light));
                 if (ks > 0.0) {
@@ -853,7 +991,7 @@ void main() {
                 }
                 if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
                   float n_dot_h = dot(ns, normalize(to_light + view));
-                  if (n_dot_h > 0.0) term += m.specular.xyz * pow(n_dot_h, shine);
+                  if (n_dot_h > 0.0) term += m.specular.xyz * (highlight * pow(n_dot_h, shine));
                 }
               }
               contrib[n] = r.weight * (L.intensity_unit.xyz * falloff * term);
