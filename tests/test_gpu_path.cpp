@@ -571,6 +571,27 @@ TEST(GpuPath, WithoutADriverSaysWhatToInstall) {
       << m;
 }
 
+// A device lost mid-frame (a driver reset) or out of memory: exit status 1,
+// the message, and no output file, whole or partial (HOLORAY_GPU_FAULT
+// makes the frame end as the fault would).
+TEST(GpuPath, ALostDeviceOrExhaustedMemoryEndsWithTheMessageAndNoFile) {
+  TempDir dir;
+  const std::string scene = source_dir() + "/examples/primitives.nff";
+  const std::string name = gpu::GpuRenderer().describe();
+  const std::string device = name.substr(0, name.rfind(" ("));
+  const CommandResult lost = run_shell("HOLORAY_GPU_FAULT=device-lost " + std::string(HOLORAY_CLI) + " render " + scene +
+                                       " --lenses 8 --pixels-per-lens 4 --device gpu -q -o " + dir.file("eia.png"));
+  EXPECT_EQ(lost.status, 1);
+  EXPECT_EQ(lost.output, "holoray: error: the GPU (" + device +
+                             ") was lost during the render (VK_ERROR_DEVICE_LOST): its driver reset it; nothing was written\n");
+  const CommandResult memory = run_shell("HOLORAY_GPU_FAULT=out-of-memory " + std::string(HOLORAY_CLI) + " render " + scene +
+                                         " --lenses 8 --pixels-per-lens 4 --device gpu -q -o " + dir.file("eia.png"));
+  EXPECT_EQ(memory.status, 1);
+  EXPECT_EQ(memory.output.rfind("holoray: error: the GPU (" + device + ") ran out of memory: ", 0), 0u) << memory.output;
+  EXPECT_NE(memory.output.find("; nothing was written\n"), std::string::npos) << memory.output;
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path)) << "a file was left behind";
+}
+
 TEST(GpuPath, RefusesASceneLargerThanTheDeviceBeforeAllocating) {
   gpu::GpuRenderer r;
   gpu::SceneArrays arrays;

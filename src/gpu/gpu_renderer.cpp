@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <string_view>
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -493,6 +494,12 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
       throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
     stats.trace_seconds = seconds_since(t0);
     m.device.resetFences({*m.fence});
+    // HOLORAY_GPU_FAULT=device-lost or out-of-memory (for the tests, where no
+    // device fails on demand): the frame ends as that fault would end it.
+    if (const char* fault = std::getenv("HOLORAY_GPU_FAULT")) {
+      if (std::string_view(fault) == "device-lost") throw vk::DeviceLostError("vkQueueSubmit");
+      if (std::string_view(fault) == "out-of-memory") throw vk::OutOfDeviceMemoryError("vkAllocateMemory");
+    }
     const uint32_t* c = static_cast<const uint32_t*>(m.counts.mapped);
     for (int b = 0; b < bands * HR_COUNT_SLOTS; ++b, c += 8) {
       stats.nodes_visited += c[0], stats.primitives_tested += c[1];
