@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <string_view>
 
@@ -218,8 +219,11 @@ struct GpuRenderer::Impl {
   vk::raii::DescriptorSetLayout set_layout = nullptr;
   vk::raii::PipelineLayout pipeline_layout = nullptr;
   vk::raii::ShaderModule module = nullptr;
-  vk::raii::Pipeline pipeline = nullptr;        // lens arrays, pinhole views, quilts
-  vk::raii::Pipeline panel_pipeline = nullptr;  // display panels and Looking Glass native panels, made when first asked for
+  // The kernel's pipelines, made when first needed: by whether it renders
+  // panels (display panels, Looking Glass native panels) and by what the
+  // loaded scene's materials need (SceneArrays::features).
+  std::map<uint32_t, vk::raii::Pipeline> pipelines;
+  uint32_t features = 0;  // the loaded scene's
   bool capture_stats = false;
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
@@ -282,13 +286,18 @@ struct GpuRenderer::Impl {
 
   // The kernel specialised (shaders/trace.comp): workgroup size, whether
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
-  // they do; for tuning), and whether it renders the panels.
-  vk::raii::Pipeline make_pipeline(bool panel) {
+  // they do; for tuning), whether it renders the panels, and the
+  // materials' features (HR_FEATURE_*).
+  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits) {
     const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-    const uint32_t spec_values[4] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
-                                     panel ? 1u : 0u};
-    const vk::SpecializationMapEntry entries[4] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}};
-    const vk::SpecializationInfo spec{.mapEntryCount = 4, .pMapEntries = entries, .dataSize = sizeof spec_values,
+    const uint32_t spec_values[8] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
+                                     panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
+                                     (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
+                                     (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
+                                     (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u};
+    vk::SpecializationMapEntry entries[8];
+    for (uint32_t k = 0; k < 8; ++k) entries[k] = vk::SpecializationMapEntry(k, 4 * k, 4);
+    const vk::SpecializationInfo spec{.mapEntryCount = 8, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                       .pData = spec_values};
     vk::ComputePipelineCreateInfo pi{
         .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
@@ -373,7 +382,7 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
   m.capture_stats = stats;
-  m.pipeline = m.make_pipeline(false);
+  m.pipelines.emplace(0u, m.make_pipeline(false, 0));  // NFF's lens arrays, made now: the device is checked whole at start
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
@@ -415,6 +424,7 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
     m.counts = m.make_buffer(32, vk::BufferUsageFlagBits::eStorageBuffer, true);
     m.bind(12, m.counts);
     m.scene_bytes = s.bytes();
+    m.features = s.features;
   } catch (const vk::SystemError& e) {
     rethrow_vulkan(e, m.info.name);
   }
@@ -477,8 +487,10 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
-    if (panel && !*m.panel_pipeline) m.panel_pipeline = m.make_pipeline(true);
-    cb.bindPipeline(vk::PipelineBindPoint::eCompute, panel ? *m.panel_pipeline : *m.pipeline);
+    const uint32_t key = m.features << 1 | (panel ? 1u : 0u);
+    auto pipeline = m.pipelines.find(key);
+    if (pipeline == m.pipelines.end()) pipeline = m.pipelines.emplace(key, m.make_pipeline(panel, m.features)).first;
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline->second);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {
       const Band& band = band_list[size_t(b)];

@@ -220,7 +220,15 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
     out.nodes.push_back(g);
   }
   for (size_t o = 0; o < scene.object_count(); ++o) out.object_material.push_back(scene.material_of_object(int(o)));
-  for (const Material& m : scene.materials()) out.materials.push_back(material_of(m));
+  for (const Material& m : scene.materials()) {
+    out.materials.push_back(material_of(m));
+    if (m.model == ShadingModel::tachyon) out.features |= HR_FEATURE_TACHYON;
+    if (m.model == ShadingModel::gltf) out.features |= HR_FEATURE_GLTF;
+    if (m.model != ShadingModel::tachyon && (m.texture >= 0 || m.metal_rough_texture >= 0 || m.normal_texture >= 0 ||
+                                            m.emission_texture >= 0 || m.specular_texture >= 0))
+      out.features |= HR_FEATURE_MESH_TEXTURES;
+    if (m.alpha_mask) out.features |= HR_FEATURE_ALPHA_MASKS;
+  }
   for (const PointLight& l : scene.lights()) out.lights.push_back(light_of(l));
   lay_out_textures(scene, out);
   // Empty arrays still bind a buffer: one zero record each.
@@ -267,9 +275,7 @@ GpuFrame scene_frame(const RenderContext& context, const AovSet& aovs, int row0,
     f.fog = v4(fog->colour, float(mode));
     f.fog_range = {float(fog->start), float(fog->end), float(fog->density), 0};
   }
-  bool masked = false;
-  for (const Material& m : context.scene().materials()) masked |= m.alpha_mask;
-  f.flags = {context.has_tachyon_transparency() ? 1 : 0, masked ? 1 : 0, 0, 0};
+  f.flags = {context.has_tachyon_transparency() ? 1 : 0, 0, 0, 0};
   f.footprint = {float(context.settings().footprint.base), float(context.settings().footprint.spread), 0, 0};
   return f;
 }

@@ -40,6 +40,9 @@ struct SceneArrays {
   std::vector<GpuLevel> levels;      ///< the image maps' MIP levels
   std::vector<uint32_t> texels;      ///< the levels' texels, RGB8 in a uint each
   int bvh_depth = 0;
+  /// What the materials need of the kernel (HR_FEATURE_* bits): its
+  /// pipeline is specialised to them (shaders/trace.comp).
+  uint32_t features = 0;
   /// Bytes the arrays take on the device.
   uint64_t bytes() const;
 };

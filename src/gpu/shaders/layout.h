@@ -53,6 +53,12 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_WRAP_CLAMP 1
 #define HR_WRAP_MIRROR 2
 
+// What a scene's materials need of the kernel (SceneArrays::features).
+#define HR_FEATURE_TACHYON 1u
+#define HR_FEATURE_GLTF 2u
+#define HR_FEATURE_MESH_TEXTURES 4u
+#define HR_FEATURE_ALPHA_MASKS 8u
+
 // Fog modes (scene_desc.hpp, FogDesc), 0 for none.
 #define HR_FOG_LINEAR 1
 #define HR_FOG_EXP 2
@@ -183,8 +189,7 @@ HR_STRUCT GpuFrame {
   vec4 fog, fog_range;
   ivec4 flags;
   // A mesh texture's footprint (RenderSettings::footprint): a pixel's width
-  // at distance d is x + y d, world units; y of `flags`: 1 when the scene
-  // has alpha-masked materials (tested at each triangle hit).
+  // at distance d is x + y d, world units.
   vec4 footprint;
   // A pinhole view (grid HR_PINHOLE): pixel size at distance 1 (or in scene
   // units, orthographic), window shift x and y, the sample's offset in u;

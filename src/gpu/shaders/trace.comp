@@ -26,6 +26,14 @@ layout(constant_id = 2) const bool kSortShadowChildren = false;
 // images), whose samples are subpixels: their camera code is left out of
 // the kernel the other cameras run, which keeps its registers.
 layout(constant_id = 3) const bool kPanel = false;
+// What the scene holds, likewise one pipeline each (made when a scene with
+// it is loaded): Tachyon's shading, glTF's, a mesh's image textures, alpha
+// masks. A scene without them runs a kernel without their code, so NFF's
+// scenes keep the kernel measured before these were added.
+layout(constant_id = 4) const bool kTachyon = false;
+layout(constant_id = 5) const bool kGltf = false;
+layout(constant_id = 6) const bool kMeshTextures = false;
+layout(constant_id = 7) const bool kAlphaMasks = false;
 
 // One frame's constants per camera dispatched: a quilt's views are several.
 layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame frames[]; };
@@ -178,7 +186,7 @@ bool hit_triangle(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
   if (v < 0.0 || u + v > 1.0) return false;
   float t = dot(e2, q) * inv;
   if (!(t > tmin && t < h.t)) return false;
-  if (F.flags.y != 0 && cut_away(tri, u, v)) return false;
+  if (kAlphaMasks && cut_away(tri, u, v)) return false;
   h.t = t, h.u = u, h.v = v, h.ng = tri.ng.xyz;
   h.ref = (HR_PRIM_TRIANGLE << HR_PRIM_SHIFT) | k;
   return true;
@@ -818,7 +826,7 @@ void main() {
         float highlight = 1.0;  // Blinn-Phong's specular map
         // A mesh's maps at a triangle with texture coordinates, read at the
         // MIP level of the pixel's footprint there (RenderScene::surface).
-        if ((h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE && int(m.emission_model.w) != HR_MODEL_TACHYON) {
+        if (kMeshTextures && (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE && int(m.emission_model.w) != HR_MODEL_TACHYON) {
           GpuTriangle tri = tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)];
           int uv_at = floatBitsToInt(tri.v0.w);
           if (uv_at >= 0) {
@@ -848,7 +856,7 @@ void main() {
             vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? ld : -ld;
             vec3 n = dot(s.ns, toward) >= 0.0 ? s.ns : -s.ns;
             // glTF's albedo: the diffuse share (render_scene.hpp, albedo_of).
-            vec3 albedo = int(m.emission_model.w) == HR_MODEL_GLTF ? colour * ((1.0 - pbr.x) * (1.0 - pbr.z)) : colour;
+            vec3 albedo = kGltf && int(m.emission_model.w) == HR_MODEL_GLTF ? colour * ((1.0 - pbr.x) * (1.0 - pbr.z)) : colour;
             aov_out[a + 0u] = albedo.x, aov_out[a + 1u] = albedo.y, aov_out[a + 2u] = albedo.z;
             aov_out[a + 3u] = t_sign * h.t;
             aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
@@ -856,7 +864,7 @@ void main() {
           }
         }
         float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
-        if (int(m.emission_model.w) == HR_MODEL_TACHYON) {  // tachyon_model.cpp, TachyonModel::shade
+        if (kTachyon && int(m.emission_model.w) == HR_MODEL_TACHYON) {  // tachyon_model.cpp, TachyonModel::shade
           // A vertex-coloured triangle's colour, else the texfunc's (RenderScene::surface_colour).
           int coloured = (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE
                              ? floatBitsToInt(tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)].e2.w) : -1;
@@ -906,7 +914,7 @@ void main() {
         }
         // The mirror and transmitted rays wait on the stack (pushed before
         // the shadow rays, so that what they need is not kept across them).
-        bool gltf = int(m.emission_model.w) == HR_MODEL_GLTF;
+        bool gltf = kGltf && int(m.emission_model.w) == HR_MODEL_GLTF;
         if (r.depth < max_depth && gltf) {  // GltfModel::secondary_rays
           float T = m.ks_shine_t_ior.z, w = schlick_weight(abs(dot(ns, view)));
           float f_d = pbr.w + (1.0 - pbr.w) * w, metal = clamp(pbr.x, 0.0, 1.0);
