@@ -296,7 +296,7 @@ struct GpuRenderer::Impl {
                                      (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
                                      (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u};
     vk::SpecializationMapEntry entries[8];
-    for (uint32_t k = 0; k < 8; ++k) entries[k] = vk::SpecializationMapEntry(k, 4 * k, 4);
+    for (uint32_t k = 0; k < 8; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
     const vk::SpecializationInfo spec{.mapEntryCount = 8, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                       .pData = spec_values};
     vk::ComputePipelineCreateInfo pi{
