@@ -21,6 +21,8 @@
 #define VULKAN_HPP_ENABLE_DYNAMIC_LOADER_TOOL 0
 #include <vulkan/vulkan_raii.hpp>
 
+#include "util/parallel.hpp"
+
 namespace holoray::gpu {
 
 namespace {
@@ -232,6 +234,9 @@ struct GpuRenderer::Impl {
   Buffer colour, aov, counts, staging;
   vk::raii::CommandBuffer commands = nullptr;
   vk::raii::Fence fence = nullptr;
+  // The readback's own, kept from frame to frame (as `commands` and `fence`).
+  vk::raii::CommandBuffer readback_commands = nullptr;
+  vk::raii::Fence readback_fence = nullptr;
   uint32_t workgroup[2] = {32, 2};  // shaders/trace.comp says why
   uint64_t scene_bytes = 0;
 
@@ -386,6 +391,9 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
+  vk::raii::CommandBuffers readback(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
+  m.readback_commands = std::move(readback[0]);
+  m.readback_fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
   vk::DescriptorPoolSize size{vk::DescriptorType::eStorageBuffer, kBindings};
   m.descriptor_pool = vk::raii::DescriptorPool(
       m.device, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, .maxSets = 1,
@@ -521,15 +529,27 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
     const uint64_t readback = pixels * 12 + (want_aovs ? pixels * 32 : 0);
     if (m.staging.size < readback) m.staging = m.make_buffer(readback, vk::BufferUsageFlagBits::eTransferDst, true);
     Buffer& staging = m.staging;
-    m.run_once([&](vk::raii::CommandBuffer& c) {
-      c.copyBuffer(*m.colour.buffer, *staging.buffer, vk::BufferCopy{0, 0, pixels * 12});
-      if (want_aovs) c.copyBuffer(*m.aov.buffer, *staging.buffer, vk::BufferCopy{0, pixels * 12, pixels * 32});
-    });
+    vk::raii::CommandBuffer& rc = m.readback_commands;
+    rc.reset();
+    rc.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    rc.copyBuffer(*m.colour.buffer, *staging.buffer, vk::BufferCopy{0, 0, pixels * 12});
+    if (want_aovs) rc.copyBuffer(*m.aov.buffer, *staging.buffer, vk::BufferCopy{0, pixels * 12, pixels * 32});
+    rc.end();
+    vk::CommandBuffer raw_readback = *rc;
+    m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw_readback}, *m.readback_fence);
+    if (m.device.waitForFences({*m.readback_fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+      throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
+    m.device.resetFences({*m.readback_fence});
+    // Out of the staging buffer in bands of rows on every core: the colour
+    // as it is, the AOVs' interleaved records split into their images.
     const float* colour = static_cast<const float*>(staging.mapped);
-    std::memcpy(out.colour.at(0, 0), colour, pixels * 12);
-    if (want_aovs) {
-      const float* a = colour + pixels * 3;
-      for (int j = 0; j < H; ++j)
+    const float* a = colour + pixels * 3;
+    constexpr int kRows = 64;
+    parallel_for_n((H + kRows - 1) / kRows, 0, [&](int band) {
+      const int j0 = band * kRows, j1 = std::min(H, j0 + kRows);
+      std::memcpy(out.colour.at(0, j0), colour + uint64_t(j0) * W * 3, uint64_t(j1 - j0) * W * 12);
+      if (!want_aovs) return;
+      for (int j = j0; j < j1; ++j)
         for (int i = 0; i < W; ++i) {
           const float* p = a + (uint64_t(j) * W + i) * 8;
           if (aovs.albedo) std::memcpy(out.albedo.at(i, j), p, 12);
@@ -537,7 +557,7 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
           if (aovs.normal) std::memcpy(out.normal.at(i, j), p + 4, 12);
           if (aovs.id) *out.id.at(i, j) = p[7];
         }
-    }
+    });
     stats.readback_seconds = seconds_since(t1);
   } catch (const vk::SystemError& e) {
     rethrow_vulkan(e, m.info.name);
