@@ -61,12 +61,7 @@ struct ScenePose {
   explicit ScenePose(const AccelScene& accel) {
     for (uint32_t g = 0; g < accel.group_count(); ++g) to_world.push_back(accel.transform(g)), pose.push_back(accel.pose(g));
   }
-  bool operator==(const ScenePose& o) const {
-    if (pose != o.pose || to_world.size() != o.to_world.size()) return false;
-    for (size_t g = 0; g < to_world.size(); ++g)
-      if (to_world[g].m != o.to_world[g].m || !(to_world[g].translation == o.to_world[g].translation)) return false;
-    return true;
-  }
+  bool operator==(const ScenePose&) const = default;
 };
 
 std::string device_of_local_rank(const std::string& device, int local_rank) {

@@ -14,6 +14,7 @@ namespace holoray {
 struct Affine {
   std::array<double, 9> m{1, 0, 0, 0, 1, 0, 0, 0, 1};
   Vec3 translation;
+  friend bool operator==(const Affine&, const Affine&) = default;
 
   Vec3 point(const Vec3& p) const { return dir(p) + translation; }
   Vec3 dir(const Vec3& d) const {
