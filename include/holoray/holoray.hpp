@@ -21,6 +21,7 @@
 #include "holoray/errors.hpp"
 #include "holoray/files.hpp"
 #include "holoray/image.hpp"
+#include "holoray/live.hpp"
 #include "holoray/pick.hpp"
 #include "holoray/preview.hpp"
 #include "holoray/render.hpp"

@@ -102,6 +102,9 @@ struct Result {
 };
 
 struct RendererState;  // internal
+namespace detail {
+struct RendererAccess;  // internal
+}
 
 /// A scene built for one camera: validated, placed and built once, then
 /// rendered any number of times (whole, or in bands of rows). The camera is
@@ -138,6 +141,7 @@ class HOLORAY_API Renderer {
   const RenderStats& build_stats() const;
 
  private:
+  friend struct detail::RendererAccess;
   std::unique_ptr<RendererState> state_;
 };
 

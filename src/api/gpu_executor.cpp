@@ -121,24 +121,13 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
   const int y0 = rows ? (*rows)[0] : 0, y1 = rows ? (*rows)[1] : camera.height();
   if (y0 < 0 || y1 > camera.height() || y0 >= y1)
     throw std::invalid_argument(fmt::format("rows {} to {} are not a band of the {} rows of the image", y0, y1, camera.height()));
-  const auto* view = camera.get<PinholeCamera>();
-  const auto* quilt = camera.get<QuiltCamera>();
-  const auto* panel = camera.get<PanelView>();
-  const auto* looking_glass = camera.get<LookingGlassCamera>();
-  if (quilt && (y0 != 0 || y1 != camera.height()))
+  if (camera.get<QuiltCamera>() && (y0 != 0 || y1 != camera.height()))
     throw std::invalid_argument("`device` gpu: a quilt renders whole on the GPU, not in bands of rows");
   FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
   gpu::GpuFrameStats g;
   try {
     stats.build_seconds = impl_->follow(context.scene());
-    if (quilt)
-      impl_->renderer->render(gpu::quilt_frames(context, *quilt, aovs, spp), camera.width(), camera.height(), aovs, fb, g);
-    else
-      impl_->renderer->render(view    ? gpu::frame_constants(context, *view, aovs, spp, y0, y1)
-                              : panel ? gpu::frame_constants(context, panel->camera, panel->red_first, spp, y0, y1)
-                              : looking_glass ? gpu::frame_constants(context, *looking_glass, spp, y0, y1)
-                                              : gpu::frame_constants(context, *camera.lens_array(), aovs, spp, y0, y1),
-                              aovs, fb, g);
+    impl_->renderer->render(gpu::camera_frames(context, camera, aovs, spp, y0, y1), camera.width(), y1 - y0, aovs, fb, g);
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());
   }

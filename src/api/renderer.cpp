@@ -10,6 +10,7 @@
 
 #include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
+#include "api/renderer_state.hpp"
 #include "holoray/errors.hpp"
 #include "holoray/render.hpp"
 #include "render/render_context.hpp"
@@ -112,20 +113,8 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
 
 }  // namespace
 
-struct RendererState {
-  std::shared_ptr<const SceneData> scene;
-  Camera public_camera;
-  FrameCameraDesc choice;
-  std::optional<FrameCamera> placed;  // set once the constructor has placed it
-  const FrameCamera& camera() const { return *placed; }
-  std::unique_ptr<RenderScene> render_scene;
-  RenderSettings settings;  // this renderer's depth, cache, footprint and background
-  std::unique_ptr<ShadowCache> cache;
-  RenderOptions options;
-  TraceStyle style = TraceStyle::packet;
-  RenderStats build;
-  std::unique_ptr<GpuExecutor> gpu;  // set for `device` gpu
-};
+RendererState& detail::RendererAccess::state(const Renderer& r) { return *r.state_; }
+
 
 Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options)
     : state_(std::make_unique<RendererState>()) {

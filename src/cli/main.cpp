@@ -9,6 +9,7 @@
 #include "cli/completion.hpp"
 #include "cli/interlace_command.hpp"
 #include "cli/launch_check.hpp"
+#include "cli/live_command.hpp"
 #include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
@@ -43,12 +44,15 @@ int main(int argc, char** argv) {
   CLI::App* interlace = holoray::cli::add_interlace_command(app, interlace_opts);
   holoray::cli::ViewsCommandOptions views_opts;
   CLI::App* views = holoray::cli::add_views_command(app, views_opts);
+  holoray::cli::LiveCommandOptions live_opts;
+  CLI::App* live = holoray::cli::add_live_command(app, live_opts);
   CLI::App* devices = holoray::cli::add_devices_command(app);
   holoray::cli::add_completion_option(app);
   app.footer(
       "\nExamples:\n"
       "  holoray render examples/primitives.nff -o eia.png\n"
       "  holoray animate examples/shots/swinging_box.toml -o frames/\n"
+      "  holoray live examples/primitives.nff\n"
       "\nEach command's options: holoray COMMAND --help. The user guide: docs/guide/README.md");
   if (argc == 1) {  // a bare `holoray` shows what it does
     std::fputs(app.help().c_str(), stdout);
@@ -61,7 +65,7 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, compare, simulate, views, interlace or devices)\n", argv[1]);
+    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, live, compare, simulate, views, interlace or devices)\n", argv[1]);
     return 2;
   }
   try {
@@ -85,6 +89,7 @@ int main(int argc, char** argv) {
   if (simulate->parsed()) return holoray::cli::run_simulate(simulate_opts);
   if (views->parsed()) return holoray::cli::run_views(views_opts);
   if (interlace->parsed()) return holoray::cli::run_interlace(interlace_opts);
+  if (live->parsed()) return holoray::cli::run_live(live_opts);
   if (devices->parsed()) return holoray::cli::run_devices();
   return 2;
 }

@@ -95,6 +95,31 @@ CLI::Validator vec3(const char* option) {
 
 }  // namespace
 
+std::vector<CLI::Option*> add_lens_array_options(CLI::App& cmd, RenderCommandOptions& o) {
+  return {
+      cmd.add_option("--grid", o.grid, "Lens grid")->check(one_of({"square", "hex", "lenticular"}))->capture_default_str(),
+      cmd.add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")
+          ->check(parsed_by([](const std::string& t) { int x, y; parse_lens_count(t, x, y); }, "NXxNY"))
+          ->capture_default_str(),
+      cmd.add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->check(in_range(1))->capture_default_str(),
+      cmd.add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)")->check(in_range(1)),
+      cmd.add_option("--fov-lens", o.fov_lens, "Lens field of view in degrees (default 20); sets the gap"),
+      cmd.add_option("--gap", o.gap, "Lens plane to pixel panel distance, scene units"),
+      cmd.add_option("--pitch", o.pitch, "Lens pitch, scene units (default: NFF view width / NX)"),
+      cmd.add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")
+          ->check(one_of({"orthoscopic", "pseudoscopic"}))
+          ->capture_default_str(),
+      cmd.add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)")};
+}
+
+void add_focus_distance_option(CLI::App& cmd, RenderCommandOptions& o) {
+  cmd.add_option("--focus-distance", o.focus_distance,
+                  "The focal plane's distance from the viewpoint, scene units: where a lens array or a display's lens "
+                  "sheet stands, a quilt's or Looking Glass's zero-parallax plane (default: the viewpoint's from-to-at "
+                  "distance; a mesh file's camera: the depth of the scene's centre)")
+      ->check(CLI::PositiveNumber);
+}
+
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render one elemental image array (EIA), or the scene's own pinhole view, from an NFF, Tachyon or mesh scene");
   cmd->add_option("scene", o.scene, "Scene file: NFF (.nff), Tachyon (.dat), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")
@@ -107,20 +132,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->capture_default_str();
   cmd->add_option("--shift", o.shift, "With --camera pinhole: lens shift X,Y, the view's window moved right and up by these fractions of its larger side (as a Blender camera's shift)")
       ->check(parsed_by([](const std::string& t) { parse_shift(t); }, "X,Y"));
-  CLI::Option* array_options[] = {
-      cmd->add_option("--grid", o.grid, "Lens grid")->check(one_of({"square", "hex", "lenticular"}))->capture_default_str(),
-      cmd->add_option("--lenses", o.lenses, "Lens count NXxNY (lenticular: NY unused)")
-          ->check(parsed_by([](const std::string& t) { int x, y; parse_lens_count(t, x, y); }, "NXxNY"))
-          ->capture_default_str(),
-      cmd->add_option("--pixels-per-lens", o.pixels_per_lens, "Pixels across one lens (P)")->check(in_range(1))->capture_default_str(),
-      cmd->add_option("--rows", o.rows, "Image rows H for hex and lenticular (default: the contract's)")->check(in_range(1)),
-      cmd->add_option("--fov-lens", o.fov_lens, "Lens field of view in degrees (default 20); sets the gap"),
-      cmd->add_option("--gap", o.gap, "Lens plane to pixel panel distance, scene units"),
-      cmd->add_option("--pitch", o.pitch, "Lens pitch, scene units (default: NFF view width / NX)"),
-      cmd->add_option("--mode", o.mode, "orthoscopic (display-ready) or pseudoscopic (direct pickup)")
-          ->check(one_of({"orthoscopic", "pseudoscopic"}))
-          ->capture_default_str(),
-      cmd->add_option("--view-distance", o.view_distance, "Lenticular vertical perspective distance V (default: infinite)")};
+  const std::vector<CLI::Option*> array_options = add_lens_array_options(*cmd, o);
   for (CLI::Option* a : array_options) display->excludes(a), lg->excludes(a);
   CLI::Option* quilt = cmd->add_option("--quilt", o.quilt, "A Looking Glass quilt of CxR off-axis views (sheared frusta sharing the viewpoint's focal plane), tiled as Looking Glass tools expect: view 0, the leftmost, bottom left; written as NAME_qsCxRaASPECT.ext. --resolution sets one view's size (default 420x560)")
       ->check(parsed_by([](const std::string& t) {
@@ -132,11 +144,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->check(in_range(0, 180, true, "degrees"))
       ->needs(quilt)
       ->capture_default_str();
-  cmd->add_option("--focus-distance", o.focus_distance,
-                  "The focal plane's distance from the viewpoint, scene units: where a lens array or a display's lens "
-                  "sheet stands, a quilt's or Looking Glass's zero-parallax plane (default: the viewpoint's from-to-at "
-                  "distance; a mesh file's camera: the depth of the scene's centre)")
-      ->check(CLI::PositiveNumber);
+  add_focus_distance_option(*cmd, o);
   add_scene_read_options(*cmd, o.camera_name, o.texture_paths);
   cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says")
       ->check(in_range(0))
@@ -187,10 +195,6 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   return cmd;
 }
 
-namespace {
-
-// The camera the options name, with the rules between options that CLI11
-// cannot say (each value it checked already).
 api::Camera camera_of(const RenderCommandOptions& o) {
   const CameraOptions& v = o.view;
   const bool pinhole = v.camera == "pinhole", quilt = !o.quilt.empty();
@@ -232,6 +236,8 @@ api::Camera camera_of(const RenderCommandOptions& o) {
   a.focus_distance = focus;
   return a;
 }
+
+namespace {
 
 // The summary `render` prints: the scene, the camera, the times and rays.
 void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const api::Renderer& renderer,

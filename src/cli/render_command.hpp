@@ -36,6 +36,17 @@ struct RenderCommandOptions {
   std::string exr_compression = "zip";  ///< --exr-compression
 };
 
+/// The lens array's options (--grid, --lenses, --pixels-per-lens, --rows,
+/// --fov-lens, --gap, --pitch, --mode, --view-distance) on `cmd`, checked
+/// by CLI11; returned for the command's own `excludes`.
+std::vector<CLI::Option*> add_lens_array_options(CLI::App& cmd, RenderCommandOptions& o);
+/// --focus-distance D on `cmd`.
+void add_focus_distance_option(CLI::App& cmd, RenderCommandOptions& o);
+/// The camera the options name, with the rules between options that CLI11
+/// cannot say (each value it checked already). Throws std::invalid_argument
+/// naming the option.
+api::Camera camera_of(const RenderCommandOptions& o);
+
 /// Registers the subcommand and its options on `app`.
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& opts);
 

@@ -15,12 +15,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
-// The loader is opened here with dlopen, not linked, so that a machine
-// without libvulkan.so.1 still runs the CPU path.
-#define VULKAN_HPP_NO_CONSTRUCTORS
-#define VULKAN_HPP_ENABLE_DYNAMIC_LOADER_TOOL 0
-#include <vulkan/vulkan_raii.hpp>
-
+#include "gpu/vulkan_device.hpp"
 #include "util/parallel.hpp"
 
 namespace holoray::gpu {
@@ -84,14 +79,22 @@ class NvidiaEglManifest {
   std::string path_;
 };
 
-vk::raii::Instance make_instance(const vk::raii::Context& context) {
+}  // namespace
+
+vk::raii::Instance make_instance(const vk::raii::Context& context, const std::vector<std::string>& extensions) {
   vk::ApplicationInfo app{.pApplicationName = "holoray", .apiVersion = VK_API_VERSION_1_1};
+  std::vector<const char*> names;
+  for (const std::string& e : extensions) names.push_back(e.c_str());
   try {
-    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app});
+    return vk::raii::Instance(context, vk::InstanceCreateInfo{.pApplicationInfo = &app,
+                                                              .enabledExtensionCount = uint32_t(names.size()),
+                                                              .ppEnabledExtensionNames = names.data()});
   } catch (const vk::SystemError& e) {
     throw GpuError(fmt::format("the Vulkan loader found no driver ({}): {}", e.what(), kFix));
   }
 }
+
+namespace {
 
 // The loader's library: HOLORAY_VULKAN_LOADER names another (a loader
 // outside the library path; the tests name a missing one), else the
@@ -114,7 +117,11 @@ PFN_vkGetInstanceProcAddr loader_entry() {
   return entry;
 }
 
+}  // namespace
+
 vk::raii::Context open_loader() { return vk::raii::Context(loader_entry()); }
+
+namespace {
 
 DeviceInfo info_of(const vk::raii::PhysicalDevice& pd) {
   const auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceSubgroupProperties>();
@@ -152,17 +159,11 @@ std::vector<vk::raii::PhysicalDevice> physical_devices(const vk::raii::Instance&
   return unique;
 }
 
-// A buffer and its memory; `mapped` when host-visible.
-struct Buffer {
-  vk::raii::Buffer buffer = nullptr;
-  vk::raii::DeviceMemory memory = nullptr;
-  vk::DeviceSize size = 0;
-  void* mapped = nullptr;
-};
-
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+
+}  // namespace
 
 // A Vulkan failure mid-render in the user's words.
 [[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device) {
@@ -174,7 +175,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   throw GpuError(fmt::format("the GPU ({}) failed: {}", device, e.what()));
 }
 
-constexpr int kBindings = 18;
+namespace {
 
 bool has_extension(const vk::raii::PhysicalDevice& pd, std::string_view name) {
   for (const auto& e : pd.enumerateDeviceExtensionProperties())
@@ -201,127 +202,36 @@ void print_statistics(const vk::raii::Device& device, const vk::raii::Pipeline& 
 
 }  // namespace
 
+vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits) {
+  const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
+  const uint32_t spec_values[8] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
+                                   panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
+                                   (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
+                                   (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
+                                   (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u};
+  vk::SpecializationMapEntry entries[8];
+  for (uint32_t k = 0; k < 8; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
+  const vk::SpecializationInfo spec{.mapEntryCount = 8, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                                    .pData = spec_values};
+  vk::ComputePipelineCreateInfo pi{
+      .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
+      .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec},
+      .layout = *pipeline_layout};
+  vk::raii::Pipeline p(device, nullptr, pi);
+  if (capture_stats) print_statistics(device, p);
+  return p;
+}
+
 std::vector<DeviceInfo> list_devices() {
   vk::raii::Context context = open_loader();
-  vk::raii::Instance instance = make_instance(context);
+  vk::raii::Instance instance = make_instance(context, {});
   std::vector<DeviceInfo> out;
   for (const auto& pd : physical_devices(instance)) out.push_back(info_of(pd));
   return out;
 }
 
-struct GpuRenderer::Impl {
-  vk::raii::Context context = open_loader();
-  vk::raii::Instance instance = make_instance(context);
-  vk::raii::PhysicalDevice physical = nullptr;
-  DeviceInfo info;
-  uint32_t family = 0;
-  vk::raii::Device device = nullptr;
-  vk::raii::Queue queue = nullptr;
-  vk::raii::CommandPool pool = nullptr;
-  vk::raii::DescriptorSetLayout set_layout = nullptr;
-  vk::raii::PipelineLayout pipeline_layout = nullptr;
-  vk::raii::ShaderModule module = nullptr;
-  // The kernel's pipelines, made when first needed: by whether it renders
-  // panels (display panels, Looking Glass native panels) and by what the
-  // loaded scene's materials need (SceneArrays::features).
-  std::map<uint32_t, vk::raii::Pipeline> pipelines;
-  uint32_t features = 0;  // the loaded scene's
-  bool capture_stats = false;
-  vk::raii::DescriptorPool descriptor_pool = nullptr;
-  vk::raii::DescriptorSet set = nullptr;
-  vk::PhysicalDeviceMemoryProperties memory_types;
-  Buffer scene[18];  // bindings 0 (the frame) to 9 and 13 to 17 (10 to 12: colour, aov, counts below)
-  Buffer colour, aov, counts, staging;
-  vk::raii::CommandBuffer commands = nullptr;
-  vk::raii::Fence fence = nullptr;
-  // The readback's own, kept from frame to frame (as `commands` and `fence`).
-  vk::raii::CommandBuffer readback_commands = nullptr;
-  vk::raii::Fence readback_fence = nullptr;
-  uint32_t workgroup[2] = {32, 2};  // shaders/trace.comp says why
-  uint64_t scene_bytes = 0;
-
-  uint32_t memory_type(uint32_t allowed, vk::MemoryPropertyFlags want, vk::MemoryPropertyFlags prefer = {}) const {
-    std::optional<uint32_t> fallback;
-    for (uint32_t t = 0; t < memory_types.memoryTypeCount; ++t) {
-      if (!(allowed & (1u << t)) || (memory_types.memoryTypes[t].propertyFlags & want) != want) continue;
-      if ((memory_types.memoryTypes[t].propertyFlags & prefer) == prefer) return t;
-      if (!fallback) fallback = t;
-    }
-    if (!fallback) throw GpuError(fmt::format("the device {} offers no memory the GPU path can use", info.name));
-    return *fallback;
-  }
-
-  Buffer make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, bool host) {
-    Buffer b;
-    b.size = std::max<vk::DeviceSize>(size, 16);
-    b.buffer = vk::raii::Buffer(device, vk::BufferCreateInfo{.size = b.size, .usage = usage});
-    const vk::MemoryRequirements req = b.buffer.getMemoryRequirements();
-    const uint32_t type = host ? memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
-                                             vk::MemoryPropertyFlagBits::eHostCached)
-                               : memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
-    b.memory = vk::raii::DeviceMemory(device, vk::MemoryAllocateInfo{.allocationSize = req.size, .memoryTypeIndex = type});
-    b.buffer.bindMemory(*b.memory, 0);
-    if (host) b.mapped = b.memory.mapMemory(0, b.size);
-    return b;
-  }
-
-  // Runs `record` in a one-time command buffer and waits for it.
-  template <class F>
-  void run_once(F&& record) {
-    vk::raii::CommandBuffers cbs(device, vk::CommandBufferAllocateInfo{.commandPool = *pool, .commandBufferCount = 1});
-    vk::raii::CommandBuffer& cb = cbs[0];
-    cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    record(cb);
-    cb.end();
-    vk::raii::Fence fence(device, vk::FenceCreateInfo{});
-    vk::CommandBuffer raw = *cb;
-    queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
-    if (device.waitForFences({*fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-      throw GpuError(fmt::format("the GPU ({}) did not finish", info.name));
-  }
-
-  // A device-local storage buffer holding `bytes` from the host (through a staging buffer).
-  Buffer upload(const void* data, size_t bytes) {
-    Buffer dst = make_buffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
-    Buffer staging = make_buffer(bytes, vk::BufferUsageFlagBits::eTransferSrc, true);
-    std::memcpy(staging.mapped, data, bytes);
-    run_once([&](vk::raii::CommandBuffer& cb) { cb.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy{0, 0, bytes}); });
-    return dst;
-  }
-
-  // The kernel specialised (shaders/trace.comp): workgroup size, whether
-  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
-  // they do; for tuning), whether it renders the panels, and the
-  // materials' features (HR_FEATURE_*).
-  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits) {
-    const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-    const uint32_t spec_values[8] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
-                                     panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
-                                     (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
-                                     (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
-                                     (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u};
-    vk::SpecializationMapEntry entries[8];
-    for (uint32_t k = 0; k < 8; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
-    const vk::SpecializationInfo spec{.mapEntryCount = 8, .pMapEntries = entries, .dataSize = sizeof spec_values,
-                                      .pData = spec_values};
-    vk::ComputePipelineCreateInfo pi{
-        .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
-        .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec},
-        .layout = *pipeline_layout};
-    vk::raii::Pipeline p(device, nullptr, pi);
-    if (capture_stats) print_statistics(device, p);
-    return p;
-  }
-
-  void bind(int binding, const Buffer& b) {
-    vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};
-    device.updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set, .dstBinding = uint32_t(binding), .descriptorCount = 1,
-                                                       .descriptorType = vk::DescriptorType::eStorageBuffer, .pBufferInfo = &bi},
-                                nullptr);
-  }
-};
-
-GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
+GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& instance_extensions)
+    : impl_(std::make_unique<Impl>(instance_extensions)) {
   Impl& m = *impl_;
   std::vector<vk::raii::PhysicalDevice> all = physical_devices(m.instance);
   size_t pick = 0;
@@ -360,12 +270,21 @@ GpuRenderer::GpuRenderer(int device_index) : impl_(std::make_unique<Impl>()) {
   // HOLORAY_GPU_STATS=1 (for tuning): the driver's statistics of the
   // compiled kernel (registers, local memory) on stderr, where it offers them.
   const bool stats = std::getenv("HOLORAY_GPU_STATS") != nullptr && has_extension(m.physical, "VK_KHR_pipeline_executable_properties");
-  const char* stats_extension = "VK_KHR_pipeline_executable_properties";
+  std::vector<const char*> extensions;
+  if (stats) extensions.push_back("VK_KHR_pipeline_executable_properties");
+  // For a window (presenter.hpp): its swapchain, on this same device.
+  m.window = !instance_extensions.empty();
+  if (m.window) {
+    if (!has_extension(m.physical, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      throw GpuError(fmt::format("the device {} cannot show images in a window (no {}): choose another device (`device` gpu:N)",
+                                 m.info.name, VK_KHR_SWAPCHAIN_EXTENSION_NAME));
+    extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  }
   vk::PhysicalDevicePipelineExecutablePropertiesFeaturesKHR stats_feature{.pipelineExecutableInfo = VK_TRUE};
   m.device = vk::raii::Device(m.physical, vk::DeviceCreateInfo{.pNext = stats ? &stats_feature : nullptr,
                                                                .queueCreateInfoCount = 1, .pQueueCreateInfos = &qi,
-                                                               .enabledExtensionCount = stats ? 1u : 0u,
-                                                               .ppEnabledExtensionNames = &stats_extension});
+                                                               .enabledExtensionCount = uint32_t(extensions.size()),
+                                                               .ppEnabledExtensionNames = extensions.data()});
   m.queue = vk::raii::Queue(m.device, m.family, 0);
   m.pool = vk::raii::CommandPool(m.device, vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
                                                                      .queueFamilyIndex = m.family});
@@ -444,6 +363,11 @@ void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers
 
 void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
                          GpuFrameStats& stats) {
+  trace(frames, W, H, stats);
+  readback(aovs, out, stats);
+}
+
+void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats) {
   Impl& m = *impl_;
   if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
   if (frames.empty()) throw std::logic_error("GpuRenderer::render without a frame");
@@ -525,6 +449,20 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
       stats.nodes_visited += c[0], stats.primitives_tested += c[1];
       stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
     }
+    m.traced = {W, H};
+    m.traced_aovs = want_aovs;
+  } catch (const vk::SystemError& e) {
+    rethrow_vulkan(e, m.info.name);
+  }
+}
+
+void GpuRenderer::readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
+  Impl& m = *impl_;
+  const auto [W, H] = m.traced;
+  if (W == 0) throw std::logic_error("GpuRenderer::readback before trace");
+  const bool want_aovs = m.traced_aovs;
+  const uint64_t pixels = uint64_t(W) * uint64_t(H);
+  try {
     const auto t1 = std::chrono::steady_clock::now();
     const uint64_t readback = pixels * 12 + (want_aovs ? pixels * 32 : 0);
     if (m.staging.size < readback) m.staging = m.make_buffer(readback, vk::BufferUsageFlagBits::eTransferDst, true);

@@ -50,7 +50,10 @@ class GpuRenderer {
   /// `device`: -1 takes the first device that is a GPU, else the first
   /// device (lavapipe where there is no GPU); N >= 0 the Nth of
   /// list_devices(). Throws GpuError (no loader, no such device).
-  explicit GpuRenderer(int device = -1);
+  /// `instance_extensions`: a window system's surface extensions (GLFW's
+  /// glfwGetRequiredInstanceExtensions), for a Presenter on this device;
+  /// the device then also gets VK_KHR_swapchain (GpuError without it).
+  explicit GpuRenderer(int device = -1, const std::vector<std::string>& instance_extensions = {});
   ~GpuRenderer();
   GpuRenderer(const GpuRenderer&) = delete;
   GpuRenderer& operator=(const GpuRenderer&) = delete;
@@ -75,8 +78,16 @@ class GpuRenderer {
   /// (GpuFrame::tile: a quilt's views), in one submission.
   void render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
               GpuFrameStats& stats);
+  /// render() in two: the frames traced into the device's buffers, where
+  /// they stay (a Presenter shows them from there)...
+  void trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats);
+  /// ...and the last frame traced copied into `out` (W x H; the AOVs that
+  /// `aovs` names, which that frame must have traced). Sets
+  /// stats.readback_seconds.
+  void readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats);
 
  private:
+  friend class Presenter;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

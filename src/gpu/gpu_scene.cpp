@@ -393,4 +393,14 @@ std::vector<GpuFrame> quilt_frames(const RenderContext& context, const QuiltCame
   return out;
 }
 
+std::vector<GpuFrame> camera_frames(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
+                                    int row0, int row1) {
+  if (const auto* quilt = camera.get<QuiltCamera>()) return quilt_frames(context, *quilt, aovs, spp);
+  if (const auto* view = camera.get<PinholeCamera>()) return {frame_constants(context, *view, aovs, spp, row0, row1)};
+  if (const auto* panel = camera.get<PanelView>())
+    return {frame_constants(context, panel->camera, panel->red_first, spp, row0, row1)};
+  if (const auto* glass = camera.get<LookingGlassCamera>()) return {frame_constants(context, *glass, spp, row0, row1)};
+  return {frame_constants(context, *camera.lens_array(), aovs, spp, row0, row1)};
+}
+
 }  // namespace holoray::gpu

@@ -16,6 +16,7 @@
 #include "camera/display_camera.hpp"
 #include "camera/quilt_camera.hpp"
 #include "display/looking_glass.hpp"
+#include "render/frame_camera.hpp"
 #include "render/render_context.hpp"
 #include "render/renderer.hpp"
 
@@ -73,5 +74,11 @@ GpuFrame frame_constants(const RenderContext& context, const DisplayCamera& came
 /// A Looking Glass's native panel (display/looking_glass.hpp): each
 /// subpixel's view from the calibration, computed on the device. Colour only.
 GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera& camera, int spp, int row0, int row1);
+
+/// Any placed camera's frames (one, or a quilt's views), rows [row0, row1)
+/// of it (a quilt: whole only): the one place the GPU path dispatches on
+/// the camera's kind.
+std::vector<GpuFrame> camera_frames(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
+                                    int row0, int row1);
 
 }  // namespace holoray::gpu

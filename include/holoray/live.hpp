@@ -1,0 +1,65 @@
+// holoray public API: a scene shown live in a window, rendered on the GPU
+// path as fast as the device renders it (docs/guide/live.md).
+//
+//   LiveOptions live;
+//   live.exit_after = 100;
+//   run_live(scene, LensArray{}, RenderOptions{.device = "gpu"}, live);
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "holoray/camera.hpp"
+#include "holoray/export.hpp"
+#include "holoray/image.hpp"
+#include "holoray/render.hpp"
+#include "holoray/scene.hpp"
+
+namespace holoray::api {
+
+struct LiveOptions {
+  /// The monitor the window opens on: its index ("0") or name; "" the primary.
+  std::string monitor;
+  /// Full screen on that monitor at its own mode. Default: a display's or
+  /// Looking Glass's panel image full screen (it is one of the machine's
+  /// monitors), anything else in a window the image's size.
+  std::optional<bool> fullscreen;
+  int exit_after = 0;      ///< frames shown, then return; 0: until the window is closed
+  /// Written when the window closes: the last frame shown, .png as shown
+  /// (8-bit, `encoding`), .exr its rendered colour in float.
+  std::string screenshot;
+  std::string events;      ///< input replayed by frame number (live.md, "Scripted runs")
+  std::string record;      ///< a folder: every frame shown as frame_NNNNNN.png
+  /// The 8-bit encoding shown and written; nullopt: srgb for a mesh
+  /// scene, linear for NFF and Tachyon (as `holoray render`).
+  std::optional<Encoding> encoding;
+  /// Lines for the user: the files written, the view at the end.
+  std::function<void(const std::string& line)> print;
+  /// Asked between frames and at least twice a second while idle: true ends
+  /// the run (a signal).
+  std::function<bool()> stop;
+};
+
+/// What a run showed.
+struct LiveResult {
+  int frames = 0;        ///< frames shown
+  double seconds = 0;    ///< from the first frame shown to the last
+  /// The view at the end, as `holoray live` prints it: "eye X,Y,Z at X,Y,Z
+  /// up X,Y,Z fov F focus D [lens-fov L]" (17 digits: the same doubles).
+  std::string view;
+};
+
+/// Opens the window and shows `scene` through `camera` (a lens array, a
+/// pinhole view, a display or a Looking Glass, placed by the scene's
+/// viewpoint) until the window is closed, options.stop says so or
+/// exit_after frames were shown. Renders only when something changed.
+/// options.device must name the GPU path ("gpu", "gpu:N"). Throws
+/// std::runtime_error with the reason when there is no display (neither
+/// DISPLAY nor WAYLAND_DISPLAY), no Vulkan device, or no monitor of that
+/// name (listing them); std::invalid_argument naming the option for what
+/// live does not show (a quilt, an explicit placement, the CPU path).
+HOLORAY_API LiveResult run_live(const Scene& scene, const Camera& camera, const RenderOptions& options,
+                                const LiveOptions& live);
+
+}  // namespace holoray::api

@@ -1,0 +1,147 @@
+// holoray/gpu (private to src/gpu): the Vulkan objects behind GpuRenderer,
+// shared by the renderer (gpu_renderer.cpp) and the presenter
+// (presenter.cpp), which packs the renderer's frame into a window on the
+// same device. Only these two files include Vulkan.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+// The loader is opened with dlopen (gpu_renderer.cpp), not linked, so that a
+// machine without libvulkan.so.1 still runs the CPU path.
+#define VULKAN_HPP_NO_CONSTRUCTORS
+#define VULKAN_HPP_ENABLE_DYNAMIC_LOADER_TOOL 0
+#include <vulkan/vulkan_raii.hpp>
+
+#include "gpu/gpu_renderer.hpp"
+
+namespace holoray::gpu {
+
+/// The system's Vulkan loader (or HOLORAY_VULKAN_LOADER's), opened once.
+/// Throws GpuError saying what to install when there is none.
+vk::raii::Context open_loader();
+/// An instance with `extensions` enabled (a window's surface extensions).
+/// Throws GpuError when the loader finds no driver.
+vk::raii::Instance make_instance(const vk::raii::Context& context, const std::vector<std::string>& extensions);
+/// A Vulkan failure as a GpuError in the user's words, naming `device`.
+[[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device);
+
+/// trace.comp's descriptor bindings.
+constexpr int kBindings = 18;
+
+// A buffer and its memory; `mapped` when host-visible.
+struct Buffer {
+  vk::raii::Buffer buffer = nullptr;
+  vk::raii::DeviceMemory memory = nullptr;
+  vk::DeviceSize size = 0;
+  void* mapped = nullptr;
+};
+
+struct GpuRenderer::Impl {
+  explicit Impl(const std::vector<std::string>& instance_extensions)
+      : context(open_loader()), instance(make_instance(context, instance_extensions)) {}
+
+  vk::raii::Context context;
+  vk::raii::Instance instance;
+  bool window = false;  // made for a window: VK_KHR_swapchain enabled
+  vk::raii::PhysicalDevice physical = nullptr;
+  DeviceInfo info;
+  uint32_t family = 0;
+  vk::raii::Device device = nullptr;
+  vk::raii::Queue queue = nullptr;
+  vk::raii::CommandPool pool = nullptr;
+  vk::raii::DescriptorSetLayout set_layout = nullptr;
+  vk::raii::PipelineLayout pipeline_layout = nullptr;
+  vk::raii::ShaderModule module = nullptr;
+  // The kernel's pipelines, made when first needed: by whether it renders
+  // panels (display panels, Looking Glass native panels) and by what the
+  // loaded scene's materials need (SceneArrays::features).
+  std::map<uint32_t, vk::raii::Pipeline> pipelines;
+  uint32_t features = 0;  // the loaded scene's
+  bool capture_stats = false;
+  vk::raii::DescriptorPool descriptor_pool = nullptr;
+  vk::raii::DescriptorSet set = nullptr;
+  vk::PhysicalDeviceMemoryProperties memory_types;
+  Buffer scene[18];  // bindings 0 (the frame) to 9 and 13 to 17 (10 to 12: colour, aov, counts below)
+  Buffer colour, aov, counts, staging;
+  vk::raii::CommandBuffer commands = nullptr;
+  vk::raii::Fence fence = nullptr;
+  // The readback's own, kept from frame to frame (as `commands` and `fence`).
+  vk::raii::CommandBuffer readback_commands = nullptr;
+  vk::raii::Fence readback_fence = nullptr;
+  uint32_t workgroup[2] = {32, 2};  // shaders/trace.comp says why
+  uint64_t scene_bytes = 0;
+  // The last frame traced: its size (0 x 0 before any) and whether the AOVs were.
+  std::array<int, 2> traced{0, 0};
+  bool traced_aovs = false;
+
+  uint32_t memory_type(uint32_t allowed, vk::MemoryPropertyFlags want, vk::MemoryPropertyFlags prefer = {}) const {
+    std::optional<uint32_t> fallback;
+    for (uint32_t t = 0; t < memory_types.memoryTypeCount; ++t) {
+      if (!(allowed & (1u << t)) || (memory_types.memoryTypes[t].propertyFlags & want) != want) continue;
+      if ((memory_types.memoryTypes[t].propertyFlags & prefer) == prefer) return t;
+      if (!fallback) fallback = t;
+    }
+    if (!fallback) throw GpuError(fmt::format("the device {} offers no memory the GPU path can use", info.name));
+    return *fallback;
+  }
+
+  Buffer make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, bool host) {
+    Buffer b;
+    b.size = std::max<vk::DeviceSize>(size, 16);
+    b.buffer = vk::raii::Buffer(device, vk::BufferCreateInfo{.size = b.size, .usage = usage});
+    const vk::MemoryRequirements req = b.buffer.getMemoryRequirements();
+    const uint32_t type = host ? memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
+                                             vk::MemoryPropertyFlagBits::eHostCached)
+                               : memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
+    b.memory = vk::raii::DeviceMemory(device, vk::MemoryAllocateInfo{.allocationSize = req.size, .memoryTypeIndex = type});
+    b.buffer.bindMemory(*b.memory, 0);
+    if (host) b.mapped = b.memory.mapMemory(0, b.size);
+    return b;
+  }
+
+  // Runs `record` in a one-time command buffer and waits for it.
+  template <class F>
+  void run_once(F&& record) {
+    vk::raii::CommandBuffers cbs(device, vk::CommandBufferAllocateInfo{.commandPool = *pool, .commandBufferCount = 1});
+    vk::raii::CommandBuffer& cb = cbs[0];
+    cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    record(cb);
+    cb.end();
+    vk::raii::Fence fence(device, vk::FenceCreateInfo{});
+    vk::CommandBuffer raw = *cb;
+    queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
+    if (device.waitForFences({*fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+      throw GpuError(fmt::format("the GPU ({}) did not finish", info.name));
+  }
+
+  // A device-local storage buffer holding `bytes` from the host (through a staging buffer).
+  Buffer upload(const void* data, size_t bytes) {
+    Buffer dst = make_buffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    Buffer staging = make_buffer(bytes, vk::BufferUsageFlagBits::eTransferSrc, true);
+    std::memcpy(staging.mapped, data, bytes);
+    run_once([&](vk::raii::CommandBuffer& cb) { cb.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy{0, 0, bytes}); });
+    return dst;
+  }
+
+  // The kernel specialised (shaders/trace.comp): workgroup size, whether
+  // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
+  // they do; for tuning), whether it renders the panels, and the
+  // materials' features (HR_FEATURE_*).
+  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits);  // gpu_renderer.cpp
+
+  void bind(int binding, const Buffer& b) {
+    vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};
+    device.updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set, .dstBinding = uint32_t(binding), .descriptorCount = 1,
+                                                       .descriptorType = vk::DescriptorType::eStorageBuffer, .pBufferInfo = &bi},
+                                nullptr);
+  }
+};
+
+}  // namespace holoray::gpu
