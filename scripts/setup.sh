@@ -26,7 +26,8 @@ packages=(
   mesa-vulkan-drivers       # lavapipe, a Vulkan device on the CPU: the GPU path's tests run on it where there is no GPU
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (build/python) and its pytest suite, against Debian's python3
   blender                   # the add-on's tests (tests/blender), headless: Debian's Blender, which embeds Debian's python3
-  xvfb                      # docs/blender/screenshots.sh: Blender's real interface, for the guide's pictures
+  libglfw3-dev              # holoray live: its window, monitors and input (the module holoray_glfw.so)
+  xvfb xauth                # a display for holoray live's tests (xvfb-run) and for the guide's screenshots
   libopenmpi-dev openmpi-bin  # mpirun -np N holoray animate|render (optional in CMake; installed so the README's commands build it)
   clang libclang-rt-dev     # fuzz/run.sh and scripts/sanitize.sh (the release's own clang and its runtime)
   hyperfine                 # bench/run_startup_deps.sh: start-up per library

@@ -458,7 +458,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
 
 void GpuRenderer::readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
   Impl& m = *impl_;
-  const auto [W, H] = m.traced;
+  const int W = m.traced[0], H = m.traced[1];
   if (W == 0) throw std::logic_error("GpuRenderer::readback before trace");
   const bool want_aovs = m.traced_aovs;
   const uint64_t pixels = uint64_t(W) * uint64_t(H);

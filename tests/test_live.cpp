@@ -1,0 +1,228 @@
+// `holoray live` (issue 56) under Xvfb on the GPU path's device (lavapipe
+// where there is no GPU): the frame shown is `holoray render --device gpu`'s
+// PNG byte for byte, a replayed orbit and focus change shows what render
+// gives from the moved viewpoint and plane, --record keeps every frame, and
+// each fault ends with its message and status.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <regex>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "holoray/errors.hpp"
+#include "image/image_io.hpp"
+#include "live/event_script.hpp"
+#include "live/shown_codes.hpp"
+#include "live/view_controls.hpp"
+#include "test_util.hpp"
+
+using namespace holoray;
+using namespace holoray::test;
+
+namespace {
+
+const std::string kScene = source_dir() + "/examples/primitives.nff";
+const std::string kArray = " --lenses 24x24 --pixels-per-lens 6";
+
+bool have_xvfb() { return run_shell("command -v xvfb-run").status == 0; }
+
+// xvfb-run on a display of its own: -a looks for a free number from -n up,
+// and test processes running side by side (ctest -j) start apart.
+std::string xvfb_run() {
+  static int calls = 0;
+  return fmt::format("xvfb-run -a -n {} -s '-screen 0 1280x1024x24' ", 100 + (::getpid() % 200) * 16 + calls++ % 16);
+}
+
+// `holoray ARGS` on a fresh Xvfb display of its own.
+CommandResult on_xvfb(const std::string& args, const std::string& env = "") {
+  return run_shell(env + " " + xvfb_run() + std::string(HOLORAY_CLI) + " " + args);
+}
+
+#define NEED_XVFB() \
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs xvfb)"
+
+// The numbers of "eye X,Y,Z at X,Y,Z up X,Y,Z fov F [focus D] [lens-fov L]".
+std::map<std::string, std::vector<double>> view_of(const std::string& output) {
+  std::map<std::string, std::vector<double>> v;
+  const auto at = output.find("view       ");
+  if (at == std::string::npos) return v;
+  std::istringstream in(output.substr(at + 11, output.find('\n', at) - at - 11));
+  std::string key, value;
+  while (in >> key >> value) {
+    std::vector<double>& numbers = v[key];
+    std::istringstream parts(value);
+    for (std::string n; std::getline(parts, n, ',');) numbers.push_back(std::stod(n));
+  }
+  return v;
+}
+
+// The example scene with its eye, point looked at and up replaced.
+std::string scene_from(const TempDir& dir, const std::map<std::string, std::vector<double>>& v) {
+  std::string text = read_bytes(kScene);
+  auto line = [&](const char* key, const std::vector<double>& p) {
+    text = std::regex_replace(text, std::regex(std::string("\n") + key + " [^\n]*"),
+                              fmt::format("\n{} {:.17g} {:.17g} {:.17g}", key, p[0], p[1], p[2]));
+  };
+  line("from", v.at("eye")), line("at", v.at("at")), line("up", v.at("up"));
+  write_text(dir.file("moved.nff"), text);
+  return dir.file("moved.nff");
+}
+
+}  // namespace
+
+// ---- the parts, without a window ----
+
+TEST(Live, ShownCodesAreRendersCodes) {
+  for (const Encoding e : {Encoding::linear, Encoding::srgb}) {
+    const gpu::CodeThresholds t = live::code_thresholds(e);
+    for (int k = 1; k <= 255; ++k) {
+      const float at = t[size_t(k - 1)], below = std::nextafter(at, -1.0f);
+      EXPECT_EQ(encode_8bit(at, e), k) << k;
+      EXPECT_EQ(encode_8bit(below, e), k - 1) << k;
+    }
+    // And back: the image of the codes encodes to the codes.
+    std::vector<uint8_t> rgb(256 * 3);
+    for (int k = 0; k < 256 * 3; ++k) rgb[size_t(k)] = uint8_t(k / 3);
+    const ImageBuffer image = live::image_of_codes(rgb, 256, 1, t);
+    for (size_t k = 0; k < rgb.size(); ++k) ASSERT_EQ(encode_8bit(image.data[k], e), rgb[k]) << k;
+  }
+}
+
+TEST(Live, OrbitTurnsAboutThePointLookedAtKeepingItsDistance) {
+  live::LiveView v;
+  v.viewpoint.from = {0, -10, 0}, v.viewpoint.at = {0, 0, 0}, v.viewpoint.up = {0, 0, 1}, v.viewpoint.angle_deg = 40;
+  live::orbit(v, 100, 0, 400, 300);  // a quarter of the width: 45 degrees, the eye to the left
+  EXPECT_NEAR(v.viewpoint.from.x, -10 * std::sin(std::numbers::pi / 4), 1e-12);
+  EXPECT_NEAR(v.viewpoint.from.y, -10 * std::cos(std::numbers::pi / 4), 1e-12);
+  EXPECT_NEAR(v.viewpoint.from.z, 0, 1e-12);
+  live::orbit(v, 0, 150, 400, 300);  // half the height: 45 degrees up
+  EXPECT_NEAR(length(v.viewpoint.from), 10, 1e-12);
+  EXPECT_NEAR(v.viewpoint.from.z, 10 * std::sin(std::numbers::pi / 4), 1e-12);
+  live::orbit(v, 0, 1e6, 400, 300);  // never over the pole
+  EXPECT_NEAR(std::asin(v.viewpoint.from.z / 10) * 180 / std::numbers::pi, 89, 1e-9);
+  live::dolly(v, 1);
+  EXPECT_NEAR(length(v.viewpoint.from), 9, 1e-12);
+  EXPECT_FALSE(v.focus_distance.has_value());  // still |eye - at|, as render's default
+  live::move_plane(v, 1);
+  EXPECT_NEAR(*v.focus_distance, 9 * 1.05, 1e-12);
+}
+
+TEST(Live, EventScriptErrorsSayWhereAndWhat) {
+  TempDir dir;
+  auto error_of_script = [&](const std::string& text) -> std::string {
+    write_text(dir.file("e.txt"), text);
+    try {
+      live::read_event_script(dir.file("e.txt"));
+    } catch (const api::SceneError& e) {
+      return fmt::format("{}:{}: {}", e.line(), e.column(), e.message());
+    }
+    return "";
+  };
+  EXPECT_EQ(error_of_script("1 orbit 3 4\n2 jump 1\n"), "2:3: expected an event: orbit, pan, wheel or key, found 'jump'");
+  EXPECT_EQ(error_of_script("0 wheel 1\n"), "1:1: expected a frame number (1 or more), found '0'");
+  EXPECT_EQ(error_of_script("3 wheel 1\n2 wheel 1\n"), "2:1: expected a frame number of 3 or more (frames ascend), found '2'");
+  EXPECT_EQ(error_of_script("1 pan 3\n"), "1:8: expected DY, pixels, found the line's end");
+  EXPECT_EQ(error_of_script("1 key F1\n"),
+            "1:7: expected a key: Up, Down, Left, Right, A, V, S, shift+S, Space, Home, Escape, Q, found 'F1'");
+  EXPECT_EQ(error_of_script("1 wheel 1 2 # comment\n"), "1:11: expected the line's end, found '2'");
+  const std::vector<live::ScriptedEvent> ok = live::read_event_script((write_text(dir.file("ok.txt"), "# a comment\n\n2 key S\n"), dir.file("ok.txt")));
+  ASSERT_EQ(ok.size(), 1u);
+  EXPECT_EQ(ok[0].frame, 2);
+  EXPECT_EQ(ok[0].event.key, "S");
+}
+
+// ---- the window, under Xvfb ----
+
+TEST(Live, TheFrameShownIsTheGpuRenderByteForByte) {
+  NEED_XVFB();
+  TempDir dir;
+  const struct {
+    const char* what;
+    std::string camera;
+  } cases[] = {{"lens array", kArray},
+               {"hex lens array", kArray + " --grid hex"},
+               {"pinhole, sRGB", " --camera pinhole --resolution 96x64 --encoding srgb"}};
+  for (const auto& c : cases) {
+    const CommandResult live = on_xvfb("live " + kScene + c.camera + " --exit-after 2 --screenshot " + dir.file("shown.png"));
+    ASSERT_EQ(live.status, 0) << c.what << "\n" << live.output;
+    EXPECT_NE(live.output.find("wrote      " + dir.file("shown.png")), std::string::npos) << live.output;
+    EXPECT_NE(live.output.find("frames     2 shown"), std::string::npos) << live.output;
+    const CommandResult render = run_cli("render " + kScene + c.camera + " --device gpu -q -o " + dir.file("render.png"));
+    ASSERT_EQ(render.status, 0) << render.output;
+    EXPECT_EQ(read_bytes(dir.file("shown.png")), read_bytes(dir.file("render.png"))) << c.what;
+  }
+}
+
+TEST(Live, AReplayedOrbitAndFocusChangeShowTheRenderFromTheMovedViewpointAndPlane) {
+  NEED_XVFB();
+  TempDir dir;
+  // 36 px of the 144-px-wide window: the eye turns 45 degrees about `at`;
+  // then up a little, a wheel click nearer, the plane farther, wider lenses.
+  write_text(dir.file("events.txt"), "1 orbit 36 0\n1 orbit 0 -10\n2 wheel 1\n2 key Up\n3 key Right\n");
+  const CommandResult live = on_xvfb("live " + kScene + kArray + " --exit-after 4 --events " + dir.file("events.txt") +
+                                     " --screenshot " + dir.file("shown.png") + " --record " + dir.file("frames"));
+  ASSERT_EQ(live.status, 0) << live.output;
+  const auto v = view_of(live.output);
+  ASSERT_EQ(v.count("eye") + v.count("focus") + v.count("lens-fov"), 3u) << live.output;
+  // Where the eye went, independently: the file's eye (0,-10,5.5) about at
+  // (0,0,1.2) turned 45 degrees about z, raised, then 0.9 as far.
+  const double horizontal = std::hypot(v.at("eye")[0], v.at("eye")[1]);
+  EXPECT_NEAR(std::atan2(v.at("eye")[0], -v.at("eye")[1]) * 180 / std::numbers::pi, -45, 1e-9);
+  const double distance = std::hypot(10.0, 4.3);
+  EXPECT_NEAR(std::hypot(horizontal, v.at("eye")[2] - 1.2), 0.9 * distance, 1e-9);
+  EXPECT_NEAR(v.at("focus")[0], 0.9 * distance * 1.05, 1e-9);
+  EXPECT_EQ(v.at("lens-fov")[0], 21);
+  // render from there: the same bytes.
+  const CommandResult render = run_cli("render " + scene_from(dir, v) + kArray + fmt::format(" --focus-distance {:.17g} --fov-lens 21", v.at("focus")[0]) +
+                                       " --device gpu -q -o " + dir.file("render.png"));
+  ASSERT_EQ(render.status, 0) << render.output;
+  EXPECT_EQ(read_bytes(dir.file("shown.png")), read_bytes(dir.file("render.png")));
+  // --record: every frame shown, the last the screenshot; the first is the file's view.
+  EXPECT_EQ(frame_count(dir.file("frames")), 4u);
+  EXPECT_EQ(read_bytes(dir.file("frames/frame_000003.png")), read_bytes(dir.file("shown.png")));
+  ASSERT_EQ(run_cli("render " + kScene + kArray + " --device gpu -q -o " + dir.file("start.png")).status, 0);
+  EXPECT_EQ(read_bytes(dir.file("frames/frame_000000.png")), read_bytes(dir.file("start.png")));
+  EXPECT_NE(read_bytes(dir.file("frames/frame_000001.png")), read_bytes(dir.file("start.png")));
+}
+
+TEST(Live, FaultsEndWithTheirMessages) {
+  NEED_XVFB();
+  const CommandResult no_display = run_shell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(HOLORAY_CLI) + " live " + kScene);
+  EXPECT_EQ(no_display.status, 1);
+  EXPECT_EQ(no_display.output,
+            "holoray: error: holoray live needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set: run it on a "
+            "desktop, or under xvfb-run\n");
+  const CommandResult no_device = on_xvfb("live " + kScene, "VK_ICD_FILENAMES=/nonexistent.json");
+  EXPECT_EQ(no_device.status, 1);
+  EXPECT_EQ(no_device.output.rfind("holoray: error: the Vulkan loader found no driver", 0), 0u) << no_device.output;
+  const CommandResult monitor = on_xvfb("live " + kScene + " --monitor projector");
+  EXPECT_EQ(monitor.status, 1);
+  EXPECT_EQ(monitor.output, "holoray: error: --monitor projector: no such monitor; this display has 0 'screen' 1280x1024\n");
+  const CommandResult cpu = on_xvfb("live " + kScene + " --device cpu");
+  EXPECT_EQ(cpu.status, 1);
+  EXPECT_EQ(cpu.output, "holoray: error: --device: holoray live renders on the GPU path: gpu or gpu:N\n");
+}
+
+// The window closed by the user while frames render back to back (as a
+// window manager's close button asks): exit 0, every frame complete.
+TEST(Live, ClosingTheWindowMidRenderExitsCleanly) {
+  NEED_XVFB();
+  TempDir dir;
+  write_text(dir.file("run.sh"),
+             fmt::format("{} live {}{} --exit-after 1000000 --record {} > {} 2>&1 &\n"
+                         "pid=$!\n"
+                         "/usr/bin/python3 {}/scripts/xwindow.py close 'holoray live' 60 || {{ kill $pid; exit 3; }}\n"
+                         "wait $pid\n",
+                         HOLORAY_CLI, kScene, kArray, dir.file("frames"), dir.file("log"), source_dir()));
+  const CommandResult r = run_shell(xvfb_run() + "sh " + dir.file("run.sh"));
+  EXPECT_EQ(r.status, 0) << r.output << read_bytes(dir.file("log"));
+  const std::string log = read_bytes(dir.file("log"));
+  EXPECT_NE(log.find("frames     "), std::string::npos) << log;
+  // Every frame written is whole (written under a temporary name, renamed).
+  for (const auto& [name, bytes] : folder_bytes(dir.file("frames"))) EXPECT_TRUE(name.ends_with(".png")) << name;
+}
