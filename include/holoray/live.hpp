@@ -30,7 +30,8 @@ struct LiveOptions {
   /// (8-bit, `encoding`), .exr its rendered colour in float.
   std::string screenshot;
   std::string events;      ///< input replayed by frame number (live.md, "Scripted runs")
-  std::string record;      ///< a folder: every frame shown as frame_NNNNNN.png
+  std::string record;      ///< a folder: every frame shown as frame_NNNN.png (from 0)
+  bool play = false;       ///< run_live_shot: the shot plays from the start (else Space plays it)
   /// The 8-bit encoding shown and written; nullopt: srgb for a mesh
   /// scene, linear for NFF and Tachyon (as `holoray render`).
   std::optional<Encoding> encoding;
@@ -48,6 +49,7 @@ struct LiveResult {
   /// The view at the end, as `holoray live` prints it: "eye X,Y,Z at X,Y,Z
   /// up X,Y,Z fov F focus D [lens-fov L]" (17 digits: the same doubles).
   std::string view;
+  int shot_frame = 0;    ///< run_live_shot: the shot's frame shown last
 };
 
 /// Opens the window and shows `scene` through `camera` (a lens array, a
@@ -61,5 +63,15 @@ struct LiveResult {
 /// live does not show (a quilt, an explicit placement, the CPU path).
 HOLORAY_API LiveResult run_live(const Scene& scene, const Camera& camera, const RenderOptions& options,
                                 const LiveOptions& live);
+
+/// run_live for an animated shot (shot-format.md): its objects move as the
+/// shot plays (Space, or live.play), in real time at its fps and looping;
+/// PageDown and PageUp step a frame. The camera is the shot's lens array,
+/// or `camera` (a pinhole, display or Looking Glass) placed by each frame's
+/// viewpoint, as `holoray animate` places it; the controls move the view
+/// from the frame's, and Home gives it back to the shot. Throws as
+/// run_live, and what reading the shot throws (SceneError).
+HOLORAY_API LiveResult run_live_shot(const std::string& shot, const std::optional<Camera>& camera,
+                                     const RenderOptions& options, const LiveOptions& live);
 
 }  // namespace holoray::api

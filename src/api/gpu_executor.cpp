@@ -52,18 +52,6 @@ std::vector<std::string> gpu_devices() {
   return out;
 }
 
-// Where each group of the scene stood when it was laid out: a frame of an
-// animation whose groups moved or deformed is laid out again.
-struct ScenePose {
-  std::vector<Affine> to_world;
-  std::vector<uint64_t> pose;
-
-  explicit ScenePose(const AccelScene& accel) {
-    for (uint32_t g = 0; g < accel.group_count(); ++g) to_world.push_back(accel.transform(g)), pose.push_back(accel.pose(g));
-  }
-  bool operator==(const ScenePose&) const = default;
-};
-
 std::string device_of_local_rank(const std::string& device, int local_rank) {
   if (device != "gpu") return device;
   std::vector<bool> is_gpu;
@@ -78,13 +66,13 @@ std::string device_of_local_rank(const std::string& device, int local_rank) {
 
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
-  std::optional<ScenePose> uploaded;
+  std::optional<gpu::ScenePose> uploaded;
   uint64_t image_bytes = 0;
 
   // Lays out and uploads `scene` unless it stands as it did at the last
   // upload: seconds spent, 0 when nothing moved.
   double follow(const RenderScene& scene) {
-    ScenePose now(scene.accel());
+    gpu::ScenePose now(scene.accel());
     if (uploaded && *uploaded == now) return 0;
     const auto start = std::chrono::steady_clock::now();
     // A scene that moves is rebuilt every frame: without spatial splits the

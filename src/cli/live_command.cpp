@@ -19,11 +19,14 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
       "live", "Show the scene in a window, rendered on the GPU path as fast as the device renders it: the EIA (or its centre "
               "sub-aperture view), a pinhole view, or a display's or Looking Glass's panel image full screen; the mouse and "
               "keys move the view, the array's plane and the lenses");
-  cmd->add_option("scene", r.scene, "Scene file: NFF (.nff), Tachyon (.dat), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")
-      ->required()
+  CLI::Option* scene = cmd->add_option("scene", r.scene, "Scene file: NFF (.nff), Tachyon (.dat), or a mesh through assimp (.obj, .ply, .stl, .gltf, .glb, .3ds, .dae, .ac)")
       ->check(existing_file());
+  CLI::Option* shot = cmd->add_option("--shot", o.shot, "An animated shot (TOML, docs/shot-format.md) instead of a scene: Space plays it in real time, PageDown and PageUp step a frame; its [array] is the camera unless --camera pinhole, --display or --looking-glass is given")
+      ->check(existing_file())
+      ->excludes(scene);
+  cmd->add_flag("--play", o.play, "With --shot: play it from the start")->needs(shot);
   const auto [display, lg] = add_camera_options(*cmd, r.view, "the image");
-  for (CLI::Option* a : add_lens_array_options(*cmd, r)) display->excludes(a), lg->excludes(a);
+  for (CLI::Option* a : add_lens_array_options(*cmd, r)) display->excludes(a), lg->excludes(a), shot->excludes(a);
   add_focus_distance_option(*cmd, r);
   add_scene_read_options(*cmd, r.camera_name, r.texture_paths);
   add_device_option(*cmd, r.device, "live renders on the GPU path only");
@@ -41,34 +44,34 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
       ->check(output_image());
   cmd->add_option("--events", o.events, "Replay input from FILE: lines 'FRAME orbit|pan DX DY', 'FRAME wheel CLICKS', 'FRAME key NAME' (docs/guide/live.md)")
       ->check(existing_file());
-  cmd->add_option("--record", o.record, "Write every frame shown to DIR as frame_NNNNNN.png");
+  cmd->add_option("--record", o.record, "Write every frame shown to DIR as frame_NNNN.png (frames numbered from 0, as animate names them)");
   cmd->add_flag("-q,--quiet", r.quiet, "Print nothing but errors");
   lay_out_help(*cmd,
-               {{"Window", {"--monitor", "--fullscreen", "--windowed", "--exit-after", "--screenshot", "--events", "--record",
+               {{"Scene", {"--shot", "--play", "--camera-name", "--texture-path"}},
+                {"Window", {"--monitor", "--fullscreen", "--windowed", "--exit-after", "--screenshot", "--events", "--record",
                             "--encoding", "--quiet"}},
-                {"Scene", {"--camera-name", "--texture-path"}},
                 {"Camera", {"--camera", "--resolution", "--display", "--looking-glass", "--views", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance"}},
                 {"Tracing", {"--device", "--spp", "--max-depth"}}},
                {"holoray live examples/primitives.nff --lenses 64x64 --pixels-per-lens 12",
+                "holoray live --shot examples/shots/sliding_primitives.toml --play",
                 "holoray live examples/primitives.nff --display examples/displays/lenticular_4k.toml --monitor 1"},
                "docs/guide/live.md");
   cmd->footer(cmd->get_footer() +
               "\nKeys: drag orbits, shift-drag (or the right button) pans, the wheel dollies; Up/Down move the array's "
               "plane farther/nearer, Left/Right narrow/widen the lenses' field of view, A cycles colour and the AOVs, V "
-              "toggles the EIA and its centre sub-aperture view, S writes a PNG (shift+S an EXR), Home resets the view, "
-              "Escape or Q quits.");
+              "toggles the EIA and its centre sub-aperture view, S writes a PNG (shift+S an EXR), Space plays or pauses a shot, "
+              "PageDown and PageUp step it, Home resets the view, Escape or Q quits.");
   return cmd;
 }
 
 int run_live(const LiveCommandOptions& o) {
   try {
     const RenderCommandOptions& r = o.camera;
+    if (r.scene.empty() == o.shot.empty()) throw std::invalid_argument("holoray live: give a scene file or --shot FILE");
     const api::Camera camera = camera_of(r);
-    const api::Encoding encoding = parse_encoding(r.encoding, r.scene);
-    const api::Scene scene = api::Scene::load(r.scene, {r.camera_name, r.texture_paths});
-    if (!r.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), r.scene);
+    const CameraOptions& v = r.view;
     api::RenderOptions options;
     options.spp = r.spp;
     options.max_depth = r.max_depth;
@@ -82,12 +85,23 @@ int run_live(const LiveCommandOptions& o) {
     live.screenshot = o.screenshot;
     live.events = o.events;
     live.record = o.record;
-    live.encoding = encoding;
+    if (r.encoding != "auto") live.encoding = parse_encoding(r.encoding);
+    live.play = o.play;
     if (!r.quiet) live.print = [](const std::string& line) { fmt::print("{}\n", line); };
     live.stop = [&] { return interrupt.requested(); };
-    const api::LiveResult result = api::run_live(scene, camera, options, live);
+    api::LiveResult result;
+    if (!o.shot.empty()) {
+      // The shot's [array] is its camera unless another kind was asked for (as animate).
+      const bool other = v.camera == "pinhole" || !v.display.empty() || !v.looking_glass.empty();
+      result = api::run_live_shot(o.shot, other ? std::optional(camera) : std::nullopt, options, live);
+    } else {
+      const api::Scene scene = api::Scene::load(r.scene, {r.camera_name, r.texture_paths});
+      if (!r.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), r.scene);
+      result = api::run_live(scene, camera, options, live);
+    }
     if (!r.quiet) {
       fmt::print("view       {}\n", result.view);
+      if (!o.shot.empty()) fmt::print("shot       frame {}\n", result.shot_frame);
       fmt::print("frames     {} shown in {:.3f} s{}\n", result.frames, result.seconds,
                  result.frames > 1 ? fmt::format(" ({:.1f} fps)", (result.frames - 1) / std::max(1e-9, result.seconds)) : "");
     }

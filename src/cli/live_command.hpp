@@ -21,6 +21,8 @@ struct LiveCommandOptions {
   std::string screenshot;   ///< --screenshot FILE
   std::string events;       ///< --events FILE
   std::string record;       ///< --record DIR
+  std::string shot;         ///< --shot FILE (instead of a scene)
+  bool play = false;        ///< --play
 };
 
 CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o);

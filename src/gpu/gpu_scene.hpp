@@ -48,6 +48,19 @@ struct SceneArrays {
   uint64_t bytes() const;
 };
 
+/// Where each group of a scene stood when it was laid out (its transform
+/// and pose): a frame of an animation whose groups moved or deformed is
+/// laid out again.
+struct ScenePose {
+  std::vector<Affine> to_world;
+  std::vector<uint64_t> pose;
+
+  explicit ScenePose(const AccelScene& accel) {
+    for (uint32_t g = 0; g < accel.group_count(); ++g) to_world.push_back(accel.transform(g)), pose.push_back(accel.pose(g));
+  }
+  bool operator==(const ScenePose&) const = default;
+};
+
 /// The scene laid out for the device, its hierarchy built at `quality`.
 /// Throws std::length_error when a count passes the 2^30 a reference holds
 /// (or the texels 2^31), std::runtime_error when Embree's builder fails.

@@ -15,7 +15,8 @@ namespace holoray::live {
 
 namespace {
 
-constexpr const char* kKeys[] = {"Up", "Down", "Left", "Right", "A", "V", "S", "shift+S", "Space", "Home", "Escape", "Q"};
+constexpr const char* kKeys[] = {"Up",    "Down", "Left",   "Right", "A",        "V",      "S",
+                                 "shift+S", "Space", "PageDown", "PageUp", "Home", "Escape", "Q"};
 
 struct Token {
   std::string text;

@@ -1,9 +1,10 @@
-// holoray/live: api::run_live, the window's loop. The scene is built once
-// (the Renderer's checks and RenderScene, laid out once on the device);
-// each change of view places the camera again from the moved viewpoint,
-// exactly as `holoray render` places it, traces it into the device's
-// buffers and shows it through the Presenter, all on one device. Nothing
-// renders while nothing changes.
+// holoray/live: api::run_live and run_live_shot, the window's loop. The
+// scene is built once (a still's by the Renderer, with every check `render`
+// makes; a shot's by ShotFrames) and laid out once on the device (again
+// only when a shot's objects move); each change of view places the camera
+// again from the moved viewpoint, exactly as `holoray render` places it,
+// traces it into the device's buffers and shows it through the Presenter,
+// all on one device. Nothing renders while nothing changes.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -20,6 +21,8 @@
 #include "live/shown_codes.hpp"
 #include "live/view_controls.hpp"
 #include "live/window_module.hpp"
+#include "shot/shot_frames.hpp"
+#include "shot/shot_reader.hpp"
 
 namespace holoray::api {
 
@@ -45,6 +48,74 @@ struct Printer {
   }
 };
 
+// What live shows: a scene built once, the camera, and where the viewpoint
+// stands at each of its frames (a still has one).
+struct Source {
+  const RenderScene* scene = nullptr;
+  RenderSettings settings;
+  FrameCameraDesc choice;
+  std::string name;  // the scene or shot file, for messages
+  std::string encoding_path;  // the file the auto encoding follows
+  int frames = 1;
+  double fps = 24;
+  std::function<Viewpoint(int frame)> viewpoint;
+  std::function<void(int frame)> seek;  // a shot: the scene moved to the frame
+  std::unique_ptr<Renderer> renderer;   // a still's, which built it
+  std::unique_ptr<ShotFrames> shot;
+};
+
+// A still: the Renderer checks everything `render` checks and builds the
+// scene once; its own executor stays the CPU's (never used): the GPU path
+// is made on the window's instance.
+Source still_source(const Scene& scene, const Camera& camera, const RenderOptions& options) {
+  if (std::holds_alternative<Quilt>(camera))
+    throw std::invalid_argument("`Quilt`: a quilt is not shown live; show a Looking Glass's own panel image (`LookingGlass`)");
+  if (const auto* a = std::get_if<LensArray>(&camera); a && a->placement)
+    throw std::invalid_argument("`placement`: live moves the array with the viewpoint; place it by the viewpoint (and `focus_distance`)");
+  if (const auto* d = std::get_if<Display>(&camera); d && d->placement)
+    throw std::invalid_argument("`placement`: live moves the panel with the viewpoint; place it by the viewpoint (and `focus_distance`)");
+  Source s;
+  RenderOptions built = options;
+  built.device = "cpu";
+  built.aovs = {};
+  s.renderer = std::make_unique<Renderer>(scene, camera, built);
+  RendererState& state = detail::RendererAccess::state(*s.renderer);
+  s.scene = state.render_scene.get();
+  s.settings = state.settings;
+  s.choice = state.choice;
+  s.name = s.encoding_path = scene.source();
+  const Viewpoint vp = *state.scene->desc.viewpoint;
+  s.viewpoint = [vp](int) { return vp; };
+  return s;
+}
+
+// A shot (shot-format.md): its scene files built into one scene, its
+// objects and viewpoint at each frame; its [array] the camera unless a
+// pinhole, display or Looking Glass camera is given (as `holoray animate`).
+Source shot_source(const std::string& path, const std::optional<Camera>& camera, const RenderOptions& options) {
+  if (camera && std::holds_alternative<Quilt>(*camera))
+    throw std::invalid_argument("`Quilt`: a quilt is not shown live; show a Looking Glass's own panel image (`LookingGlass`)");
+  if (camera && std::holds_alternative<LensArray>(*camera))
+    throw std::invalid_argument("camera: the shot's [array] places the lens array; pass a pinhole, display or Looking Glass camera");
+  if (options.max_depth < 0 || options.max_depth > kMaxDepth)
+    throw std::invalid_argument(fmt::format("max_depth: expected 1 to {} (0: the scene's), got {}", kMaxDepth, options.max_depth));
+  Source s;
+  s.shot = std::make_unique<ShotFrames>(read_shot_file(path));
+  ShotFrames& shot = *s.shot;
+  s.scene = &shot.scene();
+  s.settings = shot.settings();
+  if (options.max_depth != 0) s.settings.max_depth = options.max_depth;
+  s.choice = camera ? frame_camera_desc(*camera) : FrameCameraDesc{FrameCameraDesc::Integral{shot.shot().array}, std::nullopt};
+  s.name = path;
+  s.encoding_path = shot.shot().objects.empty() ? path : shot.shot().objects.front().scene;
+  s.frames = shot.frame_count();
+  s.fps = shot.shot().fps;
+  s.viewpoint = [&shot](int frame) { return shot.viewpoint(frame); };
+  s.seek = [&shot](int frame) { shot.seek(frame); };
+  shot.seek(0);
+  return s;
+}
+
 // The first name `stem-NNNN.ext` in the working folder not yet taken.
 std::string next_free(const std::string& ext) {
   for (int n = 1;; ++n) {
@@ -55,16 +126,11 @@ std::string next_free(const std::string& ext) {
 
 class Session {
  public:
-  Session(const Scene& scene, const Camera& camera, const RenderOptions& options, const LiveOptions& live)
-      : live_(live), print_{live} {
+  Session(Source source, const RenderOptions& options, const LiveOptions& live)
+      : live_(live), print_{live}, source_(std::move(source)), options_(options) {
     const DeviceChoice device = parse_device(options.device);
     if (!device.gpu) throw std::invalid_argument("`device`: holoray live renders on the GPU path: gpu or gpu:N");
-    if (std::holds_alternative<Quilt>(camera))
-      throw std::invalid_argument("`Quilt`: a quilt is not shown live; show a Looking Glass's own panel image (`LookingGlass`)");
-    if (const auto* a = std::get_if<LensArray>(&camera); a && a->placement)
-      throw std::invalid_argument("`placement`: live moves the array with the viewpoint; place it by the viewpoint (and `focus_distance`)");
-    if (const auto* d = std::get_if<Display>(&camera); d && d->placement)
-      throw std::invalid_argument("`placement`: live moves the panel with the viewpoint; place it by the viewpoint (and `focus_distance`)");
+    if (options.spp < 1) throw std::invalid_argument(fmt::format("spp: expected at least 1 sample per pixel, got {}", options.spp));
     if (live.exit_after < 0) throw std::invalid_argument(fmt::format("exit after: expected 0 or more frames, got {}", live.exit_after));
     if (!live.screenshot.empty() && !is_supported_output(live.screenshot))
       throw std::invalid_argument(fmt::format("screenshot: expected a .png or .exr file, got '{}'", live.screenshot));
@@ -73,25 +139,13 @@ class Session {
                                "run it on a desktop, or under xvfb-run");
     if (!live.events.empty()) script_ = live::read_event_script(live.events);
     if (!live.record.empty()) std::filesystem::create_directories(live.record);
-    // The Renderer checks everything `render` checks and builds the scene
-    // once; its own executor stays the CPU's (never used): the GPU path is
-    // made below, on the window's instance.
-    RenderOptions built = options;
-    built.device = "cpu";
-    built.aovs = {};
-    renderer_ = std::make_unique<Renderer>(scene, camera, built);
-    state_ = &detail::RendererAccess::state(*renderer_);
-    options_ = options;
     encoding_ = live.encoding ? (*live.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
-                              : holoray::default_encoding(scene.source());
+                              : holoray::default_encoding(source_.encoding_path);
     thresholds_ = live::code_thresholds(encoding_);
-    const FrameCamera& placed = state_->camera();
+    playing_ = live.play && source_.frames > 1;
+    const FrameCamera placed = place();
     camera_.emplace(placed);
     panel_ = placed.get<PanelView>() || placed.get<LookingGlassCamera>();
-    if (const auto* desc = state_->choice.get<FrameCameraDesc::Integral>()) lens_fov_ = desc->array.fov_lens_deg;
-    start_.viewpoint = *state_->scene->desc.viewpoint;
-    if (!state_->choice.get<FrameCameraDesc::Pinhole>()) start_.focus_distance = state_->choice.focus_distance;
-    view_ = start_;
 
     live::WindowRequest request;
     request.width = placed.width(), request.height = placed.height();
@@ -101,7 +155,8 @@ class Session {
     window_ = live::open_window(request);
     try {
       gpu_ = std::make_unique<gpu::GpuRenderer>(device.index, window_->instance_extensions());
-      gpu_->load(gpu::lay_out(*state_->render_scene), gpu::GpuRenderer::frame_bytes(placed.width(), placed.height(), !panel_));
+      image_bytes_ = gpu::GpuRenderer::frame_bytes(placed.width(), placed.height(), !panel_);
+      follow();
       presenter_ = std::make_unique<gpu::Presenter>(*gpu_, [&](void* instance) { return window_->create_surface(instance); },
                                                     thresholds_);
     } catch (const gpu::GpuError& e) {
@@ -116,48 +171,82 @@ class Session {
     Clock::time_point first;
     while (!window_->closed()) {
       if (live_.stop && live_.stop()) break;
-      // A scripted run (--events, --exit-after) renders frame after frame.
-      const bool replaying = next < script_.size() || live_.exit_after > 0;
+      // A scripted run (--events, --exit-after) renders frame after frame,
+      // and so does a playing shot.
+      const bool busy = next < script_.size() || live_.exit_after > 0 || playing_;
       // Idle: wait for input (at most half a second, to ask `stop` again).
-      std::vector<InputEvent> input = window_->events(!dirty && !replaying);
+      std::vector<InputEvent> input = window_->events(!dirty && !busy);
       while (next < script_.size() && script_[next].frame <= frames_) input.push_back(script_[next++].event);
       for (const InputEvent& e : input) dirty |= apply(e);
       if (quit_) break;
-      if (!dirty && !replaying) continue;
+      if (playing_) dirty |= advance();
+      if (!dirty && !busy) continue;
       if (!show()) continue;  // minimised
       if (frames_ == 0) first = Clock::now();
       ++frames_;
       result.seconds = std::chrono::duration<double>(Clock::now() - first).count();
       dirty = false;
-      if (!live_.record.empty()) write_shown(fmt::format("{}/frame_{:06}.png", live_.record, frames_ - 1), false);
+      if (!live_.record.empty()) write_shown(fmt::format("{}/frame_{:04}.png", live_.record, frames_ - 1), false);
       if (live_.exit_after && frames_ >= live_.exit_after) break;
     }
     if (!live_.screenshot.empty() && frames_ > 0) write_shown(live_.screenshot, true);
     result.frames = frames_;
-    result.view = live::describe(view_);
+    result.view = live::describe(view());
+    result.shot_frame = shot_frame_;
     return result;
   }
 
  private:
+  // The view shown: the one the controls moved, else the source's at the shot's frame.
+  LiveView view() const {
+    if (moved_) return *moved_;
+    LiveView v;
+    v.viewpoint = source_.viewpoint(shot_frame_);
+    if (!source_.choice.get<FrameCameraDesc::Pinhole>()) v.focus_distance = source_.choice.focus_distance;
+    return v;
+  }
+  // The view the controls move, taken from the one shown on first use.
+  LiveView& moved() {
+    if (!moved_) moved_ = view();
+    return *moved_;
+  }
+
+  // A playing shot's frame from the clock (real time, looping); whether it changed.
+  bool advance() {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - play_start_).count();
+    const int frame = (play_from_ + int(std::floor(elapsed * source_.fps))) % source_.frames;
+    if (frame == shot_frame_) return false;
+    shot_frame_ = frame;
+    return true;
+  }
+
+  void play(bool on) {
+    playing_ = on;
+    play_start_ = Clock::now();
+    play_from_ = shot_frame_;
+  }
+
   // One input event; whether the view or what is shown changed.
   bool apply(const InputEvent& e) {
     const auto [w, h] = window_->framebuffer_size();
     switch (e.kind) {
-      case InputEvent::Kind::orbit: live::orbit(view_, e.dx, e.dy, w, h); return true;
-      case InputEvent::Kind::pan: live::pan(view_, e.dx, e.dy, h); return true;
-      case InputEvent::Kind::wheel: live::dolly(view_, e.dy); return true;
+      case InputEvent::Kind::orbit: live::orbit(moved(), e.dx, e.dy, w, h); return true;
+      case InputEvent::Kind::pan: live::pan(moved(), e.dx, e.dy, h); return true;
+      case InputEvent::Kind::wheel: live::dolly(moved(), e.dy); return true;
       case InputEvent::Kind::key: break;
     }
     const std::string& k = e.key;
+    const FrameCameraDesc& choice = source_.choice;
     if (k == "Escape" || k == "Q") quit_ = true;
     else if (k == "Up" || k == "Down") {
-      if (state_->choice.get<FrameCameraDesc::Pinhole>()) return said("a pinhole view has no array plane to move");
-      live::move_plane(view_, k == "Up" ? 1 : -1);
+      if (choice.get<FrameCameraDesc::Pinhole>()) return said("a pinhole view has no array plane to move");
+      live::move_plane(moved(), k == "Up" ? 1 : -1);
       return true;
     } else if (k == "Left" || k == "Right") {
-      if (!state_->choice.get<FrameCameraDesc::Integral>())
+      if (!choice.get<FrameCameraDesc::Integral>())
         return said("the lens field of view is a lens array's (a display's lenses are its file's)");
-      live::widen_lenses(view_, k == "Right" ? 1 : -1, placed_lens_fov());
+      const holoray::LensArray* a = camera_->lens_array();
+      live::widen_lenses(moved(), k == "Right" ? 1 : -1, a ? a->lens_fov_deg() : kDefaultLensFovDeg);
       return true;
     } else if (k == "A") {
       if (panel_) return said("a panel image is colour only");
@@ -171,15 +260,19 @@ class Session {
       print_(fmt::format("showing    {}", showing_.subaperture ? "the centre sub-aperture view" : "the EIA"));
       return true;
     } else if (k == "S" || k == "shift+S") {
-      if (frames_ > 0) {
-        const std::string name = next_free(k == "S" ? "png" : "exr");
-        write_shown(name, true);
-      }
+      if (frames_ > 0) write_shown(next_free(k == "S" ? "png" : "exr"), true);
     } else if (k == "Home") {
-      view_ = start_;
+      moved_.reset();
       return true;
     } else if (k == "Space") {
-      return said("no shot to play (a shot plays from `holoray animate`; live shows one scene)");
+      if (source_.frames < 2) return said("no shot to play: give one with --shot");
+      play(!playing_);
+      return true;
+    } else if (k == "PageDown" || k == "PageUp") {
+      if (source_.frames < 2) return said("no shot to step through: give one with --shot");
+      play(false);
+      shot_frame_ = (shot_frame_ + (k == "PageDown" ? 1 : source_.frames - 1)) % source_.frames;
+      return true;
     }
     return false;
   }
@@ -189,58 +282,67 @@ class Session {
     return false;
   }
 
-  double placed_lens_fov() const {
-    const holoray::LensArray* a = camera_->lens_array();
-    return a ? a->lens_fov_deg() : lens_fov_.value_or(kDefaultLensFovDeg);
-  }
-
   // The camera placed from the view, as `render` places it from a file's viewpoint.
   FrameCamera place() const {
-    FrameCameraDesc choice = state_->choice;
-    if (!choice.get<FrameCameraDesc::Pinhole>()) choice.focus_distance = view_.focus_distance;
-    if (auto* i = std::get_if<FrameCameraDesc::Integral>(&choice.kind); i && view_.lens_fov_deg) {
-      i->array.fov_lens_deg = view_.lens_fov_deg;
+    const LiveView v = view();
+    FrameCameraDesc choice = source_.choice;
+    if (!choice.get<FrameCameraDesc::Pinhole>()) choice.focus_distance = v.focus_distance;
+    if (auto* i = std::get_if<FrameCameraDesc::Integral>(&choice.kind); i && v.lens_fov_deg) {
+      i->array.fov_lens_deg = v.lens_fov_deg;
       i->array.gap.reset();
     }
-    const std::string& source = state_->scene->desc.source;
-    return make_frame_camera(choice, view_.viewpoint, source.empty() ? "the scene" : source);
+    return make_frame_camera(choice, v.viewpoint, source_.name.empty() ? "the scene" : source_.name);
+  }
+
+  // A shot's scene moved to the frame shown, laid out again on the device
+  // where its objects moved (the fast build: gpu_executor.cpp says why).
+  void follow() {
+    if (source_.seek && seeked_ != shot_frame_) source_.seek(shot_frame_), seeked_ = shot_frame_;
+    gpu::ScenePose now(source_.scene->accel());
+    if (uploaded_ && *uploaded_ == now) return;
+    gpu_->load(gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high), image_bytes_);
+    uploaded_ = std::move(now);
   }
 
   // Traces the view and shows it; false when the window had no room.
   bool show() {
     const auto t0 = Clock::now();
-    camera_.emplace(place());
-    RenderSettings settings = state_->settings;
-    if (const auto angle = camera_->pixel_angle()) settings.footprint = {0, *angle};
-    const RenderContext context(*state_->render_scene, settings);
-    const bool aovs = showing_.what != gpu::PackParams::colour;
-    const AovSet wanted{aovs, aovs, aovs, aovs};
-    const int W = camera_->width(), H = camera_->height();
-    gpu::PackParams pack;
-    pack.what = showing_.what;
-    pack.shown = {W, H};
-    pack.depth_scale = float(live::focus(view_));
-    const holoray::LensArray* array = camera_->lens_array();
-    if (showing_.subaperture && array) {
-      const LensArrayDesc& d = array->desc();
-      const int P = d.pixels_per_lens;
-      const bool lenticular = d.grid == holoray::Grid::lenticular;
-      pack.shown = {array->lens_count_x(), lenticular ? H : array->lens_count_y()};
-      pack.first = {P / 2, lenticular ? 0 : P / 2};
-      pack.step = {P, lenticular ? 1 : P};
-    }
     gpu::GpuFrameStats stats;
     try {
+      follow();
+      camera_.emplace(place());
+      RenderSettings settings = source_.settings;
+      if (const auto angle = camera_->pixel_angle()) settings.footprint = {0, *angle};
+      const RenderContext context(*source_.scene, settings);
+      const bool aovs = showing_.what != gpu::PackParams::colour;
+      const AovSet wanted{aovs, aovs, aovs, aovs};
+      const int W = camera_->width(), H = camera_->height();
+      gpu::PackParams pack;
+      pack.what = showing_.what;
+      pack.shown = {W, H};
+      pack.depth_scale = float(live::focus(view()));
+      const holoray::LensArray* array = camera_->lens_array();
+      if (showing_.subaperture && array) {
+        const LensArrayDesc& d = array->desc();
+        const int P = d.pixels_per_lens;
+        const bool lenticular = d.grid == holoray::Grid::lenticular;
+        pack.shown = {array->lens_count_x(), lenticular ? H : array->lens_count_y()};
+        pack.first = {P / 2, lenticular ? 0 : P / 2};
+        pack.step = {P, lenticular ? 1 : P};
+      }
       gpu_->trace(gpu::camera_frames(context, *camera_, wanted, options_.spp, 0, H), W, H, stats);
       if (!presenter_->show(pack, window_->framebuffer_size())) return false;
+      shown_ = pack;
     } catch (const gpu::GpuError& e) {
       throw std::runtime_error(e.what());
     }
-    shown_ = pack;
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const uint64_t rays = stats.eye_rays + stats.shadow_rays + stats.reflected_rays + stats.refracted_rays;
-    window_->set_title(fmt::format("holoray live: {:.1f} ms a frame, {:.1f} Mrays/s on {}{}", seconds * 1e3,
+    window_->set_title(fmt::format("holoray live: {:.1f} ms a frame, {:.1f} Mrays/s on {}{}{}", seconds * 1e3,
                                    stats.trace_seconds > 0 ? rays / stats.trace_seconds / 1e6 : 0.0, gpu_->describe(),
+                                   source_.frames > 1 ? fmt::format(", frame {} of {}{}", shot_frame_, source_.frames,
+                                                                    playing_ ? "" : " (paused)")
+                                                      : "",
                                    showing_.what ? fmt::format(", {}", kShown[showing_.what]) : ""));
     return true;
   }
@@ -248,12 +350,10 @@ class Session {
   // The frame shown: .png its pixels as shown, .exr its rendered colour.
   void write_shown(const std::string& path, bool say) {
     if (lower_extension(path) == ".exr") {
-      const int W = camera_->width(), H = camera_->height();
-      FrameBuffers fb = allocate_frame(W, H, {});
+      FrameBuffers fb = allocate_frame(camera_->width(), camera_->height(), {});
       gpu::GpuFrameStats stats;
-      // The colour of the last frame traced (an AOV shown traced it too).
       try {
-        gpu_->readback({}, fb, stats);
+        gpu_->readback({}, fb, stats);  // the colour of the last frame traced (an AOV shown traced it too)
       } catch (const gpu::GpuError& e) {
         throw std::runtime_error(e.what());
       }
@@ -267,18 +367,22 @@ class Session {
 
   const LiveOptions& live_;
   Printer print_;
+  Source source_;
   RenderOptions options_;
-  std::unique_ptr<Renderer> renderer_;
-  RendererState* state_ = nullptr;
   holoray::Encoding encoding_ = holoray::Encoding::linear;
   gpu::CodeThresholds thresholds_{};
   bool panel_ = false;
-  std::optional<double> lens_fov_;
-  LiveView start_, view_;
+  std::optional<LiveView> moved_;  // set once the controls moved the view
+  int shot_frame_ = 0, seeked_ = 0;
+  bool playing_ = false;
+  Clock::time_point play_start_;
+  int play_from_ = 0;
   std::vector<live::ScriptedEvent> script_;
   std::unique_ptr<live::Window> window_;
   std::unique_ptr<gpu::GpuRenderer> gpu_;
   std::unique_ptr<gpu::Presenter> presenter_;
+  uint64_t image_bytes_ = 0;
+  std::optional<gpu::ScenePose> uploaded_;
   std::optional<FrameCamera> camera_;  // as last placed
   gpu::PackParams shown_;
   Showing showing_;
@@ -289,7 +393,13 @@ class Session {
 }  // namespace
 
 LiveResult run_live(const Scene& scene, const Camera& camera, const RenderOptions& options, const LiveOptions& live) {
-  Session session(scene, camera, options, live);
+  Session session(still_source(scene, camera, options), options, live);
+  return session.run();
+}
+
+LiveResult run_live_shot(const std::string& shot, const std::optional<Camera>& camera, const RenderOptions& options,
+                         const LiveOptions& live) {
+  Session session(shot_source(shot, camera, options), options, live);
   return session.run();
 }
 

@@ -11,4 +11,8 @@ LiveResult run_live(const Scene&, const Camera&, const RenderOptions&, const Liv
                            "glslc): install libvulkan-dev and glslc and build again");
 }
 
+LiveResult run_live_shot(const std::string&, const std::optional<Camera>&, const RenderOptions&, const LiveOptions&) {
+  return run_live(Scene(), Pinhole{}, {}, {});
+}
+
 }  // namespace holoray::api
