@@ -103,7 +103,7 @@ int run_live(const LiveCommandOptions& o) {
       fmt::print("view       {}\n", result.view);
       if (!o.shot.empty()) fmt::print("shot       frame {}\n", result.shot_frame);
       fmt::print("frames     {} shown in {:.3f} s{}\n", result.frames, result.seconds,
-                 result.frames > 1 ? fmt::format(" ({:.1f} fps)", (result.frames - 1) / std::max(1e-9, result.seconds)) : "");
+                 result.frames > 1 ? fmt::format(" ({:.3g} fps)", (result.frames - 1) / std::max(1e-9, result.seconds)) : "");
     }
     return interrupt.requested() ? interrupt.exit_status() : 0;
   } catch (const std::exception& e) {
