@@ -123,7 +123,7 @@ TEST(Live, EventScriptErrorsSayWhereAndWhat) {
     }
     return "";
   };
-  EXPECT_EQ(error_of_script("1 orbit 3 4\n2 jump 1\n"), "2:3: expected an event: orbit, pan, wheel or key, found 'jump'");
+  EXPECT_EQ(error_of_script("1 orbit 3 4\n2 jump 1\n"), "2:3: expected an event: orbit, pan, pointer, wheel or key, found 'jump'");
   EXPECT_EQ(error_of_script("0 wheel 1\n"), "1:1: expected a frame number (1 or more), found '0'");
   EXPECT_EQ(error_of_script("3 wheel 1\n2 wheel 1\n"), "2:1: expected a frame number of 3 or more (frames ascend), found '2'");
   EXPECT_EQ(error_of_script("1 pan 3\n"), "1:8: expected DY, pixels, found the line's end");
@@ -224,6 +224,42 @@ TEST(Live, AShotSteppedToAFrameShowsAnimatesFrame) {
   if (std::stod(played.output.substr(shown + 10)) > 2.0 / 24) EXPECT_TRUE(moved) << played.output;
   const CommandResult lens = on_xvfb("live --shot " + dir.file("shot.toml") + " --lenses 8x8");
   EXPECT_EQ(lens.status, 2) << lens.output;
+}
+
+// --simulate: what an eye where the pointer is sees through the display,
+// exactly as `holoray simulate` computes it from render's float panel image.
+TEST(Live, SimulateShowsWhatHoloraySimulateComputesFromThePointersEye) {
+  NEED_XVFB();
+  TempDir dir;
+  write_text(dir.file("d.toml"), "[panel]\nresolution = [120, 80]\npixel_pitch_mm = 0.1\nsubpixels = \"rgb\"\n"
+                                 "[lens]\ngrid = \"lenticular\"\npitch_mm = 0.4317\nslant_deg = 9.46\nfocal_length_mm = 1.2\n");
+  write_text(dir.file("events.txt"), "1 pointer 90 20\n2 wheel 2\n");
+  const std::string display = " --display " + dir.file("d.toml");
+  const CommandResult live = on_xvfb("live " + kScene + display + " --simulate --events " + dir.file("events.txt") +
+                                     " --exit-after 3 --screenshot " + dir.file("shown.png"));
+  ASSERT_EQ(live.status, 0) << live.output;
+  // The eye, independently: the pointer 3/4 across the 120x80 window and
+  // 1/4 down puts it 3 mm right and 2 mm up of the 12x8 mm panel's centre;
+  // two wheel clicks take 600 mm to 0.81 of it.
+  const auto at = live.output.find("simulate   eye ");
+  ASSERT_NE(at, std::string::npos) << live.output;
+  std::istringstream in(live.output.substr(at + 15));
+  double x = 0, y = 0, z = 0;
+  char comma;
+  std::string mm, px;
+  int width = 0;
+  in >> x >> comma >> y >> comma >> z >> mm >> width;
+  EXPECT_NEAR(x, 3, 1e-12);
+  EXPECT_NEAR(y, 2, 1e-12);
+  EXPECT_NEAR(z, 486, 1e-9);
+  EXPECT_EQ(width, 120);
+  ASSERT_EQ(run_cli("render " + kScene + display + " --device gpu -q -o " + dir.file("panel.exr")).status, 0);
+  const std::string eye = live.output.substr(at + 15, live.output.find(' ', at + 15) - at - 15);
+  const CommandResult simulate = run_cli("simulate " + dir.file("panel.exr") + display + " --eye " + eye + " --width 120 -o " + dir.file("simulated.png"));
+  ASSERT_EQ(simulate.status, 0) << simulate.output;
+  EXPECT_TRUE(read_bytes(dir.file("shown.png")) == read_bytes(dir.file("simulated.png")));
+  const CommandResult lens_array = on_xvfb("live " + kScene + " --simulate");
+  EXPECT_EQ(lens_array.status, 2) << lens_array.output;  // --simulate needs --display
 }
 
 TEST(Live, FaultsEndWithTheirMessages) {

@@ -32,6 +32,11 @@ struct LiveOptions {
   std::string events;      ///< input replayed by frame number (live.md, "Scripted runs")
   std::string record;      ///< a folder: every frame shown as frame_NNNN.png (from 0)
   bool play = false;       ///< run_live_shot: the shot plays from the start (else Space plays it)
+  /// With a Display camera: show what an eye sees through the display
+  /// (simulate_view, preview.hpp) instead of the panel image, the eye where
+  /// the pointer is over the panel (display frame, 600 mm away at first;
+  /// the wheel brings it nearer or farther).
+  bool simulate = false;
   /// The 8-bit encoding shown and written; nullopt: srgb for a mesh
   /// scene, linear for NFF and Tachyon (as `holoray render`).
   std::optional<Encoding> encoding;
@@ -50,6 +55,10 @@ struct LiveResult {
   /// up X,Y,Z fov F focus D [lens-fov L]" (17 digits: the same doubles).
   std::string view;
   int shot_frame = 0;    ///< run_live_shot: the shot's frame shown last
+  /// simulate: the eye's last place, "X,Y,Z" (mm, display frame, 17
+  /// digits), and the width of the view it saw (SimulateOptions::width).
+  std::string eye_mm;
+  int simulated_width = 0;
 };
 
 /// Opens the window and shows `scene` through `camera` (a lens array, a

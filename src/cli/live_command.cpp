@@ -36,6 +36,8 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
   cmd->add_option("--encoding", r.encoding, "8-bit encoding shown and written: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon), as render's PNGs")
       ->check(one_of({"auto", "linear", "srgb"}))
       ->capture_default_str();
+  cmd->add_flag("--simulate", o.simulate, "With --display: show what an eye sees through the display (as holoray simulate) from where the pointer is over the panel; the wheel moves the eye nearer or farther (600 mm at first)")
+      ->needs(display);
   cmd->add_option("--monitor", o.monitor, "The monitor to open on, by index (0, 1, ...) or name; a display's panel is one of them (default: the primary)");
   CLI::Option* full = cmd->add_flag("--fullscreen", o.fullscreen, "Full screen on the monitor, at its mode (the default for a display or Looking Glass)");
   cmd->add_flag("--windowed", o.windowed, "In a window the image's size (the default for a lens array or a pinhole view)")->excludes(full);
@@ -48,7 +50,7 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
   cmd->add_flag("-q,--quiet", r.quiet, "Print nothing but errors");
   lay_out_help(*cmd,
                {{"Scene", {"--shot", "--play", "--camera-name", "--texture-path"}},
-                {"Window", {"--monitor", "--fullscreen", "--windowed", "--exit-after", "--screenshot", "--events", "--record",
+                {"Window", {"--simulate", "--monitor", "--fullscreen", "--windowed", "--exit-after", "--screenshot", "--events", "--record",
                             "--encoding", "--quiet"}},
                 {"Camera", {"--camera", "--resolution", "--display", "--looking-glass", "--views", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
@@ -87,6 +89,7 @@ int run_live(const LiveCommandOptions& o) {
     live.record = o.record;
     if (r.encoding != "auto") live.encoding = parse_encoding(r.encoding);
     live.play = o.play;
+    live.simulate = o.simulate;
     if (!r.quiet) live.print = [](const std::string& line) { fmt::print("{}\n", line); };
     live.stop = [&] { return interrupt.requested(); };
     api::LiveResult result;
@@ -102,6 +105,7 @@ int run_live(const LiveCommandOptions& o) {
     if (!r.quiet) {
       fmt::print("view       {}\n", result.view);
       if (!o.shot.empty()) fmt::print("shot       frame {}\n", result.shot_frame);
+      if (o.simulate) fmt::print("simulate   eye {} mm, {} px wide\n", result.eye_mm, result.simulated_width);
       fmt::print("frames     {} shown in {:.3f} s{}\n", result.frames, result.seconds,
                  result.frames > 1 ? fmt::format(" ({:.3g} fps)", (result.frames - 1) / std::max(1e-9, result.seconds)) : "");
     }

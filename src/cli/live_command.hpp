@@ -23,6 +23,7 @@ struct LiveCommandOptions {
   std::string record;       ///< --record DIR
   std::string shot;         ///< --shot FILE (instead of a scene)
   bool play = false;        ///< --play
+  bool simulate = false;    ///< --simulate
 };
 
 CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o);

@@ -1,10 +1,11 @@
-// holoray/gpu: the GPU path's executor, the only place that includes
-// Vulkan (gpu_renderer.cpp). A Vulkan device chosen once, the scene's
-// arrays uploaded once (gpu_scene.hpp), then frames rendered by the
+// holoray/gpu: the GPU path's executor. A Vulkan device chosen once, the
+// scene's arrays uploaded once (gpu_scene.hpp), then frames rendered by the
 // compute shader shaders/trace.comp, band by band of rows (each dispatch
 // short enough for a desktop GPU's watchdog), and read back into the CPU
-// path's FrameBuffers. The loader is opened at run time: a machine without
-// Vulkan runs everything else.
+// path's FrameBuffers (or shown in a window: presenter.hpp). Vulkan itself
+// is included by src/gpu's .cpp files only (vulkan_device.hpp), and the
+// loader is opened at run time: a machine without Vulkan runs everything
+// else.
 #pragma once
 
 #include <cstdint>

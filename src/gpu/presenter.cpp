@@ -42,6 +42,7 @@ struct Presenter::Impl {
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
   Buffer thresholds, packed;
+  Buffer host_image;  // show_image's, host-visible
   // The packed frame as an image, the blit's source.
   vk::raii::Image frame = nullptr;
   vk::raii::DeviceMemory frame_memory = nullptr;
@@ -222,14 +223,36 @@ Presenter::~Presenter() {
 }
 
 bool Presenter::show(const PackParams& pack, std::array<int, 2> window) {
-  Impl& m = *impl_;
-  GpuRenderer::Impl& r = m.r;
+  GpuRenderer::Impl& r = impl_->r;
   if (r.traced[0] == 0) throw std::logic_error("Presenter::show before a frame was traced");
   if (pack.what != PackParams::colour && !r.traced_aovs) throw std::logic_error("Presenter::show: an AOV of a frame traced without");
   for (int a = 0; a < 2; ++a)
     if (pack.shown[a] < 1 || pack.first[a] < 0 || pack.step[a] < 1 ||
         int64_t(pack.first[a]) + int64_t(pack.shown[a] - 1) * pack.step[a] >= r.traced[a])
       throw std::logic_error("Presenter::show: the pixels shown are not all in the frame traced");
+  PackParams p = pack;
+  p.source = {r.traced[0], r.traced[1]};
+  return present(p, window, r.colour);
+}
+
+bool Presenter::show_image(const float* rgb, int width, int height, std::array<int, 2> window) {
+  Impl& m = *impl_;
+  if (width < 1 || height < 1) throw std::logic_error("Presenter::show_image: an empty image");
+  const vk::DeviceSize bytes = vk::DeviceSize(width) * vk::DeviceSize(height) * 12;
+  try {
+    if (m.host_image.size < bytes) m.host_image = m.r.make_buffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
+  } catch (const vk::SystemError& e) {
+    rethrow_vulkan(e, m.r.info.name);
+  }
+  std::memcpy(m.host_image.mapped, rgb, bytes);
+  PackParams p;
+  p.source = p.shown = {width, height};
+  return present(p, window, m.host_image);
+}
+
+bool Presenter::present(const PackParams& p, std::array<int, 2> window, const Buffer& source) {
+  Impl& m = *impl_;
+  GpuRenderer::Impl& r = m.r;
   try {
     for (int attempt = 0; attempt < 2; ++attempt) {
       if (window != m.window || !*m.swapchain) m.make_swapchain(window);
@@ -242,10 +265,8 @@ bool Presenter::show(const PackParams& pack, std::array<int, 2> window) {
         m.window = {-1, -1};  // made again on the next attempt
         continue;
       }
-      m.make_frame(pack.shown);
-      m.bind(0, r.colour), m.bind(1, r.aov), m.bind(2, m.thresholds), m.bind(3, m.packed);
-      PackParams p = pack;
-      p.source = {r.traced[0], r.traced[1]};
+      m.make_frame(p.shown);
+      m.bind(0, source), m.bind(1, r.aov), m.bind(2, m.thresholds), m.bind(3, m.packed);
       m.record(p, m.images[index]);
       const vk::PipelineStageFlags wait_stage = vk::PipelineStageFlagBits::eTransfer;
       vk::CommandBuffer raw = *m.commands;
@@ -265,7 +286,7 @@ bool Presenter::show(const PackParams& pack, std::array<int, 2> window) {
       if (r.device.waitForFences({*m.fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
         throw GpuError(fmt::format("the GPU ({}) did not finish", r.info.name));
       r.device.resetFences({*m.fence});
-      m.shown = pack.shown;
+      m.shown = p.shown;
       return true;
     }
     return false;

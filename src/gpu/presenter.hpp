@@ -15,6 +15,8 @@
 
 namespace holoray::gpu {
 
+struct Buffer;  // a device buffer (vulkan_device.hpp)
+
 /// What a shown frame is made of (shaders/pack.comp's push constants).
 struct PackParams {
   enum What : int32_t { colour = 0, albedo = 1, depth = 2, normal = 3, id = 4 };
@@ -48,11 +50,17 @@ class Presenter {
   /// made again when it changed). Returns false when nothing could be shown
   /// (a minimised window). Throws GpuError on a lost device.
   bool show(const PackParams& pack, std::array<int, 2> window);
+  /// The same for an image made on the host (`rgb`: width x height x 3
+  /// linear floats, rows top down, e.g. what an eye sees through the
+  /// display): uploaded, then packed and shown whole, as colour.
+  bool show_image(const float* rgb, int width, int height, std::array<int, 2> window);
   /// The last frame shown as packed, before scaling: pack.shown pixels,
   /// RGB, 8 bits, rows top down (read back from the device).
   std::vector<uint8_t> shown_rgb() const;
 
  private:
+  // Packs `source` (colour, p.source pixels) as `p` says and presents it.
+  bool present(const PackParams& p, std::array<int, 2> window, const Buffer& source);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -69,13 +69,14 @@ std::vector<ScriptedEvent> read_event_script(const std::string& path) {
     e.frame = int(frame);
     if (!out.empty() && e.frame < out.back().frame)
       fail(&t[0], fmt::format("a frame number of {} or more (frames ascend)", out.back().frame));
-    if (t.size() < 2) fail(nullptr, "an event: orbit, pan, wheel or key");
+    if (t.size() < 2) fail(nullptr, "an event: orbit, pan, pointer, wheel or key");
     const std::string& kind = t[1].text;
     size_t arguments = 0;
-    if (kind == "orbit" || kind == "pan") {
-      e.event.kind = kind == "orbit" ? InputEvent::Kind::orbit : InputEvent::Kind::pan;
-      e.event.dx = number_at(2, "DX, pixels");
-      e.event.dy = number_at(3, "DY, pixels");
+    if (kind == "orbit" || kind == "pan" || kind == "pointer") {
+      e.event.kind = kind == "orbit" ? InputEvent::Kind::orbit : kind == "pan" ? InputEvent::Kind::pan : InputEvent::Kind::pointer;
+      const bool at = kind == "pointer";
+      e.event.dx = number_at(2, at ? "X, pixels from the left" : "DX, pixels");
+      e.event.dy = number_at(3, at ? "Y, pixels from the top" : "DY, pixels");
       arguments = 2;
     } else if (kind == "wheel") {
       e.event.kind = InputEvent::Kind::wheel;
@@ -88,7 +89,7 @@ std::vector<ScriptedEvent> read_event_script(const std::string& path) {
       e.event.key = t[2].text;
       arguments = 1;
     } else {
-      fail(&t[1], "an event: orbit, pan, wheel or key");
+      fail(&t[1], "an event: orbit, pan, pointer, wheel or key");
     }
     if (t.size() > 2 + arguments) fail(&t[2 + arguments], "the line's end");
     out.push_back(e);

@@ -4,6 +4,7 @@
 //
 //     FRAME orbit DX DY    a left-button drag by DX, DY pixels (y down)
 //     FRAME pan DX DY      a shift-drag
+//     FRAME pointer X Y    the pointer at X, Y (no button held: --simulate's eye)
 //     FRAME wheel CLICKS   the wheel (up > 0)
 //     FRAME key NAME       a key, named as the guide's table names it
 //

@@ -1,7 +1,7 @@
 // holoray/live: window.hpp's Window through GLFW 3 (Debian libglfw3-dev),
 // built as the module holoray_glfw.so. Drag with the left button orbits,
-// with shift held or another button pans; the wheel dollies; keys arrive
-// by name.
+// with shift held or another button pans; the pointer's place without a
+// button; the wheel; keys by name.
 #include <vulkan/vulkan.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -66,6 +66,8 @@ class GlfwWindow final : public holoray::live::Window {
       GlfwWindow& me = *self(win);
       if (me.dragging_)
         me.queue_.push_back({me.panning_ ? InputEvent::Kind::pan : InputEvent::Kind::orbit, x - me.x_, y - me.y_, ""});
+      else
+        me.queue_.push_back({InputEvent::Kind::pointer, x, y, ""});
       me.x_ = x, me.y_ = y;
     });
   }

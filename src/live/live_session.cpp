@@ -21,6 +21,7 @@
 #include "live/shown_codes.hpp"
 #include "live/view_controls.hpp"
 #include "live/window_module.hpp"
+#include "preview/simulate.hpp"
 #include "shot/shot_frames.hpp"
 #include "shot/shot_reader.hpp"
 
@@ -143,6 +144,11 @@ class Session {
                               : holoray::default_encoding(source_.encoding_path);
     thresholds_ = live::code_thresholds(encoding_);
     playing_ = live.play && source_.frames > 1;
+    if (live.simulate) {
+      const auto* d = source_.choice.get<FrameCameraDesc::Display>();
+      if (!d) throw std::invalid_argument("`simulate`: goes with a display file (`Display`): what an eye sees through its lens sheet");
+      display_ = d->display;
+    }
     const FrameCamera placed = place();
     camera_.emplace(placed);
     panel_ = placed.get<PanelView>() || placed.get<LookingGlassCamera>();
@@ -151,7 +157,7 @@ class Session {
     request.width = placed.width(), request.height = placed.height();
     request.title = "holoray live";
     request.monitor = live.monitor;
-    request.fullscreen = live.fullscreen.value_or(panel_);
+    request.fullscreen = live.fullscreen.value_or(panel_ && !live.simulate);
     window_ = live::open_window(request);
     try {
       gpu_ = std::make_unique<gpu::GpuRenderer>(device.index, window_->instance_extensions());
@@ -193,6 +199,8 @@ class Session {
     result.frames = frames_;
     result.view = live::describe(view());
     result.shot_frame = shot_frame_;
+    if (display_) result.eye_mm = fmt::format("{:.17g},{:.17g},{:.17g}", eye_mm_.x, eye_mm_.y, eye_mm_.z);
+    result.simulated_width = simulated_.width;
     return result;
   }
 
@@ -229,7 +237,21 @@ class Session {
   // One input event; whether the view or what is shown changed.
   bool apply(const InputEvent& e) {
     const auto [w, h] = window_->framebuffer_size();
+    // --simulate: the pointer is the eye's place over the panel, the wheel
+    // its distance; the panel image stays as traced.
+    if (display_ && (e.kind == InputEvent::Kind::pointer || e.kind == InputEvent::Kind::wheel)) {
+      if (e.kind == InputEvent::Kind::pointer) {
+        eye_mm_.x = (e.dx / std::max(1, w) - 0.5) * display_->width * display_->pixel_pitch_mm;
+        eye_mm_.y = (0.5 - e.dy / std::max(1, h)) * display_->height * display_->pixel_pitch_mm;
+      } else {
+        eye_mm_.z = std::max(1.0, eye_mm_.z * std::pow(0.9, e.dy));
+      }
+      return true;
+    }
+    if (e.kind == InputEvent::Kind::pointer) return false;
+    retrace_ = true;
     switch (e.kind) {
+      case InputEvent::Kind::pointer: return false;
       case InputEvent::Kind::orbit: live::orbit(moved(), e.dx, e.dy, w, h); return true;
       case InputEvent::Kind::pan: live::pan(moved(), e.dx, e.dy, h); return true;
       case InputEvent::Kind::wheel: live::dolly(moved(), e.dy); return true;
@@ -330,26 +352,48 @@ class Session {
         pack.first = {P / 2, lenticular ? 0 : P / 2};
         pack.step = {P, lenticular ? 1 : P};
       }
-      gpu_->trace(gpu::camera_frames(context, *camera_, wanted, options_.spp, 0, H), W, H, stats);
-      if (!presenter_->show(pack, window_->framebuffer_size())) return false;
+      if (!display_) {
+        gpu_->trace(gpu::camera_frames(context, *camera_, wanted, options_.spp, 0, H), W, H, stats);
+        if (!presenter_->show(pack, window_->framebuffer_size())) return false;
+      } else {
+        // What an eye sees through the display (preview/simulate.hpp), from
+        // the panel image traced on the device and read back once per view.
+        if (retrace_) {
+          gpu_->trace(gpu::camera_frames(context, *camera_, {}, options_.spp, 0, H), W, H, stats);
+          panel_image_ = allocate_frame(W, H, {});
+          gpu_->readback({}, panel_image_, stats);
+          retrace_ = false;
+        }
+        SimulateOptions so;
+        so.eye_mm = eye_mm_;
+        so.width = std::max(1, window_->framebuffer_size()[0]);
+        simulated_ = simulate_view(panel_image_.colour, *display_, so);
+        if (!presenter_->show_image(simulated_.data.data(), simulated_.width, simulated_.height, window_->framebuffer_size()))
+          return false;
+        pack = {};
+        pack.shown = {simulated_.width, simulated_.height};
+      }
       shown_ = pack;
     } catch (const gpu::GpuError& e) {
       throw std::runtime_error(e.what());
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const uint64_t rays = stats.eye_rays + stats.shadow_rays + stats.reflected_rays + stats.refracted_rays;
-    window_->set_title(fmt::format("holoray live: {:.1f} ms a frame, {:.1f} Mrays/s on {}{}{}", seconds * 1e3,
+    window_->set_title(fmt::format("holoray live: {:.1f} ms a frame, {:.1f} Mrays/s on {}{}{}{}", seconds * 1e3,
                                    stats.trace_seconds > 0 ? rays / stats.trace_seconds / 1e6 : 0.0, gpu_->describe(),
                                    source_.frames > 1 ? fmt::format(", frame {} of {}{}", shot_frame_, source_.frames,
                                                                     playing_ ? "" : " (paused)")
                                                       : "",
-                                   showing_.what ? fmt::format(", {}", kShown[showing_.what]) : ""));
+                                   showing_.what ? fmt::format(", {}", kShown[showing_.what]) : "",
+                                   display_ ? fmt::format(", eye {:.0f},{:.0f},{:.0f} mm", eye_mm_.x, eye_mm_.y, eye_mm_.z) : ""));
     return true;
   }
 
   // The frame shown: .png its pixels as shown, .exr its rendered colour.
   void write_shown(const std::string& path, bool say) {
-    if (lower_extension(path) == ".exr") {
+    if (lower_extension(path) == ".exr" && display_) {
+      write_image(path, simulated_, holoray::Encoding::linear);
+    } else if (lower_extension(path) == ".exr") {
       FrameBuffers fb = allocate_frame(camera_->width(), camera_->height(), {});
       gpu::GpuFrameStats stats;
       try {
@@ -372,6 +416,13 @@ class Session {
   holoray::Encoding encoding_ = holoray::Encoding::linear;
   gpu::CodeThresholds thresholds_{};
   bool panel_ = false;
+  // --simulate: the display, the eye (display frame, mm), the panel image
+  // traced for the view (again only when the view changed) and what the eye sees.
+  std::optional<DisplayDesc> display_;
+  Vec3 eye_mm_{0, 0, 600};
+  bool retrace_ = true;
+  FrameBuffers panel_image_;
+  ImageBuffer simulated_;
   std::optional<LiveView> moved_;  // set once the controls moved the view
   int shot_frame_ = 0, seeked_ = 0;
   bool playing_ = false;

@@ -15,9 +15,11 @@ namespace holoray::live {
 
 /// One input event, in the window's framebuffer pixels.
 struct InputEvent {
-  enum class Kind { orbit, pan, wheel, key };
+  enum class Kind { orbit, pan, wheel, key, pointer };
   Kind kind = Kind::key;
-  double dx = 0, dy = 0;  ///< orbit and pan: the pointer's move (x right, y down); wheel: dy clicks, up > 0
+  /// orbit and pan: the pointer's move (x right, y down); wheel: dy clicks,
+  /// up > 0; pointer: where it is (no button held), from the top left.
+  double dx = 0, dy = 0;
   std::string key;        ///< key: its name, as live.md's table writes it ("S", "shift+S", "Up", "Space")
 };
 
