@@ -71,7 +71,10 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
 int run_live(const LiveCommandOptions& o) {
   try {
     const RenderCommandOptions& r = o.camera;
-    if (r.scene.empty() == o.shot.empty()) throw std::invalid_argument("holoray live: give a scene file or --shot FILE");
+    if (r.scene.empty() == o.shot.empty()) {  // a usage error: CLI11 made the two exclusive, not one required
+      std::fprintf(stderr, "holoray: error: live: give a scene file, or a shot with --shot FILE\n");
+      return 2;
+    }
     const api::Camera camera = camera_of(r);
     const CameraOptions& v = r.view;
     api::RenderOptions options;

@@ -135,10 +135,10 @@ class Session {
     if (live.exit_after < 0) throw std::invalid_argument(fmt::format("exit after: expected 0 or more frames, got {}", live.exit_after));
     if (!live.screenshot.empty() && !is_supported_output(live.screenshot))
       throw std::invalid_argument(fmt::format("screenshot: expected a .png or .exr file, got '{}'", live.screenshot));
+    if (!live.events.empty()) script_ = live::read_event_script(live.events);
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
       throw std::runtime_error("holoray live needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set: "
                                "run it on a desktop, or under xvfb-run");
-    if (!live.events.empty()) script_ = live::read_event_script(live.events);
     if (!live.record.empty()) std::filesystem::create_directories(live.record);
     encoding_ = live.encoding ? (*live.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
                               : holoray::default_encoding(source_.encoding_path);
