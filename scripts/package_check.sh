@@ -3,7 +3,8 @@
 # (CPack), installs it with apt, then from an empty folder, with only the
 # system's folders on PATH, checks that /usr/bin/holoray runs (--version, a
 # small render of an installed example, an animation with --video, which loads
-# the FFmpeg module from /usr/lib/holoray), that the man page and the bash
+# the FFmpeg module from /usr/lib/holoray, a frame of holoray live under Xvfb,
+# which loads the window module from there), that the man page and the bash
 # completion are installed (the completion completing in bash), that Debian's
 # python3 imports the module and renders with it, that examples/api builds
 # against the installed C++ package (find_package(holoray)), and removes
@@ -43,6 +44,11 @@ holoray render "$examples/primitives.nff" --lenses 16x16 --pixels-per-lens 4 -o 
 [ -s t.png ] || { echo "package_check: render wrote no t.png" >&2; exit 1; }
 holoray animate "$examples/shots/swinging_box.toml" -o frames --video s.mkv -q
 [ -s s.mkv ] || { echo "package_check: animate --video wrote no s.mkv" >&2; exit 1; }
+# holoray live from the package: the window module from /usr/lib/holoray, a
+# frame shown under Xvfb on the GPU path's device (lavapipe here).
+[ -f /usr/lib/holoray/holoray_glfw.so ] || { echo "package_check: no /usr/lib/holoray/holoray_glfw.so" >&2; exit 1; }
+xvfb-run -a holoray live "$examples/primitives.nff" --lenses 16x16 --pixels-per-lens 4 --exit-after 1 --screenshot l.png -q
+[ -s l.png ] || { echo "package_check: holoray live wrote no l.png" >&2; exit 1; }
 # Under mpirun, the installed holoray becomes /usr/lib/holoray/holoray-mpi:
 # two ranks write the still of one process.
 if [ -x /usr/lib/holoray/holoray-mpi ] && command -v mpirun >/dev/null; then
