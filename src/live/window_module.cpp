@@ -1,13 +1,9 @@
 #include "live/window_module.hpp"
 
-#include <dlfcn.h>
-#include <fmt/format.h>
-
-#include <filesystem>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <vector>
+
+#include "util/module_loader.hpp"
 
 namespace holoray::live {
 
@@ -16,34 +12,14 @@ namespace {
 using OpenFn = decltype(&holoray_open_window);
 
 OpenFn load_module() {
-  static std::once_flag once;
-  static OpenFn open = nullptr;
-  static std::string why;
-  std::call_once(once, [] {
-    std::vector<std::string> candidates;
-    std::error_code ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) candidates.push_back((exe.parent_path().parent_path() / "lib/holoray/holoray_glfw.so").string());
 #ifdef HOLORAY_GLFW_MODULE
-    candidates.push_back(HOLORAY_GLFW_MODULE);
+  return reinterpret_cast<OpenFn>(
+      module_symbol("holoray_glfw.so", HOLORAY_GLFW_MODULE, "holoray_open_window", "holoray's window module is not installed"));
+#else
+  return reinterpret_cast<OpenFn>(module_symbol("holoray_glfw.so", "", "holoray_open_window",
+                                                "this holoray was built without its window module (CMake found no GLFW): "
+                                                "install libglfw3-dev and build again"));
 #endif
-    for (const std::string& path : candidates) {
-      if (!std::filesystem::exists(path, ec)) continue;
-      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        why = dlerror();
-        return;
-      }
-      open = reinterpret_cast<OpenFn>(dlsym(handle, "holoray_open_window"));
-      if (!open) why = fmt::format("'{}' has no holoray_open_window", path);
-      return;
-    }
-    why = candidates.size() > 1 || candidates.empty()
-              ? fmt::format("holoray's window module is not installed (looked for {})", fmt::join(candidates, ", "))
-              : "this holoray was built without its window module (CMake found no GLFW): install libglfw3-dev and build again";
-  });
-  if (!open) throw std::runtime_error(why);
-  return open;
 }
 
 }  // namespace

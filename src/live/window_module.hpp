@@ -1,6 +1,6 @@
-// holoray/live: the GLFW module (holoray_glfw.so) found and loaded once per
-// process, beside an installed binary in ../lib/holoray, else where the
-// build put it (as video/encoder_module.cpp loads FFmpeg's).
+// holoray/live: windows from the GLFW module (holoray_glfw.so), loaded on
+// the first (util/module_loader.hpp), as the FFmpeg module is on the first
+// video.
 #pragma once
 
 #include <memory>
