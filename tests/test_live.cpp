@@ -38,9 +38,21 @@ std::string xvfb_run() {
   return fmt::format("xvfb-run -a -n {} -s '-screen 0 1280x1024x24' ", 100 + (::getpid() % 200) * 16 + calls++ % 16);
 }
 
+// `command` on a fresh Xvfb display of its own; tried again on another
+// display when Xvfb could not start (two xvfb-run -a that chose one number
+// at once: the loser's server fails).
+CommandResult with_xvfb(const std::string& command, const std::string& env = "") {
+  CommandResult r;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    r = run_shell(env + " " + xvfb_run() + command);
+    if (r.output.find("Xvfb failed to start") == std::string::npos) break;
+  }
+  return r;
+}
+
 // `holoray ARGS` on a fresh Xvfb display of its own.
 CommandResult on_xvfb(const std::string& args, const std::string& env = "") {
-  return run_shell(env + " " + xvfb_run() + std::string(HOLORAY_CLI) + " " + args);
+  return with_xvfb(std::string(HOLORAY_CLI) + " " + args, env);
 }
 
 #define NEED_XVFB() \
@@ -291,10 +303,24 @@ TEST(Live, ClosingTheWindowMidRenderExitsCleanly) {
                          "/usr/bin/python3 {}/scripts/xwindow.py close 'holoray live' 60 || {{ kill $pid; exit 3; }}\n"
                          "wait $pid\n",
                          HOLORAY_CLI, kScene, kArray, dir.file("frames"), dir.file("log"), source_dir()));
-  const CommandResult r = run_shell(xvfb_run() + "sh " + dir.file("run.sh"));
+  const CommandResult r = with_xvfb("sh " + dir.file("run.sh"));
   EXPECT_EQ(r.status, 0) << r.output << read_bytes(dir.file("log"));
   const std::string log = read_bytes(dir.file("log"));
   EXPECT_NE(log.find("frames     "), std::string::npos) << log;
   // Every frame written is whole (written under a temporary name, renamed).
   for (const auto& [name, bytes] : folder_bytes(dir.file("frames"))) EXPECT_TRUE(name.ends_with(".png")) << name;
+}
+
+// Ctrl-C (SIGINT) ends the run between frames, rendering or idle: status 130.
+TEST(Live, AnInterruptEndsTheRunWith130) {
+  NEED_XVFB();
+  TempDir dir;
+  for (const char* exit_after : {" --exit-after 1000000", ""}) {
+    write_text(dir.file("run.sh"), fmt::format("{} live {}{}{} -q &\npid=$!\n"
+                                               "/usr/bin/python3 {}/scripts/xwindow.py wait 'holoray live:' 60 > /dev/null\n"
+                                               "kill -INT $pid\nwait $pid\n",
+                                               HOLORAY_CLI, kScene, kArray, exit_after, source_dir()));
+    const CommandResult r = with_xvfb("sh " + dir.file("run.sh"));
+    EXPECT_EQ(r.status, 130) << (*exit_after ? "rendering" : "idle") << "\n" << r.output;
+  }
 }
