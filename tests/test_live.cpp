@@ -1,5 +1,6 @@
 // `holoray live` (issue 56) under Xvfb on the GPU path's device (lavapipe
-// where there is no GPU): the frame shown is `holoray render --device gpu`'s
+// where there is no GPU): the frame shown (an EIA, a pinhole view, a
+// display's or a Looking Glass's panel) is `holoray render --device gpu`'s
 // PNG byte for byte, a replayed orbit and focus change shows what render
 // gives from the moved viewpoint and plane, --record keeps every frame, and
 // each fault ends with its message and status.
@@ -154,14 +155,26 @@ TEST(Live, EventScriptErrorsSayWhereAndWhat) {
 TEST(Live, TheFrameShownIsTheGpuRenderByteForByte) {
   NEED_XVFB();
   TempDir dir;
+  // A small slanted-lenticular panel over BGR subpixels, and a Looking
+  // Glass calibration shrunk to 96x128 (as tests/test_gpu_path.cpp does).
+  write_text(dir.file("d.toml"), "[panel]\nresolution = [120, 80]\npixel_pitch_mm = 0.1\nsubpixels = \"bgr\"\n"
+                                 "[lens]\ngrid = \"lenticular\"\npitch_mm = 0.4317\nslant_deg = 9.46\nfocal_length_mm = 1.2\n");
+  std::string glass = read_bytes(source_dir() + "/examples/displays/looking_glass_example_calibration.json");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\"screenW\": {\"value\": 1536.0}", "\"screenW\": {\"value\": 96.0}"},
+                                 {"\"screenH\": {\"value\": 2048.0}", "\"screenH\": {\"value\": 128.0}"},
+                                 {"\"DPI\": {\"value\": 324.0}", "\"DPI\": {\"value\": 20.25}"}})
+    glass.replace(glass.find(from), from.size(), to);
+  write_text(dir.file("lg.json"), glass);
   const struct {
     const char* what;
     std::string camera;
   } cases[] = {{"lens array", kArray},
                {"hex lens array", kArray + " --grid hex"},
-               {"pinhole, sRGB", " --camera pinhole --resolution 96x64 --encoding srgb"}};
+               {"pinhole, sRGB", " --camera pinhole --resolution 96x64 --encoding srgb"},
+               {"display panel, BGR subpixels", " --display " + dir.file("d.toml")},
+               {"Looking Glass panel", " --looking-glass " + dir.file("lg.json")}};
   for (const auto& c : cases) {
-    const CommandResult live = on_xvfb("live " + kScene + c.camera + " --exit-after 2 --screenshot " + dir.file("shown.png"));
+    const CommandResult live = on_xvfb("live " + kScene + c.camera + " --windowed --exit-after 2 --screenshot " + dir.file("shown.png"));
     ASSERT_EQ(live.status, 0) << c.what << "\n" << live.output;
     EXPECT_NE(live.output.find("wrote      " + dir.file("shown.png")), std::string::npos) << live.output;
     EXPECT_NE(live.output.find("frames     2 shown"), std::string::npos) << live.output;

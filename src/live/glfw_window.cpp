@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -131,6 +132,12 @@ extern "C" __attribute__((visibility("default"))) holoray::live::Window* holoray
     return nullptr;
   };
   glfwSetErrorCallback(on_error);
+#ifdef GLFW_PLATFORM
+  // GLFW 3.4 (Debian 13) tries Wayland first, and libwayland complains on
+  // stderr where there is no Wayland session ("XDG_RUNTIME_DIR is invalid"):
+  // the platform the environment names, X11 where only DISPLAY is set.
+  if (!std::getenv("WAYLAND_DISPLAY") && std::getenv("DISPLAY")) glfwInitHint(GLFW_PLATFORM, GLFW_PLATFORM_X11);
+#endif
   if (!glfwInit()) return fail("no window could be opened (GLFW: " + glfw_error + ")");
   if (!glfwVulkanSupported()) {
     glfwTerminate();
