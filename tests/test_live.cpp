@@ -13,6 +13,9 @@
 #include <regex>
 #include <sstream>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "holoray/errors.hpp"
@@ -30,34 +33,58 @@ namespace {
 const std::string kScene = source_dir() + "/examples/primitives.nff";
 const std::string kArray = " --lenses 24x24 --pixels-per-lens 6";
 
-bool have_xvfb() { return run_shell("command -v xvfb-run").status == 0; }
+bool have_xvfb() { return run_shell("command -v Xvfb").status == 0; }
 
-// xvfb-run on a display of its own: -a looks for a free number from -n up,
-// and test processes running side by side (ctest -j) start apart.
-std::string xvfb_run() {
-  static int calls = 0;
-  return fmt::format("xvfb-run -a -n {} -s '-screen 0 1280x1024x24' ", 100 + (::getpid() % 200) * 16 + calls++ % 16);
-}
-
-// `command` on a fresh Xvfb display of its own; tried again on another
-// display when Xvfb could not start (two xvfb-run -a that chose one number
-// at once: the loser's server fails).
-CommandResult with_xvfb(const std::string& command, const std::string& env = "") {
-  CommandResult r;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    r = run_shell(env + " " + xvfb_run() + command);
-    if (r.output.find("Xvfb failed to start") == std::string::npos) break;
+// One Xvfb for this test process, on a display number Xvfb itself found
+// free (-displayfd: no race between test processes running side by side,
+// as two `xvfb-run -a` have), stopped when the process ends.
+class Xvfb {
+ public:
+  static const std::string& display() {
+    static Xvfb x;
+    return x.name_;
   }
-  return r;
+  ~Xvfb() {
+    if (pid_ > 0) ::kill(pid_, SIGTERM), ::waitpid(pid_, nullptr, 0);
+  }
+
+ private:
+  Xvfb() {
+    int fds[2];
+    if (::pipe(fds) != 0) return;
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::close(fds[0]);
+      const int null = ::open("/dev/null", O_WRONLY);
+      ::dup2(null, 1), ::dup2(null, 2);
+      const std::string fd = std::to_string(fds[1]);
+      ::execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+               static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    ::close(fds[1]);
+    std::string number;
+    char c;
+    while (::read(fds[0], &c, 1) == 1 && c != '\n') number += c;
+    ::close(fds[0]);
+    if (!number.empty()) name_ = ":" + number;
+  }
+  pid_t pid_ = -1;
+  std::string name_;
+};
+
+// `command` with the test process's Xvfb as its display.
+CommandResult with_xvfb(const std::string& command, const std::string& env = "") {
+  return run_shell(env + " DISPLAY=" + Xvfb::display() + " " + command);
 }
 
-// `holoray ARGS` on a fresh Xvfb display of its own.
+// `holoray ARGS` on the test process's Xvfb.
 CommandResult on_xvfb(const std::string& args, const std::string& env = "") {
   return with_xvfb(std::string(HOLORAY_CLI) + " " + args, env);
 }
 
 #define NEED_XVFB() \
-  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs xvfb)"
+  if (!have_xvfb()) GTEST_SKIP() << "Xvfb is not installed (setup.sh installs xvfb)"
 
 // The numbers of "eye X,Y,Z at X,Y,Z up X,Y,Z fov F [focus D] [lens-fov L]".
 std::map<std::string, std::vector<double>> view_of(const std::string& output) {

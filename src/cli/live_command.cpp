@@ -44,7 +44,7 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
   cmd->add_option("--exit-after", o.exit_after, "Close after N frames shown (0: when the window is closed)")->check(in_range(0))->capture_default_str();
   cmd->add_option("--screenshot", o.screenshot, "When the window closes, write the last frame shown: .png as shown (8-bit), .exr its colour in float")
       ->check(output_image());
-  cmd->add_option("--events", o.events, "Replay input from FILE: lines 'FRAME orbit|pan DX DY', 'FRAME wheel CLICKS', 'FRAME key NAME' (docs/guide/live.md)")
+  cmd->add_option("--events", o.events, "Replay input from FILE: lines 'FRAME orbit|pan DX DY', 'FRAME pointer X Y', 'FRAME wheel CLICKS', 'FRAME key NAME' (docs/guide/live.md)")
       ->check(existing_file());
   cmd->add_option("--record", o.record, "Write every frame shown to DIR as frame_NNNN.png (frames numbered from 0, as animate names them)");
   cmd->add_flag("-q,--quiet", r.quiet, "Print nothing but errors");
@@ -64,7 +64,8 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
               "\nKeys: drag orbits, shift-drag (or the right button) pans, the wheel dollies; Up/Down move the array's "
               "plane farther/nearer, Left/Right narrow/widen the lenses' field of view, A cycles colour and the AOVs, V "
               "toggles the EIA and its centre sub-aperture view, S writes a PNG (shift+S an EXR), Space plays or pauses a shot, "
-              "PageDown and PageUp step it, Home resets the view, Escape or Q quits.");
+              "PageDown and PageUp step it, Home resets the view, Escape or Q quits. With --simulate the pointer places the eye "
+              "over the panel and the wheel its distance.");
   return cmd;
 }
 
