@@ -3,8 +3,10 @@ libX11 by ctypes (no other package needed): the tests' stand-in for a user
 closing the window, and the guide's screenshot of it.
 
     xwindow.py close PREFIX [SECONDS]  ask the window whose title starts with PREFIX to close, as a
-                                       window manager's close button does (WM_DELETE_WINDOW);
-                                       exit 1 if no such window appeared in SECONDS (default 30)
+                                       window manager's close button does (WM_DELETE_WINDOW), again
+                                       every half second until it is gone (as a user clicks again);
+                                       exit 1 if no such window appeared, or it stayed, for SECONDS
+                                       (default 30); print how many times it was asked
     xwindow.py wait PREFIX [SECONDS]   wait for such a window; print its title
     xwindow.py grab FILE.png           the whole screen, as X shows it, to an RGB PNG
 """
@@ -52,6 +54,13 @@ class ClientMessage(ctypes.Structure):  # XClientMessageEvent, format 32
 
 class Event(ctypes.Union):  # XEvent: 24 longs
     _fields_ = [("message", ClientMessage), ("pad", ctypes.c_long * 24)]
+
+
+# A window may go while it is looked at (its program exiting): Xlib's
+# default handler would end this script on the BadWindow that follows.
+ERROR_HANDLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p)(lambda display, error: 0)
+x11.XSetErrorHandler.argtypes = [ctypes.c_void_p]
+x11.XSetErrorHandler(ERROR_HANDLER)
 
 
 def windows(display, window):
@@ -133,10 +142,18 @@ def main():
         return
     seconds = float(sys.argv[3]) if len(sys.argv) > 3 else 30
     w, title = wait_for(display, sys.argv[2], seconds)
-    if what == "close":
-        close(display, w)
-    else:
+    if what != "close":
         print(title)
+        return
+    deadline, asked = time.monotonic() + seconds, 0
+    while find(display, sys.argv[2])[0] == w:
+        if time.monotonic() > deadline:
+            sys.exit(f"xwindow.py: the window titled '{title}' stayed open for {seconds} s after {asked} requests to close")
+        if asked == 0 or time.monotonic() > next_ask:
+            close(display, w)
+            asked, next_ask = asked + 1, time.monotonic() + 0.5
+        time.sleep(0.05)
+    print(f"xwindow.py: closed after {asked} request{'s' if asked > 1 else ''}")
 
 
 if __name__ == "__main__":
