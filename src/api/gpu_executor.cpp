@@ -91,7 +91,7 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
   if (options.cache.enabled)
     throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
   try {
-    impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index);
+    impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index, std::vector<std::string>{}, options.count_work);
     const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;
     impl_->image_bytes = gpu::GpuRenderer::frame_bytes(camera.width(), camera.height(), aovs);
     impl_->follow(scene);

@@ -299,6 +299,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     // Several ranks on a machine share its GPUs out, one each in turn.
     ropt.device = world.distributed() ? api::device_of_local_rank(o.device, world.local_rank()) : o.device;
     ropt.cache = cache_options(o.cache);
+    ropt.count_work = true;  // a still's summary gives the GPU's nodes and primitives per ray
     // Under mpirun: bands of whole lens rows of an EIA, else rows of 32 (the
     // line renderers' tile); the image never depends on them. A rank holds
     // only its own bands, rank 0 one band more (cluster/band_exchange.hpp),

@@ -202,16 +202,16 @@ void print_statistics(const vk::raii::Device& device, const vk::raii::Pipeline& 
 
 }  // namespace
 
-vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits) {
+vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits, bool count) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  const uint32_t spec_values[8] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
+  const uint32_t spec_values[9] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
                                    panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
                                    (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
                                    (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
-                                   (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u};
-  vk::SpecializationMapEntry entries[8];
-  for (uint32_t k = 0; k < 8; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
-  const vk::SpecializationInfo spec{.mapEntryCount = 8, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                                   (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count ? 1u : 0u};
+  vk::SpecializationMapEntry entries[9];
+  for (uint32_t k = 0; k < 9; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
+  const vk::SpecializationInfo spec{.mapEntryCount = 9, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                     .pData = spec_values};
   vk::ComputePipelineCreateInfo pi{
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
@@ -230,7 +230,7 @@ std::vector<DeviceInfo> list_devices() {
   return out;
 }
 
-GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& instance_extensions)
+GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& instance_extensions, bool count_work)
     : impl_(std::make_unique<Impl>(instance_extensions)) {
   Impl& m = *impl_;
   std::vector<vk::raii::PhysicalDevice> all = physical_devices(m.instance);
@@ -306,7 +306,8 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
   m.capture_stats = stats;
-  m.pipelines.emplace(0u, m.make_pipeline(false, 0));  // NFF's lens arrays, made now: the device is checked whole at start
+  m.count_work = count_work;
+  m.pipelines.emplace(count_work ? 2u : 0u, m.make_pipeline(false, 0, count_work));  // NFF's lens arrays, made now: the device is checked whole at start
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
@@ -419,9 +420,9 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
-    const uint32_t key = m.features << 1 | (panel ? 1u : 0u);
+    const uint32_t key = m.features << 2 | (m.count_work ? 2u : 0u) | (panel ? 1u : 0u);
     auto pipeline = m.pipelines.find(key);
-    if (pipeline == m.pipelines.end()) pipeline = m.pipelines.emplace(key, m.make_pipeline(panel, m.features)).first;
+    if (pipeline == m.pipelines.end()) pipeline = m.pipelines.emplace(key, m.make_pipeline(panel, m.features, m.count_work)).first;
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline->second);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {

@@ -43,7 +43,7 @@ std::vector<DeviceInfo> list_devices();
 struct GpuFrameStats {
   double trace_seconds = 0, readback_seconds = 0;
   uint64_t eye_rays = 0, shadow_rays = 0, reflected_rays = 0, refracted_rays = 0;
-  uint64_t nodes_visited = 0, primitives_tested = 0;
+  uint64_t nodes_visited = 0, primitives_tested = 0;  ///< with count_work, else 0
 };
 
 class GpuRenderer {
@@ -54,7 +54,10 @@ class GpuRenderer {
   /// `instance_extensions`: a window system's surface extensions (GLFW's
   /// glfwGetRequiredInstanceExtensions), for a Presenter on this device;
   /// the device then also gets VK_KHR_swapchain (GpuError without it).
-  explicit GpuRenderer(int device = -1, const std::vector<std::string>& instance_extensions = {});
+  /// `count_work`: the frames count BVH nodes visited and primitives
+  /// tested (GpuFrameStats; 0 when not), in a pipeline of their own
+  /// (RenderOptions::count_work says what it costs).
+  explicit GpuRenderer(int device = -1, const std::vector<std::string>& instance_extensions = {}, bool count_work = false);
   ~GpuRenderer();
   GpuRenderer(const GpuRenderer&) = delete;
   GpuRenderer& operator=(const GpuRenderer&) = delete;

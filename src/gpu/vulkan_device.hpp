@@ -61,9 +61,11 @@ struct GpuRenderer::Impl {
   vk::raii::ShaderModule module = nullptr;
   // The kernel's pipelines, made when first needed: by whether it renders
   // panels (display panels, Looking Glass native panels) and by what the
-  // loaded scene's materials need (SceneArrays::features).
+  // loaded scene's materials need (SceneArrays::features), and whether it
+  // counts the work done (GpuRenderer::count_work).
   std::map<uint32_t, vk::raii::Pipeline> pipelines;
   uint32_t features = 0;  // the loaded scene's
+  bool count_work = false;
   bool capture_stats = false;
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
@@ -134,7 +136,7 @@ struct GpuRenderer::Impl {
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
   // they do; for tuning), whether it renders the panels, and the
   // materials' features (HR_FEATURE_*).
-  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits);  // gpu_renderer.cpp
+  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits, bool count_work);  // gpu_renderer.cpp
 
   void bind(int binding, const Buffer& b) {
     vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};
