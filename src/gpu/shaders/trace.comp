@@ -286,12 +286,13 @@ vec3 safe_inverse(vec3 d) {
 bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
   h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
   vec3 inv = safe_inverse(d);
+  // The node to visit next stays in a register: only the other children
+  // met go through the stack (local memory).
   int stack[HR_STACK];
-  int sp = 0;
-  stack[sp++] = 0;
+  int sp = 0, next = 0;
   bool found = false;
-  while (sp > 0) {
-    GpuNode n = nodes[stack[--sp]];
+  while (next >= 0) {
+    GpuNode n = nodes[next];
     if (kCountWork) ++visited;
     vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
     vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
@@ -319,7 +320,9 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
       }
       near_t[at] = t0[c], order[at] = n.index[c];
     }
-    for (int c = 0; c < m && sp < HR_STACK; ++c) stack[sp++] = order[c];
+    // The nearest child next, the others kept; none met: the last one kept.
+    for (int c = 0; c + 1 < m && sp < HR_STACK; ++c) stack[sp++] = order[c];
+    next = m > 0 ? order[m - 1] : sp > 0 ? stack[--sp] : -1;
   }
   return found;
 }
