@@ -43,6 +43,7 @@ struct Presenter::Impl {
   vk::raii::DescriptorSet set = nullptr;
   Buffer thresholds, packed;
   Buffer host_image;  // show_image's, host-visible
+  Buffer shown_copy;  // shown_rgb's, host-visible, kept for the next (--record asks every frame)
   // The packed frame as an image, the blit's source.
   vk::raii::Image frame = nullptr;
   vk::raii::DeviceMemory frame_memory = nullptr;
@@ -302,7 +303,8 @@ std::vector<uint8_t> Presenter::shown_rgb() const {
   std::vector<uint8_t> rgb(pixels * 3);
   if (pixels == 0) return rgb;
   try {
-    Buffer host = r.make_buffer(pixels * 4, vk::BufferUsageFlagBits::eTransferDst, true);
+    if (m.shown_copy.size < pixels * 4) m.shown_copy = r.make_buffer(pixels * 4, vk::BufferUsageFlagBits::eTransferDst, true);
+    const Buffer& host = m.shown_copy;
     r.run_once([&](vk::raii::CommandBuffer& cb) { cb.copyBuffer(*m.packed.buffer, *host.buffer, vk::BufferCopy{0, 0, pixels * 4}); });
     const uint8_t* bgra = static_cast<const uint8_t*>(host.mapped);
     for (uint64_t k = 0; k < pixels; ++k)
