@@ -134,8 +134,8 @@ struct GpuRenderer::Impl {
 
   // The kernel specialised (shaders/trace.comp): workgroup size, whether
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
-  // they do; for tuning), whether it renders the panels, and the
-  // materials' features (HR_FEATURE_*).
+  // they do; for tuning), whether it renders the panels, the materials'
+  // features (HR_FEATURE_*), and whether it counts nodes and primitives.
   vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits, bool count_work);  // gpu_renderer.cpp
 
   void bind(int binding, const Buffer& b) {

@@ -299,7 +299,7 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
     vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
     vec4 t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(tmin)));
     vec4 t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(h.t)));
-    // Children met, nearest last on the stack (popped first).
+    // Children met, in order[] nearest last (visited next).
     int order[4];
     float near_t[4];
     int m = 0;
