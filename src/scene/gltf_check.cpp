@@ -75,6 +75,7 @@ class GltfRules {
     accessors();
     animations();
     skins();
+    data_uris();
   }
 
  private:
@@ -166,6 +167,34 @@ class GltfRules {
     for (size_t m = 0; m < meshes.size(); ++m)
       if (meshes[m].is_object() && meshes[m].contains("weights"))
         numbers(meshes[m]["weights"], 0, fmt::format("/meshes/{}/weights", m));
+  }
+
+  // glTF 2.0 §5.10 and §5.21: an image's media type is type/subtype
+  // (image/png, image/jpeg), in its mimeType and in a data URI's header.
+  // assimp 5.2 takes the subtype as what follows the '/' unchecked (a type
+  // without one crashed it, found by fuzz_gltf), and keeps a data URI's
+  // offsets in single chars: a header (up to its ',') of 128 characters or
+  // more sends it reading outside the string.
+  void data_uris() const {
+    for (const char* what : {"images", "buffers"}) {
+      const json& all = top(what);
+      for (size_t k = 0; k < all.size(); ++k) {
+        if (!all[k].is_object()) continue;
+        const std::string where = fmt::format("/{}/{}", what, k);
+        if (std::string_view(what) == "images" && all[k].contains("mimeType") &&
+            !(all[k]["mimeType"].is_string() && all[k]["mimeType"].get<std::string>().find('/') != std::string::npos))
+          fail(where + "/mimeType", "must be a media type, type/subtype (image/png or image/jpeg)");
+        if (!all[k].contains("uri") || !all[k]["uri"].is_string()) continue;
+        const std::string& uri = all[k]["uri"].get_ref<const std::string&>();
+        if (uri.rfind("data:", 0) != 0) continue;
+        const size_t comma = uri.find(',');
+        if (comma == std::string::npos || comma >= 100)
+          fail(where + "/uri", "is a data URI whose header (up to its ',') must be under 100 characters");
+        const std::string media = uri.substr(5, uri.find_first_of(";,", 5) - 5);
+        if (!media.empty() && media.find('/') == std::string::npos)
+          fail(where + "/uri", fmt::format("is a data URI whose media type '{}' must be type/subtype (as image/png)", media));
+      }
+    }
   }
 
   // glTF 2.0 §5.1-5.4: count ≥ 1, componentType and type from fixed lists, and a
