@@ -518,6 +518,48 @@ TEST(GpuPath, CountingTheWorkChangesNothingButTheCounts) {
   EXPECT_EQ(std::memcmp(plain.colour.data(), counted.colour.data(), plain.colour.size() * sizeof(float)), 0);
 }
 
+// HOLORAY_GPU_RAY_LOG (bench/ray_schedule_model.py's input): a record for
+// every traversal, adding up to the frame's own counts, and the image unchanged.
+TEST(GpuPath, TheRayLogHoldsEveryTraversalAndChangesNothing) {
+  const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
+  RenderOptions o;
+  o.device = "gpu";
+  o.count_work = true;
+  const Result counted = api::Renderer(scene, array_of(api::Grid::square), o).render();
+  TempDir dir;
+  const std::string path = dir.file("frame.raylog");
+  ::setenv("HOLORAY_GPU_RAY_LOG", path.c_str(), 1);
+  const Result logged = api::Renderer(scene, array_of(api::Grid::square), o).render();
+  ::unsetenv("HOLORAY_GPU_RAY_LOG");
+  ASSERT_EQ(counted.colour.size(), logged.colour.size());
+  EXPECT_EQ(std::memcmp(counted.colour.data(), logged.colour.data(), counted.colour.size() * sizeof(float)), 0);
+
+  const std::string bytes = read_bytes(path);
+  ASSERT_GE(bytes.size(), 32u);
+  EXPECT_EQ(bytes.substr(0, 8), "HRRAYLG1");
+  uint32_t head[6];
+  std::memcpy(head, bytes.data() + 8, sizeof head);
+  EXPECT_EQ(head[0] * head[1], 64u);  // the workgroup
+  EXPECT_EQ(head[2], 24u * 6u);       // the image
+  EXPECT_EQ(head[3], 24u * 6u);
+  EXPECT_EQ(head[5], 0u);  // none dropped
+  ASSERT_EQ(bytes.size(), 32u + 16u * head[4]);
+  uint64_t nodes = 0, primitives = 0, primary = 0, shadow = 0, inside = 0;
+  for (uint32_t r = 0; r < head[4]; ++r) {
+    uint32_t rec[4];
+    std::memcpy(rec, bytes.data() + 32 + 16 * size_t(r), sizeof rec);
+    nodes += rec[3] & 0xffffu, primitives += rec[3] >> 16;
+    primary += (rec[2] & 0xffu) == 1u, shadow += (rec[2] & 0x80u) != 0u;
+    inside += rec[0] < head[2] && rec[1] < head[3];
+  }
+  EXPECT_EQ(nodes, logged.stats.nodes_visited);
+  EXPECT_EQ(primitives, logged.stats.primitives_tested);
+  EXPECT_EQ(primary, logged.stats.rays.eye);  // every eye ray of an array is traced
+  EXPECT_EQ(shadow, logged.stats.rays.shadow);  // NFF's shadow rays: one any-hit walk each
+  EXPECT_EQ(inside, head[4]);
+  EXPECT_GT(shadow, 0u);
+}
+
 // ---- refusals and faults, each with its message ----
 
 TEST(GpuPath, RefusesWhatItDoesNotRenderYet) {

@@ -200,18 +200,42 @@ void print_statistics(const vk::raii::Device& device, const vk::raii::Pipeline& 
   }
 }
 
+// The ray log's buffer: a 16-byte head and 2^24 records of 16 bytes.
+constexpr uint64_t kRayLogBytes = 16 + (uint64_t(1) << 24) * 16;
+
+// The frame's ray log (trace.comp, kRayLog) to m.ray_log_path, through a
+// temporary name: "HRRAYLG1", then uint32 workgroup width and height, the
+// image's width and height, the records kept and those past the buffer,
+// then the records (bench/ray_schedule_model.py reads them).
+void write_ray_log(const Buffer& log, const std::string& path, const uint32_t workgroup[2], int W, int H) {
+  const uint32_t* head = static_cast<const uint32_t*>(log.mapped);
+  const uint32_t capacity = uint32_t((kRayLogBytes - 16) / 16), taken = head[0];
+  const uint32_t kept = std::min(taken, capacity);
+  const uint32_t fields[6] = {workgroup[0], workgroup[1], uint32_t(W), uint32_t(H), kept, taken - kept};
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "wb");
+  bool ok = f && std::fwrite("HRRAYLG1", 1, 8, f) == 8 && std::fwrite(fields, sizeof fields, 1, f) == 1 &&
+            std::fwrite(head + 4, 16, kept, f) == kept;
+  if (f) ok = std::fclose(f) == 0 && ok;
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw GpuError(fmt::format("cannot write the ray log '{}'", path));
+  }
+}
+
 }  // namespace
 
 vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits, bool count) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  const uint32_t spec_values[9] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
-                                   panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
-                                   (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
-                                   (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
-                                   (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count ? 1u : 0u};
-  vk::SpecializationMapEntry entries[9];
-  for (uint32_t k = 0; k < 9; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
-  const vk::SpecializationInfo spec{.mapEntryCount = 9, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  const uint32_t spec_values[10] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
+                                    panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
+                                    (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
+                                    (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
+                                    (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count ? 1u : 0u,
+                                    count && !ray_log_path.empty() ? 1u : 0u};
+  vk::SpecializationMapEntry entries[10];
+  for (uint32_t k = 0; k < 10; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
+  const vk::SpecializationInfo spec{.mapEntryCount = 10, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                     .pData = spec_values};
   vk::ComputePipelineCreateInfo pi{
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
@@ -306,6 +330,9 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
   m.capture_stats = stats;
+  // HOLORAY_GPU_RAY_LOG=FILE: each frame's rays logged for
+  // bench/ray_schedule_model.py (measuring; it counts the work to log it).
+  if (const char* log = std::getenv("HOLORAY_GPU_RAY_LOG"); log && *log) m.ray_log_path = log, count_work = true;
   m.count_work = count_work;
   m.pipelines.emplace(count_work ? 2u : 0u, m.make_pipeline(false, 0, count_work));  // NFF's lens arrays, made now: the device is checked whole at start
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
@@ -351,6 +378,8 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
     m.bind(0, m.scene[0]);
     m.counts = m.make_buffer(32, vk::BufferUsageFlagBits::eStorageBuffer, true);
     m.bind(12, m.counts);
+    m.ray_log = m.make_buffer(m.ray_log_path.empty() ? 32 : kRayLogBytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    m.bind(18, m.ray_log);
     m.scene_bytes = s.bytes();
     m.features = s.features;
   } catch (const vk::SystemError& e) {
@@ -415,6 +444,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     }
     std::memcpy(m.scene[0].mapped, frames.data(), frames.size() * sizeof(GpuFrame));
     std::memset(m.counts.mapped, 0, count_bytes);
+    std::memset(m.ray_log.mapped, 0, 16);
     stats = GpuFrameStats{};
     vk::raii::CommandBuffer& cb = m.commands;
     cb.reset();
@@ -450,6 +480,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
       stats.nodes_visited += c[0], stats.primitives_tested += c[1];
       stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
     }
+    if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
     m.traced_aovs = want_aovs;
   } catch (const vk::SystemError& e) {

@@ -33,7 +33,7 @@ vk::raii::Instance make_instance(const vk::raii::Context& context, const std::ve
 [[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device);
 
 /// trace.comp's descriptor bindings.
-constexpr int kBindings = 18;
+constexpr int kBindings = 19;
 
 // A buffer and its memory; `mapped` when host-visible.
 struct Buffer {
@@ -67,6 +67,10 @@ struct GpuRenderer::Impl {
   uint32_t features = 0;  // the loaded scene's
   bool count_work = false;
   bool capture_stats = false;
+  // HOLORAY_GPU_RAY_LOG's file, where every traced frame's rays are logged
+  // (trace.comp, kRayLog), and the log's buffer (binding 18).
+  std::string ray_log_path;
+  Buffer ray_log;
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
   vk::PhysicalDeviceMemoryProperties memory_types;

@@ -38,6 +38,11 @@ layout(constant_id = 7) const bool kAlphaMasks = false;
 // the two counters, live across every traversal, took 24 registers a
 // thread (96 against 72) and 1.07x the frame's time on an H100.
 layout(constant_id = 8) const bool kCountWork = false;
+// Log every traversal (HOLORAY_GPU_RAY_LOG, gpu_renderer.cpp): its
+// invocation's pixel, the ray's kind and depth, and the nodes and
+// primitives it visited, for bench/ray_schedule_model.py to model how
+// other schedules would fill a subgroup's lanes. Set with kCountWork.
+layout(constant_id = 9) const bool kRayLog = false;
 
 // One frame's constants per camera dispatched: a quilt's views are several.
 layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame frames[]; };
@@ -64,6 +69,10 @@ layout(std430, binding = 14) readonly buffer LevelBlock { GpuLevel levels[]; };
 layout(std430, binding = 15) readonly buffer TexelBlock { uint texels[]; };
 layout(std430, binding = 16) readonly buffer ColourPatchBlock { GpuPatch vertex_colours[]; };
 layout(std430, binding = 17) readonly buffer UvBlock { GpuUv uvs[]; };
+// The ray log (kRayLog): records taken, then as many records as it holds (frame
+// pixel i, j; kind: depth | 0x80 for a shadow ray, | frame << 8; nodes |
+// primitives << 16); records past its capacity are counted, not kept.
+layout(std430, binding = 18) buffer RayLogBlock { uvec4 ray_log_head; uvec4 ray_log[]; };
 
 layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
 
@@ -77,6 +86,9 @@ struct Hit {
 };
 
 uint visited = 0u, tested = 0u;
+// What the ray log says of the ray traced now (kRayLog).
+ivec2 log_pixel = ivec2(0);
+uint log_kind = 0u;
 
 // ---- primitives (accel/shapes.cpp's tests, in float) ----
 
@@ -283,7 +295,20 @@ vec3 safe_inverse(vec3 d) {
   return 1.0 / mix(d, mix(-tiny, tiny, greaterThanEqual(d, vec3(0.0))), lessThan(abs(d), tiny));
 }
 
+bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h);
+// Every ray's traversal, logged where the ray log is on.
 bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
+  if (!kRayLog) return walk_bvh(o, d, tmin, tmax, any, h);
+  uint nodes0 = visited, prims0 = tested;
+  bool found = walk_bvh(o, d, tmin, tmax, any, h);
+  uint at = atomicAdd(ray_log_head.x, 1u);
+  if (at < uint(ray_log.length()))
+    ray_log[at] = uvec4(uint(log_pixel.x), uint(log_pixel.y), log_kind | (any ? 0x80u : 0u) | (uint(band.frame) << 8),
+                        min(visited - nodes0, 0xffffu) | (min(tested - prims0, 0xffffu) << 16));
+  return found;
+}
+// The ray's nearest hit in [tmin, tmax] (`any`: whether there is one).
+bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
   h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
   vec3 inv = safe_inverse(d);
   // The node to visit next stays in a register: only the other children
@@ -715,6 +740,7 @@ float fog_keep(float r) {
 // scene has any; lights' own spheres pass.
 float tachyon_shadow(vec3 o, vec3 d, float tmax, inout uint shadow_rays) {
   ++shadow_rays;
+  log_kind |= 0x80u;  // its walks through transparent surfaces look for the nearest hit, yet are this shadow ray's
   Hit h;
   if (F.flags.x == 0) return trace_ray(o, d, 0.0, tmax, true, h) ? 0.0 : 1.0;
   float filter_ = 1.0, tnear = 0.0;
@@ -768,6 +794,7 @@ void main() {
   int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
   int W = F.size.x;
   if (i >= W || int(gl_GlobalInvocationID.y) >= band.rows) return;
+  log_pixel = ivec2(i, j);
   float eps = F.extent.w, margin = F.box_lo.w;
   int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
   uint eye_rays = 0u, shadow_rays = 0u, reflected_rays = 0u, refracted_rays = 0u;
@@ -820,6 +847,7 @@ void main() {
       ++eye_rays;
       while (sp > 0) {
         Pending r = stack[--sp];
+        log_kind = uint(r.depth);
         bool primary = r.depth == 1;
         Hit h;
         if (!trace_ray(r.o, r.d, primary ? tmin0 : 0.0, primary ? tmax0 : kInf, false, h)) {
