@@ -11,6 +11,9 @@ node steps (nodes visited over the steps the subgroup takes times its lanes:
   bound of its waste: each lane's traversals as if they ran back to back),
 - today's kernel, each lane's k-th ray traversed in step with the others'
   k-th (its subgroups' lanes wait on the longest of each),
+- with --ppl P, today's kernel with each band's pixels dealt in
+  sub-aperture order (consecutive invocations taking the same pixel of
+  consecutive lenses of P x P pixels), both ways above,
 - a wavefront: a queue per ray kind and depth, each in pixel order, cut into
   subgroups of LANES rays,
 - the wavefront with ray fetch (a lane takes the queue's next ray when its
@@ -53,6 +56,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("log")
     parser.add_argument("--lanes", type=int, default=32, help="a subgroup's lanes (NVIDIA 32, AMD 32 or 64, lavapipe 8)")
+    parser.add_argument("--ppl", type=int, default=0, help="a square array's pixels per lens: model sub-aperture order too")
     args = parser.parse_args()
     lanes = args.lanes
     wx, wy, width, height, rec = read_log(args.log)
@@ -69,14 +73,33 @@ def main():
     # Today's kernel: an invocation per pixel, workgroups of wx x wy, a
     # subgroup LANES consecutive invocations of a workgroup.
     pixel = (frame * (height + wy) + j) * (width + wx) + i
-    local = (i % wx) + (j % wy) * wx
-    group = ((frame * ((height + wy - 1) // wy + 1) + j // wy) * ((width + wx - 1) // wx + 1) + i // wx) * 1024 + local // lanes
     first = np.r_[True, pixel[1:] != pixel[:-1]]
     pixel_id = np.cumsum(first) - 1
     ray_k = np.arange(len(pixel)) - np.flatnonzero(first)[pixel_id]
     per_pixel = np.bincount(pixel_id, weights=nodes).astype(np.int64)
-    whole_tree = subgroup_steps(group[first], per_pixel).sum() * lanes
-    in_step = subgroup_steps(group * 4096 + np.minimum(ray_k, 4095), nodes).sum() * lanes
+    def today(ii, jj):
+        local = (ii % wx) + (jj % wy) * wx
+        group = ((frame * ((height + wy - 1) // wy + 1) + jj // wy) * ((width + wx - 1) // wx + 1) + ii // wx) * 1024 + local // lanes
+        whole = subgroup_steps(group[first], per_pixel).sum() * lanes
+        return whole, subgroup_steps(group * 4096 + np.minimum(ray_k, 4095), nodes).sum() * lanes
+
+    whole_tree, in_step = today(i, j)
+    schedules = [("today's kernel: lanes in step by whole ray tree (its lower bound)", whole_tree),
+                 ("today's kernel: each lane's k-th ray in step", in_step)]
+    if args.ppl > 0:
+        # gpu_renderer.cpp's bands, and in each the pixel x of n dealt to
+        # invocation (x mod P) L + x div P (L: lenses across the band).
+        p = args.ppl
+        band_rows = max(8, (1 << 20) // max(1, width) // 8 * 8)
+        def dealt(x, n):
+            lenses = (n + p - 1) // p
+            return (x % p) * lenses + x // p
+        rows_in_band = np.minimum(band_rows, height - j // band_rows * band_rows)
+        sub_i = dealt(i, width)
+        sub_j = j // band_rows * band_rows + dealt(j % band_rows, rows_in_band)
+        sub_whole, sub_step = today(sub_i, sub_j)
+        schedules += [(f"sub-aperture order ({p} px a lens): lanes in step by whole ray tree", sub_whole),
+                      (f"sub-aperture order ({p} px a lens): each lane's k-th ray in step", sub_step)]
     # The wavefront: a queue per kind and depth, in pixel order.
     queued = 0
     rows = []
@@ -91,13 +114,12 @@ def main():
     print(f"Ray log: {args.log}: {width}x{height}, workgroups {wx}x{wy}, {len(nodes)} rays, "
           f"{total / len(nodes):.2f} nodes a ray; subgroups of {lanes} lanes")
     print()
-    print("| schedule | lanes' use of node steps | node steps against today's (ray k in step) |")
+    print("| schedule | lanes' use of node steps | today's steps (k-th ray in step) over these |")
     print("|---|---:|---:|")
-    for name, steps in (("today's kernel: lanes in step by whole ray tree (its lower bound)", whole_tree),
-                        ("today's kernel: each lane's k-th ray in step", in_step),
-                        ("wavefront: a queue per kind and depth, pixel order", queued),
-                        ("wavefront with ray fetch (ceiling)", total)):
-        print(f"| {name} | {total / steps:.3f} | {in_step / steps:.2f}x fewer |")
+    schedules += [("wavefront: a queue per kind and depth, pixel order", queued),
+                  ("wavefront with ray fetch (ceiling)", total)]
+    for name, steps in schedules:
+        print(f"| {name} | {total / steps:.3f} | {in_step / steps:.2f}x |")
     print()
     print("| queue | rays | nodes a ray | lanes' use in the queue |")
     print("|---|---:|---:|---:|")
