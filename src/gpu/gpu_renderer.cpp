@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "gpu/vulkan_device.hpp"
+#include "scene/file_text.hpp"
 #include "util/parallel.hpp"
 
 namespace holoray::gpu {
@@ -205,24 +206,19 @@ void print_statistics(const vk::raii::Device& device, const vk::raii::Pipeline& 
 // traces 16.8 M rays).
 constexpr uint64_t kRayLogBytes = 16 + (uint64_t(1) << 25) * 16;
 
-// The frame's ray log (trace.comp, kRayLog) to m.ray_log_path, through a
-// temporary name: "HRRAYLG1", then uint32 workgroup width and height, the
-// image's width and height, the records kept and those past the buffer,
+// The frame's ray log (trace.comp, kRayLog) to `path`, written atomically
+// (write_text_file): "HRRAYLG1", then uint32 workgroup width and height,
+// the image's width and height, the records kept and those past the buffer,
 // then the records (bench/ray_schedule_model.py reads them).
 void write_ray_log(const Buffer& log, const std::string& path, const uint32_t workgroup[2], int W, int H) {
   const uint32_t* head = static_cast<const uint32_t*>(log.mapped);
   const uint32_t capacity = uint32_t((kRayLogBytes - 16) / 16), taken = head[0];
   const uint32_t kept = std::min(taken, capacity);
   const uint32_t fields[6] = {workgroup[0], workgroup[1], uint32_t(W), uint32_t(H), kept, taken - kept};
-  const std::string tmp = path + ".tmp";
-  FILE* f = std::fopen(tmp.c_str(), "wb");
-  bool ok = f && std::fwrite("HRRAYLG1", 1, 8, f) == 8 && std::fwrite(fields, sizeof fields, 1, f) == 1 &&
-            std::fwrite(head + 4, 16, kept, f) == kept;
-  if (f) ok = std::fclose(f) == 0 && ok;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw GpuError(fmt::format("cannot write the ray log '{}'", path));
-  }
+  std::string bytes("HRRAYLG1");
+  bytes.append(reinterpret_cast<const char*>(fields), sizeof fields);
+  bytes.append(reinterpret_cast<const char*>(head + 4), size_t(kept) * 16);
+  write_text_file(path, bytes);
 }
 
 }  // namespace
