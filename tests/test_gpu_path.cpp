@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <regex>
 #include <numbers>
 #include <string>
 
@@ -558,6 +559,48 @@ TEST(GpuPath, TheRayLogHoldsEveryTraversalAndChangesNothing) {
   EXPECT_EQ(shadow, logged.stats.rays.shadow);  // NFF's shadow rays: one any-hit walk each
   EXPECT_EQ(inside, head[4]);
   EXPECT_GT(shadow, 0u);
+}
+
+// HOLORAY_GPU_SHADOW_QUEUE (design/gpu.md, "The shadow queue"): NFF's
+// shadow rays queued and traced by a pass of their own give the image the
+// kernel gives tracing them where they are made (to float's rounding: the
+// terms are summed in another order), the same from run to run; a queue
+// too small for the frame traces the rest where they are made. The pass's
+// own count (HOLORAY_GPU_STATS) says that every shadow ray was queued.
+TEST(GpuPath, TheShadowQueueRendersWhatTheKernelTracesItself) {
+  const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
+  RenderOptions o;
+  o.device = "gpu";
+  o.spp = 2;
+  o.count_work = true;
+  const auto render = [&](const char* queue, std::string* printed = nullptr) {
+    if (queue) ::setenv("HOLORAY_GPU_SHADOW_QUEUE", queue, 1);
+    if (printed) ::setenv("HOLORAY_GPU_STATS", "1", 1), ::testing::internal::CaptureStderr();
+    Result r = api::Renderer(scene, array_of(api::Grid::square, api::Mode::pseudoscopic), o).render();
+    if (printed) *printed = ::testing::internal::GetCapturedStderr();
+    ::unsetenv("HOLORAY_GPU_SHADOW_QUEUE"), ::unsetenv("HOLORAY_GPU_STATS");
+    return r;
+  };
+  std::string printed;
+  const Result traced = render(nullptr), queued = render("1", &printed), again = render("1");
+  const Result small = render("200");
+  const uint64_t shadow = traced.stats.rays.shadow;
+  ASSERT_GT(shadow, 1000u);
+  for (const Result* r : {&queued, &small}) {
+    ASSERT_EQ(r->colour.size(), traced.colour.size());
+    float worst = 0;
+    for (size_t k = 0; k < traced.colour.size(); ++k) worst = std::fmax(worst, std::fabs(r->colour.data()[k] - traced.colour.data()[k]));
+    EXPECT_LE(worst, 1e-5f);
+    EXPECT_EQ(r->stats.rays.shadow, shadow);
+    EXPECT_EQ(r->stats.rays.total(), traced.stats.rays.total());
+  }
+  EXPECT_EQ(std::memcmp(queued.colour.data(), again.colour.data(), queued.colour.size() * sizeof(float)), 0);
+  // "N queued, M traced where made": all of them.
+  const std::regex counts(R"((\d+) queued, (\d+) traced where made)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(printed, m, counts)) << printed;
+  EXPECT_EQ(std::stoull(m[1]), shadow);
+  EXPECT_EQ(std::stoull(m[2]), 0u);
 }
 
 // ---- refusals and faults, each with its message ----

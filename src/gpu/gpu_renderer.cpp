@@ -223,17 +223,18 @@ void write_ray_log(const Buffer& log, const std::string& path, const uint32_t wo
 
 }  // namespace
 
-vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits, bool count) {
+vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits, bool count, bool queue, int shadow_pass) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  const uint32_t spec_values[10] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
-                                    panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
-                                    (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
-                                    (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
-                                    (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count ? 1u : 0u,
-                                    count && !ray_log_path.empty() ? 1u : 0u};
-  vk::SpecializationMapEntry entries[10];
-  for (uint32_t k = 0; k < 10; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
-  const vk::SpecializationInfo spec{.mapEntryCount = 10, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  constexpr uint32_t kConstants = 12;
+  const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
+                                            panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
+                                            (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
+                                            (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
+                                            (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count ? 1u : 0u,
+                                            count && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass)};
+  vk::SpecializationMapEntry entries[kConstants];
+  for (uint32_t k = 0; k < kConstants; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
+  const vk::SpecializationInfo spec{.mapEntryCount = kConstants, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                     .pData = spec_values};
   vk::ComputePipelineCreateInfo pi{
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
@@ -280,7 +281,15 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
       !(subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eArithmetic))
     throw GpuError(fmt::format("the device {} has no subgroup arithmetic in compute shaders, which the GPU path needs: "
                                "render with `device` cpu, or choose another device (`device` gpu:N)", m.info.name));
+  // HOLORAY_GPU_SHADOW_QUEUE=1 (measuring): the shadow queue, with room for
+  // 8 rays a pixel; =N for N > 1, room for N rays (the tests' overflow).
+  const vk::SubgroupFeatureFlags fetch_ops = vk::SubgroupFeatureFlagBits::eBallot | vk::SubgroupFeatureFlagBits::eVote;
+  if (const char* queue_env = std::getenv("HOLORAY_GPU_SHADOW_QUEUE"); queue_env && std::atoll(queue_env) > 0) {
+    m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
+    m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
+  }
   m.memory_types = m.physical.getMemoryProperties();
+  m.max_storage_range = m.physical.getProperties().limits.maxStorageBufferRange;
   const auto families = m.physical.getQueueFamilyProperties();
   auto family = std::find_if(families.begin(), families.end(), [](const vk::QueueFamilyProperties& f) {
     return bool(f.queueFlags & vk::QueueFlagBits::eCompute);
@@ -328,11 +337,16 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
   m.capture_stats = stats;
+  if (std::getenv("HOLORAY_GPU_STATS") && families[m.family].timestampValidBits > 0) {
+    m.timestamps = vk::raii::QueryPool(m.device, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 4});
+    m.timestamp_ns = m.physical.getProperties().limits.timestampPeriod;
+  }
   // HOLORAY_GPU_RAY_LOG=FILE: each frame's rays logged for
   // bench/ray_schedule_model.py (measuring; it counts the work to log it).
   if (const char* log = std::getenv("HOLORAY_GPU_RAY_LOG"); log && *log) m.ray_log_path = log, count_work = true;
   m.count_work = count_work;
-  m.pipelines.emplace(count_work ? 2u : 0u, m.make_pipeline(false, 0, count_work));  // NFF's lens arrays, made now: the device is checked whole at start
+  if (!m.ray_log_path.empty()) m.shadow_queue_on = false;  // the log models the kernel's own schedule
+  m.pipelines.emplace((m.shadow_queue_on ? 4u : 0u) | (count_work ? 2u : 0u), m.make_pipeline(false, 0, count_work, m.shadow_queue_on));  // NFF's lens arrays, made now: the device is checked whole at start
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
@@ -378,6 +392,12 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
     m.bind(12, m.counts);
     m.ray_log = m.make_buffer(m.ray_log_path.empty() ? 32 : kRayLogBytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
     m.bind(18, m.ray_log);
+    m.shadow_queue = m.make_buffer(16 + sizeof(GpuShadowRay), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    m.bind(19, m.shadow_queue);
+    m.shadow_last = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    m.bind(20, m.shadow_last);
+    m.shadow_terms = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer, false);
+    m.bind(21, m.shadow_terms);
     m.scene_bytes = s.bytes();
     m.features = s.features;
   } catch (const vk::SystemError& e) {
@@ -402,6 +422,14 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
   const bool want_aovs = frames[0].counts.y != 0;
   const uint64_t pixels = uint64_t(W) * uint64_t(H);
   const uint64_t need = frame_bytes(W, H, want_aovs);
+  // The shadow queue holds 8 rays a pixel, at most 2^26 rays (3 GiB) and a
+  // quarter of the memory the scene and image leave: a frame that queues
+  // more traces the rest where they are made, so it never refuses an image.
+  const uint64_t spare = m.info.memory_bytes > m.scene_bytes + need ? (m.info.memory_bytes - m.scene_bytes - need) / 4 : 0;
+  const uint64_t range = (m.max_storage_range - 16) / sizeof(GpuShadowRay);  // a storage buffer's largest binding
+  const uint64_t queue_rays =
+      m.shadow_queue_on ? std::min({m.shadow_queue_rays ? m.shadow_queue_rays : pixels * 8, uint64_t(1) << 26,
+                                    spare / (sizeof(GpuShadowRay) + 16), range}) : 0;
   if (m.info.memory_bytes && m.scene_bytes + need > m.info.memory_bytes)
     throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
                                m.scene_bytes / 1048576.0, need / 1048576.0, m.info.memory_bytes / 1048576.0, m.info.name));
@@ -448,16 +476,76 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
-    const uint32_t key = m.features << 2 | (m.count_work ? 2u : 0u) | (panel ? 1u : 0u);
-    auto pipeline = m.pipelines.find(key);
-    if (pipeline == m.pipelines.end()) pipeline = m.pipelines.emplace(key, m.make_pipeline(panel, m.features, m.count_work)).first;
-    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline->second);
+    const bool queue = queue_rays > 0 && !panel;
+    auto pipeline_for = [&](int pass) -> vk::raii::Pipeline& {
+      const uint32_t key = m.features << 5 | uint32_t(pass) << 3 | (queue ? 4u : 0u) | (m.count_work ? 2u : 0u) | (panel ? 1u : 0u);
+      auto p = m.pipelines.find(key);
+      if (p == m.pipelines.end()) p = m.pipelines.emplace(key, m.make_pipeline(panel, m.features, m.count_work, queue && pass == 0, pass)).first;
+      return p->second;
+    };
+    if (queue) {
+      if (m.shadow_queue.size < 16 + queue_rays * sizeof(GpuShadowRay)) {
+        m.shadow_queue = m.make_buffer(16 + queue_rays * sizeof(GpuShadowRay),
+                                       vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst |
+                                           vk::BufferUsageFlagBits::eTransferSrc, false);
+        m.bind(19, m.shadow_queue);
+      }
+      if (m.shadow_terms.size < queue_rays * 16) {
+        m.shadow_terms = m.make_buffer(queue_rays * 16, vk::BufferUsageFlagBits::eStorageBuffer, false);
+        m.bind(21, m.shadow_terms);
+      }
+      if (m.shadow_last.size < pixels * 4) {
+        m.shadow_last = m.make_buffer(pixels * 4, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+        m.bind(20, m.shadow_last);
+      }
+      cb.fillBuffer(*m.shadow_queue.buffer, 0, 16, 0);
+      cb.fillBuffer(*m.shadow_queue.buffer, 8, 4, uint32_t(queue_rays));  // its capacity
+      cb.fillBuffer(*m.shadow_last.buffer, 0, VK_WHOLE_SIZE, 0xffffffffu);  // a pixel no dispatch writes has no runs
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {},
+                         vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
+                         nullptr, nullptr);
+    }
+    auto stamp = [&](uint32_t k) {
+      if (*m.timestamps) cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *m.timestamps, k);
+    };
+    if (*m.timestamps) cb.resetQueryPool(*m.timestamps, 0, 4);
+    stamp(0);
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_for(0));
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {
       const Band& band = band_list[size_t(b)];
       cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
                                 {band.row0, band.rows, b, band.frame});
       cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
+    }
+    stamp(1);
+    if (queue) {  // the queued shadow rays, once every band has queued its own
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                         vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
+                         nullptr, nullptr);
+      const uint64_t group = m.workgroup[0] * m.workgroup[1];
+      auto dispatch_over = [&](uint64_t invocations) {
+        const uint64_t groups = std::max<uint64_t>(1, (invocations + group - 1) / group);
+        const uint32_t gx = uint32_t(std::min<uint64_t>(groups, 65535));
+        cb.dispatch(gx, uint32_t((groups + gx - 1) / gx), 1);
+      };
+      const vk::MemoryBarrier written{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                      .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_for(1));
+      dispatch_over((queue_rays + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE);
+      stamp(2);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_for(2));
+      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {int32_t(pixels), 0, 0, 0});
+      dispatch_over(pixels);
+      stamp(3);
+      if (*m.timestamps) {
+        if (!m.queue_head.mapped) m.queue_head = m.make_buffer(16, vk::BufferUsageFlagBits::eTransferDst, true);
+        cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {},
+                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead},
+                           nullptr, nullptr);
+        cb.copyBuffer(*m.shadow_queue.buffer, *m.queue_head.buffer, vk::BufferCopy{0, 0, 16});
+      }
     }
     cb.end();
     vk::CommandBuffer raw = *cb;
@@ -467,6 +555,18 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
       throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
     stats.trace_seconds = seconds_since(t0);
     m.device.resetFences({*m.fence});
+    if (*m.timestamps) {
+      const uint32_t n = queue ? 4 : 2;
+      const auto [result, t] = m.timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
+                                                                 vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+      auto ms = [&](uint32_t a, uint32_t b) { return double(t[b] - t[a]) * m.timestamp_ns * 1e-6; };
+      const uint64_t made = queue ? static_cast<const uint32_t*>(m.queue_head.mapped)[0] : 0;
+      const uint64_t queued = std::min(made, queue_rays), past = made - queued;
+      if (result == vk::Result::eSuccess)
+        std::fprintf(stderr, "holoray gpu: pixel kernel %.3f ms, shadow pass %.3f ms, resolve %.3f ms; shadow queue of %llu rays: %llu queued, %llu traced where made\n",
+                     ms(0, 1), queue ? ms(1, 2) : 0.0, queue ? ms(2, 3) : 0.0, (unsigned long long)queue_rays,
+                     (unsigned long long)queued, (unsigned long long)past);
+    }
     // HOLORAY_GPU_FAULT=device-lost or out-of-memory (for the tests, where no
     // device fails on demand): the frame ends as that fault would end it.
     if (const char* fault = std::getenv("HOLORAY_GPU_FAULT")) {

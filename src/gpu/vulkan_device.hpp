@@ -33,7 +33,7 @@ vk::raii::Instance make_instance(const vk::raii::Context& context, const std::ve
 [[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device);
 
 /// trace.comp's descriptor bindings.
-constexpr int kBindings = 19;
+constexpr int kBindings = 22;
 
 // A buffer and its memory; `mapped` when host-visible.
 struct Buffer {
@@ -71,6 +71,19 @@ struct GpuRenderer::Impl {
   // (trace.comp, kRayLog), and the log's buffer (binding 18).
   std::string ray_log_path;
   Buffer ray_log;
+  // The shadow queue (trace.comp, kShadowQueue and kShadowPass), for
+  // measuring: on with HOLORAY_GPU_SHADOW_QUEUE where the device has
+  // subgroup ballots and votes and the ray log is off; its room in rays
+  // (0: 8 a pixel).
+  bool shadow_queue_on = false;
+  uint64_t shadow_queue_rays = 0;
+  // HOLORAY_GPU_STATS: each frame's passes timed on the device (the pixel
+  // kernel, the shadow pass, its resolve), printed on stderr.
+  vk::raii::QueryPool timestamps = nullptr;
+  double timestamp_ns = 0;
+  Buffer queue_head;  // the shadow queue's head, copied back for the same print
+  Buffer shadow_queue, shadow_last, shadow_terms;  // bindings 19, 20 and 21
+  uint64_t max_storage_range = 0;  // bytes (VkPhysicalDeviceLimits)
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
   vk::PhysicalDeviceMemoryProperties memory_types;
@@ -140,7 +153,10 @@ struct GpuRenderer::Impl {
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
   // they do; for tuning), whether it renders the panels, the materials'
   // features (HR_FEATURE_*), and whether it counts nodes and primitives.
-  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits, bool count_work);  // gpu_renderer.cpp
+  // With the shadow queue, the pixel kernel queues shadow rays (`queue`), or
+  // the pipeline is the shadow pass (`shadow_pass` 1) or its resolve (2).
+  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits, bool count_work, bool queue = false,
+                                   int shadow_pass = 0);  // gpu_renderer.cpp
 
   void bind(int binding, const Buffer& b) {
     vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};

@@ -85,6 +85,11 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 // Pairs of work counters per band of rows (gpu_renderer.cpp sums them).
 #define HR_COUNT_SLOTS 64
 
+// The shadow pass's invocations each cover this many queued shadow rays
+// (their subgroup's share; gpu_renderer.cpp sizes the dispatch by it), few
+// enough that lavapipe's 65535 loop iterations hold them.
+#define HR_SHADOW_RAYS_PER_LANE 8
+
 /// One 4-wide BVH node (accel/bvh_builder.hpp, BvhNode): the children's
 /// boxes axis by axis, then per child an index (inner node, or first
 /// reference of a leaf) and a count (0 inner, > 0 leaf, -1 empty).
@@ -169,6 +174,17 @@ HR_STRUCT GpuLevel {
 HR_STRUCT GpuLight {
   vec4 position_kind, intensity_unit, direction, attenuation, cone;
   ivec4 flags;
+};
+
+/// A shadow ray waiting in the shadow queue (trace.comp, kShadowQueue):
+/// origin (world) and how far it runs, unit direction, and w 1 once the
+/// shadow pass finds that nothing blocks it (0 as queued). Its term and
+/// link are in a vec4 of their own (the shadow pass does not read them):
+/// the light's term at its pixel, already divided by the samples per
+/// pixel, and in w (uint bits) of a run's first ray the start of the
+/// pixel's run before << 4 | this run's length (trace.comp, shadow_resolve).
+HR_STRUCT GpuShadowRay {
+  vec4 origin_tmax, dir_lit;
 };
 
 /// What one frame's dispatches share: the lens array (camera-model.md),

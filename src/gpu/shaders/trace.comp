@@ -10,6 +10,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_basic : require
 #include "layout.h"
 
 // Workgroup size: 32x2 by default (on an H200, 1.12x the frames of 8x8 on
@@ -43,6 +46,20 @@ layout(constant_id = 8) const bool kCountWork = false;
 // primitives it visited, for bench/ray_schedule_model.py to model how
 // other schedules would fill a subgroup's lanes. Set with kCountWork.
 layout(constant_id = 9) const bool kRayLog = false;
+// The shadow queue: the pixel kernel (kShadowQueue) queues the shadow rays
+// of NFF's, Blinn-Phong's and glTF's shading instead of tracing them, and
+// a pass of its own (kShadowPass, shadow_pass) traces the queue with lanes
+// that each take the queue's next ray when their own is done (after Aila
+// and Laine 2009), and a resolve adds each unblocked ray's term to its
+// pixel. Shadow rays end at their first blocker, anywhere along their
+// walk, so lanes in step ray by ray wait on their subgroup's longest. For
+// measuring (HOLORAY_GPU_SHADOW_QUEUE): 1.25x on balls_s4, 0.53x on
+// tree_s11 on an H200 (design/gpu.md, "The shadow queue").
+layout(constant_id = 10) const bool kShadowQueue = false;
+// kShadowPass: 0 the pixel kernel, 1 the shadow pass, 2 the resolve that
+// adds each pixel's unblocked terms to its colour, in the order queued, so
+// that a frame's colours are the same from run to run.
+layout(constant_id = 11) const int kShadowPass = 0;
 
 // One frame's constants per camera dispatched: a quilt's views are several.
 layout(std430, binding = 0) readonly buffer FrameBlock { GpuFrame frames[]; };
@@ -58,7 +75,7 @@ layout(std430, binding = 8) readonly buffer MaterialBlock { GpuMaterial material
 layout(std430, binding = 9) readonly buffer LightBlock { GpuLight lights[]; };
 // Colour (3 floats a pixel) and the AOVs (albedo 3, depth 1, normal 3, id 1),
 // for the whole image; each dispatch writes its band's rows.
-layout(std430, binding = 10) writeonly buffer ColourBlock { float colour_out[]; };
+layout(std430, binding = 10) buffer ColourBlock { float colour_out[]; };
 layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
 // Statistics, summed with one atomic per subgroup: nodes visited,
 // primitives tested, then rays by kind: eye, shadow, reflected, refracted.
@@ -73,6 +90,16 @@ layout(std430, binding = 17) readonly buffer UvBlock { GpuUv uvs[]; };
 // pixel i, j; kind: depth | 0x80 for a shadow ray, | frame << 8; nodes |
 // primitives << 16); records past its capacity are counted, not kept.
 layout(std430, binding = 18) buffer RayLogBlock { uvec4 ray_log_head; uvec4 ray_log[]; };
+// The shadow queue (kShadowQueue): x of the head the rays queued (those
+// past its capacity were traced where they were made), y the rays the
+// shadow pass has fetched, z its capacity (written by the host: an H200's
+// length() of a runtime array past 2^31 bytes came out short). A pixel's
+// queued rays lie in runs, one for each light chunk of a hit, linked from
+// its last (`shadow_last`, by colour buffer pixel, ~0 for none) back
+// through the link in each run's first term (`shadow_terms`).
+layout(std430, binding = 19) buffer ShadowQueueBlock { uvec4 shadow_head; GpuShadowRay shadow_queue[]; };
+layout(std430, binding = 20) buffer ShadowLastBlock { uint shadow_last[]; };
+layout(std430, binding = 21) buffer ShadowTermBlock { vec4 shadow_terms[]; };
 
 layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
 
@@ -790,7 +817,112 @@ struct Pending {
   int depth;
 };
 
+// The shadow queue traced (kShadowPass 1): each lane walks one ray a node
+// a step, and lanes whose ray is done take the queue's next together (one
+// atomic a subgroup), so no lane waits on another's longer walk (after
+// Aila and Laine 2009). A ray that reaches its light is marked so
+// (dir_lit.w = 1). A subgroup takes at most HR_SHADOW_RAYS_PER_LANE rays
+// a lane, and the dispatch holds enough invocations for the queue's
+// capacity; those that find it drained leave at once. The loop's one exit
+// is in its condition (design/gpu.md: lavapipe and loops).
+void shadow_pass() {
+  uint queued = min(shadow_head.x, shadow_head.z);
+  uint budget = uint(HR_SHADOW_RAYS_PER_LANE) * gl_SubgroupSize, taken = 0u;
+  bool live = false, drained = false;
+  vec3 o = vec3(0.0), d = vec3(0.0), inv = vec3(0.0);
+  float tmax = 0.0;
+  uint at = 0u;
+  int stack[HR_STACK];
+  int sp = 0, next = -1;
+  bool more = true;
+  while (more) {
+    uvec4 want = subgroupBallot(!live);
+    uint k = min(subgroupBallotBitCount(want), budget - taken);
+    if (k > 0u && !drained) {
+      uint base = 0u;
+      if (subgroupElect()) base = atomicAdd(shadow_head.y, k);
+      base = subgroupBroadcastFirst(base);
+      taken += k;
+      drained = base + k >= queued;
+      uint rank = subgroupBallotExclusiveBitCount(want);
+      if (!live && rank < k && base + rank < queued) {
+        at = base + rank;
+        GpuShadowRay r = shadow_queue[at];
+        o = r.origin_tmax.xyz, tmax = r.origin_tmax.w, d = r.dir_lit.xyz, inv = safe_inverse(d);
+        live = true, sp = 0, next = 0;
+      }
+    }
+    if (live) {
+      GpuNode n = nodes[next];
+      if (kCountWork) ++visited;
+      vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
+      vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
+      vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
+      vec4 t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(0.0)));
+      vec4 t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(tmax)));
+      bool blocked = false;
+      int first = -1;
+      for (int c = 0; c < 4 && !blocked; ++c) {
+        if (n.count[c] < 0 || !(t0[c] <= t1[c])) continue;
+        if (n.count[c] > 0) {
+          for (int q = 0; q < n.count[c] && !blocked; ++q) {
+            Hit h;
+            h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
+            blocked = hit_ref(refs[n.index[c] + q], o, d, 0.0, true, h);
+          }
+        } else if (first < 0) {
+          first = n.index[c];
+        } else if (sp < HR_STACK) {
+          stack[sp++] = n.index[c];
+        }
+      }
+      next = first >= 0 ? first : sp > 0 ? stack[--sp] : -1;
+      if (blocked || next < 0) {
+        if (!blocked) shadow_queue[at].dir_lit.w = 1.0;
+        live = false;
+      }
+    }
+    more = subgroupAny(live) || (!drained && taken < budget);
+  }
+  if (kCountWork) {
+    uvec2 work = subgroupAdd(uvec2(visited, tested));
+    if (subgroupElect()) {
+      int slot = 2 * int(gl_WorkGroupID.x % uint(HR_COUNT_SLOTS));
+      atomicAdd(band_counts[slot].x, work.x);
+      atomicAdd(band_counts[slot].y, work.y);
+    }
+  }
+}
+
+// Each pixel's unblocked shadow terms added to its colour (kShadowPass 2),
+// from its last queued ray back; invocations by colour buffer pixel, the
+// image's count in the push constants' row0.
+void shadow_resolve() {
+  uint p = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) +
+           gl_LocalInvocationIndex;
+  if (p >= uint(band.row0)) return;
+  uint capacity = shadow_head.z, run = shadow_last[p];
+  vec3 sum = vec3(0.0);
+  while (run < capacity) {
+    uint packed = floatBitsToUint(shadow_terms[run].w);  // the run before << 4 | the run's length
+    uint n = min(packed & 15u, capacity - run);
+    for (uint q = 0u; q < n; ++q)
+      if (shadow_queue[run + q].dir_lit.w != 0.0) sum += shadow_terms[run + q].xyz;
+    uint before = packed >> 4;
+    run = before < run ? before : capacity;  // linked back to earlier runs only
+  }
+  if (sum != vec3(0.0)) colour_out[p * 3u + 0u] += sum.x, colour_out[p * 3u + 1u] += sum.y, colour_out[p * 3u + 2u] += sum.z;
+}
+
 void main() {
+  if (kShadowPass == 1) {
+    shadow_pass();
+    return;
+  }
+  if (kShadowPass == 2) {
+    shadow_resolve();
+    return;
+  }
   int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
   int W = F.size.x;
   if (i >= W || int(gl_GlobalInvocationID.y) >= band.rows) return;
@@ -798,6 +930,7 @@ void main() {
   float eps = F.extent.w, margin = F.box_lo.w;
   int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
   uint eye_rays = 0u, shadow_rays = 0u, reflected_rays = 0u, refracted_rays = 0u;
+  uint last_run = 0x0fffffffu;  // the pixel's last run of queued shadow rays (none: past any capacity)
   vec3 sum = vec3(0.0);
   bool first_hit = false;
   for (int k = 0; k < spp; ++k) {
@@ -1042,11 +1175,29 @@ void main() {
               ++n;
             }
           }
+          // Queued: one atomic for the lanes here together, each lane's rays
+          // a run of their own, linked to the pixel's run before; a run past
+          // the queue's capacity is traced here.
+          uint first = 0u;
+          bool queued = false;
+          if (kShadowQueue) {
+            uint total = subgroupAdd(uint(n)), before = subgroupExclusiveAdd(uint(n)), base = 0u;
+            if (subgroupElect() && total > 0u) base = atomicAdd(shadow_head.x, total);
+            first = subgroupBroadcastFirst(base) + before;
+            queued = n > 0 && first + uint(n) <= shadow_head.z;
+          }
           for (int q = 0; q < n; ++q) {
             ++shadow_rays;
+            if (queued) {
+              uint at = first + uint(q);
+              shadow_queue[at] = GpuShadowRay(vec4(above, ray_to[q].w), vec4(ray_to[q].xyz, 0.0));
+              shadow_terms[at] = vec4(contrib[q] / float(spp), uintBitsToFloat(q == 0 ? last_run << 4 | uint(n) : 0u));
+              continue;
+            }
             Hit sh;
             if (!trace_ray(above, ray_to[q].xyz, 0.0, ray_to[q].w, true, sh)) c += contrib[q];
           }
+          if (queued) last_run = first;
         }
       }
     }
@@ -1062,6 +1213,7 @@ void main() {
     colour_out[pixel * 3u + 1u] = colour.y;
     colour_out[pixel * 3u + 2u] = colour.z;
   }
+  if (kShadowQueue) shadow_last[out_pixel(i, j)] = last_run;
   if (aovs != 0 && !first_hit) {  // background (a hit's were written where it was met)
     uint a = out_pixel(i, j) * 8u;
     for (uint q = 0u; q < 8u; ++q) aov_out[a + q] = 0.0;
