@@ -75,7 +75,10 @@ layout(std430, binding = 8) readonly buffer MaterialBlock { GpuMaterial material
 layout(std430, binding = 9) readonly buffer LightBlock { GpuLight lights[]; };
 // Colour (3 floats a pixel) and the AOVs (albedo 3, depth 1, normal 3, id 1),
 // for the whole image; each dispatch writes its band's rows.
-layout(std430, binding = 10) buffer ColourBlock { float colour_out[]; };
+layout(std430, binding = 10) writeonly buffer ColourBlock { float colour_out[]; };
+// The same colours, read and added to by the shadow queue's resolve alone
+// (so that the pixel kernel keeps its write-only colour buffer).
+layout(std430, binding = 10) buffer ColourSumBlock { float colour_sum[]; };
 layout(std430, binding = 11) writeonly buffer AovBlock { float aov_out[]; };
 // Statistics, summed with one atomic per subgroup: nodes visited,
 // primitives tested, then rays by kind: eye, shadow, reflected, refracted.
@@ -911,7 +914,7 @@ void shadow_resolve() {
     uint before = packed >> 4;
     run = before < run ? before : capacity;  // linked back to earlier runs only
   }
-  if (sum != vec3(0.0)) colour_out[p * 3u + 0u] += sum.x, colour_out[p * 3u + 1u] += sum.y, colour_out[p * 3u + 2u] += sum.z;
+  if (sum != vec3(0.0)) colour_sum[p * 3u + 0u] += sum.x, colour_sum[p * 3u + 1u] += sum.y, colour_sum[p * 3u + 2u] += sum.z;
 }
 
 void main() {
