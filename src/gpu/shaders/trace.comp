@@ -325,6 +325,17 @@ vec3 safe_inverse(vec3 d) {
   return 1.0 / mix(d, mix(-tiny, tiny, greaterThanEqual(d, vec3(0.0))), lessThan(abs(d), tiny));
 }
 
+// Where the ray (origin o, 1 / direction inv) enters and leaves each of
+// node n's four child boxes, clipped to [tmin, tmax]: child c is met
+// where t0[c] <= t1[c] (slabs, axis by axis).
+void child_spans(GpuNode n, vec3 o, vec3 inv, float tmin, float tmax, out vec4 t0, out vec4 t1) {
+  vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
+  vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
+  vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
+  t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(tmin)));
+  t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(tmax)));
+}
+
 bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h);
 // Every ray's traversal, logged where the ray log is on.
 bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
@@ -349,11 +360,8 @@ bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
   while (next >= 0) {
     GpuNode n = nodes[next];
     if (kCountWork) ++visited;
-    vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
-    vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
-    vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
-    vec4 t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(tmin)));
-    vec4 t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(h.t)));
+    vec4 t0, t1;
+    child_spans(n, o, inv, tmin, h.t, t0, t1);
     // Children met, in order[] nearest last (visited next).
     int order[4];
     float near_t[4];
@@ -858,11 +866,8 @@ void shadow_pass() {
     if (live) {
       GpuNode n = nodes[next];
       if (kCountWork) ++visited;
-      vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
-      vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
-      vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
-      vec4 t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(0.0)));
-      vec4 t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(tmax)));
+      vec4 t0, t1;
+      child_spans(n, o, inv, 0.0, tmax, t0, t1);
       bool blocked = false;
       int first = -1;
       for (int c = 0; c < 4 && !blocked; ++c) {
