@@ -557,8 +557,10 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     m.device.resetFences({*m.fence});
     if (*m.timestamps) {
       const uint32_t n = queue ? 4 : 2;
-      const auto [result, t] = m.timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
-                                                                 vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+      const auto got = m.timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
+                                                         vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+      const vk::Result result = got.first;
+      const std::vector<uint64_t>& t = got.second;  // not a structured binding: a lambda below reads it (clang 14)
       auto ms = [&](uint32_t a, uint32_t b) { return double(t[b] - t[a]) * m.timestamp_ns * 1e-6; };
       const uint64_t made = queue ? static_cast<const uint32_t*>(m.queue_head.mapped)[0] : 0;
       const uint64_t queued = std::min(made, queue_rays), past = made - queued;
