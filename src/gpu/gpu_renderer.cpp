@@ -223,15 +223,22 @@ void write_ray_log(const Buffer& log, const std::string& path, const uint32_t wo
 
 }  // namespace
 
-vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, uint32_t feature_bits, bool count, bool queue, int shadow_pass) {
+vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shadow_pass) {
+  const uint32_t key = features << 5 | uint32_t(shadow_pass) << 3 | (queue ? 4u : 0u) | (count_work ? 2u : 0u) | (panel ? 1u : 0u);
+  auto p = pipelines.find(key);
+  if (p == pipelines.end()) p = pipelines.emplace(key, make_pipeline(panel, queue && shadow_pass == 0, shadow_pass)).first;
+  return p->second;
+}
+
+vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
   constexpr uint32_t kConstants = 12;
   const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
-                                            panel ? 1u : 0u, (feature_bits & HR_FEATURE_TACHYON) ? 1u : 0u,
-                                            (feature_bits & HR_FEATURE_GLTF) ? 1u : 0u,
-                                            (feature_bits & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
-                                            (feature_bits & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count ? 1u : 0u,
-                                            count && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass)};
+                                            panel ? 1u : 0u, (features & HR_FEATURE_TACHYON) ? 1u : 0u,
+                                            (features & HR_FEATURE_GLTF) ? 1u : 0u,
+                                            (features & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
+                                            (features & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count_work ? 1u : 0u,
+                                            count_work && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass)};
   vk::SpecializationMapEntry entries[kConstants];
   for (uint32_t k = 0; k < kConstants; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
   const vk::SpecializationInfo spec{.mapEntryCount = kConstants, .pMapEntries = entries, .dataSize = sizeof spec_values,
@@ -346,7 +353,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   if (const char* log = std::getenv("HOLORAY_GPU_RAY_LOG"); log && *log) m.ray_log_path = log, count_work = true;
   m.count_work = count_work;
   if (!m.ray_log_path.empty()) m.shadow_queue_on = false;  // the log models the kernel's own schedule
-  m.pipelines.emplace((m.shadow_queue_on ? 4u : 0u) | (count_work ? 2u : 0u), m.make_pipeline(false, 0, count_work, m.shadow_queue_on));  // NFF's lens arrays, made now: the device is checked whole at start
+  m.pipeline(false, m.shadow_queue_on, 0);  // NFF's lens arrays (no features yet), made now: the device is checked whole at start
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
@@ -477,12 +484,6 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
     const bool queue = queue_rays > 0 && !panel;
-    auto pipeline_for = [&](int pass) -> vk::raii::Pipeline& {
-      const uint32_t key = m.features << 5 | uint32_t(pass) << 3 | (queue ? 4u : 0u) | (m.count_work ? 2u : 0u) | (panel ? 1u : 0u);
-      auto p = m.pipelines.find(key);
-      if (p == m.pipelines.end()) p = m.pipelines.emplace(key, m.make_pipeline(panel, m.features, m.count_work, queue && pass == 0, pass)).first;
-      return p->second;
-    };
     if (queue) {
       if (m.shadow_queue.size < 16 + queue_rays * sizeof(GpuShadowRay)) {
         m.shadow_queue = m.make_buffer(16 + queue_rays * sizeof(GpuShadowRay),
@@ -510,7 +511,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     };
     if (*m.timestamps) cb.resetQueryPool(*m.timestamps, 0, 4);
     stamp(0);
-    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_for(0));
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 0));
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
     for (int b = 0; b < bands; ++b) {
       const Band& band = band_list[size_t(b)];
@@ -531,11 +532,11 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
       };
       const vk::MemoryBarrier written{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                       .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_for(1));
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 1));
       dispatch_over((queue_rays + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE);
       stamp(2);
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr, nullptr);
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_for(2));
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 2));
       cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {int32_t(pixels), 0, 0, 0});
       dispatch_over(pixels);
       stamp(3);

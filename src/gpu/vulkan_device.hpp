@@ -155,8 +155,12 @@ struct GpuRenderer::Impl {
   // features (HR_FEATURE_*), and whether it counts nodes and primitives.
   // With the shadow queue, the pixel kernel queues shadow rays (`queue`), or
   // the pipeline is the shadow pass (`shadow_pass` 1) or its resolve (2).
-  vk::raii::Pipeline make_pipeline(bool panel, uint32_t feature_bits, bool count_work, bool queue = false,
-                                   int shadow_pass = 0);  // gpu_renderer.cpp
+  vk::raii::Pipeline make_pipeline(bool panel, bool queue, int shadow_pass);  // gpu_renderer.cpp
+
+  // The pipeline for the loaded scene's features and for count_work, made on
+  // first use and kept (`pipelines`). `queue`: the frame has a shadow queue,
+  // whose pixel kernel (shadow_pass 0) queues its shadow rays.
+  vk::raii::Pipeline& pipeline(bool panel, bool queue, int shadow_pass);  // gpu_renderer.cpp
 
   void bind(int binding, const Buffer& b) {
     vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};
