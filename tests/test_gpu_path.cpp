@@ -657,6 +657,51 @@ struct ScopedEnv {
   }
 };
 
+// The process keeps a released renderer between api::render calls
+// (src/api/gpu_executor.cpp): one taken from there, after a scene of other
+// materials, other AOVs and another image size, renders what a new one
+// renders, bit for bit. A measuring knob, here set to its default value,
+// makes every render take a new renderer.
+TEST(GpuPath, ARendererKeptBetweenRendersGivesWhatANewOneGives) {
+  const Scene spheres = Scene::load(source_dir() + "/examples/primitives.nff");
+  const Scene textured = Scene::load(source_dir() + "/tests/data/blender/textured_box.gltf");
+  struct Step {
+    const Scene* scene;
+    Camera camera;
+    bool aovs;
+  };
+  const std::vector<Step> steps = {{&spheres, array_of(api::Grid::square), false},
+                                   {&textured, array_of(api::Grid::hex, api::Mode::pseudoscopic), true},
+                                   {&spheres, api::Pinhole{96, 64}, true},
+                                   {&textured, array_of(api::Grid::square), false}};
+  auto render_all = [&] {
+    std::vector<Result> out;
+    for (const Step& s : steps) {
+      RenderOptions o;
+      o.device = "gpu";
+      if (s.aovs) o.aovs = Aovs{true, true, true, true};
+      out.push_back(api::render(*s.scene, s.camera, o));
+    }
+    return out;
+  };
+  const std::vector<Result> kept = render_all();
+  std::vector<Result> made;
+  {
+    ScopedEnv fresh("HOLORAY_GPU_WORKGROUP", "32x2");
+    made = render_all();
+  }
+  auto same = [](const auto& a, const auto& b) {
+    return a.width() == b.width() && a.height() == b.height() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(*a.data())) == 0;
+  };
+  for (size_t k = 0; k < steps.size(); ++k) {
+    EXPECT_TRUE(same(kept[k].colour, made[k].colour)) << "step " << k;
+    EXPECT_TRUE(same(kept[k].depth, made[k].depth)) << "step " << k;
+    EXPECT_TRUE(same(kept[k].normal, made[k].normal)) << "step " << k;
+    EXPECT_TRUE(same(kept[k].id, made[k].id)) << "step " << k;
+  }
+}
+
 TEST(GpuPath, WithoutALoaderSaysWhatToInstall) {
   ScopedEnv env("HOLORAY_VULKAN_LOADER", "/nonexistent/libvulkan.so.1");
   EXPECT_EQ(error_of([] { gpu::GpuRenderer r; }),

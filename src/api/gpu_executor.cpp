@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cstring>
+#include <mutex>
 #include <stdexcept>
+
+#include <unistd.h>  // environ
 
 #include "api/internal.hpp"
 #ifdef HOLORAY_GPU
@@ -64,10 +68,74 @@ std::string device_of_local_rank(const std::string& device, int local_rank) {
   return n < 0 ? device : fmt::format("gpu:{}", n);
 }
 
+namespace {
+
+// GPU renderers kept, idle and released (GpuRenderer::release), for the
+// process's next render on the same device: a Vulkan device and its compiled
+// pipelines cost more than a small frame (on lavapipe about 1.2 s a
+// pipeline, on every GpuRenderer), and Python and Blender render one still
+// after another. An executor holds its renderer alone, so renderers are
+// never shared between threads; one that failed is not kept. The measuring
+// knobs (HOLORAY_GPU_*, HOLORAY_VULKAN_LOADER) are read as a renderer is
+// made, so while any is set nothing is kept or reused. Never destroyed: the
+// driver's own state may be gone by the time static objects are.
+class RendererPool {
+ public:
+  std::unique_ptr<gpu::GpuRenderer> take(int device, bool count_work) {
+    if (knobs_set()) return nullptr;
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = idle_.begin(); it != idle_.end(); ++it)
+      if (it->device == device && it->count_work == count_work) {
+        std::unique_ptr<gpu::GpuRenderer> r = std::move(it->renderer);
+        idle_.erase(it);
+        return r;
+      }
+    return nullptr;
+  }
+  void give(int device, bool count_work, std::unique_ptr<gpu::GpuRenderer> r) {
+    if (knobs_set()) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    idle_.push_back({device, count_work, std::move(r)});
+  }
+
+ private:
+  static bool knobs_set() {
+    for (char** e = environ; *e; ++e)
+      if (std::strncmp(*e, "HOLORAY_GPU_", 12) == 0 || std::strncmp(*e, "HOLORAY_VULKAN_LOADER=", 22) == 0) return true;
+    return false;
+  }
+  struct Idle {
+    int device;
+    bool count_work;
+    std::unique_ptr<gpu::GpuRenderer> renderer;
+  };
+  std::mutex mutex_;
+  std::vector<Idle> idle_;
+};
+
+RendererPool& renderer_pool() {
+  static RendererPool* pool = new RendererPool;
+  return *pool;
+}
+
+}  // namespace
+
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
   std::optional<gpu::ScenePose> uploaded;
   uint64_t image_bytes = 0;
+  int device = -1;
+  bool count_work = false;
+  bool healthy = false;  // the last call on `renderer` returned: it may be kept
+
+  ~Impl() {
+    if (!renderer || !healthy) return;
+    try {
+      renderer->release();
+      renderer_pool().give(device, count_work, std::move(renderer));
+    } catch (...) {  // a renderer that cannot be released is not kept
+    }
+  }
 
   // Lays out and uploads `scene` unless it stands as it did at the last
   // upload: seconds spent, 0 when nothing moved.
@@ -91,10 +159,15 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
   if (options.cache.enabled)
     throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
   try {
-    impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index, std::vector<std::string>{}, options.count_work);
+    impl_->device = device.index;
+    impl_->count_work = options.count_work;
+    impl_->renderer = renderer_pool().take(device.index, options.count_work);
+    if (!impl_->renderer)
+      impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index, std::vector<std::string>{}, options.count_work);
     const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;
     impl_->image_bytes = gpu::GpuRenderer::frame_bytes(camera.width(), camera.height(), aovs);
     impl_->follow(scene);
+    impl_->healthy = true;
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());
   }
@@ -113,12 +186,14 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
     throw std::invalid_argument("`device` gpu: a quilt renders whole on the GPU, not in bands of rows");
   FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
   gpu::GpuFrameStats g;
+  impl_->healthy = false;
   try {
     stats.build_seconds = impl_->follow(context.scene());
     impl_->renderer->render(gpu::camera_frames(context, camera, aovs, spp, y0, y1), camera.width(), y1 - y0, aovs, fb, g);
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());
   }
+  impl_->healthy = true;
   stats.trace_seconds = g.trace_seconds;
   stats.readback_seconds = g.readback_seconds;
   stats.nodes_visited = g.nodes_visited;

@@ -412,6 +412,17 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes) {
   }
 }
 
+void GpuRenderer::release() {
+  Impl& m = *impl_;
+  for (Buffer& b : m.scene) b = Buffer{};
+  for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
+                    &m.shadow_terms})
+    *b = Buffer{};
+  m.scene_bytes = 0;
+  m.traced = {0, 0};
+  m.traced_aovs = false;
+}
+
 void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
   render(std::vector<GpuFrame>{frame}, frame.tile.z, frame.rows.y - frame.rows.x, aovs, out, stats);
 }

@@ -71,6 +71,10 @@ class GpuRenderer {
   /// allocating, when the two pass the device's memory, naming all three
   /// sizes.
   void load(const SceneArrays& scene, uint64_t image_bytes);
+  /// Frees the scene and the frames' buffers, keeping the device and its
+  /// compiled pipelines for the next load(): a renderer kept idle between
+  /// renders holds no more device memory than its pipelines.
+  void release();
   /// Device bytes a width x height frame takes (colour, and the AOVs when wanted).
   static uint64_t frame_bytes(int width, int height, bool aovs);
 
