@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -70,6 +71,9 @@ std::string device_of_local_rank(const std::string& device, int local_rank) {
 
 namespace {
 
+class RendererPool;
+RendererPool& renderer_pool();
+
 // GPU renderers kept, idle and released (GpuRenderer::release), for the
 // process's next render on the same device: a Vulkan device and its compiled
 // pipelines cost more than a small frame (on lavapipe about 1.2 s a
@@ -77,8 +81,10 @@ namespace {
 // after another. An executor holds its renderer alone, so renderers are
 // never shared between threads; one that failed is not kept. The measuring
 // knobs (HOLORAY_GPU_*, HOLORAY_VULKAN_LOADER) are read as a renderer is
-// made, so while any is set nothing is kept or reused. Never destroyed: the
-// driver's own state may be gone by the time static objects are.
+// made, so while any is set nothing is kept or reused. The kept ones are
+// destroyed at exit by a handler registered after the driver was loaded,
+// so it runs while the driver's own state still stands (handlers run in
+// reverse order, the shared libraries' destructors last).
 class RendererPool {
  public:
   std::unique_ptr<gpu::GpuRenderer> take(int device, bool count_work) {
@@ -95,7 +101,12 @@ class RendererPool {
   void give(int device, bool count_work, std::unique_ptr<gpu::GpuRenderer> r) {
     if (knobs_set()) return;
     std::lock_guard<std::mutex> lock(mutex_);
-    idle_.push_back({device, count_work, std::move(r)});
+    if (!exit_handler_) exit_handler_ = std::atexit([] { renderer_pool().clear(); }) == 0;
+    if (exit_handler_) idle_.push_back({device, count_work, std::move(r)});
+  }
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    idle_.clear();
   }
 
  private:
@@ -111,8 +122,10 @@ class RendererPool {
   };
   std::mutex mutex_;
   std::vector<Idle> idle_;
+  bool exit_handler_ = false;
 };
 
+// Made once and never destroyed, so that the exit handler finds it.
 RendererPool& renderer_pool() {
   static RendererPool* pool = new RendererPool;
   return *pool;
