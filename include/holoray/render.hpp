@@ -65,7 +65,9 @@ struct RenderOptions {
   /// first Vulkan device that is a GPU, else the first device: lavapipe
   /// where there is no GPU) or "gpu:N" (the Nth Vulkan device). The GPU
   /// path (docs/guide/gpu.md) renders every camera, material and texture
-  /// the CPU path does, in float; the shadow cache stays the CPU's.
+  /// the CPU path does, in float; the shadow cache stays the CPU's. A
+  /// process keeps a GPU's device and compiled kernels, idle, for its next
+  /// render on that device (the scene's and image's memory is freed).
   std::string device = "cpu";
   /// On the GPU: count the BVH nodes each ray visits and the primitives it
   /// tests (RenderStats), which the kernel does only when asked: the two
