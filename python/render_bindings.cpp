@@ -261,6 +261,22 @@ void bind_render(py::module_& m) {
       "Renders scene through camera: Result. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
       "progress(fraction) is called on the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else lavapipe) "
       "or 'gpu:N'; stats['device'] names it.");
+  m.def(
+      "gpu_devices",
+      [] {
+        py::gil_scoped_release nogil;
+        return api::gpu_devices();
+      },
+      "The machine's Vulkan devices ('0: llvmpipe (...), CPU, Vulkan 1.3, 2.0 GiB'), in the order 'gpu:N' counts them. "
+      "RuntimeError saying what to install when there is no loader or device.");
+  m.def(
+      "release_gpu_devices",
+      [] {
+        py::gil_scoped_release nogil;
+        return api::release_gpu_devices();
+      },
+      "Frees the GPU devices this process keeps idle between renders (and their compiled kernels), handing their "
+      "memory back to the driver; the next GPU render makes its own again. Returns how many were freed.");
 }
 
 }  // namespace holoray::python

@@ -702,6 +702,23 @@ TEST(GpuPath, ARendererKeptBetweenRendersGivesWhatANewOneGives) {
   }
 }
 
+// A host application hands the GPU back between renders: the kept device
+// is freed, counted once, and the next render makes its own and renders
+// the same image.
+TEST(GpuPath, ReleasedDevicesAreFreedOnceAndTheNextRenderMakesItsOwn) {
+  api::release_gpu_devices();  // what earlier tests of this process kept
+  const Scene spheres = Scene::load(source_dir() + "/examples/primitives.nff");
+  RenderOptions o;
+  o.device = "gpu";
+  const Result first = api::render(spheres, array_of(api::Grid::square), o);
+  EXPECT_EQ(api::release_gpu_devices(), 1);
+  EXPECT_EQ(api::release_gpu_devices(), 0);
+  const Result again = api::render(spheres, array_of(api::Grid::square), o);
+  ASSERT_EQ(again.colour.size(), first.colour.size());
+  EXPECT_EQ(std::memcmp(again.colour.data(), first.colour.data(), first.colour.size() * sizeof(float)), 0);
+  EXPECT_EQ(api::release_gpu_devices(), 1);
+}
+
 TEST(GpuPath, WithoutALoaderSaysWhatToInstall) {
   ScopedEnv env("HOLORAY_VULKAN_LOADER", "/nonexistent/libvulkan.so.1");
   EXPECT_EQ(error_of([] { gpu::GpuRenderer r; }),

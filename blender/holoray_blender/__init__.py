@@ -49,6 +49,7 @@ def register():
 
 
 def unregister():
+    inprocess.release_gpu_devices()
     ui.unregister_panels()
     del bpy.types.Scene.holoray
     for c in reversed(_classes):

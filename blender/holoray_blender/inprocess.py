@@ -25,6 +25,15 @@ def find_module(binary):
     return module
 
 
+def release_gpu_devices():
+    """Hands back the GPU devices the module keeps between renders (the
+    add-on disabled, Blender closing), so that their memory on the GPU goes
+    to Blender's own engines."""
+    for module in _found.values():
+        if module is not None:
+            module.release_gpu_devices()
+
+
 def _import(binary):
     try:
         import holoray

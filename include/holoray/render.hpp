@@ -173,6 +173,15 @@ HOLORAY_API std::string device_of_local_rank(const std::string& device, int loca
 /// device, or that this build has no GPU path.
 HOLORAY_API std::vector<std::string> gpu_devices();
 
+/// Frees the GPU devices this process keeps idle between renders
+/// (RenderOptions::device) with their compiled kernels, so that the memory
+/// their contexts hold on the GPU goes back to the driver: for a host
+/// application (Blender) that hands the GPU to other work. A render under
+/// way keeps its own; the next GPU render makes its device again (on
+/// lavapipe, 1.3 s). Returns how many were freed; 0 in a build without the
+/// GPU path. Does not throw.
+HOLORAY_API int release_gpu_devices() noexcept;
+
 /// Installed memory in bytes; 0 when unknown (the bound on buffers).
 HOLORAY_API uint64_t physical_memory_bytes();
 

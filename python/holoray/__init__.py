@@ -24,7 +24,9 @@ from ._holoray import (  # noqa: F401
     Scene,
     SceneError,
     __version__,
+    gpu_devices,
     psnr,
+    release_gpu_devices,
     render,
     subaperture_view,
 )
@@ -32,7 +34,8 @@ from . import _holoray
 
 __all__ = [
     "Display", "LensArray", "LookingGlass", "Pinhole", "Quilt", "Result", "Scene", "SceneError",
-    "animate", "interlace_quilt", "light_field", "load_scene", "psnr", "read_image", "render", "simulate_view",
+    "animate", "gpu_devices", "interlace_quilt", "light_field", "load_scene", "psnr", "read_image",
+    "release_gpu_devices", "render", "simulate_view",
     "subaperture_view", "write_image",
 ]
 

@@ -109,18 +109,32 @@ class Result:
     """'albedo' float32 (H, W, 3); 'depth' float32 (H, W), the camera's line
     parameter t, NaN for background; 'normal' float32 (H, W, 3), world frame,
     facing the viewer; 'id' int32 (H, W), object id, -1 for background."""
-    stats: Mapping[str, Mapping[str, int | float]]
+    stats: Mapping[str, Mapping[str, int | float] | str]
     """{'rays': {'eye', 'shadow', 'reflected', 'refracted', 'shadow_cached',
-        'cache_samples', 'total'} (int), 'seconds': {'build', 'trace'} (float)}"""
+        'cache_samples', 'total'} (int), 'seconds': {'build', 'trace'} (float),
+        'device': 'cpu' or the GPU's name}"""
     description: str
     """What was rendered, as `holoray render` prints it."""
 
 def render(scene: Scene, camera: Camera, *, threads: int | None = None, spp: int = 1,
            max_depth: int | None = None, aovs: Sequence[str] = (),
-           progress: Callable[[float], object] | None = None) -> Result:
+           progress: Callable[[float], object] | None = None, device: str = "cpu") -> Result:
     """Renders scene through camera. Releases the GIL; Ctrl-C raises
     KeyboardInterrupt within half a second; progress(fraction) is called on
-    the calling thread. Raises ValueError naming the argument, SceneError."""
+    the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else
+    lavapipe) or 'gpu:N'; stats['device'] names it. Raises ValueError naming
+    the argument, SceneError."""
+
+def gpu_devices() -> list[str]:
+    """The machine's Vulkan devices ('0: llvmpipe (...), CPU, Vulkan 1.3, 2.0
+    GiB'), in the order 'gpu:N' counts them. RuntimeError saying what to
+    install when there is no loader or device."""
+
+def release_gpu_devices() -> int:
+    """Frees the GPU devices this process keeps idle between renders (and
+    their compiled kernels), handing their memory back to the driver; the
+    next GPU render makes its own again (about a second). Returns how many
+    were freed."""
 
 def light_field(eia: ArrayLike, pixels_per_lens: int) -> np.ndarray:
     """(H, W, C) or (H, W) square-grid EIA -> (P, P, Ny, Nx, C) view (C = 1

@@ -104,9 +104,15 @@ class RendererPool {
     if (!exit_handler_) exit_handler_ = std::atexit([] { renderer_pool().clear(); }) == 0;
     if (exit_handler_) idle_.push_back({device, count_work, std::move(r)});
   }
-  void clear() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    idle_.clear();
+  // How many were freed. Destroyed outside the lock: a device's teardown
+  // waits on the driver.
+  int clear() {
+    std::vector<Idle> gone;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      gone.swap(idle_);
+    }
+    return static_cast<int>(gone.size());
   }
 
  private:
@@ -132,6 +138,14 @@ RendererPool& renderer_pool() {
 }
 
 }  // namespace
+
+int release_gpu_devices() noexcept {
+  try {
+    return renderer_pool().clear();
+  } catch (...) {  // a driver's teardown that throws frees what it can
+    return 0;
+  }
+}
 
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
@@ -224,6 +238,7 @@ constexpr const char* kNoGpu =
 }
 
 std::vector<std::string> gpu_devices() { throw std::runtime_error(kNoGpu); }
+int release_gpu_devices() noexcept { return 0; }
 std::string device_of_local_rank(const std::string& device, int) {
   if (device == "gpu") throw std::runtime_error(kNoGpu);
   return device;

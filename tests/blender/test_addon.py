@@ -97,6 +97,19 @@ def test_the_gpu_device_renders_the_cpus_eia_both_ways(tmp_path):
         assert holoray.psnr(cpu, gpu) >= 50, backend
 
 
+def test_disabling_the_addon_hands_back_the_gpu_device_the_module_kept(tmp_path):
+    # After an in-process render on Device GPU the module keeps its device;
+    # disabling the add-on releases it, so none is left to release after.
+    build("untextured", tmp_path)
+    after = ("import addon_utils, holoray; "
+             "addon_utils.disable('holoray_blender'); print('LEFT', holoray.release_gpu_devices())")
+    run = subprocess.run(render_args(tmp_path, backend="MODULE", device="GPU") + ["--python-expr", after], env=env(),
+                         capture_output=True, text=True, timeout=300)
+    log = run.stdout + run.stderr
+    assert "(module)" in log and "Traceback" not in log, log[-3000:]
+    assert "LEFT 0" in log.splitlines(), log[-3000:]
+
+
 def test_the_shot_operators_array_is_the_one_f12_renders_with_a_lens_shift(tmp_path):
     r = build("shot_placement", tmp_path)
     assert r["centre"] < 1e-6 and r["normal"] < 1e-6 and r["width"] < 1e-6, r

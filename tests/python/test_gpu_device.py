@@ -60,3 +60,23 @@ def test_animate_on_the_gpu_gives_the_cpu_frames(tmp_path):
 def test_animate_on_the_gpu_refuses_reuse_saying_why(tmp_path):
     with pytest.raises(ValueError, match=r"^reuse: goes with device cpu \(the GPU path traces every frame in full"):
         list(holoray.animate(moving_shot(tmp_path), device="gpu", reuse="color"))
+
+
+def test_gpu_devices_lists_the_device_gpu_renders_on():
+    devices = holoray.gpu_devices()
+    assert devices and devices[0].startswith("0: ")
+    scene = holoray.load_scene(str(REPO / "examples" / "primitives.nff"))
+    name = holoray.render(scene, holoray.LensArray(lenses=(4, 4)), device="gpu:0").stats["device"]
+    assert devices[0].startswith("0: " + name[:name.rfind(" (Vulkan")])
+
+
+def test_released_devices_are_freed_once_and_the_next_render_makes_its_own():
+    holoray.release_gpu_devices()  # what earlier tests of this process kept
+    scene = holoray.load_scene(str(REPO / "examples" / "primitives.nff"))
+    camera = holoray.LensArray(lenses=(12, 12), pixels_per_lens=6)
+    first = holoray.render(scene, camera, device="gpu")
+    assert holoray.release_gpu_devices() == 1
+    assert holoray.release_gpu_devices() == 0
+    again = holoray.render(scene, camera, device="gpu")
+    assert np.array_equal(first.colour, again.colour)
+    assert holoray.release_gpu_devices() == 1
