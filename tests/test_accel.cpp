@@ -137,9 +137,10 @@ TEST(IntersectPackets, RefinedHitsEqualSingleRaysBitForBit) {
 }
 
 // Embree's builder into our nodes (the GPU path's hierarchy), at both
-// qualities: every primitive reachable from the root, each child box holding
-// what is under it (the fast build, without spatial splits: each primitive's
-// whole box, and in exactly one leaf), and no deeper than the GPU's stack allows.
+// qualities and both widths: every primitive reachable from the root, each
+// child box holding what is under it (the fast build, without spatial
+// splits: each primitive's whole box, and in exactly one leaf), no slot
+// past the width used, and no deeper than the GPU's stack allows.
 TEST(BvhBuilder, EveryPrimitiveSitsUnderBoxesThatHoldIt) {
   std::vector<PrimitiveBox> boxes;
   uint32_t seed = 7;
@@ -148,20 +149,24 @@ TEST(BvhBuilder, EveryPrimitiveSitsUnderBoxesThatHoldIt) {
     const float x = 100 * next(), y = 100 * next(), z = 10 * next(), w = 0.1f + 3 * next();
     boxes.push_back({{x, y, z}, {x + w, y + w * next(), z + w}});
   }
+  for (const int width : {4, 8})
   for (const BvhQuality q : {BvhQuality::high, BvhQuality::fast}) {
-    const Bvh bvh = build_bvh(boxes, 4, q);
-    EXPECT_LE(bvh.depth, 20);
+    SCOPED_TRACE(width);
+    const Bvh bvh = build_bvh(boxes, 4, q, width);
+    EXPECT_EQ(bvh.width, width);
+    EXPECT_LE((width - 1) * (bvh.depth - 1) + 1, 64);  // HR_STACK
     std::vector<int> seen(boxes.size(), 0);
     // Depth first from the root, each child checked against its parent's slot.
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const BvhNode& n = bvh.nodes[size_t(stack.back())];
       stack.pop_back();
-      for (int c = 0; c < kBvhWidth; ++c) {
+      for (int c = 0; c < kBvhMaxWidth; ++c) {
+        if (c >= width) EXPECT_EQ(n.count[c], -1);
         if (n.count[c] < 0) continue;
         if (n.count[c] == 0) {
           const BvhNode& child = bvh.nodes[size_t(n.index[c])];
-          for (int g = 0; g < kBvhWidth; ++g)
+          for (int g = 0; g < kBvhMaxWidth; ++g)
             for (int a = 0; a < 3 && child.count[g] >= 0; ++a) {
               EXPECT_GE(child.lo[a][g], n.lo[a][c]);
               EXPECT_LE(child.hi[a][g], n.hi[a][c]);

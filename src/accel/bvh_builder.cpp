@@ -29,7 +29,7 @@ struct Child {
 };
 struct Node {
   int count = 0;  // children; 0 with `prims` set: a leaf
-  Child child[kBvhWidth];
+  Child child[kBvhMaxWidth];
   const uint32_t* prims = nullptr;
   int prim_count = 0;
 };
@@ -87,7 +87,7 @@ struct Flattener {
     out.depth = std::max(out.depth, level);
     const int at = static_cast<int>(out.nodes.size());
     out.nodes.emplace_back();
-    for (int k = 0; k < kBvhWidth; ++k) {
+    for (int k = 0; k < kBvhMaxWidth; ++k) {
       BvhNode& slot = out.nodes[static_cast<size_t>(at)];
       if (k >= n->count) {
         for (int a = 0; a < 3; ++a) slot.lo[a][k] = INFINITY, slot.hi[a][k] = -INFINITY;
@@ -112,9 +112,11 @@ struct Flattener {
 
 }  // namespace
 
-Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf, BvhQuality quality) {
+Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf, BvhQuality quality, int width) {
   if (max_leaf < 1 || max_leaf > 8) throw std::invalid_argument(fmt::format("max_leaf: expected 1 to 8, got {}", max_leaf));
+  if (width != 4 && width != 8) throw std::invalid_argument(fmt::format("width: expected 4 or 8, got {}", width));
   Bvh out;
+  out.width = width;
   if (boxes.empty()) {
     Node empty;
     Flattener{out}.add(&empty, 1);
@@ -134,8 +136,13 @@ Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf, BvhQuality q
   RTCBVH bvh = rtcNewBVH(device);
   RTCBuildArguments a = rtcDefaultBuildArguments();
   a.buildQuality = high ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
-  a.maxBranchingFactor = kBvhWidth;
-  a.maxDepth = 20;  // the GPU traversal's stack holds 3 (depth - 1) + 1 entries (HR_STACK)
+  a.maxBranchingFactor = static_cast<unsigned>(width);
+  // The GPU traversal's stack holds (width - 1) (depth - 1) + 1 entries
+  // (HR_STACK, checked as the scene is laid out). Embree makes leaves of
+  // up to maxLeafSize whatever their cost within 8 levels of maxDepth: 10
+  // for 8-wide nodes gave leaves of 2 to 4 primitives on balls_s4 (1 at 4
+  // wide) and 6x the primitives tested a ray.
+  a.maxDepth = width == 4 ? 20 : 18;
   a.minLeafSize = 1;
   a.maxLeafSize = static_cast<unsigned>(max_leaf);
   a.traversalCost = 1.0f;

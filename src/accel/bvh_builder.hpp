@@ -1,8 +1,8 @@
 // holoray/accel: a bounding volume hierarchy built by Embree's own builder
 // (rtcBuildBVH: SAH, with spatial splits at high quality) into plain
 // arrays of ours, for a traversal that is not Embree's (the GPU path,
-// src/gpu/). Nodes are up to kBvhWidth wide; a leaf's primitives are a run
-// of `order`. Indices, no pointers: the arrays can be copied to a device.
+// src/gpu/). Nodes are 4 or 8 wide; a leaf's primitives are a run of
+// `order`. Indices, no pointers: the arrays can be copied to a device.
 #pragma once
 
 #include <cstdint>
@@ -10,20 +10,21 @@
 
 namespace holoray {
 
-inline constexpr int kBvhWidth = 4;
+inline constexpr int kBvhMaxWidth = 8;
 
 /// A primitive's box (world, float) for the builder.
 struct PrimitiveBox {
   float lo[3], hi[3];
 };
 
-/// One node: up to kBvhWidth children, each a box and either an inner node
-/// (count 0, `index` into nodes) or a leaf (count > 0 primitives from
-/// order[index]); unused slots have count -1 and an empty box.
+/// One node: up to Bvh::width children, each a box and either an inner
+/// node (count 0, `index` into nodes) or a leaf (count > 0 primitives from
+/// order[index]); unused slots (those past the width too) have count -1 and
+/// an empty box.
 struct BvhNode {
-  float lo[3][kBvhWidth], hi[3][kBvhWidth];  // [axis][child]
-  int32_t index[kBvhWidth];
-  int32_t count[kBvhWidth];
+  float lo[3][kBvhMaxWidth], hi[3][kBvhMaxWidth];  // [axis][child]
+  int32_t index[kBvhMaxWidth];
+  int32_t count[kBvhMaxWidth];
 };
 
 /// nodes[0] is the root (a scene with one leaf's worth of primitives still
@@ -33,6 +34,7 @@ struct Bvh {
   std::vector<BvhNode> nodes;
   std::vector<uint32_t> order;
   int depth = 0;  ///< levels of nodes, the root's counted
+  int width = 4;  ///< children a node holds at most: 4 or 8
 };
 
 /// How hard the builder works: `high` is SAH with spatial splits (a
@@ -42,9 +44,13 @@ struct Bvh {
 enum class BvhQuality { high, fast };
 
 /// Builds the hierarchy of `boxes` (at most `max_leaf` primitives a leaf,
-/// 1 to 8). Empty input: one node with no children. Throws
-/// std::runtime_error with Embree's message when its builder fails
-/// (out of memory), std::invalid_argument for a bad max_leaf.
-Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf = 4, BvhQuality quality = BvhQuality::high);
+/// 1 to 8) with nodes `width` (4 or 8) wide, at most 20 levels deep (4
+/// wide: a depth-first walk's stack then holds (width - 1) (depth - 1) + 1
+/// <= 64 entries) or 18 (8 wide: the caller checks). Empty input: one node with no
+/// children. Throws std::runtime_error with Embree's message when its
+/// builder fails (out of memory), std::invalid_argument for a bad max_leaf
+/// or width.
+Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf = 4, BvhQuality quality = BvhQuality::high,
+              int width = 4);
 
 }  // namespace holoray

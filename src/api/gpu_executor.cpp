@@ -174,7 +174,7 @@ struct GpuExecutor::Impl {
     // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
     // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
     // against 5.8 and 1.8; docs/design/gpu.md).
-    renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high), image_bytes);
+    renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes);
     uploaded = std::move(now);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -232,13 +232,14 @@ vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shad
 
 vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  constexpr uint32_t kConstants = 12;
+  constexpr uint32_t kConstants = 13;
   const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
                                             panel ? 1u : 0u, (features & HR_FEATURE_TACHYON) ? 1u : 0u,
                                             (features & HR_FEATURE_GLTF) ? 1u : 0u,
                                             (features & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
                                             (features & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count_work ? 1u : 0u,
-                                            count_work && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass)};
+                                            count_work && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass),
+                                            (features & HR_FEATURE_WIDE_BVH) ? 1u : 0u};
   vk::SpecializationMapEntry entries[kConstants];
   for (uint32_t k = 0; k < kConstants; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
   const vk::SpecializationInfo spec{.mapEntryCount = kConstants, .pMapEntries = entries, .dataSize = sizeof spec_values,
@@ -343,6 +344,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     unsigned w = 0, h = 0;
     if (std::sscanf(wg, "%ux%u", &w, &h) == 2 && w > 0 && h > 0 && w * h <= 1024) m.workgroup[0] = w, m.workgroup[1] = h;
   }
+  if (const char* width = std::getenv("HOLORAY_GPU_BVH_WIDTH"); width && std::string(width) == "8") m.bvh_width = 8;
   m.capture_stats = stats;
   if (std::getenv("HOLORAY_GPU_STATS") && families[m.family].timestampValidBits > 0) {
     m.timestamps = vk::raii::QueryPool(m.device, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 4});
@@ -374,6 +376,8 @@ GpuRenderer::~GpuRenderer() = default;
 const DeviceInfo& GpuRenderer::device() const { return impl_->info; }
 
 std::string GpuRenderer::describe() const { return fmt::format("{} ({})", impl_->info.name, impl_->info.api); }
+
+int GpuRenderer::bvh_width() const { return impl_->bvh_width; }
 
 uint64_t GpuRenderer::frame_bytes(int width, int height, bool aovs) {
   return uint64_t(width) * uint64_t(height) * (aovs ? 12 + 32 : 12);

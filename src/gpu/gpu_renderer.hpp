@@ -65,6 +65,9 @@ class GpuRenderer {
   const DeviceInfo& device() const;
   /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
   std::string describe() const;
+  /// The hierarchy's width that lay_out is to build for this renderer: 4,
+  /// or 8 with HOLORAY_GPU_BVH_WIDTH=8 (for measuring, docs/design/gpu.md).
+  int bvh_width() const;
 
   /// Uploads the scene, replacing any before. `image_bytes`: what the
   /// frames to come will need beside it. Throws GpuError, before

@@ -108,7 +108,7 @@ uint64_t SceneArrays::bytes() const {
          textures.size() * sizeof(GpuTexture) + levels.size() * sizeof(GpuLevel) + texels.size() * 4;
 }
 
-SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
+SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width) {
   const AccelScene& accel = scene.accel();
   SceneArrays out;
   std::vector<PrimitiveBox> boxes;
@@ -197,28 +197,33 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality) {
   // in its order.
   // Leaves of up to 4 primitives: 2 and 8 measured the same (within 0.5 %
   // on balls_s4 and gears_s4, 3840x2160, H200).
-  const Bvh bvh = build_bvh(boxes, 4, quality);
+  const Bvh bvh = build_bvh(boxes, 4, quality, bvh_width);
   out.bvh_depth = bvh.depth;
-  // A node pushes at most 3 more children than it pops: the traversal's
-  // stack (HR_STACK entries) must hold 3 (depth - 1) + 1.
-  if (3 * (bvh.depth - 1) + 1 > HR_STACK)
+  // A node pushes at most width - 1 more children than it pops: the
+  // traversal's stack (HR_STACK entries) must hold (width - 1) (depth - 1) + 1.
+  if ((bvh.width - 1) * (bvh.depth - 1) + 1 > HR_STACK)
     throw std::length_error(fmt::format("the scene's hierarchy is {} levels deep, more than the GPU path's stack holds ({})",
-                                        bvh.depth, (HR_STACK - 1) / 3 + 1));
+                                        bvh.depth, (HR_STACK - 1) / (bvh.width - 1) + 1));
+  if (bvh.width == 8) out.features |= HR_FEATURE_WIDE_BVH;
   std::vector<uint32_t> refs;
   refs.reserve(bvh.order.size());
   for (uint32_t k : bvh.order) refs.push_back(out.refs[k]);
   out.refs = std::move(refs);
-  out.nodes.reserve(bvh.nodes.size());
-  for (const BvhNode& n : bvh.nodes) {
-    GpuNode g;
-    float* lo[3] = {&g.lo_x.x, &g.lo_y.x, &g.lo_z.x};
-    float* hi[3] = {&g.hi_x.x, &g.hi_y.x, &g.hi_z.x};
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < kBvhWidth; ++c) lo[a][c] = n.lo[a][c], hi[a][c] = n.hi[a][c];
-    g.index = {n.index[0], n.index[1], n.index[2], n.index[3]};
-    g.count = {n.count[0], n.count[1], n.count[2], n.count[3]};
-    out.nodes.push_back(g);
-  }
+  // An 8-wide node is two records in a row, children 0 to 3 and 4 to 7; a
+  // child's index counts nodes, not records.
+  out.nodes.reserve(bvh.nodes.size() * size_t(bvh.width / 4));
+  for (const BvhNode& n : bvh.nodes)
+    for (int half = 0; half < bvh.width / 4; ++half) {
+      GpuNode g;
+      float* lo[3] = {&g.lo_x.x, &g.lo_y.x, &g.lo_z.x};
+      float* hi[3] = {&g.hi_x.x, &g.hi_y.x, &g.hi_z.x};
+      const int c0 = 4 * half;
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 4; ++c) lo[a][c] = n.lo[a][c0 + c], hi[a][c] = n.hi[a][c0 + c];
+      g.index = {n.index[c0], n.index[c0 + 1], n.index[c0 + 2], n.index[c0 + 3]};
+      g.count = {n.count[c0], n.count[c0 + 1], n.count[c0 + 2], n.count[c0 + 3]};
+      out.nodes.push_back(g);
+    }
   for (size_t o = 0; o < scene.object_count(); ++o) out.object_material.push_back(scene.material_of_object(int(o)));
   for (const Material& m : scene.materials()) {
     out.materials.push_back(material_of(m));

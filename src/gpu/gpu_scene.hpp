@@ -61,10 +61,11 @@ struct ScenePose {
   bool operator==(const ScenePose&) const = default;
 };
 
-/// The scene laid out for the device, its hierarchy built at `quality`.
-/// Throws std::length_error when a count passes the 2^30 a reference holds
-/// (or the texels 2^31), std::runtime_error when Embree's builder fails.
-SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high);
+/// The scene laid out for the device, its hierarchy built at `quality` with
+/// nodes `bvh_width` (4 or 8) wide. Throws std::length_error when a count
+/// passes the 2^30 a reference holds (or the texels 2^31),
+/// std::runtime_error when Embree's builder fails.
+SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high, int bvh_width = 4);
 
 /// One frame's constants: the lens array (any grid, either recording
 /// mode), the scene's box grown by its epsilon, depth limit, background,

@@ -65,6 +65,7 @@ struct GpuRenderer::Impl {
   // counts the work done (GpuRenderer::count_work).
   std::map<uint32_t, vk::raii::Pipeline> pipelines;
   uint32_t features = 0;  // the loaded scene's
+  int bvh_width = 4;      // HOLORAY_GPU_BVH_WIDTH: the hierarchy lay_out builds (4 or 8)
   bool count_work = false;
   bool capture_stats = false;
   // HOLORAY_GPU_RAY_LOG's file, where every traced frame's rays are logged

@@ -253,7 +253,7 @@ class Session {
     if (source_.seek && seeked_ != shot_frame_) source_.seek(shot_frame_), seeked_ = shot_frame_;
     gpu::ScenePose now(source_.scene->accel());
     if (uploaded_ && *uploaded_ == now) return;
-    gpu_->load(gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high), image_bytes_);
+    gpu_->load(gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high, gpu_->bvh_width()), image_bytes_);
     uploaded_ = std::move(now);
   }
 

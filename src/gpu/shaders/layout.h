@@ -53,11 +53,13 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_WRAP_CLAMP 1
 #define HR_WRAP_MIRROR 2
 
-// What a scene's materials need of the kernel (SceneArrays::features).
+// What a scene needs of the kernel (SceneArrays::features): its materials'
+// models and maps, its hierarchy's width.
 #define HR_FEATURE_TACHYON 1u
 #define HR_FEATURE_GLTF 2u
 #define HR_FEATURE_MESH_TEXTURES 4u
 #define HR_FEATURE_ALPHA_MASKS 8u
+#define HR_FEATURE_WIDE_BVH 16u
 
 // Fog modes (scene_desc.hpp, FogDesc), 0 for none.
 #define HR_FOG_LINEAR 1
@@ -90,9 +92,11 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 // enough that lavapipe's 65535 loop iterations hold them.
 #define HR_SHADOW_RAYS_PER_LANE 8
 
-/// One 4-wide BVH node (accel/bvh_builder.hpp, BvhNode): the children's
-/// boxes axis by axis, then per child an index (inner node, or first
-/// reference of a leaf) and a count (0 inner, > 0 leaf, -1 empty).
+/// One 4-wide BVH node, or half of an 8-wide one (HR_FEATURE_WIDE_BVH:
+/// children 0 to 3, then 4 to 7 in the next record), from
+/// accel/bvh_builder.hpp's BvhNode: the children's boxes axis by axis, then
+/// per child an index (inner node, or first reference of a leaf) and a
+/// count (0 inner, > 0 leaf, -1 empty).
 HR_STRUCT GpuNode {
   vec4 lo_x, hi_x, lo_y, hi_y, lo_z, hi_z;
   ivec4 index, count;
