@@ -142,7 +142,7 @@ RendererPool& renderer_pool() {
 int release_gpu_devices() noexcept {
   try {
     return renderer_pool().clear();
-  } catch (...) {  // a driver's teardown that throws frees what it can
+  } catch (...) {  // the pool's lock failed (std::system_error): nothing was freed
     return 0;
   }
 }

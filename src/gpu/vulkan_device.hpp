@@ -60,9 +60,10 @@ struct GpuRenderer::Impl {
   vk::raii::PipelineLayout pipeline_layout = nullptr;
   vk::raii::ShaderModule module = nullptr;
   // The kernel's pipelines, made when first needed: by whether it renders
-  // panels (display panels, Looking Glass native panels) and by what the
-  // loaded scene's materials need (SceneArrays::features), and whether it
-  // counts the work done (GpuRenderer::count_work).
+  // panels (display panels, Looking Glass native panels), by what the
+  // loaded scene needs (SceneArrays::features: its materials, its
+  // hierarchy's width), and whether it counts the work done
+  // (GpuRenderer::count_work).
   std::map<uint32_t, vk::raii::Pipeline> pipelines;
   uint32_t features = 0;  // the loaded scene's
   int bvh_width = 4;      // HOLORAY_GPU_BVH_WIDTH: the hierarchy lay_out builds (4 or 8)
