@@ -7,18 +7,21 @@
 # (HOLORAY_GPU_SHADOW_QUEUE=1), 8-wide nodes (HOLORAY_GPU_BVH_WIDTH=8), and
 # both (docs/design/gpu.md). Prints a markdown table: each variant's medians
 # in ms per frame (one per round), and its speed against the default's
-# (the default's median of rounds over the variant's). Not a test: on
+# (the default's median of rounds over the variant's; the lower middle
+# of an even count, as bench/lib.sh takes it). Not a test: on
 # lavapipe (no GPU) QUICK=1 runs it as a check at 30x17 lenses.
 # Usage: bash bench/run_gpu_knobs.sh  (DEVICE=gpu FRAMES=20 WARMUP=3 ROUNDS=2
 #        QUICK=1 FRAMES_BIN=build/bench/holoray_gpu_frames HOLORAY_SHARED=../shared)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+ROUNDS=${ROUNDS:-2}
+source bench/lib.sh  # median, machine
 shared=${HOLORAY_SHARED:-../shared}
 frames_bin=${FRAMES_BIN:-build/bench/holoray_gpu_frames}
 device=${DEVICE:-gpu}
 frames=${FRAMES:-20}
 warmup=${WARMUP:-3}
-rounds=${ROUNDS:-2}
+rounds=$ROUNDS
 lenses=240x135
 if [[ -n ${QUICK:-} ]]; then lenses=30x17 frames=2 warmup=1 rounds=1; fi
 [[ -d $shared/scenes/nff ]] || { echo "run_gpu_knobs.sh: needs $shared/scenes" >&2; exit 1; }
@@ -30,9 +33,8 @@ median_ms() {
   env "$@" "$frames_bin" "$shared/scenes/nff/$scene.nff" --device "$device" --lenses "$lenses" --ppl 16 \
     --frames "$frames" --warmup "$warmup" | sed -n 's/.* ms_median=\([^ ]*\).*/\1/p'
 }
-middle() { tr ' ' '\n' | sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 echo "Command: DEVICE=$device FRAMES=$frames WARMUP=$warmup ROUNDS=$rounds${QUICK:+ QUICK=1} bash bench/run_gpu_knobs.sh"
-echo "Machine: $(nproc) cores; $(git rev-parse --short HEAD 2>/dev/null || echo unknown); lenses $lenses x 16 px"
+echo "Machine: $(machine); $(git rev-parse --short HEAD 2>/dev/null || echo unknown); lenses $lenses x 16 px"
 echo
 echo "| scene | default ms |$(printf ' %s ms | speed |' "${variants[@]}")"
 echo "|---|---:|$(printf -- '---:|---:|%.0s' "${variants[@]}")"
@@ -45,10 +47,10 @@ for scene in balls_s4 gears_s4 teapot_s6 tree_s11; do
       runs[k]="${runs[k]:-} $(median_ms "$scene" ${variants[k]})"
     done
   done
-  b=$(echo "${base[*]}" | middle)
+  b=$(printf '%s\n' "${base[@]}" | median)
   row="| $scene | ${base[*]} |"
   for k in "${!variants[@]}"; do
-    v=$(echo "${runs[k]}" | xargs | middle)
+    v=$(echo "${runs[k]}" | xargs -n1 | median)
     row+=" $(echo "${runs[k]}" | xargs) | $(awk -v b="$b" -v v="$v" 'BEGIN {printf "%.2fx", b / v}') |"
   done
   echo "$row"
