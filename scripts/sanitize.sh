@@ -3,8 +3,10 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer (any report fails the test
 # that made it). `thread`: ThreadSanitizer on the tests that run work on
 # several threads (rendering, reprojection, determinism, interrupted runs).
-# Each builds into its own folder (build-asan/, build-tsan/), -O1 with debug
-# information, with clang. The Python module is left out (an instrumented
+# Each builds into its own folder (build-asan/, build-tsan/) with clang: the
+# library at -O1, the CLI's front end and the tests at -O0 (they parse and
+# compare; HOLORAY_FRONT_END_FLAGS), all with line tables only, which is what
+# the sanitizers' stack traces read. The Python module is left out (an instrumented
 # extension needs the sanitizer's runtime preloaded into python3); the API it
 # calls is tested here through tests/test_api.cpp. Usage: bash scripts/sanitize.sh [address|thread]...
 set -euo pipefail
@@ -46,8 +48,11 @@ for kind in "${kinds[@]}"; do
       export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp" ;;
     *) echo "scripts/sanitize.sh: unknown kind '$kind' (address or thread)" >&2; exit 2 ;;
   esac
+  # The build type's own flags are replaced: RelWithDebInfo's -O2 -g would
+  # come after ours and win.
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-    -DCMAKE_CXX_FLAGS="$flags -O1" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DHOLORAY_BENCH=OFF \
+    -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+    -DHOLORAY_FRONT_END_FLAGS=-O0 -DCMAKE_EXE_LINKER_FLAGS="$flags" -DHOLORAY_BENCH=OFF \
     -DHOLORAY_STD_THREADS=$std_threads -DHOLORAY_MPI=OFF -DHOLORAY_PYTHON=OFF >/dev/null
   cmake --build "$dir"
   echo "== $kind sanitizer: tests${filter:+ matching $filter}"
