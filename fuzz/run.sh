@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, AddressSanitizer + UBSan) into
-# build-fuzz/ and runs each for FUZZ_SECONDS seconds (default 60), seeded
-# from the repository's scenes and shots, the saved regressions and, when it
-# is there, ../shared/scenes. Fails on the first finding and says where the
-# input is: add it to fuzz/regressions/<target>/ with the fix, and the test
-# suite (FuzzRegressions) replays it on every build from then on.
+# build-fuzz/ and runs each for FUZZ_SECONDS seconds (default 60), as many at
+# once as there are cores, seeded from the repository's scenes and shots, the
+# saved regressions and, when it is there, ../shared/scenes. Fails when a
+# target finds a problem and says where the input is: add it to
+# fuzz/regressions/<target>/ with the fix, and the test suite
+# (FuzzRegressions) replays it on every build from then on.
 # Usage: bash fuzz/run.sh [target...]   (targets: nff tachyon shot camera_path display gltf)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,13 +35,13 @@ seeds() {  # the seed files of one target, small ones only (the fuzzer cuts inpu
   done
 }
 
-for t in "${targets[@]}"; do
-  corpus=build-fuzz/corpus/$t
-  findings=build-fuzz/findings/$t
+# One target's run: its corpus seeded, then libFuzzer for $seconds, its log in
+# build-fuzz/fuzz_<target>.log. Returns 1 on a finding, after saying where it is.
+fuzz_one() {
+  local t=$1 corpus=build-fuzz/corpus/$1 findings=build-fuzz/findings/$1 extra=() asan=${ASAN_OPTIONS:-}
   mkdir -p "$corpus" "$findings"
   seeds "$t" | while read -r f; do cp "$f" "$corpus/"; done
-  echo "== fuzz_$t: ${seconds}s, $(ls "$corpus" | wc -l) inputs in the corpus"
-  extra=() asan=${ASAN_OPTIONS:-}
+  echo "== fuzz_$t: ${seconds}s, $(find "$corpus" -type f | wc -l) inputs in the corpus"
   # Debian's assimp 5.2 leaks a few hundred bytes reading valid glTF files
   # (examples/swinging_box.gltf among them): leaks are not looked for there.
   if [ "$t" = gltf ]; then extra=(-detect_leaks=0); asan="detect_leaks=0${asan:+:$asan}"; fi
@@ -49,7 +50,24 @@ for t in "${targets[@]}"; do
       2>build-fuzz/fuzz_"$t".log; then
     tail -40 build-fuzz/fuzz_"$t".log >&2
     echo "fuzz_$t found a problem; the input is in $findings/ (replay: build-fuzz/fuzz_$t FILE)" >&2
-    exit 1
+    return 1
   fi
-  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-fuzz/fuzz_"$t".log || true
+  echo "== fuzz_$t: $(grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-fuzz/fuzz_"$t".log | tr -s ' \n' ' ')"
+}
+
+# A libFuzzer run uses one core: as many targets run at once as there are
+# cores, each for the whole $seconds.
+failed=0 running=0
+for t in "${targets[@]}"; do
+  if ((running >= $(nproc))); then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
 done
+while ((running > 0)); do
+  wait -n || failed=1
+  running=$((running - 1))
+done
+exit "$failed"
