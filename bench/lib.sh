@@ -1,6 +1,8 @@
+# shellcheck shell=bash disable=SC2034  # (the variables set here are the sourcing script's)
 # Shared by the benchmark scripts (source it after `cd` to the checkout):
 # the binary, the round count, a scratch folder removed on exit, medians and
-# wall-clock stamps, the machine line and the do-nothing baseline.
+# wall-clock stamps, the machine line, the do-nothing baseline and the GPU
+# benchmarks' settings.
 bin=${bin:-build/holoray}
 ROUNDS=${ROUNDS:-3}
 tmp=$(mktemp -d)
@@ -32,4 +34,20 @@ build_baseline() {
   cmake --build "$tmp/base/build" --target holoray-cli >/dev/null
   BASE_BIN=$tmp/base/build/holoray
   trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1; rm -rf "$tmp"' EXIT
+}
+# The GPU benchmarks' settings (bench/run_gpu_bench.sh, run_gpu_knobs.sh),
+# from the environment: shared (the scenes' folder), frames_bin, device,
+# frames, warmup and lenses (240x135, the issue's 3840x2160 EIA; QUICK=1: a
+# check at 30x17 lenses, 2 frames after 1). Exits 1, naming the script $1,
+# when the scenes or the binary are missing.
+gpu_bench_settings() {
+  shared=${HOLORAY_SHARED:-../shared}
+  frames_bin=${FRAMES_BIN:-build/bench/holoray_gpu_frames}
+  device=${DEVICE:-gpu}
+  frames=${FRAMES:-20}
+  warmup=${WARMUP:-3}
+  lenses=240x135
+  if [[ -n ${QUICK:-} ]]; then lenses=30x17 frames=2 warmup=1; fi
+  [[ -d $shared/scenes/nff ]] || { echo "$1: needs $shared/scenes" >&2; exit 1; }
+  [[ -x $frames_bin ]] || { echo "$1: build $frames_bin first (cmake --build build)" >&2; exit 1; }
 }

@@ -18,23 +18,14 @@
 #        FRAMES_BIN=build/bench/holoray_gpu_frames HOLORAY_SHARED=../shared)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-shared=${HOLORAY_SHARED:-../shared}
-frames_bin=${FRAMES_BIN:-build/bench/holoray_gpu_frames}
-device=${DEVICE:-gpu}
-frames=${FRAMES:-20}
-warmup=${WARMUP:-3}
-lenses=240x135
-if [[ -n ${QUICK:-} ]]; then lenses=30x17 frames=2 warmup=1; fi
-[[ -d $shared/scenes/nff ]] || { echo "run_gpu_bench.sh: needs $shared/scenes" >&2; exit 1; }
-[[ -x $frames_bin ]] || { echo "run_gpu_bench.sh: build $frames_bin first (cmake --build build)" >&2; exit 1; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source bench/lib.sh  # gpu_bench_settings, machine, $tmp
+gpu_bench_settings run_gpu_bench.sh
 # An empty scene: a viewpoint and a light, nothing to meet.
 printf 'v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 512 512\nl 5 5 5\nb 0.1 0.1 0.1\n' > "$tmp/empty.nff"
 run() { "$frames_bin" "$1" --device "$device" --lenses "$lenses" --ppl 16 --frames "$frames" --warmup "$warmup" "${@:2}"; }
 field() { sed -n "s/.* $1=\\([^ ]*\\).*/\\1/p"; }
 echo "Command: DEVICE=$device FRAMES=$frames WARMUP=$warmup${QUICK:+ QUICK=1} bash bench/run_gpu_bench.sh"
-echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+echo "Machine: $(machine); $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 nothing=$(run "$tmp/empty.nff")
 echo "Device: $(echo "$nothing" | sed -n 's/.*device="\([^"]*\)".*/\1/p'); image $(echo "$nothing" | field size)"
 echo "Do-nothing baseline (an empty scene): $(echo "$nothing" | field ms_median) ms per frame"

@@ -15,17 +15,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROUNDS=${ROUNDS:-2}
-source bench/lib.sh  # median, machine
-shared=${HOLORAY_SHARED:-../shared}
-frames_bin=${FRAMES_BIN:-build/bench/holoray_gpu_frames}
-device=${DEVICE:-gpu}
-frames=${FRAMES:-20}
-warmup=${WARMUP:-3}
+source bench/lib.sh  # median, machine, gpu_bench_settings
+gpu_bench_settings run_gpu_knobs.sh
 rounds=$ROUNDS
-lenses=240x135
-if [[ -n ${QUICK:-} ]]; then lenses=30x17 frames=2 warmup=1 rounds=1; fi
-[[ -d $shared/scenes/nff ]] || { echo "run_gpu_knobs.sh: needs $shared/scenes" >&2; exit 1; }
-[[ -x $frames_bin ]] || { echo "run_gpu_knobs.sh: build $frames_bin first (cmake --build build)" >&2; exit 1; }
+if [[ -n ${QUICK:-} ]]; then rounds=1; fi
 variants=("HOLORAY_GPU_SHADOW_QUEUE=1" "HOLORAY_GPU_BVH_WIDTH=8" "HOLORAY_GPU_SHADOW_QUEUE=1 HOLORAY_GPU_BVH_WIDTH=8")
 # One run's median ms per frame, with the variant's variables (none: the default).
 median_ms() {
