@@ -25,6 +25,7 @@ bl_info = {
 if "bpy" in locals():  # reloaded (F8): take the modules' new code
     import importlib
 
+    importlib.reload(devices)  # noqa: F821
     importlib.reload(properties)  # noqa: F821
     importlib.reload(job)  # noqa: F821
     importlib.reload(inprocess)  # noqa: F821
@@ -35,7 +36,7 @@ if "bpy" in locals():  # reloaded (F8): take the modules' new code
 
 import bpy
 
-from . import animation, engine, inprocess, job, preview, properties, ui
+from . import animation, devices, engine, inprocess, job, preview, properties, ui
 
 _classes = (properties.HolorayPreferences, properties.HoloraySettings, engine.HolorayRenderEngine,
             animation.HOLORAY_OT_render_animation, preview.HOLORAY_OT_preview) + ui.classes

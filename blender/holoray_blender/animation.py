@@ -16,7 +16,7 @@ import threading
 
 import bpy
 
-from . import export, job, placement
+from . import devices, export, job, placement
 from .engine import HolorayError
 from .properties import holoray_binary
 
@@ -151,7 +151,7 @@ class HOLORAY_OT_render_animation(bpy.types.Operator):
         if s.threads:
             cmd += ["--threads", str(s.threads)]
         if s.device != "CPU":
-            cmd += ["--device", s.device.lower()]
+            cmd += ["--device", devices.device_argument(s)]
         self._cmd = cmd
 
     def _start(self):

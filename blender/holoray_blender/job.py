@@ -6,7 +6,7 @@ builds as the Python module's camera objects."""
 
 import bpy
 
-from . import placement
+from . import devices, placement
 
 # The AOVs holoray writes, by the name the settings use.
 AOVS = ("albedo", "depth", "normal")
@@ -17,10 +17,10 @@ def spec(scene, settings, camera_object, width, height):
     'display', 'looking_glass') with that camera's parameters (world
     positions and directions in the exported glTF's frame, lengths in scene
     units, angles in degrees), and 'max_depth', 'threads' (0: holoray's
-    defaults), 'device' ('cpu' or 'gpu'), 'aovs' (the AOVs the camera gives:
+    defaults), 'device' ('cpu', 'gpu' or 'gpu:N'), 'aovs' (the AOVs the camera gives:
     none for panels)."""
     s = settings
-    out = {"max_depth": s.max_depth, "threads": s.threads, "device": s.device.lower()}
+    out = {"max_depth": s.max_depth, "threads": s.threads, "device": devices.device_argument(s)}
     if s.camera == "INTEGRAL":
         place = placement.array_placement(camera_object, width / height, s.mode == "PSEUDOSCOPIC")
         out.update(camera="integral", grid=s.grid.lower(), lenses=(s.lenses_x, s.lenses_y if s.grid != "LENTICULAR" else 1),

@@ -11,6 +11,8 @@ import tomllib
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
+from . import devices
+
 ADDON = __package__
 
 
@@ -21,6 +23,10 @@ def holoray_binary(context):
     if path:
         return path if os.path.isfile(path) and os.access(path, os.X_OK) else None
     return shutil.which("holoray")
+
+
+def _gpu_choices(self, context):
+    return devices.choices(holoray_binary(context or bpy.context))
 
 
 def panel_size(settings):
@@ -111,7 +117,9 @@ class HoloraySettings(bpy.types.PropertyGroup):
     device: EnumProperty(
         name="Device", default="CPU",
         items=[("CPU", "CPU", "Embree on the CPU's cores"),
-               ("GPU", "GPU", "The GPU path (Vulkan): the first GPU, else lavapipe; every frame traced in full")])
+               ("GPU", "GPU", "The GPU path (Vulkan); every frame traced in full")])
+    gpu_device: EnumProperty(name="GPU", default=0, items=_gpu_choices,
+                             description="The Vulkan device the GPU path takes: the first GPU, or one by name")
     backend: EnumProperty(
         name="Run holoray", default="AUTO",
         items=[("AUTO", "Automatic", "holoray's Python module inside Blender where it loads, else the holoray program"),

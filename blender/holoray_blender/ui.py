@@ -66,6 +66,8 @@ class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(s, "max_depth")
         layout.prop(s, "device")
+        if s.device == "GPU":
+            layout.prop(s, "gpu_device")
         layout.prop(s, "threads")
         layout.prop(s, "backend")
         col = layout.column(heading="Passes")

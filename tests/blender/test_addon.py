@@ -37,23 +37,29 @@ def build(case, tmp_path):
     return json.loads(lines[-1][len("RESULT "):])
 
 
-def render_args(tmp_path, backend=None, fmt="OPEN_EXR", device=None):
-    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend (and device) set first when given."""
-    sets = [f"bpy.context.scene.holoray.{k} = '{v}'" for k, v in (("backend", backend), ("device", device)) if v]
+def render_args(tmp_path, backend=None, fmt="OPEN_EXR", device=None, gpu_device=None):
+    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend (and device, gpu_device) set first when given."""
+    sets = [f"bpy.context.scene.holoray.{k} = '{v}'"
+            for k, v in (("backend", backend), ("device", device), ("gpu_device", gpu_device)) if v]
     expr = ["--python-expr", "import bpy; " + "; ".join(sets)] if sets else []
     return [BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "-E", "HOLORAY"] + expr + [
         "-o", str(tmp_path / "frame_####"), "-F", fmt, "-f", "1"]
 
 
-def render(tmp_path, with_holoray=True, backend=None, fmt="OPEN_EXR", device=None):
-    run = subprocess.run(render_args(tmp_path, backend, fmt, device), env=env(with_holoray), capture_output=True,
+def render(tmp_path, with_holoray=True, backend=None, fmt="OPEN_EXR", device=None, gpu_device=None):
+    run = subprocess.run(render_args(tmp_path, backend, fmt, device, gpu_device), env=env(with_holoray), capture_output=True,
                          text=True, timeout=300)
     return run.stdout + run.stderr
 
 
 def test_the_eia_has_the_size_asked_for(tmp_path):
     assert build("eia", tmp_path)["resolution"] == [120, 80]  # 24x16 lenses x 5 px
-    log = render(tmp_path)
+    # A CPU render lists no Vulkan devices (that costs a Vulkan instance).
+    listed = "import holoray_blender.devices as d; print('LISTED', d._listed is not None)"
+    run = subprocess.run(render_args(tmp_path) + ["--python-expr", listed], env=env(), capture_output=True, text=True,
+                         timeout=300)
+    log = run.stdout + run.stderr
+    assert "LISTED False" in log.splitlines(), log[-3000:]
     frame = holoray.read_image(tmp_path / "frame_0001.exr")
     assert frame.shape[:2] == (80, 120), log
     assert np.nanmax(frame[:, :, :3]) > 0.05, "the EIA is black"
@@ -83,18 +89,42 @@ def test_the_module_in_blenders_process_and_the_program_give_the_same_render_res
 
 
 def test_the_gpu_device_renders_the_cpus_eia_both_ways(tmp_path):
-    # Device GPU (lavapipe here) through the module and the program: the
-    # CPU's EIA to within float rounding (PSNR on the 8-bit scale).
+    # Device GPU, the first GPU (else lavapipe), through the module, and
+    # GPU device 0 (lavapipe here) through the program: the CPU's EIA to
+    # within float rounding (PSNR on the 8-bit scale).
     build("untextured", tmp_path)
     log = render(tmp_path)
     cpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
-    for backend in ("MODULE", "PROGRAM"):
+    for backend, gpu_device in (("MODULE", None), ("PROGRAM", "0")):
         (tmp_path / "frame_0001.exr").unlink()
-        log = render(tmp_path, backend=backend, device="GPU")
+        log = render(tmp_path, backend=backend, device="GPU", gpu_device=gpu_device)
         assert f"({backend.lower()})" in log and "Traceback" not in log, log[-3000:]
         gpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
         assert gpu.shape == cpu.shape
         assert holoray.psnr(cpu, gpu) >= 50, backend
+
+
+def test_the_gpu_menu_names_each_vulkan_device_holoray_lists(tmp_path):
+    # Device GPU's GPU menu: the first GPU, then one item a device, named as
+    # `holoray devices` names it; a scene set to one keeps it through a save
+    # and a load (the .blend stores the item's number, the same next time).
+    build("untextured", tmp_path)
+    names = [line.split(": ", 1)[1].rsplit(", ", 3)[0] for line in holoray.gpu_devices()]
+    assert names
+    show = "print('ITEM', s.gpu_device, '|', bpy.types.UILayout.enum_item_name(s, 'gpu_device', s.gpu_device)); "
+    expr = ("import bpy; s = bpy.context.scene.holoray; " + show +
+            "".join(f"s.gpu_device = '{n}'; " + show for n in range(len(names))) +
+            f"bpy.ops.wm.save_as_mainfile(filepath={str(tmp_path / 'saved.blend')!r})")
+    reopen = "import bpy; s = bpy.context.scene.holoray; " + show
+    log = ""
+    for blend, python in (("scene.blend", expr), ("saved.blend", reopen)):
+        run = subprocess.run([BLENDER, "-b", str(tmp_path / blend), "--addons", "holoray_blender", "--python-expr",
+                              python], env=env(), capture_output=True, text=True, timeout=300)
+        log += run.stdout + run.stderr
+    items = [line for line in log.splitlines() if line.startswith("ITEM ")]
+    last = len(names) - 1
+    assert items == (["ITEM FIRST | First GPU"] + [f"ITEM {n} | {n}: {name}" for n, name in enumerate(names)] +
+                     [f"ITEM {last} | {last}: {names[last]}"]), log[-3000:]
 
 
 def test_disabling_the_addon_hands_back_the_gpu_device_the_module_kept(tmp_path):
