@@ -152,6 +152,8 @@ class HOLORAY_OT_render_animation(bpy.types.Operator):
             cmd += ["--threads", str(s.threads)]
         if s.device != "CPU":
             cmd += ["--device", devices.device_argument(s)]
+            if missing := devices.missing_gpu(s):
+                self.report({"WARNING"}, f"holoray: {missing}")
         self._cmd = cmd
 
     def _start(self):

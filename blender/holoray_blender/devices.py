@@ -51,3 +51,13 @@ def device_argument(settings):
     if settings.device == "CPU":
         return "cpu"
     return "gpu" if settings.gpu_device in ("FIRST", "") else f"gpu:{settings.gpu_device}"
+
+
+def missing_gpu(settings):
+    """What to tell the user when the file chose a GPU device this machine
+    lacks (the menu reads it as no item, and holoray takes the first GPU),
+    else None."""
+    if settings.device == "GPU" and settings.gpu_device == "":
+        return (f"the GPU device chosen in this file (number {settings.get('gpu_device', 0) - 100}) is not on this "
+                "machine: rendering on the first GPU (holoray devices lists this machine's)")
+    return None

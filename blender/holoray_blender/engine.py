@@ -22,7 +22,7 @@ import time
 import bpy
 import numpy as np
 
-from . import export, inprocess, job, placement, preview
+from . import devices, export, inprocess, job, placement, preview
 from .properties import holoray_binary, image_size
 
 
@@ -117,6 +117,8 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
                                "(Edit > Preferences > Add-ons > holoray) or put it on PATH")
         for line in export.not_exported(scene):
             self.report({"WARNING"}, f"holoray: {line}")
+        if missing := devices.missing_gpu(s):
+            self.report({"WARNING"}, f"holoray: {missing}")
         self.update_stats("holoray", "exporting the scene (glTF)")
         t0 = time.perf_counter()
         gltf = export.export_gltf(workdir, scene, camera_object, cameras=s.camera != "INTEGRAL")

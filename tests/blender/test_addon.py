@@ -37,10 +37,11 @@ def build(case, tmp_path):
     return json.loads(lines[-1][len("RESULT "):])
 
 
-def render_args(tmp_path, backend=None, fmt="OPEN_EXR", device=None, gpu_device=None):
-    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend (and device, gpu_device) set first when given."""
+def render_args(tmp_path, backend=None, fmt="OPEN_EXR", device=None, gpu_device=None, python=None):
+    """`blender -b scene.blend ... -f 1`, with scene.holoray.backend (and device, gpu_device) set first when given,
+    and then the Python statement `python`."""
     sets = [f"bpy.context.scene.holoray.{k} = '{v}'"
-            for k, v in (("backend", backend), ("device", device), ("gpu_device", gpu_device)) if v]
+            for k, v in (("backend", backend), ("device", device), ("gpu_device", gpu_device)) if v] + ([python] if python else [])
     expr = ["--python-expr", "import bpy; " + "; ".join(sets)] if sets else []
     return [BLENDER, "-b", str(tmp_path / "scene.blend"), "--addons", "holoray_blender", "-E", "HOLORAY"] + expr + [
         "-o", str(tmp_path / "frame_####"), "-F", fmt, "-f", "1"]
@@ -125,6 +126,18 @@ def test_the_gpu_menu_names_each_vulkan_device_holoray_lists(tmp_path):
     last = len(names) - 1
     assert items == (["ITEM FIRST | First GPU"] + [f"ITEM {n} | {n}: {name}" for n, name in enumerate(names)] +
                      [f"ITEM {last} | {last}: {names[last]}"]), log[-3000:]
+
+
+def test_a_gpu_device_this_machine_lacks_is_reported_and_the_first_gpu_renders(tmp_path):
+    # A file that chose GPU device 50 (stored as 150), opened here: a
+    # warning that names it, and the render on the first GPU all the same.
+    build("untextured", tmp_path)
+    run = subprocess.run(render_args(tmp_path, device="GPU", python="bpy.context.scene.holoray['gpu_device'] = 150"),
+                         env=env(), capture_output=True, text=True, timeout=300)
+    log = run.stdout + run.stderr
+    assert ("Warning: holoray: the GPU device chosen in this file (number 50) is not on this machine: rendering on "
+            "the first GPU (holoray devices lists this machine's)") in log.splitlines(), log[-3000:]
+    assert holoray.read_image(tmp_path / "frame_0001.exr").shape[:2] == (80, 120), log[-3000:]
 
 
 def test_disabling_the_addon_hands_back_the_gpu_device_the_module_kept(tmp_path):
