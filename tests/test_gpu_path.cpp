@@ -411,7 +411,7 @@ TEST(GpuPath, PinholeOrthographicClippedAndMirroredViewsMatchTheCpuPath) {
   const RenderScene scene(desc);
   const RenderContext context(scene);
   gpu::GpuRenderer gpu;
-  gpu.load(gpu::lay_out(scene), gpu::GpuRenderer::frame_bytes(96, 64, true));
+  gpu.load(gpu::lay_out(scene), gpu::GpuRenderer::frame_bytes(96, 64, true), false);
   const AovSet aovs{true, true, true, true};
   PinholeDesc base = view_of(*desc.viewpoint, 96, 64);
   // (mirrored with its corner samples in an odd width below: no column on the plane of symmetry)
@@ -452,6 +452,35 @@ TEST(GpuPath, PinholeOrthographicClippedAndMirroredViewsMatchTheCpuPath) {
   gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, 64), aovs, out, g);
   for (int j = 0; j < 64; ++j)
     EXPECT_EQ(*cpu.id.at(47, j) < 0, *out.id.at(47, j) < 0) << "row " << j;
+}
+
+// A load compiles the kernel its scene's frames bind, once: a Tachyon, glTF
+// or panel render used to compile the plain kernel too, as the renderer was
+// made (1.3 s on lavapipe).
+TEST(GpuPath, ALoadCompilesTheKernelsItsScenesFramesBindAndNoOther) {
+  const RenderScene scene(read_nff_file(source_dir() + "/examples/primitives.nff"));
+  gpu::GpuRenderer gpu;
+  EXPECT_EQ(gpu.pipelines_compiled(), 0u);
+  const gpu::SceneArrays plain = gpu::lay_out(scene);
+  const uint64_t image = gpu::GpuRenderer::frame_bytes(96, 64, false);
+  gpu.load(plain, image, false);
+  EXPECT_EQ(gpu.pipelines_compiled(), 1u);
+  gpu.load(plain, image, false);  // the same materials and frames: kept
+  EXPECT_EQ(gpu.pipelines_compiled(), 1u);
+  gpu.load(plain, image, true);  // a panel's
+  EXPECT_EQ(gpu.pipelines_compiled(), 2u);
+  gpu::SceneArrays tachyon = plain;
+  tachyon.features |= HR_FEATURE_TACHYON;
+  gpu.load(tachyon, image, false);
+  EXPECT_EQ(gpu.pipelines_compiled(), 3u);
+  // A frame binds what its scene's load compiled.
+  gpu.load(plain, image, false);
+  const RenderContext context(scene);
+  const PinholeCamera camera(view_of(*read_nff_file(source_dir() + "/examples/primitives.nff").viewpoint, 96, 64));
+  FrameBuffers out = allocate_frame(96, 64, {});
+  gpu::GpuFrameStats g;
+  gpu.render(gpu::frame_constants(context, camera, {}, 1, 0, 64), {}, out, g);
+  EXPECT_EQ(gpu.pipelines_compiled(), 3u);
 }
 
 // A bumped sphere of n x n quads (708: 1,002,528 triangles) under one
@@ -788,7 +817,7 @@ TEST(GpuPath, RefusesASceneLargerThanTheDeviceBeforeAllocating) {
   gpu::SceneArrays arrays;
   arrays.nodes.resize(1);
   const uint64_t image = r.device().memory_bytes;  // with the scene's bytes, one byte over at least
-  const std::string m = error_of([&] { r.load(arrays, image); });
+  const std::string m = error_of([&] { r.load(arrays, image, false); });
   EXPECT_EQ(m.rfind("the scene needs 0.0 MiB on the GPU and the image ", 0), 0u) << m;
   EXPECT_NE(m.find(" MiB, more than the "), std::string::npos) << m;
   EXPECT_NE(m.find(r.device().name), std::string::npos) << m;

@@ -151,6 +151,7 @@ struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
   std::optional<gpu::ScenePose> uploaded;
   uint64_t image_bytes = 0;
+  bool panel = false;  // the camera's frames are panel images (gpu::renders_panel)
   int device = -1;
   bool count_work = false;
   bool healthy = false;  // the last call on `renderer` returned: it may be kept
@@ -174,7 +175,7 @@ struct GpuExecutor::Impl {
     // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
     // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
     // against 5.8 and 1.8; docs/design/gpu.md).
-    renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes);
+    renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
     uploaded = std::move(now);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -193,6 +194,7 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
       impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index, std::vector<std::string>{}, options.count_work);
     const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;
     impl_->image_bytes = gpu::GpuRenderer::frame_bytes(camera.width(), camera.height(), aovs);
+    impl_->panel = gpu::renders_panel(camera);
     impl_->follow(scene);
     impl_->healthy = true;
   } catch (const gpu::GpuError& e) {

@@ -69,11 +69,16 @@ class GpuRenderer {
   /// or 8 with HOLORAY_GPU_BVH_WIDTH=8 (for measuring, docs/design/gpu.md).
   int bvh_width() const;
 
-  /// Uploads the scene, replacing any before. `image_bytes`: what the
-  /// frames to come will need beside it. Throws GpuError, before
-  /// allocating, when the two pass the device's memory, naming all three
-  /// sizes.
-  void load(const SceneArrays& scene, uint64_t image_bytes);
+  /// Uploads the scene, replacing any before, and compiles the kernel for
+  /// its materials and the frames to come: `panel` when they are display
+  /// panels' or a Looking Glass's native images (GpuFrame::mode), else lens
+  /// arrays, pinhole views or quilts. `image_bytes`: what those frames
+  /// will need beside the scene. Throws GpuError, before allocating, when
+  /// the two pass the device's memory, naming all three sizes.
+  void load(const SceneArrays& scene, uint64_t image_bytes, bool panel);
+  /// The kernel's pipelines compiled so far: none as the renderer is made,
+  /// then those load() compiles for each scene's materials and frames.
+  size_t pipelines_compiled() const;
   /// Frees the scene and the frames' buffers, keeping the device and its
   /// compiled pipelines for the next load(): a renderer kept idle between
   /// renders holds no more device memory than its pipelines.

@@ -408,4 +408,6 @@ std::vector<GpuFrame> camera_frames(const RenderContext& context, const FrameCam
   return {frame_constants(context, *camera.lens_array(), aovs, spp, row0, row1)};
 }
 
+bool renders_panel(const FrameCamera& camera) { return camera.get<PanelView>() || camera.get<LookingGlassCamera>(); }
+
 }  // namespace holoray::gpu

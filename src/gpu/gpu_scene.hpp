@@ -94,5 +94,9 @@ GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera&
 /// the camera's kind.
 std::vector<GpuFrame> camera_frames(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
                                     int row0, int row1);
+/// Whether camera_frames() of `camera` are panel images (a display's
+/// panel, a Looking Glass's native panel), which the kernel renders in a
+/// pipeline of their own (GpuRenderer::load's `panel`).
+bool renders_panel(const FrameCamera& camera);
 
 }  // namespace holoray::gpu

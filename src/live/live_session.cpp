@@ -82,7 +82,7 @@ class Session {
     }
     const FrameCamera placed = place();
     camera_.emplace(placed);
-    panel_ = placed.get<PanelView>() || placed.get<LookingGlassCamera>();
+    panel_ = gpu::renders_panel(placed);
 
     live::WindowRequest request;
     request.width = placed.width(), request.height = placed.height();
@@ -253,7 +253,7 @@ class Session {
     if (source_.seek && seeked_ != shot_frame_) source_.seek(shot_frame_), seeked_ = shot_frame_;
     gpu::ScenePose now(source_.scene->accel());
     if (uploaded_ && *uploaded_ == now) return;
-    gpu_->load(gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high, gpu_->bvh_width()), image_bytes_);
+    gpu_->load(gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high, gpu_->bvh_width()), image_bytes_, panel_);
     uploaded_ = std::move(now);
   }
 
