@@ -67,6 +67,7 @@ py::dict stats_dict(const api::RenderStats& s) {
   rays["cache_samples"] = s.rays.cache_samples;
   rays["total"] = s.rays.total();
   seconds["build"] = s.build_seconds;
+  seconds["gpu_setup"] = s.gpu_setup_seconds;
   seconds["trace"] = s.trace_seconds;
   out["rays"] = rays;
   out["seconds"] = seconds;

@@ -812,6 +812,23 @@ TEST(GpuPath, ALostDeviceOrExhaustedMemoryEndsWithTheMessageAndNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(dir.path)) << "a file was left behind";
 }
 
+// The summary's preprocess line parts the GPU's set-up (the device and its
+// kernel compiled) from the scene's build, and its parts add up to it.
+TEST(GpuPath, TheSummaryPartsTheGpusSetUpFromTheBuild) {
+  TempDir dir;
+  const CommandResult r = run_cli("render " + source_dir() + "/examples/primitives.nff --lenses 8 --pixels-per-lens 4 "
+                                  "--device gpu -o " + dir.file("eia.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex(R"(\npreprocess ([0-9.]+) s \(parse ([0-9.]+) s, build ([0-9.]+) s, )"
+                                                         R"(GPU set-up ([0-9.]+) s\)\n)")))
+      << r.output;
+  const double total = std::stod(m[1]), parse = std::stod(m[2]), build = std::stod(m[3]), setup = std::stod(m[4]);
+  EXPECT_NEAR(parse + build + setup, total, 0.0025) << r.output;  // each rounded to the millisecond
+  EXPECT_GT(setup, 0) << r.output;
+  EXPECT_NE(r.output.find("trace      "), std::string::npos) << r.output;
+}
+
 TEST(GpuPath, RefusesASceneLargerThanTheDeviceBeforeAllocating) {
   gpu::GpuRenderer r;
   gpu::SceneArrays arrays;

@@ -92,6 +92,10 @@ struct RayCounts {
 struct RenderStats {
   RayCounts rays;
   double build_seconds = 0;  ///< the scene's acceleration structure and the camera (Renderer)
+  /// On the GPU, part of build_seconds: the device's set-up, its Vulkan
+  /// device made (or an idle one of this process taken) and the kernel
+  /// compiled for the scene's materials and camera; 0 on the CPU.
+  double gpu_setup_seconds = 0;
   double trace_seconds = 0;  ///< on the GPU: the dispatches alone (ray generation, traversal, shading)
   double readback_seconds = 0;  ///< on the GPU: the image copied back to the host
   /// On the GPU with RenderOptions::count_work: BVH nodes visited and

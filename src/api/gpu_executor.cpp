@@ -155,6 +155,8 @@ struct GpuExecutor::Impl {
   int device = -1;
   bool count_work = false;
   bool healthy = false;  // the last call on `renderer` returned: it may be kept
+  double setup_seconds = 0;
+  double compile_seconds = 0;  // of the last follow() that laid the scene out
 
   ~Impl() {
     if (!renderer || !healthy) return;
@@ -175,7 +177,8 @@ struct GpuExecutor::Impl {
     // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
     // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
     // against 5.8 and 1.8; docs/design/gpu.md).
-    renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
+    compile_seconds =
+        renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
     uploaded = std::move(now);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -189,13 +192,16 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
   try {
     impl_->device = device.index;
     impl_->count_work = options.count_work;
+    const auto t0 = std::chrono::steady_clock::now();
     impl_->renderer = renderer_pool().take(device.index, options.count_work);
     if (!impl_->renderer)
       impl_->renderer = std::make_unique<gpu::GpuRenderer>(device.index, std::vector<std::string>{}, options.count_work);
+    const double made = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;
     impl_->image_bytes = gpu::GpuRenderer::frame_bytes(camera.width(), camera.height(), aovs);
     impl_->panel = gpu::renders_panel(camera);
     impl_->follow(scene);
+    impl_->setup_seconds = made + impl_->compile_seconds;
     impl_->healthy = true;
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());
@@ -205,6 +211,7 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
 GpuExecutor::~GpuExecutor() = default;
 
 std::string GpuExecutor::name() const { return impl_->renderer->describe(); }
+double GpuExecutor::setup_seconds() const { return impl_->setup_seconds; }
 
 FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
                                  std::optional<std::array<int, 2>> rows, RenderStats& stats) {
@@ -252,6 +259,7 @@ GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderScene&, const FrameCam
 }
 GpuExecutor::~GpuExecutor() = default;
 std::string GpuExecutor::name() const { return ""; }
+double GpuExecutor::setup_seconds() const { return 0; }
 FrameBuffers GpuExecutor::render(const RenderContext&, const FrameCamera&, const AovSet&, int,
                                  std::optional<std::array<int, 2>>, RenderStats&) {
   throw std::runtime_error(kNoGpu);

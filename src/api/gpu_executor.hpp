@@ -39,6 +39,10 @@ class GpuExecutor {
   ~GpuExecutor();
   /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
   std::string name() const;
+  /// Seconds the constructor spent setting up the device: the renderer
+  /// made or taken from the idle ones, and the kernel compiled
+  /// (RenderStats::gpu_setup_seconds).
+  double setup_seconds() const;
   /// The frame, or rows [rows[0], rows[1]) of it; colour and the AOVs asked for.
   FrameBuffers render(const RenderContext& context, const FrameCamera& camera, const AovSet& aovs, int spp,
                       std::optional<std::array<int, 2>> rows, RenderStats& stats);

@@ -183,6 +183,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   if (const DeviceChoice device = parse_device(options.device); device.gpu)
     s.gpu = std::make_unique<GpuExecutor>(device, *s.render_scene, frame_camera, options);
   s.build.build_seconds = seconds_since(t_build);
+  s.build.gpu_setup_seconds = s.gpu ? s.gpu->setup_seconds() : 0;
 }
 
 Renderer::~Renderer() = default;
@@ -243,6 +244,7 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
     out.stats.trace_seconds = st.trace_seconds;
   }
   out.stats.build_seconds = s.build.build_seconds;
+  out.stats.gpu_setup_seconds = s.build.gpu_setup_seconds;
   if (s.cache) {
     const ShadowCache& cache = *s.cache;
     const holoray::RayCounts& r = st.rays;

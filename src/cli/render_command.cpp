@@ -249,8 +249,12 @@ void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const
              skipped ? fmt::format(" ({} skipped)", count(skipped, "zero-area polygon")) : "");
   fmt::print("{}", renderer.describe());
   const api::RenderStats& st = result.stats;
-  fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + st.build_seconds, parse_s, st.build_seconds);
   const std::string gpu = renderer.device_name();
+  if (!gpu.empty())
+    fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s, GPU set-up {:.3f} s)\n", parse_s + st.build_seconds,
+               parse_s, st.build_seconds - st.gpu_setup_seconds, st.gpu_setup_seconds);
+  else
+    fmt::print("preprocess {:.3f} s (parse {:.3f} s, build {:.3f} s)\n", parse_s + st.build_seconds, parse_s, st.build_seconds);
   const double per_ray = st.rays.total() ? 1.0 / double(st.rays.total()) : 0.0;
   if (!gpu.empty())
     fmt::print("trace      {:.3f} s on {}, {} spp (readback {:.3f} s; {:.1f} nodes and {:.1f} primitives per ray)\n",
@@ -363,6 +367,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
         result.cache_summary = band.cache_summary;
       }
       result.stats.build_seconds = renderer.build_stats().build_seconds;
+      result.stats.gpu_setup_seconds = renderer.build_stats().gpu_setup_seconds;
       const auto t_gather = Clock::now();
       std::optional<FrameFiles> files;
       if (world.rank() == 0) files.emplace(output, width, height, aovs, encoding, exr);

@@ -382,7 +382,7 @@ uint64_t GpuRenderer::frame_bytes(int width, int height, bool aovs) {
   return uint64_t(width) * uint64_t(height) * (aovs ? 12 + 32 : 12);
 }
 
-void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel) {
+double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel) {
   Impl& m = *impl_;
   const uint64_t need = s.bytes() + image_bytes;
   if (m.info.memory_bytes && need > m.info.memory_bytes)
@@ -415,7 +415,9 @@ void GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel) {
     // own, and a pipeline for features the scene lacks is never compiled
     // (1.2 to 1.6 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel;
+    const auto t0 = std::chrono::steady_clock::now();
     for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
+    return seconds_since(t0);
   } catch (const vk::SystemError& e) {
     rethrow_vulkan(e, m.info.name);
   }

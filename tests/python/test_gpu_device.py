@@ -29,6 +29,8 @@ def test_gpu_image_agrees_with_the_cpu_image():
     assert cpu.stats["device"] == "cpu"
     assert "(Vulkan 1." in gpu.stats["device"]
     assert gpu.stats["rays"]["eye"] > 0
+    assert cpu.stats["seconds"]["gpu_setup"] == 0
+    assert 0 < gpu.stats["seconds"]["gpu_setup"] <= gpu.stats["seconds"]["build"]
 
 
 def test_bad_device_names_the_keyword():
