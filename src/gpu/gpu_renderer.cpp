@@ -413,7 +413,7 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     // The pipelines this scene's frames bind, compiled now (kept from one
     // load to the next with the same features): a frame's time is then its
     // own, and a pipeline for features the scene lacks is never compiled
-    // (1.2 to 1.6 s each on lavapipe).
+    // (about 1.3 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel;
     const auto t0 = std::chrono::steady_clock::now();
     for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);

@@ -75,7 +75,8 @@ class GpuRenderer {
   /// arrays, pinhole views or quilts. `image_bytes`: what those frames
   /// will need beside the scene. Throws GpuError, before allocating, when
   /// the two pass the device's memory, naming all three sizes. Returns
-  /// the seconds spent compiling (0 where an earlier load compiled the same).
+  /// the seconds spent compiling (next to none where an earlier load compiled
+  /// the same).
   double load(const SceneArrays& scene, uint64_t image_bytes, bool panel);
   /// The kernel's pipelines compiled so far: none as the renderer is made,
   /// then those load() compiles for each scene's materials and frames.
