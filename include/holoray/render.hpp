@@ -46,6 +46,30 @@ struct MemoryShare {
   std::string where;
 };
 
+/// How light is computed (docs/lights.md). `whitted`: the paper's recursive
+/// ray tracing (point, spot and directional lights, hard shadows, mirror
+/// and refraction rays), exact and fast. `path`: path tracing with next-event
+/// estimation and multiple importance sampling (Veach 1997), soft light from
+/// an environment and emissive surfaces, light bouncing between surfaces,
+/// noise falling as 1 / sqrt(spp); on the CPU.
+enum class Integrator { whitted, path };
+
+/// The light around the scene that the path integrator sees (docs/lights.md,
+/// "Environment"): an equirectangular image (Radiance .hdr or OpenEXR,
+/// linear RGB; `file`), else a constant `colour` (linear RGB), else the
+/// scene's background colour. The image is mapped as Blender maps an
+/// Environment Texture, its top row toward the scene's up (+y for mesh
+/// files, +z where the scene's viewpoint has z up), times `strength`, turned
+/// by `rotation_deg` about the up axis (a Mapping node's Z rotation).
+struct Environment {
+  std::string file;
+  std::optional<std::array<double, 3>> colour;
+  double strength = 1;
+  double rotation_deg = 0;
+  /// Whether anything was given (file or colour).
+  bool given() const { return !file.empty() || colour.has_value(); }
+};
+
 /// The deepest ray tree RenderOptions::max_depth allows: past it a
 /// refracting scene's rays only multiply.
 inline constexpr int kMaxDepth = 16;
@@ -54,6 +78,13 @@ struct RenderOptions {
   int threads = 0;    ///< worker threads; 0: all cores
   int spp = 1;        ///< samples per pixel, >= 1 (sample 0 at the centre)
   int max_depth = 0;  ///< ray-tree depth, eye ray = 1, at most kMaxDepth; 0: the scene's (Tachyon raydepth), else 5
+  /// Whitted (the default) or path. The path integrator: every sample
+  /// jittered (AOVs from sample 0), lens arrays of every grid, pinhole views,
+  /// quilts and panels; max_depth counts the eye ray as 1 (Cycles' bounces
+  /// plus 1). Not with device gpu or the shadow cache (std::invalid_argument).
+  Integrator integrator = Integrator::whitted;
+  /// The path integrator's environment; given with Whitted's, refused.
+  Environment environment;
   Aovs aovs;
   Style style = Style::automatic;
   ShadowCacheOptions cache;

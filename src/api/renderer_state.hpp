@@ -10,6 +10,7 @@
 #include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
 #include "holoray/render.hpp"
+#include "render/environment.hpp"
 #include "render/frame_camera.hpp"
 #include "render/render_context.hpp"
 #include "render/shadow_cache.hpp"
@@ -24,6 +25,7 @@ struct RendererState {
   const FrameCamera& camera() const { return *placed; }
   std::unique_ptr<RenderScene> render_scene;
   RenderSettings settings;  // this renderer's depth, cache, footprint and background
+  std::unique_ptr<EnvironmentMap> environment;  // the path integrator's (settings.environment)
   std::unique_ptr<ShadowCache> cache;
   RenderOptions options;
   TraceStyle style = TraceStyle::packet;

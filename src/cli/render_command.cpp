@@ -166,6 +166,24 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
       ->capture_default_str();
   add_device_option(*cmd, o.device, "the GPU path renders what the CPU path renders, in float, without the shadow cache");
+  cmd->add_option("--integrator", o.integrator,
+                  "How light is computed: whitted (the paper's: point lights, hard shadows, mirror and refraction rays) or "
+                  "path (path tracing: soft light from an environment and emissive surfaces, light between surfaces; "
+                  "noise falls as 1/sqrt(--spp); CPU only)")
+      ->check(one_of({"whitted", "path"}))
+      ->capture_default_str();
+  cmd->add_option("--environment", o.environment,
+                  "With --integrator path: the light around the scene, an equirectangular .hdr or .exr image, mapped as "
+                  "Blender maps an Environment Texture (default: the scene's background colour)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--environment-colour", o.environment_colour, "With --integrator path: a constant environment R,G,B (linear)")
+      ->check(vec3("--environment-colour"));
+  cmd->add_option("--environment-strength", o.environment_strength, "With --environment or --environment-colour: its multiplier")
+      ->check(in_range(0))
+      ->capture_default_str();
+  cmd->add_option("--environment-rotation", o.environment_rotation,
+                  "With --environment: degrees about the scene's up axis (a Blender Mapping node's Z rotation)")
+      ->capture_default_str();
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
       ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")
@@ -188,7 +206,9 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                             "--view-cone", "--quilt-view", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
-                {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}}},
+                {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
+                {"Light", {"--integrator", "--environment", "--environment-colour", "--environment-strength",
+                           "--environment-rotation"}}},
                {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
                 "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
                "docs/guide/stills.md, docs/guide/displays.md");
@@ -298,6 +318,13 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.spp = o.spp;
     ropt.threads = o.threads;
     ropt.max_depth = o.max_depth;
+    ropt.integrator = o.integrator == "path" ? api::Integrator::path : api::Integrator::whitted;
+    ropt.environment.file = o.environment;
+    if (!o.environment_colour.empty()) {
+      ropt.environment.colour = parse_vec3("--environment-colour", o.environment_colour);
+    }
+    ropt.environment.strength = o.environment_strength;
+    ropt.environment.rotation_deg = o.environment_rotation;
     ropt.aovs = aovs;
     ropt.style = style;
     // Several ranks on a machine share its GPUs out, one each in turn.

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "render/path_tracer.hpp"
 #include "render/renderer.hpp"
 #include "render/tiles.hpp"
 
@@ -60,6 +61,33 @@ FrameBuffers render_lines(const RenderContext& scene, const Cam& camera, const R
         SurfacePoint first_surface[kPacketSize];
         double first_t[kPacketSize] = {};
         Vec3 toward[kPacketSize];  // sample 0's ray reversed: normals face the eye
+        if (scene.settings().integrator == Integrator::path) {
+          // Single rays, every sample jittered by the pixel's sampler (sample 0 too).
+          for (int l = 0; l < n; ++l)
+            for (int k = 0; k < opt.spp; ++k) {
+              const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(pi[l]), static_cast<uint32_t>(pj[l]),
+                                                           scene.settings().sample_salt);
+              shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
+              const shading::vec2 u = shading::hr_next2(sampler);
+              const PixelLine line = camera.line(pi[l], pj[l], u.x, u.y);
+              PrimaryRay pr;
+              if (!make_ray(line, pr)) {
+                sum[l] += path_escape(scene, line.dir);
+                continue;
+              }
+              ++counts.eye;
+              Hit hit;
+              SurfacePoint sp;
+              bool found = false;
+              sum[l] += path_radiance(scene, pr.ray, sampler, counts, &sp, &hit, &found);
+              if (k == 0 && found) {
+                first_hit[l] = true;
+                first_surface[l] = sp;
+                first_t[l] = hit.t;
+                toward[l] = -pr.ray.dir;
+              }
+            }
+        } else
         for (int k = 0; k < opt.spp; ++k) {
           bool ok[kPacketSize];
           for (int l = 0; l < n; ++l) {

@@ -9,7 +9,13 @@
 
 namespace holoray {
 
-class ShadowCache;  // render/shadow_cache.hpp
+class ShadowCache;     // render/shadow_cache.hpp
+class EnvironmentMap;  // render/environment.hpp
+
+/// How light is computed: Whitted's recursive ray tracing (the paper's:
+/// point lights, hard shadows, mirror and refraction rays) or path tracing
+/// (render/path_tracer.hpp).
+enum class Integrator { whitted, path };
 
 /// What one render asks of a built scene.
 struct RenderSettings {
@@ -21,6 +27,16 @@ struct RenderSettings {
   const ShadowCache* shadow_cache = nullptr;
   PixelFootprint footprint;  ///< the MIP levels of mesh textures
   Vec3 background;           ///< what a ray that hits nothing sees (linear RGB)
+  Integrator integrator = Integrator::whitted;
+  /// The path integrator's environment, or null: the background colour,
+  /// constant, lights the scene. Not owned.
+  const EnvironmentMap* environment = nullptr;
+  /// The path integrator leaves out the readers' stand-in headlight (the
+  /// render has an environment of its own).
+  bool skip_headlights = false;
+  /// Mixed into every pixel's sampler seed: two renders with different
+  /// salts (a shot's frames) draw unrelated samples.
+  uint32_t sample_salt = 0;
 };
 
 /// The settings a scene's files ask for: their depth limit and background,

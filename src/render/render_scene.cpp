@@ -222,7 +222,7 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
         const double intensity = desc.shading == ShadingModel::nff && !l.photometric ? level : 1.0;
         const bool unit = l.kind == LightKind::point && l.kc == 1 && l.kl == 0 && l.kq == 0 && !(l.range > 0);
         lights_.push_back({l.position, l.colour * intensity, l.kind, l.direction, l.kc, l.kl, l.kq, l.fall_start,
-                           l.fall_end, l.smooth_cone, l.range, unit, std::cos(l.fall_start), std::cos(l.fall_end)});
+                           l.fall_end, l.smooth_cone, l.range, unit, l.headlight, std::cos(l.fall_start), std::cos(l.fall_end)});
       }
     group_base_.push_back({static_cast<uint32_t>(tri_object_.size()), static_cast<uint32_t>(sphere_object_.size()),
                            static_cast<uint32_t>(cone_object_.size())});

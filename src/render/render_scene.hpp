@@ -39,6 +39,9 @@ struct PointLight {
   /// A point light whose intensity reaches every point whole (NFF's): the
   /// shading skips the falloff.
   bool unit_falloff = true;
+  /// A reader's stand-in light at the eye (Light::headlight): the path
+  /// integrator leaves it out where the render gives its own light.
+  bool headlight = false;
   /// cos(fall_start) and cos(fall_end), computed once where the light is
   /// built (RenderScene), not once per shadow ray.
   double cos_fall_start = 1, cos_fall_end = 1;

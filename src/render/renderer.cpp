@@ -10,6 +10,7 @@
 
 #include <emmintrin.h>
 
+#include "render/path_tracer.hpp"
 #include "render/shading.hpp"
 #include "render/tiles.hpp"
 
@@ -216,8 +217,44 @@ void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin,
                                    t0[l], t1[l], margin, camera.desc().mode, out[l]);
 }
 
+namespace {
+
+// render_pixel under the path integrator: every sample jittered by the
+// pixel's sampler (sample 0 too), AOVs from sample 0's first hit.
+Vec3 path_pixel(const RenderContext& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
+                PrimaryHit* primary, SurfacePoint* surface) {
+  Vec3 sum;
+  if (primary) *primary = PrimaryHit{};
+  const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
+  const bool ortho = camera.desc().mode == RecordingMode::orthoscopic;
+  for (int k = 0; k < spp; ++k) {
+    shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
+    const shading::vec2 u = shading::hr_next2(sampler);
+    const auto pr = primary_ray(camera, scene.bounds(), scene.epsilon(), i, j, u.x, u.y);
+    if (!pr) {
+      // The line misses the scene: the environment along the light's way back.
+      const Vec3 d = camera.line(i, j, u.x, u.y).dir;
+      sum += path_escape(scene, ortho ? -d : d);
+      continue;
+    }
+    ++counts.eye;
+    SurfacePoint sp;
+    Hit hit;
+    bool found = false;
+    sum += path_radiance(scene, pr->ray, sampler, counts, &sp, &hit, &found);
+    if (k == 0 && found) {
+      if (surface) *surface = sp;
+      if (primary) *primary = make_primary(*pr, hit);
+    }
+  }
+  return sum * (1.0 / spp);
+}
+
+}  // namespace
+
 Vec3 render_pixel(const RenderContext& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                   PrimaryHit* primary, SurfacePoint* surface) {
+  if (scene.settings().integrator == Integrator::path) return path_pixel(scene, camera, i, j, spp, counts, primary, surface);
   Vec3 sum;
   if (primary) *primary = PrimaryHit{};
   for (int k = 0; k < spp; ++k) {
@@ -315,9 +352,12 @@ FrameBuffers render_frame(const RenderContext& scene, const LensArray& camera, c
   const bool want_surface = opt.aovs.albedo || opt.aovs.depth || opt.aovs.normal || opt.aovs.id;
 
   const auto start = std::chrono::steady_clock::now();
+  // The path integrator traces single rays (its bounces scatter packets at
+  // once), elemental image by elemental image.
+  const TraceStyle style = scene.settings().integrator == Integrator::path ? TraceStyle::horizontal : opt.style;
   // Sub-aperture packets take one pixel of each of 4x4 lenses: tiles of at
   // least 4x4 lenses keep them full.
-  const bool subaperture = opt.style == TraceStyle::subaperture;
+  const bool subaperture = style == TraceStyle::subaperture;
   const ElementalTiles tiles(camera, opt.tile_order, y0, y1, subaperture ? kSubapertureLenses : 1);
   std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles.count()));
   std::atomic<int> tiles_done{0};
@@ -340,14 +380,14 @@ FrameBuffers render_frame(const RenderContext& scene, const LensArray& camera, c
     // the single-ray styles go elemental image by elemental image: tiles are
     // P-aligned, so each P x P block is one elemental image (square grid), a
     // piece of one lenticule's strip, or close to one hex lens.
-    const bool packets = opt.style == TraceStyle::packet || subaperture;
+    const bool packets = style == TraceStyle::packet || subaperture;
     if (packets)
-      render_block(scene, camera, r, opt.style, opt.spp, want_surface, counts, store);
+      render_block(scene, camera, r, style, opt.spp, want_surface, counts, store);
     else
       for (int by = r.y0; by < r.y1; by += P)
         for (int bx = r.x0; bx < r.x1; bx += P) {
           const TileRect b{bx, by, std::min(bx + P, r.x1), std::min(by + P, r.y1)};
-          render_block(scene, camera, b, opt.style, opt.spp, want_surface, counts, store);
+          render_block(scene, camera, b, style, opt.spp, want_surface, counts, store);
         }
     tile_counts[static_cast<size_t>(tile)] = counts;
     const int done = ++tiles_done;

@@ -1,0 +1,194 @@
+#include "render/path_tracer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/environment.hpp"
+#include "render/gltf_brdf.hpp"
+#include "shading/bsdf.h"
+#include "shading/lights.h"
+#include "shading/warp.h"
+
+namespace holoray {
+
+namespace sh = shading;
+
+namespace {
+
+sh::vec3 to_f(const Vec3& v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
+Vec3 to_d(const sh::vec3& v) { return {v.x, v.y, v.z}; }
+
+// Russian roulette starts after this many bounces (pbrt-v4's depth 1 of
+// its 0-based count is our third vertex: the eye's, and two more).
+constexpr int kRouletteDepth = 3;
+
+// A vertex's BSDF from its material (shading/bsdf.h: which lobe each
+// model's terms become). `entering`: the ray met the outward side, for a
+// refracting material's relative index.
+sh::HrBsdf bsdf_of(const SurfacePoint& sp, float cos_o, bool entering) {
+  const Material& m = *sp.material;
+  const Vec3 c = sp.colour;
+  switch (m.model) {
+    case ShadingModel::gltf:
+      return sh::hr_gltf_bsdf(to_f(c), sp.metallic, sp.roughness, static_cast<float>(dielectric_f0(m.ior)),
+                              static_cast<float>(m.transmission), cos_o);
+    case ShadingModel::tachyon:
+      // Tachyon's transparency goes straight on (no refraction, ior 1).
+      return sh::hr_plain_bsdf(to_f(c * m.kd), sh::vec3(static_cast<float>(m.ks)), sh::vec3(static_cast<float>(m.transmittance)),
+                               1.0f);
+    case ShadingModel::nff:
+    case ShadingModel::blinn_phong:
+      break;
+  }
+  const float ior = m.ior > 0 ? static_cast<float>(m.ior) : 1.0f;
+  return sh::hr_plain_bsdf(to_f(c * m.kd), sh::vec3(static_cast<float>(m.ks)), sh::vec3(static_cast<float>(m.transmittance)),
+                           entering ? 1.0f / ior : ior);
+}
+
+sh::HrLightFalloff falloff_of(const PointLight& l) {
+  sh::HrLightFalloff f;
+  f.kind = static_cast<int>(l.kind);
+  f.direction = to_f(l.direction);
+  f.kc = static_cast<float>(l.kc), f.kl = static_cast<float>(l.kl), f.kq = static_cast<float>(l.kq);
+  f.range = static_cast<float>(l.range);
+  f.fall_start = static_cast<float>(l.fall_start), f.fall_end = static_cast<float>(l.fall_end);
+  f.cos_fall_start = static_cast<float>(l.cos_fall_start), f.cos_fall_end = static_cast<float>(l.cos_fall_end);
+  f.smooth_cone = l.smooth_cone;
+  f.unit = l.unit_falloff;
+  return f;
+}
+
+bool black(const Vec3& v) { return !(v.x > 0 || v.y > 0 || v.z > 0); }
+
+}  // namespace
+
+Vec3 path_escape(const RenderContext& scene, const Vec3& dir) {
+  const EnvironmentMap* env = scene.settings().environment;
+  return env ? env->radiance(dir) : scene.background();
+}
+
+Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sampler, RayCounts& counts,
+                   SurfacePoint* first, Hit* first_hit, bool* hit_found) {
+  const EnvironmentMap* env = scene.settings().environment;
+  const bool env_lights = env && !env->black();
+  const double eps = scene.epsilon();
+  const int max_depth = scene.max_depth();
+  Vec3 radiance, throughput{1, 1, 1};
+  Ray ray = eye;
+  bool specular = true;  // the last bounce was a delta lobe (or there was none): no MIS on what it meets
+  double last_pdf = 0;
+  if (hit_found) *hit_found = false;
+  for (int depth = 1;; ++depth) {
+    Hit hit;
+    if (!scene.accel().intersect(ray, hit, depth == 1 ? RayCoherence::coherent : RayCoherence::incoherent)) {
+      const Vec3 le = path_escape(scene, ray.dir);
+      double w = 1;
+      if (!specular && env_lights) w = sh::hr_power_heuristic(static_cast<float>(last_pdf), static_cast<float>(env->pdf(ray.dir)));
+      radiance += mul(throughput, le) * w;
+      break;
+    }
+    const SurfacePoint sp = scene.surface(ray, hit);
+    if (depth == 1) {
+      if (first) *first = sp;
+      if (first_hit) *first_hit = hit;
+      if (hit_found) *hit_found = true;
+    }
+    const Material& m = *sp.material;
+    if (m.emitter) {  // a Tachyon light's sphere: its colour, unshaded
+      radiance += mul(throughput, sp.colour);
+      break;
+    }
+    // Emission is met by the BSDF's rays only (no light sampling of
+    // emissive surfaces yet): full weight.
+    if (m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0)
+      radiance += mul(throughput, scene.emission(sp, hit.t));
+    // max_depth counts the eye ray as 1 (pbrt's maxDepth; Cycles' bounces
+    // plus 1): a vertex past it only shows its emission, above, which
+    // completes the MIS of the vertex before.
+    if (depth > max_depth) break;
+
+    // The local frame: both normals turned to the side the ray came from.
+    const Vec3 view = -ray.dir;
+    const bool front = dot(sp.ng, view) >= 0;
+    const Vec3 ng = front ? sp.ng : -sp.ng;
+    Vec3 ns = front ? sp.ns : -sp.ns;
+    if (dot(ns, view) <= 0) ns = ng;  // a shading normal turned away from the viewer by interpolation
+    sh::vec3 t, b;
+    const sh::vec3 n = to_f(ns);
+    sh::hr_frame(n, t, b);
+    const sh::vec3 wo = sh::hr_to_local(to_f(view), t, b, n);
+    const sh::HrBsdf bsdf = bsdf_of(sp, wo.z, front);
+    const Vec3 above = sp.position + ng * eps, below = sp.position - ng * eps;
+    const bool smooth_part = !black(to_d(bsdf.diffuse)) || bsdf.alpha > 0;
+
+    // Next-event estimation: every delta light, one environment sample.
+    const sh::vec2 u_env_cell = sh::hr_next2(sampler);
+    const sh::vec2 u_env = sh::hr_next2(sampler);
+    if (smooth_part) {
+      for (const PointLight& light : scene.lights()) {
+        if (light.headlight && scene.settings().skip_headlights) continue;
+        Vec3 to_light;
+        double dist = INFINITY;
+        if (light.kind == LightKind::directional) {
+          to_light = -light.direction;
+        } else {
+          to_light = light.position - sp.position;
+          dist = length(to_light);
+          if (!(dist > eps)) continue;
+          to_light = to_light / dist;
+        }
+        if (dot(to_light, ng) <= 0) continue;
+        const sh::vec3 wi = sh::hr_to_local(to_f(to_light), t, b, n);
+        const sh::vec3 f = sh::hr_bsdf_eval(bsdf, wo, wi);
+        if (!(f.x > 0 || f.y > 0 || f.z > 0)) continue;
+        const float falloff = sh::hr_light_falloff(falloff_of(light), to_f(to_light), static_cast<float>(dist));
+        if (!(falloff > 0)) continue;
+        ++counts.shadow;
+        if (scene.accel().occluded(Ray{above, to_light, 0, dist - eps})) continue;
+        radiance += mul(throughput, mul(to_d(f), light.intensity)) * (M_PI * falloff);
+      }
+      if (env_lights) {
+        Vec3 dir;
+        double pdf;
+        const Vec3 le = env->sample(u_env_cell.x, u_env.x, u_env.y, dir, pdf);
+        if (pdf > 0 && dot(dir, ng) > 0) {
+          const sh::vec3 wi = sh::hr_to_local(to_f(dir), t, b, n);
+          const sh::vec3 f = sh::hr_bsdf_eval(bsdf, wo, wi);
+          if (f.x > 0 || f.y > 0 || f.z > 0) {
+            ++counts.shadow;
+            if (!scene.accel().occluded(Ray{above, dir, 0, INFINITY})) {
+              const float w = sh::hr_power_heuristic(static_cast<float>(pdf), sh::hr_bsdf_pdf(bsdf, wo, wi));
+              radiance += mul(throughput, mul(to_d(f), le)) * (w / pdf);
+            }
+          }
+        }
+      }
+    }
+
+    // The next direction, from the BSDF.
+    const sh::vec2 u_lobe = sh::hr_next2(sampler);
+    const sh::vec2 u_dir = sh::hr_next2(sampler);
+    sh::vec3 wi, weight;
+    float pdf;
+    bool delta, through;
+    if (!sh::hr_bsdf_sample(bsdf, wo, u_lobe.x, u_dir, wi, weight, pdf, delta, through)) break;
+    const Vec3 dir = normalize(to_d(sh::hr_to_world(wi, t, b, n)));
+    // A reflected direction below the geometric surface (the shading
+    // normal's tilt) would leave from inside: the path ends there.
+    if (!through && dot(dir, ng) <= 0) break;
+    throughput = mul(throughput, to_d(weight));
+    specular = delta;
+    last_pdf = pdf;
+    if (through) ++counts.refracted;
+    else ++counts.reflected;
+    ray = Ray{through ? below : above, dir, 0, INFINITY};
+    const double keep = std::max({throughput.x, throughput.y, throughput.z});
+    if (depth >= kRouletteDepth && keep < 1) {
+      if (!(u_lobe.y < keep)) break;
+      throughput = throughput * (1 / keep);
+    }
+  }
+  return radiance;
+}
+
+}  // namespace holoray

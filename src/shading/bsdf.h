@@ -1,0 +1,178 @@
+// holoray/shading: the path tracer's BSDF, one record for every material
+// model holoray reads, evaluated, sampled and given its density in the
+// local frame of the shading normal (+z, on the side the path came from:
+// wo.z > 0). Shared by both devices. Lobes:
+//
+//   diffuse   Lambert, albedo `diffuse` (NFF's Kd C, Tachyon's diffuse C;
+//             for glTF (1 - metallic)(1 - T) c, times 1 - F(wo.h) as the
+//             specification's Appendix B mixes it under the specular layer)
+//   glossy    glTF's GGX layer (Appendix B): dielectric F_d D V over it,
+//             metal F_m D V, V Smith's separable term / (4 |n.l| |n.v|)
+//   mirror    a delta reflection of weight `mirror` (NFF's Ks, Tachyon's
+//             specular): a perfect mirror, as Whitted's ray
+//   transmit  a delta transmission of weight `transmit`, refracted by
+//             `eta` (NFF's T and ior; 1: straight on, Tachyon's opacity and
+//             glTF's thin-walled KHR_materials_transmission)
+//
+// hr_bsdf_eval and hr_bsdf_pdf cover the non-delta lobes (what light
+// sampling can reach); hr_bsdf_sample picks any lobe.
+#ifndef HOLORAY_SHADING_BSDF_H
+#define HOLORAY_SHADING_BSDF_H
+
+#include "shading/microfacet.h"
+#include "shading/warp.h"
+
+HR_BEGIN
+
+struct HrBsdf {
+  vec3 diffuse;   ///< Lambert albedo (linear RGB)
+  vec3 base;      ///< glTF base colour c (linear RGB)
+  float metallic; ///< glTF metallic
+  float alpha;    ///< glTF roughness^2 (>= HR_MIN_ALPHA); 0: no glossy lobe
+  float f0;       ///< the dielectric's reflectance at normal incidence
+  vec3 mirror;    ///< delta reflection weight
+  vec3 transmit;  ///< delta transmission weight
+  float eta;      ///< incident over transmitted index for `transmit`; 1: unbent
+};
+
+/// Lobe selection probabilities at `wo`: diffuse, glossy, mirror, transmit
+/// (x, y, z of `a`, and `t`), summing to 1, each proportional to the
+/// luminance of what its lobe returns (the glossy lobe's by its Fresnel).
+HR_FN void hr_bsdf_lobes(HrBsdf b, vec3 wo, HR_OUT(vec3) a, HR_OUT(float) t) {
+  float fr = hr_schlick(b.f0, wo.z);
+  float wd = hr_luminance(b.diffuse) * (b.alpha > 0.0f ? 1.0f - fr : 1.0f);
+  float wg = 0.0f;
+  if (b.alpha > 0.0f) wg = (1.0f - b.metallic) * fr + b.metallic * hr_luminance(hr_schlick3(b.base, wo.z));
+  float wm = hr_luminance(b.mirror);
+  float wt = hr_luminance(b.transmit);
+  float sum = wd + wg + wm + wt;
+  if (!(sum > 0.0f)) {
+    a = vec3(0.0f);
+    t = 0.0f;
+    return;
+  }
+  a = vec3(wd, wg, wm) / sum;
+  t = wt / sum;
+}
+
+/// f(wo, wi) |wi.z| of the diffuse and glossy lobes (local frame); zero
+/// unless both directions are above the surface.
+HR_FN vec3 hr_bsdf_eval(HrBsdf b, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return vec3(0.0f);
+  if (!(b.alpha > 0.0f)) return b.diffuse * (HR_INV_PI * wi.z);
+  vec3 h = normalize(wo + wi);
+  float voh = max(dot(wo, h), 0.0f);
+  float fd = hr_schlick(b.f0, voh);
+  float dv = hr_ggx_d(h.z, b.alpha) * hr_smith_g1(wo.z, b.alpha) * hr_smith_g1(wi.z, b.alpha) / (4.0f * wo.z * wi.z);
+  vec3 fm = hr_schlick3(b.base, voh);
+  vec3 f = b.diffuse * ((1.0f - fd) * HR_INV_PI) + vec3((1.0f - b.metallic) * fd * dv) + fm * (b.metallic * dv);
+  return f * wi.z;
+}
+
+/// The density (solid angle) with which hr_bsdf_sample returns `wi` through
+/// its diffuse and glossy lobes, their selection included.
+HR_FN float hr_bsdf_pdf(HrBsdf b, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  vec3 a;
+  float t;
+  hr_bsdf_lobes(b, wo, a, t);
+  float p = a.x * hr_cosine_pdf(wi.z);
+  if (b.alpha > 0.0f) p += a.y * hr_ggx_reflection_pdf(wo, wi, b.alpha);
+  return p;
+}
+
+/// Refracts `wo` (local, wo.z > 0) through the surface: `wt` below it, for
+/// eta = n_incident / n_transmitted; false on total internal reflection.
+HR_FN bool hr_refract(vec3 wo, float eta, HR_OUT(vec3) wt) {
+  float c = wo.z;
+  float s2 = eta * eta * max(0.0f, 1.0f - c * c);
+  if (s2 >= 1.0f) return false;
+  wt = -wo * eta + vec3(0.0f, 0.0f, eta * c - sqrt(1.0f - s2));
+  return true;
+}
+
+/// Draws a lobe with `u_lobe` and a direction with `u`: `wi` (local), its
+/// throughput weight f |wi.z| / pdf, its density `pdf` (0 for the delta
+/// lobes, whose `delta` is true) and whether it passes through the surface.
+/// False when nothing is returned (no lobe, or below the surface).
+HR_FN bool hr_bsdf_sample(HrBsdf b, vec3 wo, float u_lobe, vec2 u, HR_OUT(vec3) wi, HR_OUT(vec3) weight,
+                          HR_OUT(float) pdf, HR_OUT(bool) delta, HR_OUT(bool) through) {
+  vec3 a;
+  float t;
+  hr_bsdf_lobes(b, wo, a, t);
+  delta = false;
+  through = false;
+  pdf = 0.0f;
+  weight = vec3(0.0f);
+  wi = vec3(0.0f, 0.0f, 1.0f);
+  if (wo.z <= 0.0f) return false;
+  if (u_lobe < a.x + a.y) {
+    if (u_lobe < a.x) {
+      wi = hr_cosine_hemisphere(u);
+    } else {
+      vec3 h = hr_ggx_sample_visible(wo, b.alpha, u);
+      wi = reflect(-wo, h);
+    }
+    if (wi.z <= 0.0f) return false;
+    pdf = hr_bsdf_pdf(b, wo, wi);
+    if (!(pdf > 0.0f)) return false;
+    weight = hr_bsdf_eval(b, wo, wi) / pdf;
+    return true;
+  }
+  delta = true;
+  if (u_lobe < a.x + a.y + a.z) {
+    wi = vec3(-wo.x, -wo.y, wo.z);
+    weight = b.mirror / a.z;
+    return true;
+  }
+  if (!(t > 0.0f)) return false;
+  through = true;
+  weight = b.transmit / t;
+  if (b.eta == 1.0f) {
+    wi = -wo;
+    return true;
+  }
+  if (!hr_refract(wo, b.eta, wi)) {
+    // Total internal reflection: the transmitted share is reflected, as
+    // Whitted's second mirror ray.
+    wi = vec3(-wo.x, -wo.y, wo.z);
+    through = false;
+  }
+  return true;
+}
+
+/// A glTF metallic-roughness material as an HrBsdf (Appendix B; T the
+/// KHR_materials_transmission factor, thin-walled: the transmitted share
+/// goes on unbent, (1 - metallic) T c (1 - F(wo.z)), as the Whitted path's).
+HR_FN HrBsdf hr_gltf_bsdf(vec3 base, float metallic, float roughness, float f0, float transmission, float cos_o) {
+  HrBsdf b;
+  b.base = base;
+  b.metallic = clamp(metallic, 0.0f, 1.0f);
+  b.alpha = max(roughness * roughness, HR_MIN_ALPHA);
+  b.f0 = f0;
+  b.diffuse = base * ((1.0f - b.metallic) * (1.0f - transmission));
+  b.mirror = vec3(0.0f);
+  b.transmit = base * ((1.0f - b.metallic) * transmission * (1.0f - hr_schlick(f0, cos_o)));
+  b.eta = 1.0f;
+  return b;
+}
+
+/// A Whitted-style material (NFF, MTL, Tachyon) as an HrBsdf: Lambert of
+/// albedo `diffuse`, a mirror of weight `mirror`, a transmission of weight
+/// `transmit` refracted by `eta`.
+HR_FN HrBsdf hr_plain_bsdf(vec3 diffuse, vec3 mirror, vec3 transmit, float eta) {
+  HrBsdf b;
+  b.diffuse = diffuse;
+  b.base = vec3(0.0f);
+  b.metallic = 0.0f;
+  b.alpha = 0.0f;
+  b.f0 = 0.0f;
+  b.mirror = mirror;
+  b.transmit = transmit;
+  b.eta = eta;
+  return b;
+}
+
+HR_END
+
+#endif

@@ -1,0 +1,103 @@
+// holoray/shading: one test case of every shared function, the same text on
+// both devices (shared_functions.comp on the GPU, tests/test_shading.cpp on
+// the CPU): 16 inputs in, 32 outputs out, laid out below. The test compares
+// the two devices' outputs to float rounding.
+#ifndef HOLORAY_SHADING_SHARED_CASES_H
+#define HOLORAY_SHADING_SHARED_CASES_H
+
+#include "shading/bsdf.h"
+#include "shading/environment.h"
+#include "shading/lights.h"
+#include "shading/sampler.h"
+
+#ifdef __cplusplus
+#define HR_ARRAY_IN(name, n) const float* name
+#define HR_ARRAY_OUT(name, n) float* name
+#else
+#define HR_ARRAY_IN(name, n) float name[n]
+#define HR_ARRAY_OUT(name, n) out float name[n]
+#endif
+
+HR_BEGIN
+
+/// Inputs: a[0..2] wo, a[3..5] wi (normalised here; wo lifted above the
+/// surface), a[6..7] a 2D uniform, a[8] the lobe's uniform, a[9..11] the
+/// base colour, a[12] metallic, a[13] roughness, a[14] transmission, a[15]
+/// a sample index. Outputs: r[0..2] eval, r[3] pdf, r[4..6] sampled wi,
+/// r[7..9] its weight, r[10] its pdf, r[11] delta, r[12..13] the Sobol
+/// point, r[14..16] a cosine direction, r[17..19] a cone direction,
+/// r[20..21] equirect uv of wo, r[22..24] the direction back, r[25] a spot's
+/// falloff, r[26] D, r[27] G1, r[28] the power heuristic, r[29..31] the
+/// frame's tangent.
+HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
+  vec3 wo = normalize(vec3(a[0], a[1], abs(a[2]) + 0.05f));
+  vec3 wi = normalize(vec3(a[3], a[4], a[5]));
+  vec2 u = vec2(a[6], a[7]);
+  HrBsdf b = hr_gltf_bsdf(vec3(a[9], a[10], a[11]), a[12], a[13], 0.04f, a[14], wo.z);
+  vec3 e = hr_bsdf_eval(b, wo, wi);
+  r[0] = e.x;
+  r[1] = e.y;
+  r[2] = e.z;
+  r[3] = hr_bsdf_pdf(b, wo, wi);
+  vec3 si;
+  vec3 sw;
+  float sp;
+  bool delta;
+  bool through;
+  bool ok = hr_bsdf_sample(b, wo, a[8], u, si, sw, sp, delta, through);
+  r[4] = ok ? si.x : 9.0f;
+  r[5] = ok ? si.y : 9.0f;
+  r[6] = ok ? si.z : 9.0f;
+  r[7] = ok ? sw.x : 0.0f;
+  r[8] = ok ? sw.y : 0.0f;
+  r[9] = ok ? sw.z : 0.0f;
+  r[10] = ok ? sp : 0.0f;
+  r[11] = delta ? 1.0f : 0.0f;
+  HrSampler s = hr_sampler(hr_pixel_seed(c, c * 7u, 3u), uint(a[15]));
+  vec2 q = hr_next2(s);
+  q = hr_next2(s);
+  r[12] = q.x;
+  r[13] = q.y;
+  vec3 cd = hr_cosine_hemisphere(u);
+  r[14] = cd.x;
+  r[15] = cd.y;
+  r[16] = cd.z;
+  vec3 cone = hr_uniform_cone(u, 0.9f);
+  r[17] = cone.x;
+  r[18] = cone.y;
+  r[19] = cone.z;
+  vec2 uv = hr_equirect_uv(wi);
+  r[20] = uv.x;
+  r[21] = uv.y;
+  vec3 back = hr_equirect_direction(uv);
+  r[22] = back.x;
+  r[23] = back.y;
+  r[24] = back.z;
+  HrLightFalloff l;
+  l.kind = HR_LIGHT_KIND_SPOT;
+  l.direction = -wo;
+  l.kc = 1.0f;
+  l.kl = 0.0f;
+  l.kq = 1.0f;
+  l.range = 4.0f;
+  l.fall_start = 0.3f;
+  l.fall_end = 0.6f;
+  l.cos_fall_start = cos(0.3f);
+  l.cos_fall_end = cos(0.6f);
+  l.smooth_cone = a[8] < 0.5f;
+  l.unit = false;
+  r[25] = hr_light_falloff(l, wi, 1.0f + a[6]);
+  r[26] = hr_ggx_d(wo.z, max(a[13] * a[13], HR_MIN_ALPHA));
+  r[27] = hr_smith_g1(wi.z, max(a[13] * a[13], HR_MIN_ALPHA));
+  r[28] = hr_power_heuristic(a[6], a[7]);
+  vec3 t;
+  vec3 bt;
+  hr_frame(wi, t, bt);
+  r[29] = t.x;
+  r[30] = t.y;
+  r[31] = t.z;
+}
+
+HR_END
+
+#endif
