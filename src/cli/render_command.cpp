@@ -281,8 +281,9 @@ void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const
                st.trace_seconds, gpu, o.spp, st.readback_seconds, double(st.nodes_visited) * per_ray,
                double(st.primitives_tested) * per_ray);
   else
-    fmt::print("trace      {:.3f} s, {} spp, {} threads, {} style{}\n", st.trace_seconds, o.spp,
-             o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(), renderer.style_name(),
+    fmt::print("trace      {:.3f} s, {} spp, {} threads, {}{}\n", st.trace_seconds, o.spp,
+             o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(),
+             o.integrator == "path" ? std::string("path integrator") : fmt::format("{} style", renderer.style_name()),
              world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
                                                world.size(), gather_s, band_bytes / 1048576.0)
                                  : "");

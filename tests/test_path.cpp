@@ -1,0 +1,290 @@
+// The path integrator (render/path_tracer.hpp) and what it reads
+// (render/environment.hpp): analytic scenes whose radiance is known, the
+// environment's sampling against its own density and Blender's mapping,
+// the image's independence of the thread count, the noise's fall with the
+// sample count, and the options the API refuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "holoray/render.hpp"
+#include "holoray/scene.hpp"
+#include "image/metrics.hpp"
+#include "render/environment.hpp"
+#include "render/gltf_brdf.hpp"
+#include "render/path_tracer.hpp"
+#include "render/view_renderer.hpp"
+#include "scene/nff_reader.hpp"
+#include "shading/environment.h"
+#include "test_util.hpp"
+
+namespace holoray {
+namespace {
+
+RenderSettings path_settings(const RenderScene& scene, const EnvironmentMap* env, int max_depth) {
+  RenderSettings s = file_settings(scene);
+  s.integrator = Integrator::path;
+  s.environment = env;
+  s.max_depth = max_depth;
+  return s;
+}
+
+// A size x size pinhole view of `desc` (through its viewpoint) under the
+// path integrator, lit by `env`.
+FrameBuffers path_view(const SceneDesc& desc, const EnvironmentMap* env, int size, int spp, int max_depth = 5,
+                       int threads = 0) {
+  const RenderScene scene(desc);
+  const RenderContext ctx(scene, path_settings(scene, env, max_depth));
+  const Viewpoint& vp = *desc.viewpoint;
+  const PinholeCamera cam(PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, size, size});
+  RenderOptions ro;
+  ro.spp = spp;
+  ro.threads = threads;
+  RenderStats stats;
+  return render_view(ctx, cam, ro, stats);
+}
+
+// A unit sphere at the origin seen from 4 units away, no light: `material`
+// is an NFF `f` line.
+SceneDesc sphere_scene(const std::string& material) {
+  return parse_nff("v\nfrom 0 -4 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 32 32\n" + material + "\ns 0 0 0 1\n",
+                   "sphere.nff");
+}
+
+// The pixels whose whole footprint lies on the sphere (their centre ray
+// meets it well inside the silhouette): the mean over them of channel 0,
+// and the largest distance of one from `expected`.
+void sphere_pixels(const FrameBuffers& fb, int size, double expected, double& mean, double& worst) {
+  const Viewpoint vp{{0, -4, 0}, {0, 0, 0}, {0, 0, 1}, 40};
+  const PinholeCamera cam(PinholeDesc{vp.from, vp.at, vp.up, vp.angle_deg, size, size});
+  double sum = 0;
+  int n = 0;
+  worst = 0;
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const PixelLine l = cam.line(i, j);
+      const double b = dot(l.origin, l.dir), disc = b * b - (dot(l.origin, l.origin) - 1);
+      if (disc < 0.15) continue;  // off the sphere or near its silhouette
+      const double v = fb.colour.at(i, j)[0];
+      sum += v, ++n;
+      worst = std::max(worst, std::fabs(v - expected));
+    }
+  ASSERT_GT(n, 100);
+  mean = sum / n;
+}
+
+// The white furnace: a convex Lambertian surface of albedo 0.5 under a sky
+// of radiance 1 everywhere reflects exactly 0.5 (it sees nothing but the
+// sky), whatever the bounce count; the sky seen past it is 1.
+TEST(PathIntegrator, AConvexLambertianSphereUnderAUniformSkyShowsItsAlbedo) {
+  const EnvironmentMap sky(Vec3{1, 1, 1});
+  const FrameBuffers fb = path_view(sphere_scene("f 0.5 0.5 0.5 1 0 0 0 1"), &sky, 48, 64);
+  double mean, worst;
+  sphere_pixels(fb, 48, 0.5, mean, worst);
+  EXPECT_NEAR(mean, 0.5, 0.005);
+  EXPECT_LT(worst, 0.05);
+  EXPECT_FLOAT_EQ(fb.colour.at(0, 0)[0], 1.0f) << "a corner sees the sky";
+}
+
+// glTF's metal of colour 1 under a sky of radiance 1 reflects, toward each
+// pixel, the directional albedo E(mu) of its BRDF at that pixel's view
+// cosine mu: what its single-scattering GGX lobe keeps. E is integrated
+// here by quadrature of the Whitted path's own copy of the BRDF
+// (gltf_brdf.hpp, in double), an independent evaluation; a smooth metal is
+// a mirror of the sky, 1.
+TEST(PathIntegrator, AGltfMetalUnderAUniformSkyShowsItsDirectionalAlbedo) {
+  const EnvironmentMap sky(Vec3{1, 1, 1});
+  const int size = 40;
+  for (const double roughness : {0.0, 0.5}) {
+    SceneDesc desc = sphere_scene("f 1 1 1 1 0 0 0 1");
+    desc.materials[0].model = ShadingModel::gltf;
+    desc.materials[0].colour = {1, 1, 1};
+    desc.materials[0].metallic = 1;
+    desc.materials[0].roughness = roughness;
+    const FrameBuffers fb = path_view(desc, &sky, size, 256);
+    const GltfSurface surface{{1, 1, 1}, 1, roughness, 0.04, 0};
+    // E(mu) = (1/pi) * integral of pi f cos over the hemisphere (gltf_direct returns pi f cos).
+    auto albedo = [&](double mu) {
+      const Vec3 n{0, 0, 1}, v{std::sqrt(1 - mu * mu), 0, mu};
+      const int nt = 256, np = 256;
+      double e = 0;
+      for (int a = 0; a < nt; ++a) {
+        const double t = (a + 0.5) / nt * M_PI / 2;
+        for (int b = 0; b < np; ++b) {
+          const double p = (b + 0.5) / np * 2 * M_PI;
+          const Vec3 l{std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+          e += gltf_direct(surface, n, v, l).x * std::sin(t);
+        }
+      }
+      return e * (M_PI / 2 / nt) * (2 * M_PI / np) / M_PI;
+    };
+    const PinholeCamera cam(PinholeDesc{{0, -4, 0}, {0, 0, 0}, {0, 0, 1}, 40, size, size});
+    double rendered = 0, expected = 0;
+    int n = 0;
+    for (int j = 0; j < size; j += 3)
+      for (int i = 0; i < size; i += 3) {
+        const PixelLine l = cam.line(i, j);
+        const double b = dot(l.origin, l.dir), disc = b * b - (dot(l.origin, l.origin) - 1);
+        if (disc < 0.15) continue;
+        const Vec3 hit = l.origin + l.dir * (-b - std::sqrt(disc));
+        rendered += fb.colour.at(i, j)[0];
+        expected += roughness == 0 ? 1.0 : albedo(std::clamp(-dot(hit, l.dir), 1e-3, 1.0));
+        ++n;
+      }
+    ASSERT_GT(n, 40);
+    EXPECT_NEAR(rendered / n, expected / n, 0.01) << "roughness " << roughness;
+    if (roughness > 0) EXPECT_LT(expected / n, 0.97) << "the lobe loses light: the test can tell";
+  }
+}
+
+// One point light over a Lambertian floor: path tracing's next-event
+// estimate is Lambert's law exactly, C I cos(theta) (NFF's lights have no
+// falloff; docs/lights.md), and the floor's own bounces leave for a black sky.
+TEST(PathIntegrator, APointLightOnALambertianFloorFollowsLambertsLaw) {
+  const SceneDesc desc = parse_nff("l 0 0 3\nf 0.6 0.4 0.2 1 0 0 0 1\np 4\n-5 -5 0\n5 -5 0\n5 5 0\n-5 5 0\n", "floor.nff");
+  const RenderScene scene(desc);
+  const EnvironmentMap black(Vec3{0, 0, 0});
+  const RenderContext ctx(scene, path_settings(scene, &black, 5));
+  ASSERT_EQ(scene.lights().size(), 1u);
+  const Vec3 I = scene.lights()[0].intensity;
+  for (const Vec3 p : {Vec3{0, 0, 0}, Vec3{1, 0.5, 0}, Vec3{-2, 3, 0}}) {
+    shading::HrSampler sampler = shading::hr_sampler(7, 0);
+    shading::hr_next2(sampler);
+    RayCounts counts;
+    const Vec3 c = path_radiance(ctx, Ray{p + Vec3{0.3, -0.2, 1}, normalize(Vec3{-0.3, 0.2, -1}), 0, INFINITY}, sampler, counts);
+    const Vec3 to_light = Vec3{0, 0, 3} - p;
+    const double cos_t = to_light.z / length(to_light);
+    EXPECT_NEAR(c.x, 0.6 * I.x * cos_t, 1e-5) << p.x << "," << p.y;
+    EXPECT_NEAR(c.y, 0.4 * I.y * cos_t, 1e-5);
+    EXPECT_NEAR(c.z, 0.2 * I.z * cos_t, 1e-5);
+  }
+}
+
+// An image environment: sample() draws directions with the density pdf()
+// gives them, and sample()'s estimate of the mean radiance over the sphere
+// agrees with the texels' own solid-angle-weighted mean.
+TEST(EnvironmentMap, ItsSamplesFollowItsDensityAndEstimateItsMeanRadiance) {
+  const int w = 32, h = 16;
+  ImageBuffer img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y)[c] = (x == 5 && y == 4) ? 400.0f : 0.1f + 0.05f * c + 0.02f * ((x * 7 + y * 3) % 11);
+  const EnvironmentMap env(img, 1.0, 0.3, EnvironmentUp::y);
+  double exact = 0;
+  for (int y = 0; y < h; ++y) {
+    const double omega = 2 * M_PI / w * (std::sin((0.5 - double(y) / h) * M_PI) - std::sin((0.5 - double(y + 1) / h) * M_PI));
+    for (int x = 0; x < w; ++x) exact += img.at(x, y)[1] * omega;
+  }
+  exact /= 4 * M_PI;
+  double estimate = 0;
+  const int n = 200000;
+  int elsewhere = 0;  // drawn on a texel's edge, which float rounding gives the neighbour
+  for (int k = 0; k < n; ++k) {
+    shading::HrSampler s = shading::hr_sampler(11, static_cast<uint32_t>(k));
+    const shading::vec2 a = shading::hr_next2(s), b = shading::hr_next2(s);
+    Vec3 dir;
+    double pdf;
+    env.sample(a.x, b.x, b.y, dir, pdf);
+    ASSERT_NEAR(length(dir), 1.0, 1e-6);
+    elsewhere += std::fabs(pdf - env.pdf(dir)) > 1e-3 * pdf;
+    estimate += env.radiance(dir).y / pdf;
+  }
+  estimate /= n * 4 * M_PI;
+  EXPECT_LT(elsewhere, n / 10000);
+  // Bilinear lookups against nearest-texel sampling: within the blur of one texel.
+  EXPECT_NEAR(estimate, exact, 0.03 * exact);
+}
+
+// The mapping measured against Blender 3.4's Cycles (a probe image whose
+// texels hold their own column and row, seen through a 1-degree camera):
+// Blender's +X reads the centre column, +Y the first quarter, -Y the third,
+// and 30 degrees up the row 0.5 + 30/180 of the way from the bottom.
+// glTF's frame (y up) is Blender's turned by the exporter: Blender (x, y, z)
+// = glTF (x, -z, y).
+TEST(EnvironmentMap, MapsDirectionsAsBlendersEnvironmentTexture) {
+  using shading::vec3;
+  EXPECT_NEAR(shading::hr_equirect_uv(vec3(1, 0, 0)).x, 0.5f, 1e-6f);
+  EXPECT_NEAR(shading::hr_equirect_uv(vec3(0, 1, 0)).x, 0.25f, 1e-6f);
+  EXPECT_NEAR(shading::hr_equirect_uv(vec3(0, -1, 0)).x, 0.75f, 1e-6f);
+  const float s = std::sin(float(M_PI / 6)), c = std::cos(float(M_PI / 6));
+  EXPECT_NEAR(shading::hr_equirect_uv(vec3(-c, 0, s)).y, 0.5f + 30.0f / 180.0f, 1e-6f);
+  // An image whose left half is red and right half green: glTF's +x looks
+  // at the centre, where they meet; glTF's -z (Blender's +y) at the red quarter.
+  ImageBuffer img(4, 2, 3);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) img.at(x, y)[x < 2 ? 0 : 1] = 1;
+  const EnvironmentMap env(img, 1.0, 0.0, EnvironmentUp::y);
+  EXPECT_NEAR(env.radiance({0, 0, -1}).x, 1.0, 1e-6);
+  EXPECT_NEAR(env.radiance({0, 0, 1}).y, 1.0, 1e-6);
+  // A Mapping node's Z rotation of 90 degrees reads Rz(90) d: +x then reads what +y did.
+  const EnvironmentMap turned(img, 1.0, M_PI / 2, EnvironmentUp::y);
+  EXPECT_NEAR(turned.radiance({1, 0, 0}).x, 1.0, 1e-6);
+  for (const Vec3 d : {normalize(Vec3{0.3, 0.4, -0.866}), Vec3{-0.8, 0.6, 0}}) {
+    const shading::vec2 uv = shading::hr_equirect_uv(vec3(float(d.x), float(d.y), float(d.z)));
+    const vec3 back = shading::hr_equirect_direction(uv);
+    EXPECT_NEAR(back.x, d.x, 1e-5);
+    EXPECT_NEAR(back.y, d.y, 1e-5);
+    EXPECT_NEAR(back.z, d.z, 1e-5);
+  }
+}
+
+// Each pixel's samples are a function of the pixel, its index and the
+// image's salt alone: one thread or two render the same bits.
+TEST(PathIntegrator, TheImageIsTheSameForAnyThreadCount) {
+  const SceneDesc desc = read_nff_file(test::source_dir() + "/examples/primitives.nff");
+  const FrameBuffers one = path_view(desc, nullptr, 40, 4, 5, 1);
+  const FrameBuffers two = path_view(desc, nullptr, 40, 4, 5, 2);
+  EXPECT_EQ(one.colour.data, two.colour.data);
+}
+
+// Monte Carlo noise falls as 1 / sqrt(spp): 4x the samples, about +6 dB
+// against a converged image (Owen-scrambled Sobol points do no worse).
+TEST(PathIntegrator, NoiseFallsByAboutSixDecibelsPerFourTimesTheSamples) {
+  SceneDesc desc = sphere_scene("f 0.7 0.6 0.5 1 0 0 0 1");
+  desc.objects.push_back(ObjectDesc{PolygonDesc{{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}, {}}, 0, {}});
+  ImageBuffer img(16, 8, 3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y)[c] = y < 3 ? 2.0f + x % 3 : 0.2f;
+  const EnvironmentMap env(img, 1.0, 0.0, EnvironmentUp::z);
+  const FrameBuffers ref = path_view(desc, &env, 24, 4096);
+  double last = 0;
+  for (const int spp : {4, 16, 64}) {
+    const double psnr = compare_images(path_view(desc, &env, 24, spp).colour, ref.colour).psnr_all();
+    if (last > 0) {
+      EXPECT_GT(psnr - last, 4.5) << spp << " spp";
+      EXPECT_LT(psnr - last, 8.0) << spp << " spp";
+    }
+    last = psnr;
+  }
+}
+
+// What the path integrator does not do yet is refused, saying why.
+TEST(PathIntegrator, TheApiRefusesWhatItCannotRenderSayingWhy) {
+  const test::TempDir tmp;
+  const std::string dir = tmp.path.string();
+  std::ofstream(dir + "/s.nff") << "v\nfrom 0 -4 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 8 8\ns 0 0 0 1\n";
+  const api::Scene scene = api::Scene::load(dir + "/s.nff");
+  api::RenderOptions o;
+  o.integrator = api::Integrator::path;
+  o.device = "gpu";
+  EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
+            "integrator path: runs on the CPU for now (device cpu); the GPU path renders Whitted's");
+  o.device = "cpu";
+  o.cache.enabled = true;
+  EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
+            "integrator path: the shadow cache reuses Whitted's point-light visibility, not paths; leave cache off");
+  o = {};
+  o.environment.colour = std::array<double, 3>{1, 1, 1};
+  EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
+            "environment: lights the path integrator only (integrator path); Whitted's sees the background colour");
+  o.integrator = api::Integrator::path;
+  o.environment = {};
+  o.environment.file = dir + "/missing.exr";
+  EXPECT_NE(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }).find("missing.exr"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace holoray
