@@ -1,7 +1,8 @@
 // holoray/gpu (private to src/gpu): the Vulkan objects behind GpuRenderer,
 // shared by the renderer (gpu_renderer.cpp) and the presenter
 // (presenter.cpp), which packs the renderer's frame into a window on the
-// same device. Only these two files include Vulkan.
+// same device. Only these two files and shared_functions.cpp (the shared
+// shading functions' device check) include Vulkan.
 #pragma once
 
 #include <fmt/format.h>

@@ -108,9 +108,10 @@ def build(scene_name):
     if scene_name == "hdri":
         env = nodes.new("ShaderNodeTexEnvironment")
         env.image = bpy.data.images.load(ENVIRONMENT, check_existing=True)
-        # An EXR is linear already; saying so keeps a non-default OCIO config
-        # from converting it.
-        env.image.colorspace_settings.name = "Linear"
+        # Blender loads an EXR as scene-linear already; naming it keeps a
+        # changed OCIO default from converting it (Blender 4 renamed Linear).
+        spaces = env.image.colorspace_settings.bl_rna.properties["name"].enum_items.keys()
+        env.image.colorspace_settings.name = "Linear" if "Linear" in spaces else "Linear Rec.709"
         env.projection = "EQUIRECTANGULAR"
         env.interpolation = "Linear"
         links.new(env.outputs["Color"], background.inputs["Color"])
