@@ -40,7 +40,9 @@ TEST(SharedShading, EveryFunctionGivesTheSameValuesOnTheCpuAndTheGpu) {
     // The sampled direction's pdf and weight, evaluated on the CPU at the
     // direction the GPU drew: the BSDF agrees given the same direction.
     const shading::vec3 wo = shading::normalize(shading::vec3(a_in[0], a_in[1], std::fabs(a_in[2]) + 0.05f));
-    const shading::HrBsdf b = shading::hr_gltf_bsdf(shading::vec3(a_in[9], a_in[10], a_in[11]), a_in[12], a_in[13], 0.04f, a_in[14], wo.z);
+    const shading::vec3 base(a_in[9], a_in[10], a_in[11]);
+    const shading::HrBsdf b = a_in[15] >= 32 ? shading::hr_principled_bsdf(base, a_in[12], a_in[13], 0.04f, a_in[14], wo.z)
+                                             : shading::hr_gltf_bsdf(base, a_in[12], a_in[13], 0.04f, a_in[14], wo.z);
     const shading::vec3 wi_gpu(g[4], g[5], g[6]);
     const bool drew = g[10] > 0 && g[11] == 0;  // a non-delta lobe was drawn on the GPU
     bool differs = false;

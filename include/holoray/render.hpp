@@ -85,6 +85,12 @@ struct RenderOptions {
   Integrator integrator = Integrator::whitted;
   /// The path integrator's environment; given with Whitted's, refused.
   Environment environment;
+  /// The path integrator shades glTF materials as Blender 3.x's Principled
+  /// BSDF does (Burley's diffuse, whole under the specular layer) rather
+  /// than as glTF's Appendix B (diffuse times 1 - F): for a scene exported
+  /// from Blender, to render what Cycles renders (docs/lights.md). The
+  /// Blender add-on sets it.
+  bool blender_principled = false;
   Aovs aovs;
   Style style = Style::automatic;
   ShadowCacheOptions cache;

@@ -214,6 +214,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.environment = environment_of(options.environment, s.scene->desc);
     s.settings.integrator = holoray::Integrator::path;
     s.settings.environment = s.environment.get();
+    s.settings.principled = options.blender_principled;
     // The readers' stand-in headlight lights a scene without light; an
     // environment of the render's own is light.
     s.settings.skip_headlights = options.environment.given();

@@ -184,6 +184,9 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--environment-rotation", o.environment_rotation,
                   "With --environment: degrees about the scene's up axis (a Blender Mapping node's Z rotation)")
       ->capture_default_str();
+  cmd->add_flag("--blender-principled", o.blender_principled,
+                "With --integrator path: glTF materials as Blender 3.x's Principled BSDF shades them (Burley's diffuse, "
+                "whole under the specular layer), for scenes exported from Blender; default: glTF's own BRDF");
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
       ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")
@@ -208,7 +211,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                                 "--view-distance", "--origin", "--normal", "--up"}},
                 {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
                 {"Light", {"--integrator", "--environment", "--environment-colour", "--environment-strength",
-                           "--environment-rotation"}}},
+                           "--environment-rotation", "--blender-principled"}}},
                {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
                 "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
                "docs/guide/stills.md, docs/guide/displays.md");
@@ -326,6 +329,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     }
     ropt.environment.strength = o.environment_strength;
     ropt.environment.rotation_deg = o.environment_rotation;
+    ropt.blender_principled = o.blender_principled;
     ropt.aovs = aovs;
     ropt.style = style;
     // Several ranks on a machine share its GPUs out, one each in turn.

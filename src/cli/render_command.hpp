@@ -21,6 +21,7 @@ struct RenderCommandOptions {
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
   std::string integrator = "whitted", environment, environment_colour;
   double environment_strength = 1, environment_rotation = 0;
+  bool blender_principled = false;
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
   CameraOptions view;                 ///< --camera, --resolution, --display, --looking-glass, --views

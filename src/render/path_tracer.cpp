@@ -25,12 +25,12 @@ constexpr int kRouletteDepth = 3;
 // A vertex's BSDF from its material (shading/bsdf.h: which lobe each
 // model's terms become). `entering`: the ray met the outward side, for a
 // refracting material's relative index.
-sh::HrBsdf bsdf_of(const SurfacePoint& sp, float cos_o, bool entering) {
+sh::HrBsdf bsdf_of(const SurfacePoint& sp, float cos_o, bool entering, bool principled) {
   const Material& m = *sp.material;
   const Vec3 c = sp.colour;
   switch (m.model) {
     case ShadingModel::gltf:
-      return sh::hr_gltf_bsdf(to_f(c), sp.metallic, sp.roughness, static_cast<float>(dielectric_f0(m.ior)),
+      return (principled ? sh::hr_principled_bsdf : sh::hr_gltf_bsdf)(to_f(c), sp.metallic, sp.roughness, static_cast<float>(dielectric_f0(m.ior)),
                               static_cast<float>(m.transmission), cos_o);
     case ShadingModel::tachyon:
       // Tachyon's transparency goes straight on (no refraction, ior 1).
@@ -117,7 +117,7 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
     const sh::vec3 n = to_f(ns);
     sh::hr_frame(n, t, b);
     const sh::vec3 wo = sh::hr_to_local(to_f(view), t, b, n);
-    const sh::HrBsdf bsdf = bsdf_of(sp, wo.z, front);
+    const sh::HrBsdf bsdf = bsdf_of(sp, wo.z, front, scene.settings().principled);
     const Vec3 above = sp.position + ng * eps, below = sp.position - ng * eps;
     const bool smooth_part = !black(to_d(bsdf.diffuse)) || bsdf.alpha > 0;
 

@@ -34,6 +34,10 @@ struct RenderSettings {
   /// The path integrator leaves out the readers' stand-in headlight (the
   /// render has an environment of its own).
   bool skip_headlights = false;
+  /// The path integrator shades glTF materials as Blender 3.x's Principled
+  /// BSDF layers them (shading/bsdf.h, HrBsdf::principled), not as glTF's
+  /// Appendix B: for scenes exported from Blender, compared with Cycles.
+  bool principled = false;
   /// Mixed into every pixel's sampler seed: two renders with different
   /// salts (a shot's frames) draw unrelated samples.
   uint32_t sample_salt = 0;

@@ -5,7 +5,10 @@
 //
 //   diffuse   Lambert, albedo `diffuse` (NFF's Kd C, Tachyon's diffuse C;
 //             for glTF (1 - metallic)(1 - T) c, times 1 - F(wo.h) as the
-//             specification's Appendix B mixes it under the specular layer)
+//             specification's Appendix B mixes it under the specular layer;
+//             with `principled`, Blender 3.x's Principled BSDF instead:
+//             Burley's diffuse with its retro-reflection (Burley 2015, as
+//             Cycles' principled_diffuse), whole under the specular layer)
 //   glossy    glTF's GGX layer (Appendix B): dielectric F_d D V over it,
 //             metal F_m D V, V Smith's separable term / (4 |n.l| |n.v|)
 //   mirror    a delta reflection of weight `mirror` (NFF's Ks, Tachyon's
@@ -33,14 +36,29 @@ struct HrBsdf {
   vec3 mirror;    ///< delta reflection weight
   vec3 transmit;  ///< delta transmission weight
   float eta;      ///< incident over transmitted index for `transmit`; 1: unbent
+  float principled;  ///< 1: the diffuse lobe as Blender's Principled BSDF (above), with `roughness`; 0: glTF's
+  float roughness;   ///< the surface's roughness, for the principled diffuse's retro-reflection
 };
+
+/// Blender 3.x's Principled diffuse (Cycles' bsdf_principled_diffuse, after
+/// Burley 2015): f pi / base at cosines `cl`, `cv` and the half-vector's
+/// cosine to the light `lh`: (1 - FL/2)(1 - FV/2) + RR (FL + FV + FL FV (RR - 1)),
+/// RR = 2 roughness lh^2, F = (1 - cos)^5.
+HR_FN float hr_principled_diffuse(float cl, float cv, float lh, float roughness) {
+  float ml = clamp(1.0f - cl, 0.0f, 1.0f);
+  float mv = clamp(1.0f - cv, 0.0f, 1.0f);
+  float fl = ml * ml * ml * ml * ml;
+  float fv = mv * mv * mv * mv * mv;
+  float rr = 2.0f * roughness * lh * lh;
+  return (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
+}
 
 /// Lobe selection probabilities at `wo`: diffuse, glossy, mirror, transmit
 /// (x, y, z of `a`, and `t`), summing to 1, each proportional to the
 /// luminance of what its lobe returns (the glossy lobe's by its Fresnel).
 HR_FN void hr_bsdf_lobes(HrBsdf b, vec3 wo, HR_OUT(vec3) a, HR_OUT(float) t) {
   float fr = hr_schlick(b.f0, wo.z);
-  float wd = hr_luminance(b.diffuse) * (b.alpha > 0.0f ? 1.0f - fr : 1.0f);
+  float wd = hr_luminance(b.diffuse) * (b.alpha > 0.0f && b.principled == 0.0f ? 1.0f - fr : 1.0f);
   float wg = 0.0f;
   if (b.alpha > 0.0f) wg = (1.0f - b.metallic) * fr + b.metallic * hr_luminance(hr_schlick3(b.base, wo.z));
   float wm = hr_luminance(b.mirror);
@@ -65,7 +83,8 @@ HR_FN vec3 hr_bsdf_eval(HrBsdf b, vec3 wo, vec3 wi) {
   float fd = hr_schlick(b.f0, voh);
   float dv = hr_ggx_d(h.z, b.alpha) * hr_smith_g1(wo.z, b.alpha) * hr_smith_g1(wi.z, b.alpha) / (4.0f * wo.z * wi.z);
   vec3 fm = hr_schlick3(b.base, voh);
-  vec3 f = b.diffuse * ((1.0f - fd) * HR_INV_PI) + vec3((1.0f - b.metallic) * fd * dv) + fm * (b.metallic * dv);
+  float diffuse = b.principled > 0.0f ? hr_principled_diffuse(wi.z, wo.z, dot(wi, h), b.roughness) : 1.0f - fd;
+  vec3 f = b.diffuse * (diffuse * HR_INV_PI) + vec3((1.0f - b.metallic) * fd * dv) + fm * (b.metallic * dv);
   return f * wi.z;
 }
 
@@ -154,6 +173,16 @@ HR_FN HrBsdf hr_gltf_bsdf(vec3 base, float metallic, float roughness, float f0, 
   b.mirror = vec3(0.0f);
   b.transmit = base * ((1.0f - b.metallic) * transmission * (1.0f - hr_schlick(f0, cos_o)));
   b.eta = 1.0f;
+  b.principled = 0.0f;
+  b.roughness = roughness;
+  return b;
+}
+
+/// hr_gltf_bsdf as Blender 3.x's Principled BSDF layers it (HrBsdf::
+/// principled): what Cycles renders of the .blend a glTF file came from.
+HR_FN HrBsdf hr_principled_bsdf(vec3 base, float metallic, float roughness, float f0, float transmission, float cos_o) {
+  HrBsdf b = hr_gltf_bsdf(base, metallic, roughness, f0, transmission, cos_o);
+  b.principled = 1.0f;
   return b;
 }
 
@@ -170,6 +199,8 @@ HR_FN HrBsdf hr_plain_bsdf(vec3 diffuse, vec3 mirror, vec3 transmit, float eta) 
   b.mirror = mirror;
   b.transmit = transmit;
   b.eta = eta;
+  b.principled = 0.0f;
+  b.roughness = 1.0f;
   return b;
 }
 

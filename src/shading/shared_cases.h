@@ -23,7 +23,7 @@ HR_BEGIN
 /// Inputs: a[0..2] wo, a[3..5] wi (normalised here; wo lifted above the
 /// surface), a[6..7] a 2D uniform, a[8] the lobe's uniform, a[9..11] the
 /// base colour, a[12] metallic, a[13] roughness, a[14] transmission, a[15]
-/// a sample index. Outputs: r[0..2] eval, r[3] pdf, r[4..6] sampled wi,
+/// a sample index (from 32 on, the material is Blender's principled one). Outputs: r[0..2] eval, r[3] pdf, r[4..6] sampled wi,
 /// r[7..9] its weight, r[10] its pdf, r[11] delta, r[12..13] the Sobol
 /// point, r[14..16] a cosine direction, r[17..19] a cone direction,
 /// r[20..21] equirect uv of wo, r[22..24] the direction back, r[25] a spot's
@@ -34,6 +34,7 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   vec3 wi = normalize(vec3(a[3], a[4], a[5]));
   vec2 u = vec2(a[6], a[7]);
   HrBsdf b = hr_gltf_bsdf(vec3(a[9], a[10], a[11]), a[12], a[13], 0.04f, a[14], wo.z);
+  if (a[15] >= 32.0f) b = hr_principled_bsdf(vec3(a[9], a[10], a[11]), a[12], a[13], 0.04f, a[14], wo.z);
   vec3 e = hr_bsdf_eval(b, wo, wi);
   r[0] = e.x;
   r[1] = e.y;
