@@ -199,9 +199,24 @@ void bind_render(py::module_& m) {
   m.def(
       "render",
       [](const api::Scene& scene, const py::handle& camera, std::optional<int> threads, int spp, std::optional<int> max_depth,
-         const std::vector<std::string>& aovs, const py::object& progress, const std::string& device) {
+         const std::vector<std::string>& aovs, const py::object& progress, const std::string& device,
+         const std::string& integrator, const py::object& environment, double environment_strength,
+         double environment_rotation, bool blender_principled) {
         api::RenderOptions o;
         o.device = device;
+        if (integrator == "path") o.integrator = api::Integrator::path;
+        else if (integrator != "whitted") throw py::value_error("integrator: expected 'whitted' or 'path', got '" + integrator + "'");
+        // A file name, or a colour (r, g, b).
+        if (py::isinstance<py::str>(environment)) {
+          o.environment.file = environment.cast<std::string>();
+        } else if (!environment.is_none()) {
+          const auto c = environment.cast<std::vector<double>>();
+          if (c.size() != 3) throw py::value_error("environment: expected a file name or a colour (r, g, b)");
+          o.environment.colour = std::array<double, 3>{c[0], c[1], c[2]};
+        }
+        o.environment.strength = environment_strength;
+        o.environment.rotation_deg = environment_rotation;
+        o.blender_principled = blender_principled;
         const api::Camera cam = camera_of(camera, "camera");
         if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
         if (max_depth && *max_depth < 1) throw py::value_error("max_depth: expected at least 1");
@@ -258,10 +273,13 @@ void bind_render(py::module_& m) {
       },
       py::arg("scene"), py::arg("camera"), py::kw_only(), py::arg("threads") = py::none(), py::arg("spp") = 1,
       py::arg("max_depth") = py::none(), py::arg("aovs") = std::vector<std::string>{}, py::arg("progress") = py::none(),
-      py::arg("device") = "cpu",
+      py::arg("device") = "cpu", py::arg("integrator") = "whitted", py::arg("environment") = py::none(),
+      py::arg("environment_strength") = 1.0, py::arg("environment_rotation") = 0.0, py::arg("blender_principled") = false,
       "Renders scene through camera: Result. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
       "progress(fraction) is called on the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else lavapipe) "
-      "or 'gpu:N'; stats['device'] names it.");
+      "or 'gpu:N'; stats['device'] names it. integrator: 'whitted' or 'path' (docs/lights.md); with 'path', "
+      "environment: an equirectangular .hdr/.exr file or a colour (r, g, b), times environment_strength, turned by "
+      "environment_rotation degrees about the up axis; blender_principled: glTF materials as Blender's Principled BSDF.");
   m.def(
       "gpu_devices",
       [] {

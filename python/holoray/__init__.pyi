@@ -118,12 +118,21 @@ class Result:
 
 def render(scene: Scene, camera: Camera, *, threads: int | None = None, spp: int = 1,
            max_depth: int | None = None, aovs: Sequence[str] = (),
-           progress: Callable[[float], object] | None = None, device: str = "cpu") -> Result:
+           progress: Callable[[float], object] | None = None, device: str = "cpu",
+           integrator: str = "whitted", environment: str | Sequence[float] | None = None,
+           environment_strength: float = 1.0, environment_rotation: float = 0.0,
+           blender_principled: bool = False) -> Result:
     """Renders scene through camera. Releases the GIL; Ctrl-C raises
     KeyboardInterrupt within half a second; progress(fraction) is called on
     the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else
-    lavapipe) or 'gpu:N'; stats['device'] names it. Raises ValueError naming
-    the argument, SceneError."""
+    lavapipe) or 'gpu:N'; stats['device'] names it. integrator: 'whitted'
+    (the paper's) or 'path' (path tracing, CPU; docs/lights.md). With
+    'path': environment, an equirectangular .hdr/.exr file or a linear
+    colour (r, g, b) (default: the scene's background colour), times
+    environment_strength, turned by environment_rotation degrees about the
+    scene's up axis as a Blender Mapping node turns it; blender_principled
+    shades glTF materials as Blender 3.x's Principled BSDF. Raises
+    ValueError naming the argument, SceneError."""
 
 def gpu_devices() -> list[str]:
     """The machine's Vulkan devices ('0: llvmpipe (...), CPU, Vulkan 1.3, 2.0

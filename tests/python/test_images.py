@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import os
 import re
 
 import numpy as np
@@ -133,3 +134,26 @@ def test_psnr_agrees_with_cli_compare(tmp, run_cli):
     m = re.search(r"^all\s+\S+\s+\S+\s+(\S+)", out, re.M)
     assert m, out
     assert holoray.psnr(a, b) == pytest.approx(float(m.group(1)), abs=6e-4)  # printed to 3 decimals
+
+
+def test_the_path_integrator_renders_from_python_as_from_the_cli(tmp_path):
+    """integrator='path' with an environment colour: the same image as the CLI's
+    (one sampler, one seed per pixel), and the furnace's value on a white-sky
+    Lambertian sphere."""
+    import subprocess
+    nff = tmp_path / "s.nff"
+    nff.write_text("v\nfrom 0 -4 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 24 24\n"
+                   "f 0.5 0.5 0.5 1 0 0 0 1\ns 0 0 0 1\n")
+    scene = holoray.load_scene(str(nff))
+    cam = holoray.Pinhole(resolution=(24, 24))
+    res = holoray.render(scene, cam, spp=16, integrator="path", environment=(1, 1, 1))
+    assert abs(float(res.colour[12, 12, 0]) - 0.5) < 0.05
+    assert float(res.colour[0, 0, 0]) == 1.0
+    out = tmp_path / "cli.exr"
+    subprocess.run([os.environ["HOLORAY_CLI"], "render", str(nff), "--camera", "pinhole", "--resolution", "24x24",
+                    "--spp", "16", "--integrator", "path", "--environment-colour", "1,1,1", "-q", "-o", str(out)], check=True)
+    assert np.array_equal(holoray.read_image(str(out))[:, :, :3], res.colour)
+    with pytest.raises(ValueError, match="integrator: expected 'whitted' or 'path', got 'pbrt'"):
+        holoray.render(scene, cam, integrator="pbrt")
+    with pytest.raises(ValueError, match="environment: lights the path integrator only"):
+        holoray.render(scene, cam, environment=(1, 1, 1))
