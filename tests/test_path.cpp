@@ -12,6 +12,7 @@
 #include "holoray/render.hpp"
 #include "holoray/scene.hpp"
 #include "image/metrics.hpp"
+#include "render/emitters.hpp"
 #include "render/environment.hpp"
 #include "render/gltf_brdf.hpp"
 #include "render/path_tracer.hpp"
@@ -284,6 +285,54 @@ TEST(PathIntegrator, TheApiRefusesWhatItCannotRenderSayingWhy) {
   o.environment = {};
   o.environment.file = dir + "/missing.exr";
   EXPECT_NE(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }).find("missing.exr"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace holoray
+
+namespace holoray {
+namespace {
+
+// An emissive square of radiance L, side a, at height c over a Lambertian
+// floor of albedo rho: under its centre the floor's radiance is rho / pi
+// times the square's irradiance there, 2 L [A / sqrt(1 + A^2) atan(B /
+// sqrt(1 + A^2)) + B / sqrt(1 + B^2) atan(A / sqrt(1 + B^2))], A = B =
+// a / (2c) (the rectangle's form factor, four corner pieces). Next-event
+// estimation of the emitter and the BSDF's rays, MIS-weighted, average to
+// it; with the emitter's own sampling off, the BSDF's rays alone do too.
+TEST(PathIntegrator, AnEmissiveSquareLightsAFloorAsItsFormFactorSays) {
+  SceneDesc desc = parse_nff("f 0.5 0.5 0.5 1 0 0 0 1\np 4\n-5 -5 0\n5 -5 0\n5 5 0\n-5 5 0\n", "floor.nff");
+  Material emitter;
+  emitter.colour = {0, 0, 0};
+  emitter.kd = 0;
+  emitter.emission = {4, 4, 4};
+  desc.materials.push_back(emitter);
+  const double a = 0.8, c = 1.0;
+  TriangleMeshDesc quad;
+  quad.vertices = {{-a / 2, -a / 2, c}, {a / 2, -a / 2, c}, {a / 2, a / 2, c}, {-a / 2, a / 2, c}};
+  quad.triangles = {{0, 2, 1}, {0, 3, 2}};  // facing down
+  desc.objects.push_back(ObjectDesc{quad, static_cast<int>(desc.materials.size() - 1), {}});
+  const RenderScene scene(desc);
+  const EmissiveTriangles emitters(scene);
+  ASSERT_EQ(emitters.size(), 2u);
+  const EnvironmentMap black(Vec3{0, 0, 0});
+  const double A = a / (2 * c), s = std::sqrt(1 + A * A);
+  const double irradiance = 2 * 4 * 2 * (A / s * std::atan(A / s));
+  const double expected = 0.5 / M_PI * irradiance;
+  for (const bool light_sampling : {true, false}) {
+    RenderSettings settings = path_settings(scene, &black, 2);
+    if (light_sampling) settings.emitters = &emitters;
+    const RenderContext ctx(scene, settings);
+    double sum = 0;
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) {
+      shading::HrSampler sampler = shading::hr_sampler(5, static_cast<uint32_t>(k));
+      shading::hr_next2(sampler);
+      RayCounts counts;
+      sum += path_radiance(ctx, Ray{{0.05, -0.3, 0.5}, normalize(Vec3{-0.05, 0.3, -0.5}), 0, INFINITY}, sampler, counts).x;
+    }
+    EXPECT_NEAR(sum / n, expected, 0.01 * expected) << (light_sampling ? "with" : "without") << " light sampling";
+  }
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "holoray/render.hpp"
 #include "render/render_context.hpp"
 #include "image/image_io.hpp"
+#include "render/emitters.hpp"
 #include "render/environment.hpp"
 #include "render/renderer.hpp"
 #include "render/shadow_cache.hpp"
@@ -215,6 +216,8 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.settings.integrator = holoray::Integrator::path;
     s.settings.environment = s.environment.get();
     s.settings.principled = options.blender_principled;
+    s.emitters = std::make_unique<EmissiveTriangles>(*s.render_scene);
+    if (!s.emitters->empty()) s.settings.emitters = s.emitters.get();
     // The readers' stand-in headlight lights a scene without light; an
     // environment of the render's own is light.
     s.settings.skip_headlights = options.environment.given();

@@ -10,6 +10,7 @@
 #include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
 #include "holoray/render.hpp"
+#include "render/emitters.hpp"
 #include "render/environment.hpp"
 #include "render/frame_camera.hpp"
 #include "render/render_context.hpp"
@@ -26,6 +27,7 @@ struct RendererState {
   std::unique_ptr<RenderScene> render_scene;
   RenderSettings settings;  // this renderer's depth, cache, footprint and background
   std::unique_ptr<EnvironmentMap> environment;  // the path integrator's (settings.environment)
+  std::unique_ptr<EmissiveTriangles> emitters;  // the path integrator's (settings.emitters)
   std::unique_ptr<ShadowCache> cache;
   RenderOptions options;
   TraceStyle style = TraceStyle::packet;

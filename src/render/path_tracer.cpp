@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/emitters.hpp"
 #include "render/environment.hpp"
 #include "render/gltf_brdf.hpp"
 #include "shading/bsdf.h"
@@ -71,6 +72,8 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
                    SurfacePoint* first, Hit* first_hit, bool* hit_found) {
   const EnvironmentMap* env = scene.settings().environment;
   const bool env_lights = env && !env->black();
+  const EmissiveTriangles* emitters = scene.settings().emitters;
+  if (emitters && emitters->empty()) emitters = nullptr;
   const double eps = scene.epsilon();
   const int max_depth = scene.max_depth();
   Vec3 radiance, throughput{1, 1, 1};
@@ -98,10 +101,18 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
       radiance += mul(throughput, sp.colour);
       break;
     }
-    // Emission is met by the BSDF's rays only (no light sampling of
-    // emissive surfaces yet): full weight.
-    if (m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0)
-      radiance += mul(throughput, scene.emission(sp, hit.t));
+    // Emission met by a BSDF ray: weighted against the emitters' own
+    // sampling (next-event estimation below) where that could have drawn it.
+    if (m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0) {
+      double w = 1;
+      if (!specular && emitters && hit.kind == PrimKind::triangle) {
+        const double cos_l = std::fabs(dot(sp.ng, ray.dir));
+        const double pdf_light = sh::hr_area_to_solid_angle(static_cast<float>(emitters->pdf_area(hit.group, hit.prim)),
+                                                            static_cast<float>(hit.t * hit.t), static_cast<float>(cos_l));
+        w = sh::hr_power_heuristic(static_cast<float>(last_pdf), static_cast<float>(pdf_light));
+      }
+      radiance += mul(throughput, scene.emission(sp, hit.t)) * w;
+    }
     // max_depth counts the eye ray as 1 (pbrt's maxDepth; Cycles' bounces
     // plus 1): a vertex past it only shows its emission, above, which
     // completes the MIS of the vertex before.
@@ -121,9 +132,12 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
     const Vec3 above = sp.position + ng * eps, below = sp.position - ng * eps;
     const bool smooth_part = !black(to_d(bsdf.diffuse)) || bsdf.alpha > 0;
 
-    // Next-event estimation: every delta light, one environment sample.
+    // Next-event estimation: every delta light, one environment sample,
+    // one point on the emissive surfaces.
     const sh::vec2 u_env_cell = sh::hr_next2(sampler);
     const sh::vec2 u_env = sh::hr_next2(sampler);
+    const sh::vec2 u_emit_pick = sh::hr_next2(sampler);
+    const sh::vec2 u_emit = sh::hr_next2(sampler);
     if (smooth_part) {
       for (const PointLight& light : scene.lights()) {
         if (light.headlight && scene.settings().skip_headlights) continue;
@@ -159,6 +173,25 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
             if (!scene.accel().occluded(Ray{above, dir, 0, INFINITY})) {
               const float w = sh::hr_power_heuristic(static_cast<float>(pdf), sh::hr_bsdf_pdf(bsdf, wo, wi));
               radiance += mul(throughput, mul(to_d(f), le)) * (w / pdf);
+            }
+          }
+        }
+      }
+      if (emitters) {
+        const EmissiveTriangles::Sample s = emitters->sample(u_emit_pick.x, u_emit.x, u_emit.y);
+        Vec3 dir = s.position - sp.position;
+        const double dist2 = dot(dir, dir), dist = std::sqrt(dist2);
+        dir = dir / dist;
+        const double cos_l = std::fabs(dot(s.normal, dir));
+        if (dist > 2 * eps && cos_l > 0 && dot(dir, ng) > 0) {
+          const sh::vec3 wi = sh::hr_to_local(to_f(dir), t, b, n);
+          const sh::vec3 f = sh::hr_bsdf_eval(bsdf, wo, wi);
+          if (f.x > 0 || f.y > 0 || f.z > 0) {
+            ++counts.shadow;
+            if (!scene.accel().occluded(Ray{above, dir, 0, dist - 2 * eps})) {
+              const double pdf = s.pdf_area * dist2 / cos_l;
+              const float w = sh::hr_power_heuristic(static_cast<float>(pdf), sh::hr_bsdf_pdf(bsdf, wo, wi));
+              radiance += mul(throughput, mul(to_d(f), scene.emission(s.surface, dist))) * (w / pdf);
             }
           }
         }

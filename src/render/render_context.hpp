@@ -11,6 +11,7 @@ namespace holoray {
 
 class ShadowCache;     // render/shadow_cache.hpp
 class EnvironmentMap;  // render/environment.hpp
+class EmissiveTriangles;  // render/emitters.hpp
 
 /// How light is computed: Whitted's recursive ray tracing (the paper's:
 /// point lights, hard shadows, mirror and refraction rays) or path tracing
@@ -31,6 +32,9 @@ struct RenderSettings {
   /// The path integrator's environment, or null: the background colour,
   /// constant, lights the scene. Not owned.
   const EnvironmentMap* environment = nullptr;
+  /// The path integrator's emissive surfaces, sampled as lights; null: they
+  /// light the scene only where its rays meet them. Not owned.
+  const EmissiveTriangles* emitters = nullptr;
   /// The path integrator leaves out the readers' stand-in headlight (the
   /// render has an environment of its own).
   bool skip_headlights = false;

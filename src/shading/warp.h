@@ -41,6 +41,20 @@ HR_FN vec3 hr_uniform_cone(vec2 u, float cos_max) {
 }
 HR_FN float hr_cone_pdf(float cos_max) { return 1.0f / (2.0f * HR_PI * (1.0f - cos_max)); }
 
+/// Barycentrics (b1, b2) of a point uniform over a triangle (the square-root
+/// parametrisation, pbrt-v4's SampleUniformTriangle): the point is
+/// p0 (1 - b1 - b2) + p1 b1 + p2 b2.
+HR_FN vec2 hr_uniform_triangle(vec2 u) {
+  float s = sqrt(u.x);
+  return vec2(s * (1.0f - u.y), s * u.y);
+}
+
+/// A density over area (1 / m^2) as one over solid angle seen from a point
+/// `dist2` (squared) away, the surface's cosine to the line `cos_surface`.
+HR_FN float hr_area_to_solid_angle(float pdf_area, float dist2, float cos_surface) {
+  return cos_surface > 0.0f ? pdf_area * dist2 / cos_surface : 0.0f;
+}
+
 /// Veach's power heuristic (beta 2) weight of a strategy of density `pa`
 /// against one of density `pb`, one sample each (Veach 1997, §9.2.4).
 HR_FN float hr_power_heuristic(float pa, float pb) {
