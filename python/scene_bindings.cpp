@@ -41,6 +41,8 @@ void bind_scene(py::module_& m) {
           },
           py::arg("position"), py::arg("colour") = py::make_tuple(1.0, 1.0, 1.0),
           "Adds a point light without falloff; colour is its radiance on a white surface facing it.")
+      .def("add_lights", &api::Scene::add_lights, py::arg("path"),
+           "Adds the lights of a lights file (docs/lights.md): point, spot, sun and area lights in Blender's units.")
       .def(
           "set_viewpoint",
           [](api::Scene& s, const py::handle& eye, const py::handle& at, const py::handle& up, double fov_deg) {

@@ -17,6 +17,7 @@
 #include "render/gltf_brdf.hpp"
 #include "render/path_tracer.hpp"
 #include "render/view_renderer.hpp"
+#include "scene/lights_file.hpp"
 #include "scene/nff_reader.hpp"
 #include "shading/environment.h"
 #include "test_util.hpp"
@@ -333,6 +334,103 @@ TEST(PathIntegrator, AnEmissiveSquareLightsAFloorAsItsFormFactorSays) {
     }
     EXPECT_NEAR(sum / n, expected, 0.01 * expected) << (light_sampling ? "with" : "without") << " light sampling";
   }
+}
+
+}  // namespace
+}  // namespace holoray
+
+namespace holoray {
+namespace {
+
+// A lights file's area light of power P over a floor: its radiance is
+// P / (4 A) (Cycles' convention, measured against Blender 3.4), and under
+// its centre the floor shows rho / pi times the square's form-factor
+// irradiance; above it (its unlit side) nothing. Drawn by the light's own
+// sampling and met by the BSDF's rays, MIS-weighted.
+TEST(PathIntegrator, AnAreaLightFromALightsFileLightsOneSideAsItsFormFactorSays) {
+  SceneDesc desc = parse_nff("f 0.5 0.5 0.5 1 0 0 0 1\np 4\n-5 -5 0\n5 -5 0\n5 5 0\n-5 5 0\n", "floor.nff");
+  const LightsFile lights = parse_lights_file(
+      "[[light]]\ntype = \"area\"\nposition = [0, 0, 1]\ndirection = [0, 0, -1]\nright = [1, 0, 0]\n"
+      "shape = \"rectangle\"\nsize = [0.8, 0.8]\npower = 12.8\n",
+      "lights.toml");
+  ASSERT_EQ(lights.area_lights.size(), 1u);
+  EXPECT_NEAR(lights.area_lights[0].radiance.x, 12.8 / (4 * 0.64), 1e-12);
+  desc.area_lights = lights.area_lights;
+  const RenderScene scene(desc);
+  const EnvironmentMap black(Vec3{0, 0, 0});
+  const RenderContext ctx(scene, path_settings(scene, &black, 3));
+  const double L = 5, A = 0.4, s = std::sqrt(1 + A * A);
+  const double expected = 0.5 / M_PI * 2 * L * 2 * (A / s * std::atan(A / s));
+  // The same light turned over, facing away from the floor: its back is dark.
+  desc.area_lights[0].normal = -desc.area_lights[0].normal;
+  const RenderScene turned(desc);
+  const RenderContext turned_ctx(turned, path_settings(turned, &black, 3));
+  double lit = 0, unlit = 0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    for (const RenderContext* c : {&ctx, &turned_ctx}) {
+      shading::HrSampler sampler = shading::hr_sampler(9, static_cast<uint32_t>(k));
+      shading::hr_next2(sampler);
+      RayCounts counts;
+      (c == &ctx ? lit : unlit) +=
+          path_radiance(*c, Ray{{0.05, -0.3, 0.5}, normalize(Vec3{-0.05, 0.3, -0.5}), 0, INFINITY}, sampler, counts).x;
+    }
+  }
+  EXPECT_NEAR(lit / n, expected, 0.01 * expected);
+  EXPECT_EQ(unlit, 0.0);
+}
+
+// A point light with a radius: Cycles' disk facing the lit point, the
+// irradiance on its axis P / (4 pi (d^2 + r^2)) (measured against Blender
+// 3.4: 7.48893 for P = 100, d = 1, r = 0.25); a sun with an angle keeps its
+// irradiance S.
+TEST(PathIntegrator, SoftLightsFromALightsFileKeepCyclesIrradiance) {
+  const LightsFile lights = parse_lights_file(
+      "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\npower = 100\nradius = 0.25\n"
+      "[[light]]\ntype = \"sun\"\ndirection = [0, 0, -1]\nstrength = 3\nangle = 6\n",
+      "lights.toml");
+  ASSERT_EQ(lights.lights.size(), 2u);
+  for (int which = 0; which < 2; ++which) {
+    SceneDesc desc = parse_nff("f 1 1 1 1 0 0 0 1\np 4\n-5 -5 0\n5 -5 0\n5 5 0\n-5 5 0\n", "floor.nff");
+    desc.lights = {lights.lights[static_cast<size_t>(which)]};
+    const RenderScene scene(desc);
+    const EnvironmentMap black(Vec3{0, 0, 0});
+    const RenderContext ctx(scene, path_settings(scene, &black, 1));
+    double sum = 0;
+    const int n = 4000;
+    for (int k = 0; k < n; ++k) {
+      shading::HrSampler sampler = shading::hr_sampler(3, static_cast<uint32_t>(k));
+      shading::hr_next2(sampler);
+      RayCounts counts;
+      sum += path_radiance(ctx, Ray{{0.1, 0.1, 0.5}, normalize(Vec3{-0.1, -0.1, -0.5}), 0, INFINITY}, sampler, counts).x;
+    }
+    // A white Lambertian floor shows E / pi.
+    const double irradiance = sum / n * M_PI;
+    if (which == 0) EXPECT_NEAR(irradiance, 100 / (4 * M_PI * (1 + 0.0625)), 0.005 * 7.49);
+    else EXPECT_NEAR(irradiance, 3 * (1 + std::cos(3 * M_PI / 180)) / 2, 1e-3);
+  }
+}
+
+// What a lights file may not say is refused at its line and column.
+TEST(LightsFile, RefusesMalformedLightsAtTheirLineAndColumn) {
+  auto first_line = [](const std::function<void()>& f) {
+    const std::string e = test::error_of(f);
+    return e.substr(0, e.find('\n'));
+  };
+  EXPECT_EQ(first_line([] { parse_lights_file("[[light]]\ntype = \"area\"\nposition = [0, 0, 1]\n", "l.toml"); }),
+            "l.toml:1:1: error: an area light needs `direction` = [x, y, z]");
+  EXPECT_EQ(test::error_of([] { parse_lights_file("[[light]]\ntype = \"point\"\npositon = [0, 0, 1]\n", "l.toml"); })
+                .substr(0, 20),
+            "l.toml:3:1: error: u");
+  EXPECT_EQ(first_line([] {
+              parse_lights_file("[[light]]\ntype = \"area\"\nposition = [0,0,1]\ndirection = [0,0,-1]\nright = [0,0,1]\n", "l.toml");
+            }),
+            "l.toml:5:9: error: right: expected a direction across `direction`, not along it");
+  EXPECT_EQ(first_line([] {
+              parse_lights_file("[[light]]\ntype = \"area\"\nposition = [0,0,1]\ndirection = [0,0,-1]\nright = [1,0,0]\n"
+                                "shape = \"disk\"\nsize = [1, 2]\n", "l.toml");
+            }),
+            "l.toml:7:8: error: size: expected one number for a disk");
 }
 
 }  // namespace

@@ -74,13 +74,19 @@ class HOLORAY_API Scene {
   /// surface facing it (docs/lights.md). Without any, a render adds a
   /// headlight at the viewpoint, as mesh files do.
   void add_light(const Vec3d& position, const Vec3d& colour = {1, 1, 1});
+  /// Adds the lights of a lights file (docs/lights.md, "Lights file"): point,
+  /// spot, sun and area lights in Blender's words and units, in the scene's
+  /// frame; area lights, light radii and sun angles light the path
+  /// integrator. Throws SceneError (file:line:col) for a malformed file,
+  /// std::runtime_error for one that cannot be read.
+  void add_lights(const std::string& path);
   /// The viewpoint every camera is placed by (NFF's `v`): eye, the point
   /// looked at, up, and the vertical field of view in degrees, in (0, 180).
   void set_viewpoint(const Vec3d& eye, const Vec3d& at, const Vec3d& up, double fov_deg);
 
   const std::string& source() const;  ///< the file it was read from ("" when built in code)
   int object_count() const;
-  int light_count() const;
+  int light_count() const;  ///< point, spot, directional and area lights
   bool has_viewpoint() const;
   /// "file:line:col: warning: ..." for input accepted but suspect.
   const std::vector<std::string>& warnings() const;

@@ -44,6 +44,10 @@ class Scene:
         """Adds a point light, no falloff; colour is its radiance on a white
         surface facing it (docs/lights.md). A scene without lights gets a
         headlight at the viewpoint, as mesh files do."""
+    def add_lights(self, path: str) -> None:
+        """Adds the lights of a lights file (docs/lights.md, "Lights file"):
+        point, spot, sun and area lights in Blender's words and units, in the
+        scene's frame. SceneError at file:line:col for a malformed file."""
     def set_viewpoint(self, eye: Sequence[float], at: Sequence[float], up: Sequence[float],
                       fov_deg: float) -> None:
         """The viewpoint that places every camera, as NFF's 'v' (fov: vertical, degrees)."""

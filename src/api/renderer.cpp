@@ -218,6 +218,8 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.settings.principled = options.blender_principled;
     s.emitters = std::make_unique<EmissiveTriangles>(*s.render_scene);
     if (!s.emitters->empty()) s.settings.emitters = s.emitters.get();
+    // Emissive surfaces are light too.
+    s.settings.skip_headlights |= !s.emitters->empty();
     // The readers' stand-in headlight lights a scene without light; an
     // environment of the render's own is light.
     s.settings.skip_headlights = options.environment.given();

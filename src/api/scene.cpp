@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "api/internal.hpp"
+#include "scene/lights_file.hpp"
 #include "scene/mesh_reader.hpp"
 
 namespace holoray::api {
@@ -138,6 +139,13 @@ void Scene::add_light(const Vec3d& position, const Vec3d& colour) {
   mutable_data().desc.lights.push_back(l);
 }
 
+void Scene::add_lights(const std::string& path) {
+  LightsFile file = read_lights_file(path);
+  SceneDesc& desc = mutable_data().desc;
+  desc.lights.insert(desc.lights.end(), file.lights.begin(), file.lights.end());
+  desc.area_lights.insert(desc.area_lights.end(), file.area_lights.begin(), file.area_lights.end());
+}
+
 void Scene::set_viewpoint(const Vec3d& eye, const Vec3d& at, const Vec3d& up, double fov_deg) {
   if (!finite3(eye)) throw std::invalid_argument("eye: a coordinate is NaN or infinite");
   if (!finite3(at)) throw std::invalid_argument("at: a coordinate is NaN or infinite");
@@ -161,7 +169,7 @@ void Scene::set_viewpoint(const Vec3d& eye, const Vec3d& at, const Vec3d& up, do
 
 const std::string& Scene::source() const { return data_->desc.source; }
 int Scene::object_count() const { return static_cast<int>(data_->desc.objects.size()); }
-int Scene::light_count() const { return static_cast<int>(data_->desc.lights.size()); }
+int Scene::light_count() const { return static_cast<int>(data_->desc.lights.size() + data_->desc.area_lights.size()); }
 bool Scene::has_viewpoint() const { return data_->desc.viewpoint.has_value(); }
 const std::vector<std::string>& Scene::warnings() const { return data_->desc.warnings; }
 size_t Scene::warning_count() const { return data_->desc.warning_count; }

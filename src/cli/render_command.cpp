@@ -172,6 +172,10 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                   "noise falls as 1/sqrt(--spp); CPU only)")
       ->check(one_of({"whitted", "path"}))
       ->capture_default_str();
+  cmd->add_option("--lights", o.lights,
+                  "A lights file (TOML): point, spot, sun and area lights in Blender's units, added to the scene's "
+                  "(docs/lights.md); area lights, radii and sun angles light --integrator path")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--environment", o.environment,
                   "With --integrator path: the light around the scene, an equirectangular .hdr or .exr image, mapped as "
                   "Blender maps an Environment Texture (default: the scene's background colour)")
@@ -210,7 +214,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
                 {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
-                {"Light", {"--integrator", "--environment", "--environment-colour", "--environment-strength",
+                {"Light", {"--integrator", "--lights", "--environment", "--environment-colour", "--environment-strength",
                            "--environment-rotation", "--blender-principled"}}},
                {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
                 "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
@@ -314,7 +318,8 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
       thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
 
     const auto t_parse = Clock::now();
-    const api::Scene scene = api::Scene::load(o.scene, {o.camera_name, o.texture_paths});
+    api::Scene scene = api::Scene::load(o.scene, {o.camera_name, o.texture_paths});
+    if (!o.lights.empty()) scene.add_lights(o.lights);
     const double parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), o.scene);
 

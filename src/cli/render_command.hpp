@@ -19,7 +19,7 @@ struct RenderCommandOptions {
   std::string scene, output;
   std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "auto", style = "auto", device = "cpu";
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
-  std::string integrator = "whitted", environment, environment_colour;
+  std::string integrator = "whitted", environment, environment_colour, lights;
   double environment_strength = 1, environment_rotation = 0;
   bool blender_principled = false;
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given

@@ -81,9 +81,24 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
   bool specular = true;  // the last bounce was a delta lobe (or there was none): no MIS on what it meets
   double last_pdf = 0;
   if (hit_found) *hit_found = false;
+  const std::vector<AreaLight>& area_lights = scene.scene().area_lights();
   for (int depth = 1;; ++depth) {
     Hit hit;
-    if (!scene.accel().intersect(ray, hit, depth == 1 ? RayCoherence::coherent : RayCoherence::incoherent)) {
+    const bool found = scene.accel().intersect(ray, hit, depth == 1 ? RayCoherence::coherent : RayCoherence::incoherent);
+    // Area lights the ray meets before the scene, from their lit side:
+    // unseen by the eye (as Blender's, by default), weighted against their
+    // own sampling below.
+    if (depth > 1)
+      for (const AreaLight& a : area_lights) {
+        const float t_light = sh::hr_area_light_hit(to_f(ray.org), to_f(ray.dir), found ? float(hit.t) : 3.0e38f, to_f(a.centre),
+                                                    to_f(a.axis_u), to_f(a.axis_v), to_f(a.normal), a.ellipse);
+        const double cos_l = -dot(ray.dir, a.normal);
+        if (!(t_light > 0) || !(cos_l > 0)) continue;
+        double w = 1;
+        if (!specular) w = sh::hr_power_heuristic(float(last_pdf), sh::hr_area_to_solid_angle(float(1 / a.area), t_light * t_light, float(cos_l)));
+        radiance += mul(throughput, a.radiance) * w;
+      }
+    if (!found) {
       const Vec3 le = path_escape(scene, ray.dir);
       double w = 1;
       if (!specular && env_lights) w = sh::hr_power_heuristic(static_cast<float>(last_pdf), static_cast<float>(env->pdf(ray.dir)));
@@ -142,11 +157,33 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
       for (const PointLight& light : scene.lights()) {
         if (light.headlight && scene.settings().skip_headlights) continue;
         Vec3 to_light;
-        double dist = INFINITY;
+        double dist = INFINITY, cos_l = 1;
+        // One sample of a soft light (a sun's disk, a point light's
+        // radius) per light per vertex: each pair of its own.
+        const sh::vec2 u_soft = sh::hr_next2(sampler);
         if (light.kind == LightKind::directional) {
           to_light = -light.direction;
+          if (light.cos_half_angle < 1) {
+            // Uniform over the sun's cone: radiance S / cone, so the
+            // estimate is f S, as a delta light's (Cycles' disk: within 0.01 %).
+            sh::vec3 ct, cb;
+            const sh::vec3 axis = to_f(to_light);
+            sh::hr_frame(axis, ct, cb);
+            to_light = normalize(to_d(sh::hr_to_world(sh::hr_uniform_cone(u_soft, float(light.cos_half_angle)), ct, cb, axis)));
+          }
         } else {
-          to_light = light.position - sp.position;
+          Vec3 from = light.position;
+          if (light.radius > 0) {
+            // A disk facing the point (Cycles' sphere light): drawn
+            // uniformly, its radiance I / (pi r^2) makes the estimate f I cos_l / d^2.
+            const Vec3 facing = normalize(sp.position - light.position);
+            from = to_d(sh::hr_disk_light_point(to_f(light.position), to_f(facing), float(light.radius), u_soft));
+            to_light = from - sp.position;
+            dist = length(to_light);
+            if (!(dist > eps)) continue;
+            cos_l = std::fabs(dot(facing, to_light / dist));
+          }
+          to_light = from - sp.position;
           dist = length(to_light);
           if (!(dist > eps)) continue;
           to_light = to_light / dist;
@@ -159,7 +196,26 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
         if (!(falloff > 0)) continue;
         ++counts.shadow;
         if (scene.accel().occluded(Ray{above, to_light, 0, dist - eps})) continue;
-        radiance += mul(throughput, mul(to_d(f), light.intensity)) * (M_PI * falloff);
+        radiance += mul(throughput, mul(to_d(f), light.intensity)) * (M_PI * falloff * cos_l);
+      }
+      // Every area light, one point each, uniform over its area.
+      for (const AreaLight& a : area_lights) {
+        const sh::vec2 u_area = sh::hr_next2(sampler);
+        const Vec3 p = to_d(sh::hr_area_light_point(to_f(a.centre), to_f(a.axis_u), to_f(a.axis_v), a.ellipse, u_area));
+        Vec3 dir = p - sp.position;
+        const double dist2 = dot(dir, dir), dist = std::sqrt(dist2);
+        if (!(dist > eps)) continue;
+        dir = dir / dist;
+        const double cos_l = -dot(dir, a.normal);  // one-sided: it lights the side its normal faces
+        if (!(cos_l > 0) || dot(dir, ng) <= 0) continue;
+        const sh::vec3 wi = sh::hr_to_local(to_f(dir), t, b, n);
+        const sh::vec3 f = sh::hr_bsdf_eval(bsdf, wo, wi);
+        if (!(f.x > 0 || f.y > 0 || f.z > 0)) continue;
+        ++counts.shadow;
+        if (scene.accel().occluded(Ray{above, dir, 0, dist - eps})) continue;
+        const double pdf = dist2 / (cos_l * a.area);
+        const float w = sh::hr_power_heuristic(static_cast<float>(pdf), sh::hr_bsdf_pdf(bsdf, wo, wi));
+        radiance += mul(throughput, mul(to_d(f), a.radiance)) * (w / pdf);
       }
       if (env_lights) {
         Vec3 dir;

@@ -171,11 +171,13 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
   // light, and one at most: a shot of several mesh files is lit once.
   const Light* kept_headlight = nullptr;
   bool own_lights = false;
-  for (const ScenePart& part : parts)
+  for (const ScenePart& part : parts) {
+    own_lights |= !part.desc->area_lights.empty();
     for (const Light& l : part.desc->lights) {
       own_lights |= !l.headlight;
       if (l.headlight && !kept_headlight) kept_headlight = &l;
     }
+  }
   if (own_lights) kept_headlight = nullptr;
   auto keep = [&](const Light& l) { return !l.headlight || &l == kept_headlight; };
   size_t light_count = 0;
@@ -222,8 +224,12 @@ RenderScene::RenderScene(const std::vector<ScenePart>& parts) {
         const double intensity = desc.shading == ShadingModel::nff && !l.photometric ? level : 1.0;
         const bool unit = l.kind == LightKind::point && l.kc == 1 && l.kl == 0 && l.kq == 0 && !(l.range > 0);
         lights_.push_back({l.position, l.colour * intensity, l.kind, l.direction, l.kc, l.kl, l.kq, l.fall_start,
-                           l.fall_end, l.smooth_cone, l.range, unit, l.headlight, std::cos(l.fall_start), std::cos(l.fall_end)});
+                           l.fall_end, l.smooth_cone, l.range, unit, l.headlight, std::cos(l.fall_start), std::cos(l.fall_end),
+                           l.radius, std::cos(l.angle / 2)});
       }
+    for (const AreaLightDesc& a : desc.area_lights)
+      area_lights_.push_back({a.centre, a.axis_u, a.axis_v, a.normal, a.ellipse, a.radiance,
+                              (a.ellipse ? M_PI : 4.0) * length(a.axis_u) * length(a.axis_v)});
     group_base_.push_back({static_cast<uint32_t>(tri_object_.size()), static_cast<uint32_t>(sphere_object_.size()),
                            static_cast<uint32_t>(cone_object_.size())});
     group_shading_.push_back(desc.shading);

@@ -45,6 +45,18 @@ struct PointLight {
   /// cos(fall_start) and cos(fall_end), computed once where the light is
   /// built (RenderScene), not once per shadow ray.
   double cos_fall_start = 1, cos_fall_end = 1;
+  /// Light::radius (point, spot) and the cosine of half Light::angle
+  /// (directional): the path integrator's soft lights.
+  double radius = 0, cos_half_angle = 1;
+};
+
+/// An area light ready for the path integrator (scene_desc.hpp,
+/// AreaLightDesc): world frame; `area` its emitting area.
+struct AreaLight {
+  Vec3 centre, axis_u, axis_v, normal;
+  bool ellipse = false;
+  Vec3 radiance;
+  double area = 0;
 };
 
 /// Where a ray met a surface, resolved for shading.
@@ -154,6 +166,8 @@ class RenderScene {
   SurfacePoint surface(const Ray& ray, const Hit& hit, const PixelFootprint& footprint) const;
 
   const std::vector<PointLight>& lights() const { return lights_; }
+  /// Every file's area lights (lights files): the path integrator's.
+  const std::vector<AreaLight>& area_lights() const { return area_lights_; }
   /// The surface colour at a hit: its triangle's vertex colours
   /// interpolated (Tachyon vcstri), else its material's texture (Tachyon
   /// texfunc, render/textures.hpp) seen at `optic_dist` from the eye, else
@@ -273,6 +287,7 @@ class RenderScene {
   /// from a pixel footprint `width` wide (world units); false when it cannot be read there.
   bool texel_at(int texture, const SurfacePoint& sp, double u, double v, double width, Vec3& out) const;
   std::vector<PointLight> lights_;
+  std::vector<AreaLight> area_lights_;
   std::vector<TextureDesc> textures_;  // every file's, Material::texture rebased
   std::vector<MipMap> mips_;           // every file's image maps, TextureDesc::image rebased
   bool has_tachyon_ = false, has_tachyon_transparency_ = false, only_plain_nff_ = true;

@@ -91,6 +91,32 @@ struct Light {
   /// build step keeps it only when no file of the scene has a light of its
   /// own, and keeps one such light at most.
   bool headlight = false;
+  /// Point and spot lights: the radius of the disk, facing the lit point,
+  /// that the path integrator draws the light's position on (soft shadows;
+  /// Blender's shadow_soft_size, as Cycles draws it); 0: a point. Whitted's
+  /// integrator lights from the centre.
+  double radius = 0;
+  /// Directional lights: the angular diameter of the disk the light comes
+  /// from (radians; Blender's sun `angle`), for the path integrator; 0: one direction.
+  double angle = 0;
+  SourceLoc loc;
+};
+
+/// An area light (Blender's square, rectangle, disk and ellipse lights,
+/// from a lights file): a flat Lambertian emitter, one-sided, lighting the
+/// path integrator's scene (Whitted's integrator leaves it out). World
+/// frame, scene units.
+struct AreaLightDesc {
+  Vec3 centre;
+  /// Half its extents along its local x and y (perpendicular): a rectangle
+  /// spans centre +- axis_u +- axis_v, an ellipse is inscribed in it.
+  Vec3 axis_u{0.5, 0, 0}, axis_v{0, 0.5, 0};
+  bool ellipse = false;
+  /// The side it emits toward: axis_u x axis_v or its opposite (Blender's
+  /// local -z).
+  Vec3 normal{0, 0, -1};
+  /// The radiance of its surface (linear RGB; Blender: power c / (4 area)).
+  Vec3 radiance{1, 1, 1};
   SourceLoc loc;
 };
 
@@ -278,6 +304,7 @@ struct SceneDesc {
   std::optional<Viewpoint> viewpoint; // NFF `v`, when present
   Vec3 background{0, 0, 0};           // NFF `b`; black when absent (nff-notes §3)
   std::vector<Light> lights;
+  std::vector<AreaLightDesc> area_lights;  ///< from a lights file (scene/lights_file.hpp)
   std::vector<Material> materials;
   std::vector<ObjectDesc> objects;
   std::vector<TextureDesc> textures;  ///< Tachyon texfuncs, by Material::texture

@@ -7,6 +7,7 @@
 #define HOLORAY_SHADING_LIGHTS_H
 
 #include "shading/common.h"
+#include "shading/warp.h"
 
 // Light kinds, as scene_desc.hpp's LightKind (and gpu/shaders/layout.h's HR_LIGHT_*).
 #define HR_LIGHT_KIND_POINT 0
@@ -53,6 +54,40 @@ HR_FN float hr_light_falloff(HrLightFalloff l, vec3 to_light, float dist) {
     }
   }
   return a;
+}
+
+/// A point drawn uniformly on an area light (centre c, half-extent axes u
+/// and v; an ellipse inscribed in the rectangle when `ellipse`), from a
+/// uniform pair.
+HR_FN vec3 hr_area_light_point(vec3 c, vec3 u, vec3 v, bool ellipse, vec2 r) {
+  vec2 d = ellipse ? hr_concentric_disk(r) : vec2(2.0f * r.x - 1.0f, 2.0f * r.y - 1.0f);
+  return c + u * d.x + v * d.y;
+}
+
+/// Where the ray o + t d (d unit) meets an area light (as above, its normal
+/// n), for t in (0, t_max); -1 when it misses. Both sides are met: the
+/// caller asks which one (a light is one-sided).
+HR_FN float hr_area_light_hit(vec3 o, vec3 d, float t_max, vec3 c, vec3 u, vec3 v, vec3 n, bool ellipse) {
+  float dn = dot(d, n);
+  if (abs(dn) < 1.0e-12f) return -1.0f;
+  float t = dot(c - o, n) / dn;
+  if (!(t > 0.0f && t < t_max)) return -1.0f;
+  vec3 q = o + d * t - c;
+  float a = dot(q, u) / dot(u, u);
+  float b = dot(q, v) / dot(v, v);
+  bool inside = ellipse ? a * a + b * b <= 1.0f : abs(a) <= 1.0f && abs(b) <= 1.0f;
+  return inside ? t : -1.0f;
+}
+
+/// A point drawn uniformly on the disk of radius r centred on a light at
+/// `centre`, facing the lit point along `to_point` (unit): a point or spot
+/// light with a radius, as Cycles draws one.
+HR_FN vec3 hr_disk_light_point(vec3 centre, vec3 to_point, float r, vec2 u) {
+  vec3 t;
+  vec3 b;
+  hr_frame(to_point, t, b);
+  vec2 d = hr_concentric_disk(u);
+  return centre + (t * d.x + b * d.y) * r;
 }
 
 HR_END
