@@ -22,7 +22,7 @@ import time
 import bpy
 import numpy as np
 
-from . import devices, export, inprocess, job, placement, preview
+from . import devices, export, inprocess, job, lighting, placement, preview
 from .properties import holoray_binary, image_size
 
 
@@ -34,9 +34,9 @@ class _Stopped(Exception):
     """Esc during an in-process render: raised from its progress callback."""
 
 
-def command(binary, scene, settings, gltf, output, camera_object, width, height):
+def command(binary, scene, settings, gltf, output, camera_object, width, height, lights_file=None):
     """The `holoray render` command line for these settings, and the AOVs it writes."""
-    j = job.spec(scene, settings, camera_object, width, height)
+    j = job.spec(scene, settings, camera_object, width, height, lights_file)
     # Uncompressed: the files are read once and deleted, and ZIP took holoray
     # as long as the trace (bench/blender_results.md).
     cmd = [binary, "render", gltf, "-o", output, "-q", "--progress", "--exr-compression", "none"] + job.cli_args(j)
@@ -115,13 +115,23 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         if module is None and binary is None:
             raise HolorayError("the holoray program was not found: set its path in the add-on's preferences "
                                "(Edit > Preferences > Add-ons > holoray) or put it on PATH")
-        for line in export.not_exported(scene):
+        path_tracing = job.path_tracing(s)
+        if s.integrator == "PATH" and not path_tracing:
+            self.report({"WARNING"}, "holoray: path tracing runs on the CPU for now: the GPU renders Whitted's light "
+                                     "(point, spot and sun lights, hard shadows)")
+        for line in export.not_exported(scene, path_tracing):
             self.report({"WARNING"}, f"holoray: {line}")
         if missing := devices.missing_gpu(s):
             self.report({"WARNING"}, f"holoray: {missing}")
         self.update_stats("holoray", "exporting the scene (glTF)")
         t0 = time.perf_counter()
-        gltf = export.export_gltf(workdir, scene, camera_object, cameras=s.camera != "INTEGRAL")
+        # Path tracing takes the lights from a lights file (their radii, sun
+        # angles and area lights, which glTF cannot carry), not the glTF.
+        gltf = export.export_gltf(workdir, scene, camera_object, cameras=s.camera != "INTEGRAL", lights=not path_tracing)
+        self._lights_file = None
+        if path_tracing:
+            self._lights_file = os.path.join(workdir, "lights.toml")
+            lighting.write_lights(scene, self._lights_file)
         self.update_stats("holoray", "tracing")
         t1 = time.perf_counter()
         if module is not None:
@@ -137,7 +147,7 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
         """`holoray render` into EXR files, read back by Blender's reader."""
         s = scene.holoray
         output = os.path.join(workdir, "out.exr")
-        cmd, aovs = command(binary, scene, s, gltf, output, camera_object, width, height)
+        cmd, aovs = command(binary, scene, s, gltf, output, camera_object, width, height, self._lights_file)
         self._run(cmd)
         if self.test_break():
             return None
@@ -161,7 +171,7 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
     def _render_in_process(self, hr, gltf, scene, camera_object, width, height, t0, t1):
         """holoray's Python module in this process: its arrays into the passes."""
         s = scene.holoray
-        j = job.spec(scene, s, camera_object, width, height)
+        j = job.spec(scene, s, camera_object, width, height, self._lights_file)
 
         def progress(fraction):
             self.update_progress(fraction)

@@ -9,6 +9,8 @@ import sys
 
 import bpy
 
+from . import lighting
+
 # Shader nodes the glTF exporter turns into glTF materials.
 _EXPORTED_SHADERS = {"BSDF_PRINCIPLED", "EMISSION", "BSDF_DIFFUSE", "BSDF_GLOSSY", "MIX_SHADER", "ADD_SHADER"}
 # Texture nodes that are images; every other texture node is procedural.
@@ -19,15 +21,16 @@ def _renders(obj):
     return not obj.hide_render and obj.visible_get()
 
 
-def not_exported(scene):
-    """What holoray will not see, one sentence each: area lights, volumes,
-    procedural textures, shaders glTF has no model for, the world."""
+def not_exported(scene, path_tracing=False):
+    """What holoray will not see, one sentence each: volumes, procedural
+    textures, shaders glTF has no model for; without path tracing, area
+    lights and the World; with it, what of the World it cannot read."""
     out, seen = [], set()
     for obj in scene.objects:
         if not _renders(obj):
             continue
-        if obj.type == "LIGHT" and obj.data.type == "AREA":
-            out.append(f"area light '{obj.name}': glTF has no area lights (KHR_lights_punctual): left out")
+        if obj.type == "LIGHT" and obj.data.type == "AREA" and not path_tracing:
+            out.append(f"area light '{obj.name}': lights path tracing only (Integrator: Path tracing): left out")
         if obj.type == "VOLUME":
             out.append(f"volume '{obj.name}': glTF has no volumes: left out")
         for slot in getattr(obj, "material_slots", []):
@@ -51,16 +54,18 @@ def not_exported(scene):
                     shader = surface.links[0].from_node
                     out.append(f"material '{mat.name}': shader '{shader.name}' ({shader.bl_label}) has no glTF "
                                "model: exported as a default material")
+    if path_tracing:
+        return out + lighting.world(scene)[1]
     world = scene.world
     if world is not None and world.use_nodes:
         bg = next((n for n in world.node_tree.nodes if n.type == "BACKGROUND"), None)
         if bg is not None and (bg.inputs["Color"].is_linked or any(c > 0 for c in bg.inputs["Color"].default_value[:3])) \
                 and bg.inputs["Strength"].default_value > 0:
-            out.append("the world's light is not exported: holoray's background is black")
+            out.append("the world lights path tracing only (Integrator: Path tracing): holoray's background is black")
     return out
 
 
-def export_gltf(directory, scene, camera_object, cameras=False, animations=False):
+def export_gltf(directory, scene, camera_object, cameras=False, animations=False, lights=True):
     """Writes the scene into `directory` (scene.gltf, its .bin and images) and
     returns the .gltf's path. With `cameras`, the active camera is the only
     one written (holoray takes the file's first camera as its viewpoint)."""
@@ -82,7 +87,7 @@ def export_gltf(directory, scene, camera_object, cameras=False, animations=False
         if bpy.context.window is None and len(windows):
             override["window"] = windows[0]
         with bpy.context.temp_override(**override), _bytecode_cache():
-            result = _export(path, cameras, animations)
+            result = _export(path, cameras, animations, lights)
     finally:
         for obj in hidden:
             obj.hide_render = False
@@ -91,11 +96,11 @@ def export_gltf(directory, scene, camera_object, cameras=False, animations=False
     return path
 
 
-def _export(path, cameras, animations):
+def _export(path, cameras, animations, lights):
     return bpy.ops.export_scene.gltf(
             filepath=path, export_format="GLTF_SEPARATE", check_existing=False, use_renderable=True,
             export_current_frame=True,
-            use_active_scene=True, export_apply=True, export_lights=True, export_cameras=cameras,
+            use_active_scene=True, export_apply=True, export_lights=lights, export_cameras=cameras,
             export_animations=animations, export_yup=True, export_extras=False)
 
 

@@ -77,6 +77,15 @@ def render(hr, gltf, job, progress):
     exported scene. The module's exceptions pass through; so does whatever
     `progress(fraction)` raises, after the render has stopped."""
     scene = hr.load_scene(gltf)
+    light = {}
+    if job["integrator"] == "path":
+        if job["lights"]:
+            scene.add_lights(job["lights"])
+        w = job["world"]
+        environment = w["environment"] or w["colour"]
+        light = dict(integrator="path", blender_principled=True, environment=environment,
+                     environment_strength=w["strength"] if environment is not None else 1.0,
+                     environment_rotation=w["rotation"])
     result = hr.render(scene, camera(hr, job), threads=job["threads"] or None, max_depth=job["max_depth"] or None,
-                       aovs=job["aovs"], progress=progress, device=job["device"])
+                       aovs=job["aovs"], progress=progress, device=job["device"], spp=job["samples"], **light)
     return result, list(scene.warnings)

@@ -6,21 +6,34 @@ builds as the Python module's camera objects."""
 
 import bpy
 
-from . import devices, placement
+from . import devices, lighting, placement
 
 # The AOVs holoray writes, by the name the settings use.
 AOVS = ("albedo", "depth", "normal")
 
 
-def spec(scene, settings, camera_object, width, height):
+def path_tracing(settings):
+    """Whether the render path traces: Integrator Path tracing on the CPU
+    (holoray's path integrator does not run on the GPU yet; the GPU renders
+    Whitted's light, and the engine says so)."""
+    return settings.integrator == "PATH" and settings.device == "CPU"
+
+
+def spec(scene, settings, camera_object, width, height, lights_file=None):
     """The render as a dict: 'camera' ('integral', 'pinhole', 'quilt',
     'display', 'looking_glass') with that camera's parameters (world
     positions and directions in the exported glTF's frame, lengths in scene
     units, angles in degrees), and 'max_depth', 'threads' (0: holoray's
     defaults), 'device' ('cpu', 'gpu' or 'gpu:N'), 'aovs' (the AOVs the camera gives:
-    none for panels)."""
+    none for panels), 'integrator' ('whitted' or 'path'), 'samples', and
+    for path tracing 'world' (lighting.world()'s) and 'lights' (the lights
+    file written for it, `lights_file`)."""
     s = settings
-    out = {"max_depth": s.max_depth, "threads": s.threads, "device": devices.device_argument(s)}
+    out = {"max_depth": s.max_depth, "threads": s.threads, "device": devices.device_argument(s),
+           "integrator": "path" if path_tracing(s) else "whitted", "samples": s.samples, "world": None, "lights": None}
+    if path_tracing(s):
+        out["world"] = lighting.world(scene)[0]
+        out["lights"] = lights_file
     if s.camera == "INTEGRAL":
         place = placement.array_placement(camera_object, width / height, s.mode == "PSEUDOSCOPIC")
         out.update(camera="integral", grid=s.grid.lower(), lenses=(s.lenses_x, s.lenses_y if s.grid != "LENTICULAR" else 1),
@@ -78,4 +91,17 @@ def cli_args(job):
         args += ["--device", job["device"]]
     if job["aovs"]:
         args += ["--aov", ",".join(job["aovs"])]
+    args += ["--spp", str(job["samples"])]
+    if job["integrator"] == "path":
+        # glTF materials as Blender's Principled BSDF shades them: what Cycles renders.
+        args += ["--integrator", "path", "--blender-principled"]
+        if job["lights"]:
+            args += ["--lights", job["lights"]]
+        w = job["world"]
+        if w["environment"]:
+            args += ["--environment", w["environment"], "--environment-rotation", f"{w['rotation']:.9g}"]
+        elif w["colour"] is not None:
+            args += ["--environment-colour", _fmt(w["colour"])]
+        if w["environment"] or w["colour"] is not None:
+            args += ["--environment-strength", f"{w['strength']:.9g}"]
     return args

@@ -112,7 +112,16 @@ class HoloraySettings(bpy.types.PropertyGroup):
     view_cone: FloatProperty(name="View cone", default=40.0, min=0.0, max=180.0, description="Degrees")
     display_file: StringProperty(name="Display file", subtype="FILE_PATH", update=follow_camera)
     calibration_file: StringProperty(name="Calibration", subtype="FILE_PATH", update=follow_camera)
-    max_depth: IntProperty(name="Ray depth", default=0, min=0, max=16, description="0: 5, holoray's default")
+    integrator: EnumProperty(
+        name="Integrator", default="PATH",
+        items=[("PATH", "Path tracing", "Light as Cycles renders it: the World, area lights, soft shadows, light "
+                "between surfaces; noise falls with the samples (CPU)"),
+               ("WHITTED", "Whitted", "The paper's ray tracing: point, spot and sun lights, hard shadows, mirrors; "
+                "exact and fast, no World light")])
+    samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,
+                         description="Samples per pixel (path tracing; Whitted: antialiasing)")
+    max_depth: IntProperty(name="Ray depth", default=0, min=0, max=16,
+                           description="0: 5, holoray's default (path tracing: Cycles' bounces plus 1)")
     threads: IntProperty(name="Threads", default=0, min=0, description="0: all cores")
     device: EnumProperty(
         name="Device", default="CPU",

@@ -64,6 +64,8 @@ class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
         s = context.scene.holoray
         layout = self.layout
         layout.use_property_split = True
+        layout.prop(s, "integrator")
+        layout.prop(s, "samples")
         layout.prop(s, "max_depth")
         layout.prop(s, "device")
         if s.device == "GPU":

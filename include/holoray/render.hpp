@@ -78,8 +78,9 @@ struct RenderOptions {
   int threads = 0;    ///< worker threads; 0: all cores
   int spp = 1;        ///< samples per pixel, >= 1 (sample 0 at the centre)
   int max_depth = 0;  ///< ray-tree depth, eye ray = 1, at most kMaxDepth; 0: the scene's (Tachyon raydepth), else 5
-  /// Whitted (the default) or path. The path integrator: every sample
-  /// jittered (AOVs from sample 0), lens arrays of every grid, pinhole views,
+  /// Whitted (the default) or path. The path integrator: sample 0 at the
+  /// pixel centre (the AOVs'), the others spread by a scrambled Sobol
+  /// sequence; lens arrays of every grid, pinhole views,
   /// quilts and panels; max_depth counts the eye ray as 1 (Cycles' bounces
   /// plus 1). Not with device gpu or the shadow cache (std::invalid_argument).
   Integrator integrator = Integrator::whitted;

@@ -62,13 +62,13 @@ FrameBuffers render_lines(const RenderContext& scene, const Cam& camera, const R
         double first_t[kPacketSize] = {};
         Vec3 toward[kPacketSize];  // sample 0's ray reversed: normals face the eye
         if (scene.settings().integrator == Integrator::path) {
-          // Single rays, every sample jittered by the pixel's sampler (sample 0 too).
+          // Single rays, placed by the pixel's sampler (sample 0 at the centre).
           for (int l = 0; l < n; ++l)
             for (int k = 0; k < opt.spp; ++k) {
               const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(pi[l]), static_cast<uint32_t>(pj[l]),
                                                            scene.settings().sample_salt);
               shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
-              const shading::vec2 u = shading::hr_next2(sampler);
+              const shading::vec2 u = shading::hr_pixel_position(sampler);
               const PixelLine line = camera.line(pi[l], pj[l], u.x, u.y);
               PrimaryRay pr;
               if (!make_ray(line, pr)) {

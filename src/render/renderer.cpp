@@ -219,8 +219,8 @@ void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin,
 
 namespace {
 
-// render_pixel under the path integrator: every sample jittered by the
-// pixel's sampler (sample 0 too), AOVs from sample 0's first hit.
+// render_pixel under the path integrator: samples placed by the pixel's
+// sampler, sample 0 at the centre (its first hit gives the AOVs).
 Vec3 path_pixel(const RenderContext& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                 PrimaryHit* primary, SurfacePoint* surface) {
   Vec3 sum;
@@ -229,7 +229,7 @@ Vec3 path_pixel(const RenderContext& scene, const LensArray& camera, int i, int 
   const bool ortho = camera.desc().mode == RecordingMode::orthoscopic;
   for (int k = 0; k < spp; ++k) {
     shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
-    const shading::vec2 u = shading::hr_next2(sampler);
+    const shading::vec2 u = shading::hr_pixel_position(sampler);
     const auto pr = primary_ray(camera, scene.bounds(), scene.epsilon(), i, j, u.x, u.y);
     if (!pr) {
       // The line misses the scene: the environment along the light's way back.

@@ -2,12 +2,17 @@
 
     blender -b --factory-startup --python tests/blender/path_oracle.py -- OUTDIR SCENE SAMPLES WIDTH HEIGHT
 
-SCENE is `hdri` (the world is Blender's bundled courtyard.exr) or `sky` (a
-constant-colour world). Builds the scene from nothing, renders it with Cycles
-on the CPU with every bias-introducing shortcut switched off, and writes
-OUTDIR/cycles.exr (linear float RGB), OUTDIR/scene.gltf (the same scene
-through Blender's own glTF exporter, for holoray to load) and
-OUTDIR/oracle.json (what was rendered and how long it took). Written for
+SCENE is `hdri` (the world is Blender's bundled courtyard.exr), `sky` (a
+constant-colour world), `room` (a closed room with a red and a green wall,
+lit by one square area light) or `sun` (the spheres on the floor under a sun
+of 6 degrees and a point light of radius 0.25, a black world). Builds the
+scene from nothing, renders it with Cycles on the CPU with every
+bias-introducing shortcut switched off, and writes OUTDIR/cycles.exr
+(linear float RGB), OUTDIR/scene.gltf (the same scene through Blender's own
+glTF exporter, for holoray to load), OUTDIR/lights.toml (its lights, written
+by the add-on's own lighting.write_lights), OUTDIR/scene.blend (for the
+add-on's render) and OUTDIR/oracle.json (what was rendered and how long it
+took). Written for
 Blender 3.4 (Debian's); the Blender 4 input names are tried too, but that is
 untested.
 """
@@ -20,6 +25,11 @@ import time
 
 import bpy
 from mathutils import Vector
+
+# The add-on's lights file writer: the oracle's lights reach holoray as the
+# add-on sends them.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender"))
+from holoray_blender import lighting  # noqa: E402
 
 ENVIRONMENT = "/usr/share/blender/datafiles/studiolights/world/courtyard.exr"
 SKY_COLOUR = (0.6, 0.7, 0.9)
@@ -80,6 +90,35 @@ def build(scene_name):
     floor.data.materials.append(principled("floor", (0.5, 0.5, 0.5), 1.0, 0.0))
     sphere("clay", (-1.0, 0, 0.8), principled("clay", (0.8, 0.45, 0.3), 0.9, 0.0))
     sphere("metal", (1.1, 0, 0.8), principled("metal", (0.9, 0.9, 0.9), 0.35, 1.0))
+    if scene_name == "room":
+        # Walls 6 wide and 4 high around the spheres, the front one behind
+        # the camera; their normals face in.
+        walls = {"back": ((0, 3, 2), (math.pi / 2, 0, 0), (0.7, 0.7, 0.7)),
+                 "front": ((0, -8, 2), (-math.pi / 2, 0, 0), (0.7, 0.7, 0.7)),
+                 "left": ((-3, -2.5, 2), (0, math.pi / 2, 0), (0.7, 0.1, 0.1)),
+                 "right": ((3, -2.5, 2), (0, -math.pi / 2, 0), (0.1, 0.7, 0.1)),
+                 "ceiling": ((0, -2.5, 4), (math.pi, 0, 0), (0.7, 0.7, 0.7))}
+        for name, (loc, rot, colour) in walls.items():
+            bpy.ops.mesh.primitive_plane_add(size=11.0, location=loc, rotation=rot)
+            wall = bpy.context.active_object
+            wall.name = wall.data.name = name
+            wall.data.materials.append(principled(name, colour, 1.0, 0.0))
+        area = bpy.data.lights.new("area", "AREA")
+        area.shape, area.size, area.energy = "SQUARE", 1.2, 400.0
+        light = bpy.data.objects.new("area", area)
+        light.location = (0, -0.5, 3.9)  # under the ceiling, facing down (its local -Z)
+        scene.collection.objects.link(light)
+    if scene_name == "sun":
+        sun = bpy.data.lights.new("sun", "SUN")
+        sun.energy, sun.angle = 3.0, math.radians(6.0)
+        obj = bpy.data.objects.new("sun", sun)
+        obj.rotation_euler = (math.radians(40), 0, math.radians(30))
+        scene.collection.objects.link(obj)
+        point = bpy.data.lights.new("point", "POINT")
+        point.energy, point.shadow_soft_size = 300.0, 0.25
+        obj = bpy.data.objects.new("point", point)
+        obj.location = (-2.0, -1.5, 2.5)
+        scene.collection.objects.link(obj)
 
     cam_data = bpy.data.cameras.new("camera")
     cam_data.type = "PERSP"
@@ -105,7 +144,9 @@ def build(scene_name):
     nodes, links = world.node_tree.nodes, world.node_tree.links
     background = nodes["Background"]
     background.inputs["Strength"].default_value = 1.0
-    if scene_name == "hdri":
+    if scene_name in ("room", "sun"):
+        background.inputs["Color"].default_value = (0, 0, 0, 1)
+    elif scene_name == "hdri":
         env = nodes.new("ShaderNodeTexEnvironment")
         env.image = bpy.data.images.load(ENVIRONMENT, check_existing=True)
         # Blender loads an EXR as scene-linear already; naming it keeps a
@@ -173,9 +214,9 @@ def fair_settings(scene, samples, width, height):
 
 def main():
     args = sys.argv[sys.argv.index("--") + 1:]
-    if len(args) != 5 or args[1] not in ("hdri", "sky"):
+    if len(args) != 5 or args[1] not in ("hdri", "sky", "room", "sun"):
         sys.exit("usage: blender -b --factory-startup --python path_oracle.py -- "
-                 "OUTDIR hdri|sky SAMPLES WIDTH HEIGHT")
+                 "OUTDIR hdri|sky|room|sun SAMPLES WIDTH HEIGHT")
     out, scene_name = os.path.abspath(args[0]), args[1]
     samples, width, height = (int(a) for a in args[2:])
     os.makedirs(out, exist_ok=True)
@@ -194,10 +235,13 @@ def main():
                               export_cameras=True, export_lights=False, export_apply=True,
                               export_yup=True)
 
+    lighting.write_lights(scene, os.path.join(out, "lights.toml"))
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "scene.blend"))
+
     with open(os.path.join(out, "oracle.json"), "w") as f:
         json.dump({"scene": scene_name, "samples": samples, "width": width, "height": height,
                    "environment": ENVIRONMENT if scene_name == "hdri" else None,
-                   "colour": list(SKY_COLOUR) if scene_name == "sky" else None,
+                   "colour": list(SKY_COLOUR) if scene_name == "sky" else ([0, 0, 0] if scene_name in ("room", "sun") else None),
                    "max_bounces": BOUNCES, "seconds": round(seconds, 3)}, f, indent=2)
     print(f"path_oracle: {scene_name} {width}x{height} {samples} spp in {seconds:.2f} s -> {out}")
 
