@@ -273,15 +273,15 @@ TEST(PathIntegrator, TheApiRefusesWhatItCannotRenderSayingWhy) {
   o.integrator = api::Integrator::path;
   o.device = "gpu";
   EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
-            "integrator path: runs on the CPU for now (device cpu); the GPU path renders Whitted's");
+            "`integrator` path: runs on the CPU for now (`device` cpu); the GPU path renders Whitted's");
   o.device = "cpu";
   o.cache.enabled = true;
   EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
-            "integrator path: the shadow cache reuses Whitted's point-light visibility, not paths; leave cache off");
+            "`integrator` path: the shadow cache reuses Whitted's point-light visibility, not paths; leave `cache` off");
   o = {};
   o.environment.colour = std::array<double, 3>{1, 1, 1};
   EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
-            "environment: lights the path integrator only (integrator path); Whitted's sees the background colour");
+            "`environment`: lights the path integrator only (`integrator` path); Whitted's sees the background colour");
   o.integrator = api::Integrator::path;
   o.environment = {};
   o.environment.file = dir + "/missing.exr";

@@ -52,7 +52,7 @@ void check_options(const RenderOptions& o) {
     throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
   const Environment& env = o.environment;
   if (o.integrator == Integrator::whitted && env.given())
-    throw std::invalid_argument("environment: lights the path integrator only (integrator path); Whitted's sees the background colour");
+    throw std::invalid_argument("`environment`: lights the path integrator only (`integrator` path); Whitted's sees the background colour");
   if (!(env.strength >= 0) || !std::isfinite(env.strength))
     throw std::invalid_argument(fmt::format("environment strength: expected a finite number >= 0, got {}", env.strength));
   if (!std::isfinite(env.rotation_deg))
@@ -63,9 +63,9 @@ void check_options(const RenderOptions& o) {
         throw std::invalid_argument(fmt::format("environment colour: expected finite values >= 0, got {}", c));
   if (o.integrator == Integrator::path) {
     if (parse_device(o.device).gpu)
-      throw std::invalid_argument("integrator path: runs on the CPU for now (device cpu); the GPU path renders Whitted's");
+      throw std::invalid_argument("`integrator` path: runs on the CPU for now (`device` cpu); the GPU path renders Whitted's");
     if (o.cache.enabled)
-      throw std::invalid_argument("integrator path: the shadow cache reuses Whitted's point-light visibility, not paths; leave cache off");
+      throw std::invalid_argument("`integrator` path: the shadow cache reuses Whitted's point-light visibility, not paths; leave `cache` off");
   }
 }
 

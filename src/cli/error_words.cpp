@@ -12,7 +12,7 @@ namespace {
 
 // The API's names (include/holoray/camera.hpp, render.hpp, animate.hpp) and
 // the options that set them.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 16> kOptions{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kOptions{{
     {"origin", "--origin"},
     {"normal", "--normal"},
     {"up", "--up"},
@@ -25,6 +25,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 16> kOptions
     {"reference", "--report"},
     {"cache", "--cache"},
     {"device", "--device"},
+    {"integrator", "--integrator"},
+    {"environment", "--environment"},
     {"Display", "--display"},
     {"LookingGlass", "--looking-glass"},
     {"Quilt", "--quilt"},
