@@ -143,16 +143,18 @@ Vec3 direct_light(const RenderContext& scene, const Vertex& v, sh::HrSampler& sa
     const double pdf = dist2 / (cos_l * a.area);
     sum += light_sample(scene, v, dir, dist, a.radiance * (1 / pdf), pdf, counts);
   }
-  const sh::vec2 u_env_cell = sh::hr_next2(sampler), u_env = sh::hr_next2(sampler);
+  // The environment and the emitters draw their dimensions only where the
+  // render has them (fixed per render: the streams stay aligned).
   const EnvironmentMap* env = scene.settings().environment;
   if (env && !env->black()) {
+    const sh::vec2 u_cell = sh::hr_next2(sampler), u_env = sh::hr_next2(sampler);
     Vec3 dir;
     double pdf;
-    const Vec3 le = env->sample(u_env_cell.x, u_env.x, u_env.y, dir, pdf);
+    const Vec3 le = env->sample(u_cell.x, u_env.x, u_env.y, dir, pdf);
     if (pdf > 0) sum += light_sample(scene, v, dir, INFINITY, le * (1 / pdf), pdf, counts);
   }
-  const sh::vec2 u_pick = sh::hr_next2(sampler), u_emit = sh::hr_next2(sampler);
   if (const EmissiveTriangles* emitters = scene.settings().emitters; emitters && !emitters->empty()) {
+    const sh::vec2 u_pick = sh::hr_next2(sampler), u_emit = sh::hr_next2(sampler);
     const EmissiveTriangles::Sample s = emitters->sample(u_pick.x, u_emit.x, u_emit.y);
     Vec3 dir = s.position - v.position;
     const double dist2 = dot(dir, dir), dist = std::sqrt(dist2);

@@ -26,14 +26,18 @@ HR_FN uint hr_hash(uint x) {
 /// Two values hashed into one seed (order matters).
 HR_FN uint hr_hash_combine(uint seed, uint v) { return hr_hash(seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2))); }
 
-/// The 32 bits of `x` in reverse order.
+/// The 32 bits of `x` in reverse order: GLSL's bitfieldReverse; in C++ the
+/// bits of each byte swapped in three steps, then the bytes (one bswap).
+#ifdef __cplusplus
 HR_FN uint hr_reverse_bits(uint x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+  return __builtin_bswap32(x);
 }
+#else
+#define hr_reverse_bits(x) bitfieldReverse(x)
+#endif
 
 /// Burley's improved Laine-Karras permutation: an Owen scramble of the bits
 /// read from the least significant up (so callers reverse around it).
