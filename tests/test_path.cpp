@@ -241,8 +241,10 @@ TEST(PathIntegrator, TheImageIsTheSameForAnyThreadCount) {
   EXPECT_EQ(one.colour.data, two.colour.data);
 }
 
-// Monte Carlo noise falls as 1 / sqrt(spp): 4x the samples, about +6 dB
-// against a converged image (Owen-scrambled Sobol points do no worse).
+// Monte Carlo noise falls as 1 / sqrt(spp): 4x the samples, +6 dB against
+// a converged image. Owen-scrambled Sobol points do no worse, and better
+// where the integrand is smooth (up to N^-3/2: Owen 1997), so only the
+// floor is a property; a biased or correlated sampler falls short of it.
 TEST(PathIntegrator, NoiseFallsByAboutSixDecibelsPerFourTimesTheSamples) {
   SceneDesc desc = sphere_scene("f 0.7 0.6 0.5 1 0 0 0 1");
   desc.objects.push_back(ObjectDesc{PolygonDesc{{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}, {}}, 0, {}});
@@ -255,10 +257,7 @@ TEST(PathIntegrator, NoiseFallsByAboutSixDecibelsPerFourTimesTheSamples) {
   double last = 0;
   for (const int spp : {4, 16, 64}) {
     const double psnr = compare_images(path_view(desc, &env, 24, spp).colour, ref.colour).psnr_all();
-    if (last > 0) {
-      EXPECT_GT(psnr - last, 4.5) << spp << " spp";
-      EXPECT_LT(psnr - last, 8.0) << spp << " spp";
-    }
+    if (last > 0) EXPECT_GT(psnr - last, 4.5) << spp << " spp";
     last = psnr;
   }
 }
