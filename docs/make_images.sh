@@ -41,8 +41,6 @@ oiiotool "$tmp/swing_views/frame_0000.png" "$tmp/swing_views/frame_0016.png" "$t
   "$tmp/swing_views/frame_0047.png" --mosaic 4x1 -o "$out/swinging_box_views.png"
 "$h" animate examples/shots/swinging_box.toml -o "$tmp/swing_eia" -q
 cp "$tmp/swing_eia/frame_0024.png" "$out/swinging_box_eia.png"
-rm -rf "$tmp"
-ls -la "$out"
 # A native panel image (issue 14): examples/primitives.nff on the 4K slanted
 # lenticular display of examples/displays/lenticular_4k.toml, the whole panel
 # scaled down, and a 48x27-pixel close-up with each pixel drawn as its three
@@ -64,3 +62,14 @@ oiiotool "$tmp/eye_l.png" "$tmp/eye_r.png" --mosaic 2x1 -o "$out/simulated_eyes.
 oiiotool "$tmp/quilt_qs8x6a0.75.png" --resize 672x672 -o "$out/quilt_qs8x6a0.75.png"
 "$h" render examples/primitives.nff --lenses 160x120 --pixels-per-lens 8 -o "$tmp/eia_views.png" -q
 "$h" views "$tmp/eia_views.png" --pixels-per-lens 8 -o "$out/parallax.gif"
+# Path tracing (docs/guide/light.md): the area-lit room of examples/lights as
+# an EIA and its centre view, and the glTF box under Blender's courtyard HDRI.
+"$h" render examples/lights/cornell_box.nff --integrator path --spp 64 --lights examples/lights/cornell_box.toml \
+  -o "$out/cornell_path_eia.png" -q
+"$h" render examples/lights/cornell_box.nff --integrator path --spp 16 --lights examples/lights/cornell_box.toml \
+  --lenses 200x200 --pixels-per-lens 5 -o "$tmp/cornell_big.png" -q
+"$h" subaperture "$tmp/cornell_big.png" --pixels-per-lens 5 -o "$out/cornell_path_view.png"
+"$h" render examples/swinging_box.gltf --camera pinhole --resolution 256x192 --integrator path --spp 256 \
+  --environment /usr/share/blender/datafiles/studiolights/world/courtyard.exr -o "$out/box_courtyard_path.png" -q
+rm -rf "$tmp"
+ls -la "$out"
