@@ -83,7 +83,7 @@ def render(hr, gltf, job, progress):
             scene.add_lights(job["lights"])
         w = job["world"]
         environment = w["environment"] or w["colour"]
-        light = dict(integrator="path", blender_principled=True, environment=environment,
+        light = dict(integrator="path", blender_principled=job["blender_principled"], environment=environment,
                      environment_strength=w["strength"] if environment is not None else 1.0,
                      environment_rotation=w["rotation"])
     result = hr.render(scene, camera(hr, job), threads=job["threads"] or None, max_depth=job["max_depth"] or None,

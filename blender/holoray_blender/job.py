@@ -34,6 +34,11 @@ def spec(scene, settings, camera_object, width, height, lights_file=None):
     if path_tracing(s):
         out["world"] = lighting.world(scene)[0]
         out["lights"] = lights_file
+        # glTF materials as Blender 3.x's Principled BSDF shades them (what
+        # Cycles renders of the .blend); Blender 4's Principled BSDF layers
+        # its diffuse under the specular energy-conservingly, nearer glTF's
+        # own BRDF, which holoray then keeps.
+        out["blender_principled"] = bpy.app.version < (4, 0, 0)
     if s.camera == "INTEGRAL":
         place = placement.array_placement(camera_object, width / height, s.mode == "PSEUDOSCOPIC")
         out.update(camera="integral", grid=s.grid.lower(), lenses=(s.lenses_x, s.lenses_y if s.grid != "LENTICULAR" else 1),
@@ -93,8 +98,7 @@ def cli_args(job):
         args += ["--aov", ",".join(job["aovs"])]
     args += ["--spp", str(job["samples"])]
     if job["integrator"] == "path":
-        # glTF materials as Blender's Principled BSDF shades them: what Cycles renders.
-        args += ["--integrator", "path", "--blender-principled"]
+        args += ["--integrator", "path"] + (["--blender-principled"] if job["blender_principled"] else [])
         if job["lights"]:
             args += ["--lights", job["lights"]]
         w = job["world"]

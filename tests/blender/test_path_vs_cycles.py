@@ -21,7 +21,20 @@ import holoray
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BLENDER = shutil.which("blender")
-pytestmark = pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+
+
+def blender_major():
+    out = subprocess.run([BLENDER, "--version"], capture_output=True, text=True, timeout=120).stdout
+    return int(out.split()[1].split(".")[0]) if out.startswith("Blender ") else 0
+
+
+# --blender-principled is Blender 3.x's Principled BSDF (Burley's diffuse
+# under the specular layer); Blender 4 rewrote it (Principled v2, Debian 13's
+# 4.3), which the floors below were not measured on.
+pytestmark = [pytest.mark.skipif(BLENDER is None, reason="Blender is not installed"),
+              pytest.mark.skipif(BLENDER is not None and blender_major() >= 4,
+                                 reason="the floors were measured against Blender 3.4's Principled BSDF; "
+                                        "Blender 4's Principled v2 is not modelled yet")]
 WIDTH, HEIGHT = 96, 72
 CYCLES_SAMPLES = 2048
 HOLORAY_SPP = 1024
