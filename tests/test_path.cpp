@@ -434,3 +434,39 @@ TEST(LightsFile, RefusesMalformedLightsAtTheirLineAndColumn) {
 
 }  // namespace
 }  // namespace holoray
+
+namespace holoray {
+namespace {
+
+// `animate --integrator path` traces every frame in full, each as `render`
+// path traces the still (the same samples: the noise stays put from frame
+// to frame, as Cycles' by default); reuse, which reprojects Whitted's
+// shading, is refused saying why.
+TEST(PathIntegrator, AnimatedFramesArePathTracedAsTheStill) {
+  test::TempDir dir;
+  const std::string scene = test::source_dir() + "/tests/data/pinhole/spheres.nff";
+  // A shot's samples per pixel are its file's `spp`.
+  test::write_text(dir.file("shot.toml"), "frames = 2\nspp = 4\n[[object]]\nscene = \"" + scene + "\"\n");
+  const std::string light = " --integrator path --environment-colour 0.3,0.4,0.5";
+  const auto anim = test::run_cli("animate " + dir.file("shot.toml") + " --camera pinhole --resolution 40x30" + light +
+                                  " --format exr -o " + dir.file("frames") + " -q");
+  ASSERT_EQ(anim.status, 0) << anim.output;
+  const auto still = test::run_cli("render " + scene + " --camera pinhole --resolution 40x30 --spp 4" + light + " -o " +
+                                   dir.file("still.exr") + " -q");
+  ASSERT_EQ(still.status, 0) << still.output;
+  const ImageBuffer a = read_image(dir.file("frames/frame_0001.exr")), b = read_image(dir.file("still.exr"));
+  ASSERT_EQ(a.width, 40);
+  EXPECT_EQ(as_rgb(a).data, as_rgb(b).data);
+  const auto whitted = test::run_cli("render " + scene + " --camera pinhole --resolution 40x30 -o " + dir.file("w.exr") + " -q");
+  ASSERT_EQ(whitted.status, 0) << whitted.output;
+  EXPECT_NE(as_rgb(read_image(dir.file("w.exr"))).data, as_rgb(b).data) << "the path integrator ran";
+  const auto reuse = test::run_cli("animate " + dir.file("shot.toml") + light + " --method reverse -o " + dir.file("r") + " -q");
+  EXPECT_EQ(reuse.status, 1);
+  EXPECT_NE(reuse.output.find("--integrator path: goes with --method full (reuse reprojects Whitted's shading; path "
+                              "tracing traces every frame in full)"),
+            std::string::npos)
+      << reuse.output;
+}
+
+}  // namespace
+}  // namespace holoray

@@ -68,6 +68,14 @@ struct AnimateOptions {
   /// the cache are the CPU path's and refused), the scene laid out again on
   /// the frames where something in it moved.
   std::string device = "cpu";
+  /// As RenderOptions': Whitted's (the default) or path tracing. Path
+  /// tracing traces every frame in full on the CPU (`method` full: reuse
+  /// reprojects Whitted's shading, which a path's light is not; no
+  /// `reference`, no `cache`), each frame's samples placed as the first's
+  /// (Cycles' default: the noise stays put from frame to frame).
+  Integrator integrator = Integrator::whitted;
+  Environment environment;  ///< as RenderOptions::environment
+  bool blender_principled = false;  ///< as RenderOptions::blender_principled
 };
 
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).

@@ -10,6 +10,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "api/light_options.hpp"
 #include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
 #include "holoray/pick.hpp"
@@ -79,6 +80,7 @@ struct AnimationState {
   int width = 0, height = 0;
   std::string describe, array_summary;
   std::unique_ptr<GpuExecutor> gpu;  // `device` gpu
+  std::unique_ptr<EnvironmentMap> environment;  // the path integrator's (so.environment)
 };
 
 namespace {
@@ -98,6 +100,14 @@ void choose_method(const AnimateOptions& o, AnimationState& s) {
   const bool glass = choice.get<Desc::LookingGlass>() != nullptr;
   const bool panel = glass || choice.get<Desc::Display>();
   const char* what = glass ? "`LookingGlass`" : "`Display`";
+  if (o.integrator == Integrator::path) {
+    constexpr const char* kWhy = "goes with `method` full (reuse reprojects Whitted's shading; path tracing traces every frame in full)";
+    if (o.method == Method::reproject || o.method == Method::reverse)
+      throw std::invalid_argument(fmt::format("`integrator` path: {}", kWhy));
+    if (!o.reuse.empty()) throw std::invalid_argument(fmt::format("`reuse`: {}", kWhy));
+    if (o.reference)
+      throw std::invalid_argument("`reference`: goes with `integrator` whitted (path tracing traces every frame in full: no reuse to compare)");
+  }
   if (parse_device(o.device).gpu) {
     // Reuse keeps keyframes' point images in host memory and reprojects them
     // on the CPU; on the GPU, tracing the frame is the cheaper of the two.
@@ -110,7 +120,7 @@ void choose_method(const AnimateOptions& o, AnimationState& s) {
       throw std::invalid_argument("`reference`: goes with `device` cpu (the GPU path traces every frame in full: no reuse to compare)");
   }
   s.method = o.method != Method::automatic         ? o.method
-             : pinhole || panel || parse_device(o.device).gpu ? Method::full
+             : pinhole || panel || parse_device(o.device).gpu || o.integrator == Integrator::path ? Method::full
                                                               : Method::reverse;
   so.method = s.method == Method::reverse ? holoray::Method::reverse
               : s.method == Method::reproject ? holoray::Method::reproject
@@ -235,6 +245,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   SequenceOptions& so = s.so;
   s.options = o;
   s.choice = o.camera ? frame_camera_desc(*o.camera) : FrameCameraDesc{};
+  check_light(o.integrator, o.environment, o.device, o.cache.enabled);
   choose_method(o, s);
   check_numbers(o, so);
 
@@ -260,6 +271,13 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     so.cache = s.cache.get();
   }
   size_the_frames(first, s);
+  if (o.integrator == Integrator::path) {
+    s.environment = environment_of(o.environment, shot.scenes().front());
+    so.integrator = holoray::Integrator::path;
+    so.environment = s.environment.get();
+    so.principled = o.blender_principled;
+    so.skip_headlights = o.environment.given();
+  }
   if (const DeviceChoice device = parse_device(o.device); device.gpu) {
     RenderOptions ro;
     ro.cache = o.cache;

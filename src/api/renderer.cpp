@@ -10,11 +10,11 @@
 
 #include "api/gpu_executor.hpp"
 #include "api/internal.hpp"
+#include "api/light_options.hpp"
 #include "api/renderer_state.hpp"
 #include "holoray/errors.hpp"
 #include "holoray/render.hpp"
 #include "render/render_context.hpp"
-#include "image/image_io.hpp"
 #include "render/emitters.hpp"
 #include "render/environment.hpp"
 #include "render/renderer.hpp"
@@ -50,45 +50,9 @@ void check_options(const RenderOptions& o) {
     throw std::invalid_argument(fmt::format("cache cell: must be a positive number of lens pitches, got {}", o.cache.cell));
   if (!(o.cache.memory_mib >= 0) || !std::isfinite(o.cache.memory_mib))
     throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
-  const Environment& env = o.environment;
-  if (o.integrator == Integrator::whitted && env.given())
-    throw std::invalid_argument("`environment`: lights the path integrator only (`integrator` path); Whitted's sees the background colour");
-  if (!(env.strength >= 0) || !std::isfinite(env.strength))
-    throw std::invalid_argument(fmt::format("environment strength: expected a finite number >= 0, got {}", env.strength));
-  if (!std::isfinite(env.rotation_deg))
-    throw std::invalid_argument(fmt::format("environment rotation: expected a finite angle in degrees, got {}", env.rotation_deg));
-  if (env.colour)
-    for (double c : *env.colour)
-      if (!(c >= 0) || !std::isfinite(c))
-        throw std::invalid_argument(fmt::format("environment colour: expected finite values >= 0, got {}", c));
-  if (o.integrator == Integrator::path) {
-    if (parse_device(o.device).gpu)
-      throw std::invalid_argument("`integrator` path: runs on the CPU for now (`device` cpu); the GPU path renders Whitted's");
-    if (o.cache.enabled)
-      throw std::invalid_argument("`integrator` path: the shadow cache reuses Whitted's point-light visibility, not paths; leave `cache` off");
-  }
+  check_light(o.integrator, o.environment, o.device, o.cache.enabled);
 }
 
-// The path integrator's environment (Environment): its image read here,
-// the build step below reads no file.
-std::unique_ptr<EnvironmentMap> environment_of(const Environment& env, const SceneDesc& desc) {
-  if (!env.file.empty()) {
-    // The top row toward the scene's up: +z where the viewpoint says so (NFF's SPD scenes, Blender's frame).
-    EnvironmentUp up = EnvironmentUp::y;
-    if (desc.viewpoint && std::fabs(desc.viewpoint->up.z) > std::fabs(desc.viewpoint->up.y)) up = EnvironmentUp::z;
-    const ImageBuffer image = holoray::read_image(env.file);
-    try {
-      return std::make_unique<EnvironmentMap>(image, env.strength, env.rotation_deg * M_PI / 180, up);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(fmt::format("{}: {}", env.file, e.what()));
-    }
-  }
-  if (env.colour) {
-    const auto& c = *env.colour;
-    return std::make_unique<EnvironmentMap>(Vec3{c[0], c[1], c[2]} * env.strength);
-  }
-  return std::make_unique<EnvironmentMap>(desc.background);
-}
 
 // A mesh file's camera, and where the focal plane stands when the file
 // gives no point looked at (docs/guide/scenes.md, "File cameras").

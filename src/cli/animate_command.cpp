@@ -135,6 +135,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
                     "on a GPU every frame is traced in full (--method full; reuse stays on the CPU), the scene laid out "
                     "again where something moved");
   add_cache_options(*cmd, o.cache);
+  add_light_options(*cmd, o.light, false);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   cmd->add_flag("-v,--verbose", o.verbose, "Also print the time of each reprojection stage");
   add_scene_read_options(*cmd, o.camera_name, o.texture_paths);
@@ -146,6 +147,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
                            "--cache-cell", "--cache-memory"}},
                 {"Keyframes", {"--keyframe-interval", "--keyframe-motion", "--max-keyframe-interval"}},
                 {"Tracing", {"--device", "--threads"}},
+                {"Light", light_option_names(false)},
                 {"Farms and interruptions", {"--frames", "--resume"}}},
                {"holoray animate examples/shots/swinging_box.toml -o frames/ --video frames/shot.mkv",
                 "holoray animate examples/shots/swinging_box.toml -o views/ --camera pinhole --resolution 256x256"},
@@ -270,7 +272,8 @@ AnimateChoice choose(const AnimateCommandOptions& o) {
   const bool pinhole = o.view.camera == "pinhole";
   const bool glass = !o.view.looking_glass.empty();
   const bool panel = glass || !o.view.display.empty();
-  c.method = !o.method.empty() ? o.method : pinhole || panel || o.device != "cpu" ? "full" : "reverse";
+  const bool path = o.light.integrator == "path";
+  c.method = !o.method.empty() ? o.method : pinhole || panel || path || o.device != "cpu" ? "full" : "reverse";
   ao.method = pick<api::Method>("--method", c.method,
                                 {{"full", api::Method::full}, {"reproject", api::Method::reproject}, {"reverse", api::Method::reverse}});
   if (glass) {
@@ -289,6 +292,10 @@ AnimateChoice choose(const AnimateCommandOptions& o) {
   ao.reach = pick<std::string>("--reach", o.reach, {{"near", "near"}, {"all", "all"}});
   ao.fill = pick<std::string>("--fill", o.fill, {{"trace", "trace"}, {"interpolate", "interpolate"}});
   ao.leak_check = !o.no_leak_check;
+  const LightChoice light = light_choice(o.light);
+  ao.integrator = light.integrator;
+  ao.environment = light.environment;
+  ao.blender_principled = light.blender_principled;
   c.ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});
   if (!o.video.empty()) {
     const bool h264 = !api::is_lossless_video(o.video);

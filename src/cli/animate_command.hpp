@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/light_options.hpp"
 #include "cli/cache_options.hpp"
 #include "cli/camera_options.hpp"
 #include "cluster/mpi_world.hpp"
@@ -29,6 +30,7 @@ struct AnimateCommandOptions {
   double rebuild_above = 5;  // percent of holes
   bool resume = false, no_leak_check = false, quiet = false, verbose = false;
   CacheCommandOptions cache;
+  LightCommandOptions light;           ///< --integrator, --environment... (no --lights: a shot's scenes are its own)
 };
 
 CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& opts);

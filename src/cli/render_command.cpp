@@ -1,3 +1,4 @@
+#include "cli/light_options.hpp"
 #include "cli/render_command.hpp"
 
 
@@ -166,31 +167,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
       ->check(one_of({"auto", "subaperture", "packet", "horizontal", "vertical"}))
       ->capture_default_str();
   add_device_option(*cmd, o.device, "the GPU path renders what the CPU path renders, in float, without the shadow cache");
-  cmd->add_option("--integrator", o.integrator,
-                  "How light is computed: whitted (the paper's: point lights, hard shadows, mirror and refraction rays) or "
-                  "path (path tracing: soft light from an environment and emissive surfaces, light between surfaces; "
-                  "noise falls as 1/sqrt(--spp); CPU only)")
-      ->check(one_of({"whitted", "path"}))
-      ->capture_default_str();
-  cmd->add_option("--lights", o.lights,
-                  "A lights file (TOML): point, spot, sun and area lights in Blender's units, added to the scene's "
-                  "(docs/lights.md); area lights, radii and sun angles light --integrator path")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--environment", o.environment,
-                  "With --integrator path: the light around the scene, an equirectangular .hdr or .exr image, mapped as "
-                  "Blender maps an Environment Texture (default: the scene's background colour)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--environment-colour", o.environment_colour, "With --integrator path: a constant environment R,G,B (linear)")
-      ->check(vec3("--environment-colour"));
-  cmd->add_option("--environment-strength", o.environment_strength, "With --environment or --environment-colour: its multiplier")
-      ->check(in_range(0))
-      ->capture_default_str();
-  cmd->add_option("--environment-rotation", o.environment_rotation,
-                  "With --environment: degrees about the scene's up axis (a Blender Mapping node's Z rotation)")
-      ->capture_default_str();
-  cmd->add_flag("--blender-principled", o.blender_principled,
-                "With --integrator path: glTF materials as Blender 3.x's Principled BSDF shades them (Burley's diffuse, "
-                "whole under the specular layer), for scenes exported from Blender; default: glTF's own BRDF");
+  add_light_options(*cmd, o.light, true);
   cmd->add_option("--aov", o.aovs, "Extra outputs, comma-separated: albedo,depth,normal,id")
       ->check(parsed_by([](const std::string& t) { parse_aovs(t); }, "LIST"));
   cmd->add_option("--encoding", o.encoding, "PNG encoding: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon)")
@@ -214,8 +191,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
                 {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
-                {"Light", {"--integrator", "--lights", "--environment", "--environment-colour", "--environment-strength",
-                           "--environment-rotation", "--blender-principled"}}},
+                {"Light", light_option_names(true)}},
                {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
                 "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
                "docs/guide/stills.md, docs/guide/displays.md");
@@ -290,7 +266,7 @@ void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const
   else
     fmt::print("trace      {:.3f} s, {} spp, {} threads, {}{}\n", st.trace_seconds, o.spp,
              o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(),
-             o.integrator == "path" ? std::string("path integrator") : fmt::format("{} style", renderer.style_name()),
+             o.light.integrator == "path" ? std::string("path integrator") : fmt::format("{} style", renderer.style_name()),
              world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
                                                world.size(), gather_s, band_bytes / 1048576.0)
                                  : "");
@@ -319,7 +295,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
 
     const auto t_parse = Clock::now();
     api::Scene scene = api::Scene::load(o.scene, {o.camera_name, o.texture_paths});
-    if (!o.lights.empty()) scene.add_lights(o.lights);
+    if (!o.light.lights.empty()) scene.add_lights(o.light.lights);
     const double parse_s = seconds_since(t_parse);
     if (!o.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), o.scene);
 
@@ -327,14 +303,10 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.spp = o.spp;
     ropt.threads = o.threads;
     ropt.max_depth = o.max_depth;
-    ropt.integrator = o.integrator == "path" ? api::Integrator::path : api::Integrator::whitted;
-    ropt.environment.file = o.environment;
-    if (!o.environment_colour.empty()) {
-      ropt.environment.colour = parse_vec3("--environment-colour", o.environment_colour);
-    }
-    ropt.environment.strength = o.environment_strength;
-    ropt.environment.rotation_deg = o.environment_rotation;
-    ropt.blender_principled = o.blender_principled;
+    const LightChoice light = light_choice(o.light);
+    ropt.integrator = light.integrator;
+    ropt.environment = light.environment;
+    ropt.blender_principled = light.blender_principled;
     ropt.aovs = aovs;
     ropt.style = style;
     // Several ranks on a machine share its GPUs out, one each in turn.

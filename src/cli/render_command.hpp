@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/light_options.hpp"
 #include "cli/cache_options.hpp"
 #include "cli/camera_options.hpp"
 #include "cluster/mpi_world.hpp"
@@ -19,9 +20,7 @@ struct RenderCommandOptions {
   std::string scene, output;
   std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "auto", style = "auto", device = "cpu";
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
-  std::string integrator = "whitted", environment, environment_colour, lights;
-  double environment_strength = 1, environment_rotation = 0;
-  bool blender_principled = false;
+  LightCommandOptions light;  ///< --integrator, --lights, --environment...
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;
   CameraOptions view;                 ///< --camera, --resolution, --display, --looking-glass, --views

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "holoray/stopwatch.hpp"
+#include "render/emitters.hpp"
 #include "render/shadow_cache.hpp"
 
 namespace holoray {
@@ -90,6 +91,10 @@ class SequenceRun {
     // frames share the shot's pitch, gap and pixels: one pixel footprint.
     settings_ = shot.settings();
     settings_.shadow_cache = opt.cache;
+    settings_.integrator = opt.integrator;
+    settings_.environment = opt.environment;
+    settings_.principled = opt.principled;
+    settings_.skip_headlights = opt.skip_headlights;
     if (!panel_frames_) settings_.footprint = {0, pixel_angle(shot.camera(0))};
   }
 
@@ -162,6 +167,12 @@ class SequenceRun {
   RenderContext seek(int f) {
     shot_.seek(f);
     if (opt_.cache) opt_.cache->sync();
+    if (settings_.integrator == Integrator::path) {
+      // The emitters where this frame's transforms put them.
+      emitters_ = std::make_unique<EmissiveTriangles>(shot_.scene());
+      settings_.emitters = emitters_->empty() ? nullptr : emitters_.get();
+      settings_.skip_headlights = opt_.skip_headlights || !emitters_->empty();
+    }
     return RenderContext(shot_.scene(), settings_);
   }
 
@@ -283,6 +294,7 @@ class SequenceRun {
   const Emit& emit_;
   const bool panel_frames_;
   RenderSettings settings_;
+  std::unique_ptr<EmissiveTriangles> emitters_;  // the path integrator's, at the frame sought
 };
 
 }  // namespace

@@ -76,6 +76,15 @@ struct SequenceOptions {
   /// Asked before each frame is started (keyframe or reprojected): true stops
   /// the sequence there, after the frames already emitted (SIGINT, SIGTERM).
   std::function<bool()> stop;
+  /// Method::full only: the path integrator (render_context.hpp,
+  /// RenderSettings), its environment (not owned; null: the background
+  /// colour), glTF materials as Blender's Principled, and the readers'
+  /// headlights left out. Each frame's emissive surfaces are drawn as lights
+  /// where that frame's transforms put them.
+  Integrator integrator = Integrator::whitted;
+  const EnvironmentMap* environment = nullptr;
+  bool principled = false;
+  bool skip_headlights = false;
 };
 
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).
