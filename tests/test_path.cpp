@@ -33,6 +33,19 @@ RenderSettings path_settings(const RenderScene& scene, const EnvironmentMap* env
   return s;
 }
 
+// The mean red radiance along `ray` over samples 0 to n - 1 of the stream
+// `seed` (each stream's first pair stands for the pixel position).
+double mean_radiance(const RenderContext& ctx, const Ray& ray, uint32_t seed, int n) {
+  double sum = 0;
+  for (int k = 0; k < n; ++k) {
+    shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
+    shading::hr_next2(sampler);
+    RayCounts counts;
+    sum += path_radiance(ctx, ray, sampler, counts).x;
+  }
+  return sum / n;
+}
+
 // A size x size pinhole view of `desc` (through its viewpoint) under the
 // path integrator, lit by `env`.
 FrameBuffers path_view(const SceneDesc& desc, const EnvironmentMap* env, int size, int spp, int max_depth = 5,
@@ -323,15 +336,8 @@ TEST(PathIntegrator, AnEmissiveSquareLightsAFloorAsItsFormFactorSays) {
     RenderSettings settings = path_settings(scene, &black, 2);
     if (light_sampling) settings.emitters = &emitters;
     const RenderContext ctx(scene, settings);
-    double sum = 0;
-    const int n = 20000;
-    for (int k = 0; k < n; ++k) {
-      shading::HrSampler sampler = shading::hr_sampler(5, static_cast<uint32_t>(k));
-      shading::hr_next2(sampler);
-      RayCounts counts;
-      sum += path_radiance(ctx, Ray{{0.05, -0.3, 0.5}, normalize(Vec3{-0.05, 0.3, -0.5}), 0, INFINITY}, sampler, counts).x;
-    }
-    EXPECT_NEAR(sum / n, expected, 0.01 * expected) << (light_sampling ? "with" : "without") << " light sampling";
+    const double mean = mean_radiance(ctx, Ray{{0.05, -0.3, 0.5}, normalize(Vec3{-0.05, 0.3, -0.5}), 0, INFINITY}, 5, 20000);
+    EXPECT_NEAR(mean, expected, 0.01 * expected) << (light_sampling ? "with" : "without") << " light sampling";
   }
 }
 
@@ -364,19 +370,9 @@ TEST(PathIntegrator, AnAreaLightFromALightsFileLightsOneSideAsItsFormFactorSays)
   desc.area_lights[0].normal = -desc.area_lights[0].normal;
   const RenderScene turned(desc);
   const RenderContext turned_ctx(turned, path_settings(turned, &black, 3));
-  double lit = 0, unlit = 0;
-  const int n = 20000;
-  for (int k = 0; k < n; ++k) {
-    for (const RenderContext* c : {&ctx, &turned_ctx}) {
-      shading::HrSampler sampler = shading::hr_sampler(9, static_cast<uint32_t>(k));
-      shading::hr_next2(sampler);
-      RayCounts counts;
-      (c == &ctx ? lit : unlit) +=
-          path_radiance(*c, Ray{{0.05, -0.3, 0.5}, normalize(Vec3{-0.05, 0.3, -0.5}), 0, INFINITY}, sampler, counts).x;
-    }
-  }
-  EXPECT_NEAR(lit / n, expected, 0.01 * expected);
-  EXPECT_EQ(unlit, 0.0);
+  const Ray to_floor{{0.05, -0.3, 0.5}, normalize(Vec3{-0.05, 0.3, -0.5}), 0, INFINITY};
+  EXPECT_NEAR(mean_radiance(ctx, to_floor, 9, 20000), expected, 0.01 * expected);
+  EXPECT_EQ(mean_radiance(turned_ctx, to_floor, 9, 20000), 0.0);
 }
 
 // A point light with a radius: Cycles' disk facing the lit point, the
@@ -395,16 +391,8 @@ TEST(PathIntegrator, SoftLightsFromALightsFileKeepCyclesIrradiance) {
     const RenderScene scene(desc);
     const EnvironmentMap black(Vec3{0, 0, 0});
     const RenderContext ctx(scene, path_settings(scene, &black, 1));
-    double sum = 0;
-    const int n = 4000;
-    for (int k = 0; k < n; ++k) {
-      shading::HrSampler sampler = shading::hr_sampler(3, static_cast<uint32_t>(k));
-      shading::hr_next2(sampler);
-      RayCounts counts;
-      sum += path_radiance(ctx, Ray{{0.1, 0.1, 0.5}, normalize(Vec3{-0.1, -0.1, -0.5}), 0, INFINITY}, sampler, counts).x;
-    }
     // A white Lambertian floor shows E / pi.
-    const double irradiance = sum / n * M_PI;
+    const double irradiance = mean_radiance(ctx, Ray{{0.1, 0.1, 0.5}, normalize(Vec3{-0.1, -0.1, -0.5}), 0, INFINITY}, 3, 4000) * M_PI;
     if (which == 0) EXPECT_NEAR(irradiance, 100 / (4 * M_PI * (1 + 0.0625)), 0.005 * 7.49);
     else EXPECT_NEAR(irradiance, 3 * (1 + std::cos(3 * M_PI / 180)) / 2, 1e-3);
   }

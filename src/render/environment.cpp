@@ -24,6 +24,9 @@ EnvironmentMap::EnvironmentMap(const ImageBuffer& image, double strength, double
   if (!(strength >= 0) || !std::isfinite(strength))
     throw std::invalid_argument(fmt::format("environment strength: expected a finite value >= 0, got {}", strength));
   const size_t n = static_cast<size_t>(width_) * height_;
+  // Row y spans latitudes from asin(row_sin_[y + 1]) up to asin(row_sin_[y]).
+  row_sin_.resize(static_cast<size_t>(height_) + 1);
+  for (int y = 0; y <= height_; ++y) row_sin_[static_cast<size_t>(y)] = std::sin((0.5 - static_cast<double>(y) / height_) * M_PI);
   texels_.resize(n * 3);
   std::vector<double> weight(n);
   double total = 0;
@@ -89,10 +92,18 @@ Vec3 EnvironmentMap::texel(int x, int y) const {
   return {p[0], p[1], p[2]};
 }
 
+sh::vec2 EnvironmentMap::uv_of(const Vec3& dir) const {
+  const Vec3 e = to_env(dir);
+  return sh::hr_equirect_uv(sh::vec3(static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)));
+}
+
+double EnvironmentMap::texel_solid_angle(int y) const {
+  return (2 * M_PI / width_) * (row_sin_[static_cast<size_t>(y)] - row_sin_[static_cast<size_t>(y) + 1]);
+}
+
 Vec3 EnvironmentMap::radiance(const Vec3& dir) const {
   if (texels_.empty()) return constant_;
-  const Vec3 e = to_env(dir);
-  const sh::vec2 uv = sh::hr_equirect_uv(sh::vec3(static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)));
+  const sh::vec2 uv = uv_of(dir);
   // Bilinear, as Blender's Environment Texture (Linear): wrapping across
   // the seam, clamped at the poles. Sampling draws whole texels; its
   // density (pdf) need only follow the light roughly to stay unbiased.
@@ -119,27 +130,20 @@ Vec3 EnvironmentMap::sample(double u_cell, double u0, double u1, Vec3& dir, doub
   // Uniform in the texel's u, and in its sin(latitude) so that the density
   // is constant over its solid angle.
   const double u = (x + u0) / width_;
-  const double lat_top = (0.5 - static_cast<double>(y) / height_) * M_PI;
-  const double lat_bottom = (0.5 - static_cast<double>(y + 1) / height_) * M_PI;
-  const double s = std::sin(lat_bottom) + u1 * (std::sin(lat_top) - std::sin(lat_bottom));
-  const double lat = std::asin(std::clamp(s, -1.0, 1.0));
+  const double bottom = row_sin_[static_cast<size_t>(y) + 1], top = row_sin_[static_cast<size_t>(y)];
+  const double lat = std::asin(std::clamp(bottom + u1 * (top - bottom), -1.0, 1.0));
   const sh::vec3 e = sh::hr_equirect_direction(sh::vec2(static_cast<float>(u), static_cast<float>(0.5 + lat / M_PI)));
   dir = normalize(to_world(Vec3{e.x, e.y, e.z}));
-  const double omega = (2 * M_PI / width_) * (std::sin(lat_top) - std::sin(lat_bottom));  // the texel's solid angle
-  pdf = share_[cell] / omega;
+  pdf = share_[cell] / texel_solid_angle(y);
   return radiance(dir);
 }
 
 double EnvironmentMap::pdf(const Vec3& dir) const {
   if (texels_.empty() || black_) return 1 / (4 * M_PI);
-  const Vec3 e = to_env(dir);
-  const sh::vec2 uv = sh::hr_equirect_uv(sh::vec3(static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)));
+  const sh::vec2 uv = uv_of(dir);
   const int x = std::min(width_ - 1, static_cast<int>(uv.x * width_));
   const int y = std::clamp(static_cast<int>((1 - uv.y) * height_), 0, height_ - 1);
-  const double lat_top = (0.5 - static_cast<double>(y) / height_) * M_PI;
-  const double lat_bottom = (0.5 - static_cast<double>(y + 1) / height_) * M_PI;
-  const double omega = (2 * M_PI / width_) * (std::sin(lat_top) - std::sin(lat_bottom));
-  return share_[static_cast<size_t>(y) * width_ + x] / omega;
+  return share_[static_cast<size_t>(y) * width_ + x] / texel_solid_angle(y);
 }
 
 }  // namespace holoray

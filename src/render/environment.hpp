@@ -12,6 +12,7 @@
 
 #include "image/image.hpp"
 #include "math/vec.hpp"
+#include "shading/glsl_compat.hpp"
 
 namespace holoray {
 
@@ -45,6 +46,8 @@ class EnvironmentMap {
 
  private:
   Vec3 to_env(const Vec3& world) const;    // world -> the environment frame (z up)
+  shading::vec2 uv_of(const Vec3& world) const;  // the image coordinates (u right, v up) a direction reads
+  double texel_solid_angle(int y) const;   // of a texel of row y (from the top)
   Vec3 to_world(const Vec3& env) const;
   Vec3 texel(int x, int y) const;
 
@@ -56,6 +59,7 @@ class EnvironmentMap {
   std::vector<float> keep_;
   std::vector<uint32_t> alias_;
   std::vector<float> share_;
+  std::vector<double> row_sin_;  // sin of each row's top latitude, and the last row's bottom
   double cos_rot_ = 1, sin_rot_ = 0;
   EnvironmentUp up_ = EnvironmentUp::y;
   bool black_ = false;

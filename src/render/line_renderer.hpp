@@ -62,51 +62,41 @@ FrameBuffers render_lines(const RenderContext& scene, const Cam& camera, const R
         double first_t[kPacketSize] = {};
         Vec3 toward[kPacketSize];  // sample 0's ray reversed: normals face the eye
         if (scene.settings().integrator == Integrator::path) {
-          // Single rays, placed by the pixel's sampler (sample 0 at the centre).
-          for (int l = 0; l < n; ++l)
-            for (int k = 0; k < opt.spp; ++k) {
-              const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(pi[l]), static_cast<uint32_t>(pj[l]),
-                                                           scene.settings().sample_salt);
-              shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
-              const shading::vec2 u = shading::hr_pixel_position(sampler);
-              const PixelLine line = camera.line(pi[l], pj[l], u.x, u.y);
-              PrimaryRay pr;
-              if (!make_ray(line, pr)) {
-                sum[l] += path_escape(scene, line.dir);
-                continue;
-              }
-              ++counts.eye;
-              Hit hit;
-              SurfacePoint sp;
-              bool found = false;
-              sum[l] += path_radiance(scene, pr.ray, sampler, counts, &sp, &hit, &found);
-              if (k == 0 && found) {
-                first_hit[l] = true;
-                first_surface[l] = sp;
-                first_t[l] = hit.t;
-                toward[l] = -pr.ray.dir;
-              }
-            }
-        } else
-        for (int k = 0; k < opt.spp; ++k) {
-          bool ok[kPacketSize];
+          // Single rays, placed by the pixel's sampler (path_pixel_sum).
           for (int l = 0; l < n; ++l) {
-            double u, v;
-            sample_offset(pi[l], pj[l], k, u, v);
-            ok[l] = make_ray(camera.line(pi[l], pj[l], u, v), eye.primary[l]);
-          }
-          intersect_eye_packet(scene, ok, n, counts, eye);
-          Vec3 c[kPacketSize];
-          for (int l = 0; l < kPacketSize; ++l) c[l] = background;
-          if (std::any_of(eye.found, eye.found + n, [](bool f) { return f; }))
-            shade(scene, eye.rays, eye.found, eye.surface, 1, counts, c);
-          for (int l = 0; l < n; ++l) {
-            sum[l] += c[l];
-            if (k != 0 || !eye.found[l]) continue;
+            PathFirstHit first;
+            sum[l] = path_pixel_sum(scene, pi[l], pj[l], opt.spp, counts, [&](double u, double v, PrimaryRay& pr, Vec3& escape) {
+              const PixelLine line = camera.line(pi[l], pj[l], u, v);
+              escape = line.dir;
+              return make_ray(line, pr);
+            }, first);
+            if (!first.found) continue;
             first_hit[l] = true;
-            first_surface[l] = eye.surface[l];
-            first_t[l] = eye.hits[l].t;
-            toward[l] = -eye.rays.rays[l].dir;
+            first_surface[l] = first.surface;
+            first_t[l] = first.hit.t;
+            toward[l] = -first.primary.ray.dir;
+          }
+        } else {
+          for (int k = 0; k < opt.spp; ++k) {
+            bool ok[kPacketSize];
+            for (int l = 0; l < n; ++l) {
+              double u, v;
+              sample_offset(pi[l], pj[l], k, u, v);
+              ok[l] = make_ray(camera.line(pi[l], pj[l], u, v), eye.primary[l]);
+            }
+            intersect_eye_packet(scene, ok, n, counts, eye);
+            Vec3 c[kPacketSize];
+            for (int l = 0; l < kPacketSize; ++l) c[l] = background;
+            if (std::any_of(eye.found, eye.found + n, [](bool f) { return f; }))
+              shade(scene, eye.rays, eye.found, eye.surface, 1, counts, c);
+            for (int l = 0; l < n; ++l) {
+              sum[l] += c[l];
+              if (k != 0 || !eye.found[l]) continue;
+              first_hit[l] = true;
+              first_surface[l] = eye.surface[l];
+              first_t[l] = eye.hits[l].t;
+              toward[l] = -eye.rays.rays[l].dir;
+            }
           }
         }
         for (int l = 0; l < n; ++l)

@@ -16,21 +16,6 @@
 
 namespace holoray {
 
-namespace {
-
-// Per-pixel, per-sample jitter: a hashed Cranley-Patterson rotation of the R2
-// sequence. Deterministic in (pixel, sample), so any schedule gives the same image.
-uint32_t hash32(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
-
-}  // namespace
-
 const char* to_string(TraceStyle style) {
   switch (style) {
     case TraceStyle::packet: return "packet";
@@ -51,7 +36,9 @@ void sample_offset(int i, int j, int k, double& u, double& v) {
     u = v = 0.5;
     return;
   }
-  const uint32_t h = hash32(static_cast<uint32_t>(i) * 73856093U ^ hash32(static_cast<uint32_t>(j) * 19349663U));
+  // A hashed Cranley-Patterson rotation of the R2 sequence (the shared
+  // sampler's hash): deterministic in (pixel, sample), so any schedule gives the same image.
+  const uint32_t h = shading::hr_hash(static_cast<uint32_t>(i) * 73856093U ^ shading::hr_hash(static_cast<uint32_t>(j) * 19349663U));
   const double ru = (h & 0xffff) / 65536.0, rv = (h >> 16) / 65536.0;
   u = std::fmod(ru + k * 0.7548776662466927, 1.0);
   v = std::fmod(rv + k * 0.5698402909980532, 1.0);
@@ -219,34 +206,23 @@ void primary_rays(const LensArray& camera, const Bounds3& bounds, double margin,
 
 namespace {
 
-// render_pixel under the path integrator: samples placed by the pixel's
-// sampler, sample 0 at the centre (its first hit gives the AOVs).
+// render_pixel under the path integrator (path_pixel_sum): a line that
+// misses the scene sees the environment along the light's way back.
 Vec3 path_pixel(const RenderContext& scene, const LensArray& camera, int i, int j, int spp, RayCounts& counts,
                 PrimaryHit* primary, SurfacePoint* surface) {
-  Vec3 sum;
-  if (primary) *primary = PrimaryHit{};
-  const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
   const bool ortho = camera.desc().mode == RecordingMode::orthoscopic;
-  for (int k = 0; k < spp; ++k) {
-    shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
-    const shading::vec2 u = shading::hr_pixel_position(sampler);
-    const auto pr = primary_ray(camera, scene.bounds(), scene.epsilon(), i, j, u.x, u.y);
-    if (!pr) {
-      // The line misses the scene: the environment along the light's way back.
-      const Vec3 d = camera.line(i, j, u.x, u.y).dir;
-      sum += path_escape(scene, ortho ? -d : d);
-      continue;
+  PathFirstHit first;
+  const Vec3 sum = path_pixel_sum(scene, i, j, spp, counts, [&](double u, double v, PrimaryRay& pr, Vec3& escape) {
+    if (const auto p = primary_ray(camera, scene.bounds(), scene.epsilon(), i, j, u, v)) {
+      pr = *p;
+      return true;
     }
-    ++counts.eye;
-    SurfacePoint sp;
-    Hit hit;
-    bool found = false;
-    sum += path_radiance(scene, pr->ray, sampler, counts, &sp, &hit, &found);
-    if (k == 0 && found) {
-      if (surface) *surface = sp;
-      if (primary) *primary = make_primary(*pr, hit);
-    }
-  }
+    const Vec3 d = camera.line(i, j, u, v).dir;
+    escape = ortho ? -d : d;
+    return false;
+  }, first);
+  if (primary) *primary = first.found ? make_primary(first.primary, first.hit) : PrimaryHit{};
+  if (surface && first.found) *surface = first.surface;
   return sum * (1.0 / spp);
 }
 

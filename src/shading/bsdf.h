@@ -88,16 +88,21 @@ HR_FN vec3 hr_bsdf_eval(HrBsdf b, vec3 wo, vec3 wi) {
   return f * wi.z;
 }
 
-/// The density (solid angle) with which hr_bsdf_sample returns `wi` through
-/// its diffuse and glossy lobes, their selection included.
-HR_FN float hr_bsdf_pdf(HrBsdf b, vec3 wo, vec3 wi) {
+/// hr_bsdf_pdf with the lobes' probabilities `a` (hr_bsdf_lobes) given.
+HR_FN float hr_bsdf_pdf_of_lobes(HrBsdf b, vec3 wo, vec3 wi, vec3 a) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  vec3 a;
-  float t;
-  hr_bsdf_lobes(b, wo, a, t);
   float p = a.x * hr_cosine_pdf(wi.z);
   if (b.alpha > 0.0f) p += a.y * hr_ggx_reflection_pdf(wo, wi, b.alpha);
   return p;
+}
+
+/// The density (solid angle) with which hr_bsdf_sample returns `wi` through
+/// its diffuse and glossy lobes, their selection included.
+HR_FN float hr_bsdf_pdf(HrBsdf b, vec3 wo, vec3 wi) {
+  vec3 a;
+  float t;
+  hr_bsdf_lobes(b, wo, a, t);
+  return hr_bsdf_pdf_of_lobes(b, wo, wi, a);
 }
 
 /// Refracts `wo` (local, wo.z > 0) through the surface: `wt` below it, for
@@ -133,7 +138,7 @@ HR_FN bool hr_bsdf_sample(HrBsdf b, vec3 wo, float u_lobe, vec2 u, HR_OUT(vec3) 
       wi = reflect(-wo, h);
     }
     if (wi.z <= 0.0f) return false;
-    pdf = hr_bsdf_pdf(b, wo, wi);
+    pdf = hr_bsdf_pdf_of_lobes(b, wo, wi, a);
     if (!(pdf > 0.0f)) return false;
     weight = hr_bsdf_eval(b, wo, wi) / pdf;
     return true;

@@ -13,12 +13,21 @@
 #ifdef __cplusplus
 #define HR_ARRAY_IN(name, n) const float* name
 #define HR_ARRAY_OUT(name, n) float* name
+#define HR_ARRAY_INOUT(name, n) float* name
 #else
 #define HR_ARRAY_IN(name, n) float name[n]
 #define HR_ARRAY_OUT(name, n) out float name[n]
+#define HR_ARRAY_INOUT(name, n) inout float name[n]
 #endif
 
 HR_BEGIN
+
+/// r[k], r[k + 1], r[k + 2] = v.
+HR_FN void hr_put3(HR_ARRAY_INOUT(r, 32), uint k, vec3 v) {
+  r[k] = v.x;
+  r[k + 1u] = v.y;
+  r[k + 2u] = v.z;
+}
 
 /// Inputs: a[0..2] wo, a[3..5] wi (normalised here; wo lifted above the
 /// surface), a[6..7] a 2D uniform, a[8] the lobe's uniform, a[9..11] the
@@ -35,10 +44,7 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   vec2 u = vec2(a[6], a[7]);
   HrBsdf b = hr_gltf_bsdf(vec3(a[9], a[10], a[11]), a[12], a[13], 0.04f, a[14], wo.z);
   if (a[15] >= 32.0f) b = hr_principled_bsdf(vec3(a[9], a[10], a[11]), a[12], a[13], 0.04f, a[14], wo.z);
-  vec3 e = hr_bsdf_eval(b, wo, wi);
-  r[0] = e.x;
-  r[1] = e.y;
-  r[2] = e.z;
+  hr_put3(r, 0u, hr_bsdf_eval(b, wo, wi));
   r[3] = hr_bsdf_pdf(b, wo, wi);
   vec3 si;
   vec3 sw;
@@ -46,12 +52,8 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   bool delta;
   bool through;
   bool ok = hr_bsdf_sample(b, wo, a[8], u, si, sw, sp, delta, through);
-  r[4] = ok ? si.x : 9.0f;
-  r[5] = ok ? si.y : 9.0f;
-  r[6] = ok ? si.z : 9.0f;
-  r[7] = ok ? sw.x : 0.0f;
-  r[8] = ok ? sw.y : 0.0f;
-  r[9] = ok ? sw.z : 0.0f;
+  hr_put3(r, 4u, ok ? si : vec3(9.0f));
+  hr_put3(r, 7u, ok ? sw : vec3(0.0f));
   r[10] = ok ? sp : 0.0f;
   r[11] = delta ? 1.0f : 0.0f;
   HrSampler s = hr_sampler(hr_pixel_seed(c, c * 7u, 3u), uint(a[15]));
@@ -59,21 +61,12 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   q = hr_next2(s);
   r[12] = q.x;
   r[13] = q.y;
-  vec3 cd = hr_cosine_hemisphere(u);
-  r[14] = cd.x;
-  r[15] = cd.y;
-  r[16] = cd.z;
-  vec3 cone = hr_uniform_cone(u, 0.9f);
-  r[17] = cone.x;
-  r[18] = cone.y;
-  r[19] = cone.z;
+  hr_put3(r, 14u, hr_cosine_hemisphere(u));
+  hr_put3(r, 17u, hr_uniform_cone(u, 0.9f));
   vec2 uv = hr_equirect_uv(wi);
   r[20] = uv.x;
   r[21] = uv.y;
-  vec3 back = hr_equirect_direction(uv);
-  r[22] = back.x;
-  r[23] = back.y;
-  r[24] = back.z;
+  hr_put3(r, 22u, hr_equirect_direction(uv));
   HrLightFalloff l;
   l.kind = HR_LIGHT_KIND_SPOT;
   l.direction = -wo;
@@ -94,9 +87,7 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   vec3 t;
   vec3 bt;
   hr_frame(wi, t, bt);
-  r[29] = t.x;
-  r[30] = t.y;
-  r[31] = t.z;
+  hr_put3(r, 29u, t);
 }
 
 HR_END
