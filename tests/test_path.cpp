@@ -458,3 +458,31 @@ TEST(PathIntegrator, AnimatedFramesArePathTracedAsTheStill) {
 
 }  // namespace
 }  // namespace holoray
+
+namespace holoray {
+namespace {
+
+// A mesh file without lights gets the readers' headlight; its emissive
+// surfaces are light of its own, so the path integrator leaves the
+// headlight out, as it does for an environment given on the command line:
+// the two renders are the same image.
+TEST(PathIntegrator, EmissiveSurfacesReplaceTheReadersHeadlight) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.mtl"), "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 4 4 4\n");
+  test::write_text(dir.file("s.obj"),
+                   "mtllib s.mtl\nv -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv -0.3 1 -0.3\nv 0.3 1 -0.3\nv 0.3 1 0.3\nv -0.3 1 0.3\n"
+                   "usemtl floor\nf 1 4 3 2\nusemtl lamp\nf 5 6 7 8\n");
+  const std::string common = "render " + dir.file("s.obj") + " --camera pinhole --resolution 32x24 --integrator path --spp 4 -q";
+  const auto own = test::run_cli(common + " -o " + dir.file("own.exr"));
+  const auto black = test::run_cli(common + " --environment-colour 0,0,0 -o " + dir.file("black.exr"));
+  ASSERT_EQ(own.status, 0) << own.output;
+  ASSERT_EQ(black.status, 0) << black.output;
+  const ImageBuffer a = read_image(dir.file("own.exr")), b = read_image(dir.file("black.exr"));
+  EXPECT_EQ(as_rgb(a).data, as_rgb(b).data);
+  float brightest = 0;
+  for (float v : as_rgb(a).data) brightest = std::max(brightest, v);
+  EXPECT_GT(brightest, 1.0f) << "the lamp is seen";
+}
+
+}  // namespace
+}  // namespace holoray

@@ -53,7 +53,6 @@ void check_options(const RenderOptions& o) {
   check_light(o.integrator, o.environment, o.device, o.cache.enabled);
 }
 
-
 // A mesh file's camera, and where the focal plane stands when the file
 // gives no point looked at (docs/guide/scenes.md, "File cameras").
 std::string describe_viewpoint(const FrameCameraDesc& choice, const std::optional<Viewpoint>& vp) {
@@ -182,11 +181,9 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.settings.principled = options.blender_principled;
     s.emitters = std::make_unique<EmissiveTriangles>(*s.render_scene);
     if (!s.emitters->empty()) s.settings.emitters = s.emitters.get();
-    // Emissive surfaces are light too.
-    s.settings.skip_headlights |= !s.emitters->empty();
     // The readers' stand-in headlight lights a scene without light; an
-    // environment of the render's own is light.
-    s.settings.skip_headlights = options.environment.given();
+    // environment of the render's own, or emissive surfaces, are light.
+    s.settings.skip_headlights = options.environment.given() || !s.emitters->empty();
   }
   // Mesh textures take the MIP level of what one pixel sees.
   if (const auto angle = frame_camera.pixel_angle()) s.settings.footprint = {0, *angle};
