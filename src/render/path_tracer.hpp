@@ -54,9 +54,10 @@ Vec3 path_pixel_sum(const RenderContext& scene, int i, int j, int spp, RayCounts
   Vec3 sum;
   first = PathFirstHit{};
   const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
+  const shading::vec2 shift = shading::hr_pixel_shift(seed);
   for (int k = 0; k < spp; ++k) {
     shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
-    const shading::vec2 u = shading::hr_pixel_position(sampler);
+    const shading::vec2 u = shading::hr_pixel_position(sampler, shift);
     PrimaryRay pr;
     Vec3 escape;
     if (!primary(u.x, u.y, pr, escape)) {

@@ -109,15 +109,21 @@ HR_FN vec2 hr_next2(HR_INOUT(HrSampler) s) {
   return hr_sobol2_scrambled(s.index, dim_seed);
 }
 
+/// The first pair of sample 0 of the pixel `pixel_seed`: the shift
+/// hr_pixel_position takes, the same for all the pixel's samples.
+HR_FN vec2 hr_pixel_shift(uint pixel_seed) {
+  HrSampler first = hr_sampler(pixel_seed, 0u);
+  return hr_next2(first);
+}
+
 /// Sample `index`'s position in its pixel, in [0, 1)^2: the pixel's first
-/// Sobol pair, toroidally shifted so that sample 0 lies at the centre (the
-/// AOVs' sample, as under Whitted's integrator); a Cranley-Patterson shift
-/// keeps the points' stratification. Draws the stream's first pair.
-HR_FN vec2 hr_pixel_position(HR_INOUT(HrSampler) s) {
-  HrSampler first = hr_sampler(s.seed, 0u);
-  vec2 p0 = hr_next2(first);
+/// Sobol pair, toroidally shifted by `shift` (hr_pixel_shift) so that sample
+/// 0 lies at the centre (the AOVs' sample, as under Whitted's integrator); a
+/// Cranley-Patterson shift keeps the points' stratification. Draws the
+/// stream's first pair.
+HR_FN vec2 hr_pixel_position(HR_INOUT(HrSampler) s, vec2 shift) {
   vec2 p = hr_next2(s);
-  return vec2(fract(p.x - p0.x + 0.5f), fract(p.y - p0.y + 0.5f));
+  return vec2(fract(p.x - shift.x + 0.5f), fract(p.y - shift.y + 0.5f));
 }
 
 HR_END
