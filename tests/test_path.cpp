@@ -283,10 +283,6 @@ TEST(PathIntegrator, TheApiRefusesWhatItCannotRenderSayingWhy) {
   const api::Scene scene = api::Scene::load(dir + "/s.nff");
   api::RenderOptions o;
   o.integrator = api::Integrator::path;
-  o.device = "gpu";
-  EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
-            "`integrator` path: runs on the CPU for now (`device` cpu); the GPU path renders Whitted's");
-  o.device = "cpu";
   o.cache.enabled = true;
   EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }),
             "`integrator` path: the shadow cache reuses Whitted's point-light visibility, not paths; leave `cache` off");

@@ -116,9 +116,6 @@ class HolorayRenderEngine(bpy.types.RenderEngine):
             raise HolorayError("the holoray program was not found: set its path in the add-on's preferences "
                                "(Edit > Preferences > Add-ons > holoray) or put it on PATH")
         path_tracing = job.path_tracing(s)
-        if s.integrator == "PATH" and not path_tracing:
-            self.report({"WARNING"}, "holoray: path tracing runs on the CPU for now: the GPU renders Whitted's light "
-                                     "(point, spot and sun lights, hard shadows)")
         for line in export.not_exported(scene, path_tracing):
             self.report({"WARNING"}, f"holoray: {line}")
         if missing := devices.missing_gpu(s):

@@ -13,10 +13,8 @@ AOVS = ("albedo", "depth", "normal")
 
 
 def path_tracing(settings):
-    """Whether the render path traces: Integrator Path tracing on the CPU
-    (holoray's path integrator does not run on the GPU yet; the GPU renders
-    Whitted's light, and the engine says so)."""
-    return settings.integrator == "PATH" and settings.device == "CPU"
+    """Whether the render path traces (Integrator Path tracing, on either device)."""
+    return settings.integrator == "PATH"
 
 
 def spec(scene, settings, camera_object, width, height, lights_file=None):

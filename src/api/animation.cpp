@@ -245,7 +245,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
   SequenceOptions& so = s.so;
   s.options = o;
   s.choice = o.camera ? frame_camera_desc(*o.camera) : FrameCameraDesc{};
-  check_light(o.integrator, o.environment, o.device, o.cache.enabled);
+  check_light(o.integrator, o.environment, o.cache.enabled);
   choose_method(o, s);
   check_numbers(o, so);
 
@@ -283,7 +283,14 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     ro.cache = o.cache;
     const FrameCamera camera0 = so.frame_camera ? make_frame_camera(*so.frame_camera, shot.viewpoint(0), "the shot")
                                                 : FrameCamera{holoray::LensArray(shot.camera(0))};
-    s.gpu = std::make_unique<GpuExecutor>(device, shot.scene(), camera0, ro);
+    // The frames' settings as far as they are known before the first
+    // (its emitters are each frame's own: that frame lays them out).
+    holoray::RenderSettings first_settings = file_settings(shot.scene());
+    first_settings.integrator = so.integrator;
+    first_settings.environment = so.environment;
+    first_settings.principled = so.principled;
+    first_settings.skip_headlights = so.skip_headlights;
+    s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(shot.scene(), first_settings), camera0, ro);
     so.trace = [gpu = s.gpu.get()](const RenderContext& context, const FrameCamera& camera, const holoray::RenderOptions& o,
                                    holoray::RenderStats& stats) {
       RenderStats on_gpu;

@@ -150,6 +150,8 @@ int release_gpu_devices() noexcept {
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
   std::optional<gpu::ScenePose> uploaded;
+  bool uploaded_path = false;                 // laid out with the path integrator's lights
+  const void* uploaded_emitters = nullptr;    // ...those emitters (RenderSettings::emitters)
   uint64_t image_bytes = 0;
   bool panel = false;  // the camera's frames are panel images (gpu::renders_panel)
   int device = -1;
@@ -167,24 +169,31 @@ struct GpuExecutor::Impl {
     }
   }
 
-  // Lays out and uploads `scene` unless it stands as it did at the last
-  // upload: seconds spent, 0 when nothing moved.
-  double follow(const RenderScene& scene) {
+  // Lays out and uploads `context`'s scene (and the path integrator's
+  // lights where its settings ask for it) unless it stands as it did at the
+  // last upload, under the same integrator and emitters: seconds spent, 0
+  // when nothing changed.
+  double follow(const RenderContext& context) {
+    const RenderScene& scene = context.scene();
+    const bool path = context.settings().integrator == holoray::Integrator::path;
+    const void* emitters = context.settings().emitters;
     gpu::ScenePose now(scene.accel());
-    if (uploaded && *uploaded == now) return 0;
+    if (uploaded && *uploaded == now && uploaded_path == path && uploaded_emitters == emitters) return 0;
     const auto start = std::chrono::steady_clock::now();
     // A scene that moves is rebuilt every frame: without spatial splits the
     // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
     // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
     // against 5.8 and 1.8; docs/design/gpu.md).
-    compile_seconds =
-        renderer->load(gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
+    gpu::SceneArrays arrays = gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width());
+    if (path) gpu::lay_out_path(context, arrays);
+    compile_seconds = renderer->load(arrays, image_bytes, panel);
     uploaded = std::move(now);
+    uploaded_path = path, uploaded_emitters = emitters;
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 };
 
-GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera,
+GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderContext& context, const FrameCamera& camera,
                          const RenderOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (options.cache.enabled)
@@ -200,7 +209,7 @@ GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderScene& scene, c
     const bool aovs = options.aovs.albedo || options.aovs.depth || options.aovs.normal || options.aovs.id;
     impl_->image_bytes = gpu::GpuRenderer::frame_bytes(camera.width(), camera.height(), aovs);
     impl_->panel = gpu::renders_panel(camera);
-    impl_->follow(scene);
+    impl_->follow(context);
     impl_->setup_seconds = made + impl_->compile_seconds;
     impl_->healthy = true;
   } catch (const gpu::GpuError& e) {
@@ -224,7 +233,7 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
   gpu::GpuFrameStats g;
   impl_->healthy = false;
   try {
-    stats.build_seconds = impl_->follow(context.scene());
+    stats.build_seconds = impl_->follow(context);
     impl_->renderer->render(gpu::camera_frames(context, camera, aovs, spp, y0, y1), camera.width(), y1 - y0, aovs, fb, g);
   } catch (const gpu::GpuError& e) {
     throw std::runtime_error(e.what());
@@ -254,7 +263,7 @@ std::string device_of_local_rank(const std::string& device, int) {
 }
 
 struct GpuExecutor::Impl {};
-GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderScene&, const FrameCamera&, const RenderOptions&) {
+GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderContext&, const FrameCamera&, const RenderOptions&) {
   throw std::runtime_error(kNoGpu);
 }
 GpuExecutor::~GpuExecutor() = default;

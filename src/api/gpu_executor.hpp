@@ -31,11 +31,13 @@ int gpu_of_local_rank(const std::vector<bool>& is_gpu, int local_rank);
 
 class GpuExecutor {
  public:
-  /// Chooses the device and uploads `scene`. Throws std::invalid_argument
-  /// for the shadow cache (the CPU path's), and std::runtime_error when the
-  /// GPU cannot run (no loader, no device, not enough memory: the message
-  /// says what to do).
-  GpuExecutor(const DeviceChoice& device, const RenderScene& scene, const FrameCamera& camera, const RenderOptions& options);
+  /// Chooses the device and uploads `context`'s scene, with the path
+  /// integrator's lights where its settings ask for that integrator (a
+  /// render whose settings differ lays the scene out again). Throws
+  /// std::invalid_argument for the shadow cache (the CPU path's), and
+  /// std::runtime_error when the GPU cannot run (no loader, no device, not
+  /// enough memory: the message says what to do).
+  GpuExecutor(const DeviceChoice& device, const RenderContext& context, const FrameCamera& camera, const RenderOptions& options);
   ~GpuExecutor();
   /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
   std::string name() const;

@@ -5,12 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "api/gpu_executor.hpp"
 #include "image/image_io.hpp"
 
 namespace holoray::api {
 
-void check_light(Integrator integrator, const Environment& env, const std::string& device, bool cache) {
+void check_light(Integrator integrator, const Environment& env, bool cache) {
   if (integrator == Integrator::whitted && env.given())
     throw std::invalid_argument("`environment`: lights the path integrator only (`integrator` path); Whitted's sees the background colour");
   if (!(env.strength >= 0) || !std::isfinite(env.strength))
@@ -22,8 +21,6 @@ void check_light(Integrator integrator, const Environment& env, const std::strin
       if (!(c >= 0) || !std::isfinite(c))
         throw std::invalid_argument(fmt::format("environment colour: expected finite values >= 0, got {}", c));
   if (integrator == Integrator::path) {
-    if (parse_device(device).gpu)
-      throw std::invalid_argument("`integrator` path: runs on the CPU for now (`device` cpu); the GPU path renders Whitted's");
     if (cache)
       throw std::invalid_argument("`integrator` path: the shadow cache reuses Whitted's point-light visibility, not paths; leave `cache` off");
   }

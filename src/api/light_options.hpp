@@ -14,8 +14,8 @@ namespace holoray::api {
 
 /// Throws std::invalid_argument naming the option: an environment under
 /// Whitted's integrator, a strength, rotation or colour out of range, the
-/// path integrator on a GPU `device` or with the shadow `cache`.
-void check_light(Integrator integrator, const Environment& environment, const std::string& device, bool cache);
+/// path integrator with the shadow `cache`.
+void check_light(Integrator integrator, const Environment& environment, bool cache);
 
 /// The path integrator's environment: `env`'s image (read here, so that the
 /// build step reads no file; its top row toward `desc`'s up: +z where its

@@ -50,7 +50,7 @@ void check_options(const RenderOptions& o) {
     throw std::invalid_argument(fmt::format("cache cell: must be a positive number of lens pitches, got {}", o.cache.cell));
   if (!(o.cache.memory_mib >= 0) || !std::isfinite(o.cache.memory_mib))
     throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
-  check_light(o.integrator, o.environment, o.device, o.cache.enabled);
+  check_light(o.integrator, o.environment, o.cache.enabled);
 }
 
 // A mesh file's camera, and where the focal plane stands when the file
@@ -196,7 +196,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
   }
   s.style = trace_style(options.style, frame_camera);
   if (const DeviceChoice device = parse_device(options.device); device.gpu)
-    s.gpu = std::make_unique<GpuExecutor>(device, *s.render_scene, frame_camera, options);
+    s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(*s.render_scene, s.settings), frame_camera, options);
   s.build.build_seconds = seconds_since(t_build);
   s.build.gpu_setup_seconds = s.gpu ? s.gpu->setup_seconds() : 0;
 }

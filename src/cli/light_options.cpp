@@ -9,7 +9,7 @@ void add_light_options(CLI::App& cmd, LightCommandOptions& o, bool lights_file) 
   cmd.add_option("--integrator", o.integrator,
                  "How light is computed: whitted (the paper's: point lights, hard shadows, mirror and refraction rays) or "
                  "path (path tracing: soft light from an environment and emissive surfaces, light between surfaces; "
-                 "noise falls as 1/sqrt(--spp); CPU only)")
+                 "noise falls as 1/sqrt(--spp))")
       ->check(one_of({"whitted", "path"}))
       ->capture_default_str();
   if (lights_file)

@@ -232,14 +232,14 @@ vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shad
 
 vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  constexpr uint32_t kConstants = 13;
+  constexpr uint32_t kConstants = 14;
   const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
                                             panel ? 1u : 0u, (features & HR_FEATURE_TACHYON) ? 1u : 0u,
                                             (features & HR_FEATURE_GLTF) ? 1u : 0u,
                                             (features & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
                                             (features & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count_work ? 1u : 0u,
                                             count_work && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass),
-                                            (features & HR_FEATURE_WIDE_BVH) ? 1u : 0u};
+                                            (features & HR_FEATURE_WIDE_BVH) ? 1u : 0u, (features & HR_FEATURE_PATH) ? 1u : 0u};
   vk::SpecializationMapEntry entries[kConstants];
   for (uint32_t k = 0; k < kConstants; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
   const vk::SpecializationInfo spec{.mapEntryCount = kConstants, .pMapEntries = entries, .dataSize = sizeof spec_values,
@@ -332,7 +332,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
   m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
                                                              .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
-  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 16};
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 20};
   vk::DescriptorSetLayout raw_layout = *m.set_layout;
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
@@ -396,6 +396,7 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     put(1, s.nodes), put(2, s.refs), put(3, s.triangles), put(4, s.patches), put(5, s.spheres), put(6, s.cones);
     put(7, s.object_material), put(8, s.materials), put(9, s.lights);
     put(13, s.textures), put(14, s.levels), put(15, s.texels), put(16, s.colours), put(17, s.uvs);
+    put(22, s.area_lights), put(23, s.environment), put(24, s.emitters);
     m.scene[0] = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
     m.bind(0, m.scene[0]);
     m.counts = m.make_buffer(32, vk::BufferUsageFlagBits::eStorageBuffer, true);
@@ -414,7 +415,7 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     // load to the next with the same features): a frame's time is then its
     // own, and a pipeline for features the scene lacks is never compiled
     // (about 1.3 s each on lavapipe).
-    const bool queue = m.shadow_queue_on && !panel;
+    const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
     for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
     return seconds_since(t0);
@@ -507,7 +508,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
-    const bool queue = queue_rays > 0 && !panel;
+    const bool queue = queue_rays > 0 && !panel && !(m.features & HR_FEATURE_PATH);  // a path traces its own
     if (queue) {
       if (m.shadow_queue.size < 16 + queue_rays * sizeof(GpuShadowRay)) {
         m.shadow_queue = m.make_buffer(16 + queue_rays * sizeof(GpuShadowRay),
@@ -537,11 +538,25 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     stamp(0);
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 0));
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
-    for (int b = 0; b < bands; ++b) {
-      const Band& band = band_list[size_t(b)];
-      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                {band.row0, band.rows, b, band.frame});
-      cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
+    // The path integrator takes one sample of every pixel a pass, each
+    // pass adding to the colours the one before wrote: an invocation's
+    // loops then stay inside lavapipe's 65535 iterations whatever the
+    // samples per pixel (shared/docs/gpu-notes.md), and no dispatch runs
+    // longer for them.
+    const bool path = (m.features & HR_FEATURE_PATH) != 0;
+    const int passes = path ? std::max(1, frames[0].mode.w) : 1;
+    for (int pass = 0; pass < passes; ++pass) {
+      if (pass > 0)
+        cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                             .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
+                           nullptr, nullptr);
+      for (int b = 0; b < bands; ++b) {
+        const Band& band = band_list[size_t(b)];
+        cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                  {band.row0, band.rows, b, band.frame, pass});
+        cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
+      }
     }
     stamp(1);
     if (queue) {  // the queued shadow rays, once every band has queued its own

@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "accel/bvh_builder.hpp"
+#include "render/emitters.hpp"
+#include "render/environment.hpp"
 #include "render/gltf_brdf.hpp"
 
 namespace holoray::gpu {
@@ -95,7 +97,8 @@ GpuLight light_of(const PointLight& l) {
   g.direction = v4(l.direction);
   g.attenuation = {float(l.kc), float(l.kl), float(l.kq), float(l.range)};
   g.cone = {float(l.fall_start), float(l.fall_end), float(l.cos_fall_start), float(l.cos_fall_end)};
-  g.flags = {l.smooth_cone ? 1 : 0, 0, 0, 0};
+  g.direction.w = float(l.kind == LightKind::directional ? l.cos_half_angle : l.radius);
+  g.flags = {l.smooth_cone ? 1 : 0, l.headlight ? 1 : 0, 0, 0};
   return g;
 }
 
@@ -105,7 +108,8 @@ uint64_t SceneArrays::bytes() const {
   return nodes.size() * sizeof(GpuNode) + refs.size() * 4 + triangles.size() * sizeof(GpuTriangle) +
          (patches.size() + colours.size()) * sizeof(GpuPatch) + uvs.size() * sizeof(GpuUv) + spheres.size() * sizeof(GpuSphere) + cones.size() * sizeof(GpuCone) +
          object_material.size() * 4 + materials.size() * sizeof(GpuMaterial) + lights.size() * sizeof(GpuLight) +
-         textures.size() * sizeof(GpuTexture) + levels.size() * sizeof(GpuLevel) + texels.size() * 4;
+         textures.size() * sizeof(GpuTexture) + levels.size() * sizeof(GpuLevel) + texels.size() * 4 +
+         area_lights.size() * sizeof(GpuAreaLight) + environment.size() * sizeof(GpuEnvTexel) + emitters.size() * sizeof(GpuEmitter);
 }
 
 SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width) {
@@ -123,6 +127,7 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width)
     const GeometryGroup& geo = accel.geometry(g);
     const Affine& xf = accel.transform(g);
     const bool moved = !accel.is_identity(g);
+    out.group_first_triangle.push_back(static_cast<uint32_t>(out.triangles.size()));
     const auto& pos = geo.triangles.positions;
     const auto& idx = geo.triangles.indices;
     for (uint32_t t = 0; t * 3 < idx.size(); ++t) {
@@ -250,7 +255,46 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width)
   if (out.textures.empty()) out.textures.emplace_back();
   if (out.levels.empty()) out.levels.emplace_back();
   if (out.texels.empty()) out.texels.push_back(0);
+  out.area_lights.emplace_back();
+  out.environment.emplace_back();
+  out.emitters.emplace_back();
   return out;
+}
+
+void lay_out_path(const RenderContext& context, SceneArrays& out) {
+  out.features |= HR_FEATURE_PATH;
+  out.area_lights.clear();
+  for (const AreaLight& a : context.scene().area_lights()) {
+    GpuAreaLight g;
+    g.centre_ellipse = v4(a.centre, a.ellipse ? 1.0f : 0.0f);
+    g.axis_u_area = v4(a.axis_u, float(a.area));
+    g.axis_v = v4(a.axis_v);
+    g.normal = v4(a.normal);
+    g.radiance = v4(a.radiance);
+    out.area_lights.push_back(g);
+  }
+  out.environment.clear();
+  if (const EnvironmentMap* env = context.settings().environment; env && !env->constant() && !env->black()) {
+    const size_t n = env->keep().size();
+    if (n >= (size_t{1} << 31)) throw std::length_error("the environment image has more texels than the GPU path indexes (2^31)");
+    out.environment.resize(n);
+    for (size_t t = 0; t < n; ++t) {
+      const float* rgb = &env->texels()[t * 3];
+      out.environment[t].radiance_share = {rgb[0], rgb[1], rgb[2], env->share()[t]};
+      out.environment[t].keep_alias = {env->keep()[t], std::bit_cast<float>(env->alias()[t]), 0, 0};
+    }
+  }
+  out.emitters.clear();
+  if (const EmissiveTriangles* e = context.settings().emitters) {
+    for (size_t k = 0; k < e->size(); ++k) {
+      const EmissiveTriangles::Entry t = e->entry(k);
+      const uint32_t tri = out.group_first_triangle.at(t.group) + t.prim;
+      out.emitters.push_back({{float(t.cdf), std::bit_cast<float>(tri), float(t.pick), float(t.area)}});
+    }
+  }
+  if (out.area_lights.empty()) out.area_lights.emplace_back();
+  if (out.environment.empty()) out.environment.emplace_back();
+  if (out.emitters.empty()) out.emitters.emplace_back();
 }
 
 namespace {
@@ -282,6 +326,18 @@ GpuFrame scene_frame(const RenderContext& context, const AovSet& aovs, int row0,
   }
   f.flags = {context.has_tachyon_transparency() ? 1 : 0, 0, 0, 0};
   f.footprint = {float(context.settings().footprint.base), float(context.settings().footprint.spread), 0, 0};
+  const RenderSettings& rs = context.settings();
+  if (rs.integrator == Integrator::path) {
+    const EnvironmentMap* env = rs.environment;
+    const bool image = env && !env->constant() && !env->black();
+    const EmissiveTriangles* e = rs.emitters;
+    f.path_counts = {int(context.scene().area_lights().size()), e ? int(e->size()) : 0, image ? env->width() : 0,
+                     image ? env->height() : 0};
+    f.path_flags = {env && env->up() == EnvironmentUp::y ? 1 : 0, rs.principled ? 1 : 0, rs.skip_headlights ? 1 : 0,
+                    env && !env->black() ? 1 : 0};
+    f.env_constant = v4(env ? env->constant_radiance() : context.background(), e && !e->empty() ? float(1 / e->total_power()) : 0.0f);
+    f.env_turn = {env ? env->cos_rotation() : 1.0f, env ? env->sin_rotation() : 0.0f, std::bit_cast<float>(rs.sample_salt), 0};
+  }
   return f;
 }
 

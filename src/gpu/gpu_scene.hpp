@@ -40,6 +40,13 @@ struct SceneArrays {
   std::vector<GpuTexture> textures;  ///< Tachyon's texfuncs and meshes' images
   std::vector<GpuLevel> levels;      ///< the image maps' MIP levels
   std::vector<uint32_t> texels;      ///< the levels' texels, RGB8 in a uint each
+  /// The path integrator's (lay_out_path; one zero record each until then).
+  std::vector<GpuAreaLight> area_lights;
+  std::vector<GpuEnvTexel> environment;
+  std::vector<GpuEmitter> emitters;
+  /// Each group's first triangle in `triangles` (host only: where the
+  /// emitters' triangles are).
+  std::vector<uint32_t> group_first_triangle;
   int bvh_depth = 0;
   /// What the materials need of the kernel (HR_FEATURE_* bits): its
   /// pipeline is specialised to them (shaders/trace.comp).
@@ -66,6 +73,13 @@ struct ScenePose {
 /// passes the 2^30 a reference holds (or the texels 2^31),
 /// std::runtime_error when Embree's builder fails.
 SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high, int bvh_width = 4);
+
+/// The path integrator's light added to `arrays` (laid out from the same
+/// scene): the area lights, the environment image and its alias table
+/// (RenderSettings::environment), the emissive triangles by power
+/// (RenderSettings::emitters), and the kernel's path feature. Throws
+/// std::length_error past the 2^31 texels or triangles an index holds.
+void lay_out_path(const RenderContext& context, SceneArrays& arrays);
 
 /// One frame's constants: the lens array (any grid, either recording
 /// mode), the scene's box grown by its epsilon, depth limit, background,

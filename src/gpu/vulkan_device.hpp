@@ -34,7 +34,7 @@ vk::raii::Instance make_instance(const vk::raii::Context& context, const std::ve
 [[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device);
 
 /// trace.comp's descriptor bindings.
-constexpr int kBindings = 22;
+constexpr int kBindings = 25;
 
 // A buffer and its memory; `mapped` when host-visible.
 struct Buffer {
@@ -90,7 +90,7 @@ struct GpuRenderer::Impl {
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
   vk::PhysicalDeviceMemoryProperties memory_types;
-  Buffer scene[18];  // bindings 0 (the frame) to 9 and 13 to 17 (10 to 12: colour, aov, counts below)
+  Buffer scene[kBindings];  // by binding: 0 (the frame) to 9, 13 to 17 and 22 to 24 (the others below)
   Buffer colour, aov, counts, staging;
   vk::raii::CommandBuffer commands = nullptr;
   vk::raii::Fence fence = nullptr;

@@ -41,6 +41,7 @@ EmissiveTriangles::EmissiveTriangles(const RenderScene& scene) {
   }
   double total = 0;
   for (double w : power) total += w;
+  total_power_ = total;
   cdf_.resize(power.size());
   double run = 0;
   for (size_t k = 0; k < power.size(); ++k) cdf_[k] = (run += power[k]) / total;
@@ -72,6 +73,11 @@ double EmissiveTriangles::pdf_area(uint32_t group, uint32_t prim) const {
   if (it == index_.end()) return 0;
   const size_t k = it->second;
   return (cdf_[k] - (k ? cdf_[k - 1] : 0.0)) / tris_[k].area;
+}
+
+EmissiveTriangles::Entry EmissiveTriangles::entry(size_t k) const {
+  const Tri& t = tris_.at(k);
+  return {t.group, t.prim, cdf_[k], cdf_[k] - (k ? cdf_[k - 1] : 0.0), t.area};
 }
 
 }  // namespace holoray

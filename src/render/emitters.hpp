@@ -37,6 +37,17 @@ class EmissiveTriangles {
   /// The area density sample() gives a point of triangle `prim` of `group`;
   /// 0 for a triangle that is not an emitter.
   double pdf_area(uint32_t group, uint32_t prim) const;
+  /// Emitter k (in the order sample() picks by): its group and triangle,
+  /// the running sum of the picks up to and including it, its pick's
+  /// probability and its area; for the GPU path's table.
+  struct Entry {
+    uint32_t group, prim;
+    double cdf, pick, area;
+  };
+  Entry entry(size_t k) const;
+  /// The emitters' power (emission luminance x area, summed): a point of
+  /// a triangle of emission luminance L is drawn with area density L / it.
+  double total_power() const { return total_power_; }
 
  private:
   struct Tri {
@@ -49,6 +60,7 @@ class EmissiveTriangles {
   std::vector<Tri> tris_;
   std::vector<double> cdf_;  // power, cumulative, normalised
   std::unordered_map<uint64_t, uint32_t> index_;
+  double total_power_ = 0;
 };
 
 }  // namespace holoray

@@ -16,7 +16,8 @@ EnvironmentMap::EnvironmentMap(const Vec3& radiance)
     : constant_(radiance), black_(!(radiance.x > 0 || radiance.y > 0 || radiance.z > 0)) {}
 
 EnvironmentMap::EnvironmentMap(const ImageBuffer& image, double strength, double rotation_rad, EnvironmentUp up)
-    : width_(image.width), height_(image.height), cos_rot_(std::cos(rotation_rad)), sin_rot_(std::sin(rotation_rad)), up_(up) {
+    : width_(image.width), height_(image.height), cos_rot_(static_cast<float>(std::cos(rotation_rad))),
+      sin_rot_(static_cast<float>(std::sin(rotation_rad))), up_(up) {
   if (image.channels < 3)
     throw std::invalid_argument(fmt::format("an environment image needs RGB, got {} channel(s)", image.channels));
   if (image.width < 2 || image.height < 1)
@@ -24,9 +25,6 @@ EnvironmentMap::EnvironmentMap(const ImageBuffer& image, double strength, double
   if (!(strength >= 0) || !std::isfinite(strength))
     throw std::invalid_argument(fmt::format("environment strength: expected a finite value >= 0, got {}", strength));
   const size_t n = static_cast<size_t>(width_) * height_;
-  // Row y spans latitudes from asin(row_sin_[y + 1]) up to asin(row_sin_[y]).
-  row_sin_.resize(static_cast<size_t>(height_) + 1);
-  for (int y = 0; y <= height_; ++y) row_sin_[static_cast<size_t>(y)] = std::sin((0.5 - static_cast<double>(y) / height_) * M_PI);
   texels_.resize(n * 3);
   std::vector<double> weight(n);
   double total = 0;
@@ -75,17 +73,11 @@ EnvironmentMap::EnvironmentMap(const ImageBuffer& image, double strength, double
   // What remains holds 1 to rounding: kept whole.
 }
 
-Vec3 EnvironmentMap::to_env(const Vec3& w) const {
-  // glTF's frame to Blender's (the exporter's +Y up = Blender's +Z), then
-  // the Mapping node's rotation about z.
-  const Vec3 b = up_ == EnvironmentUp::y ? Vec3{w.x, -w.z, w.y} : w;
-  return {cos_rot_ * b.x - sin_rot_ * b.y, sin_rot_ * b.x + cos_rot_ * b.y, b.z};
-}
+namespace {
 
-Vec3 EnvironmentMap::to_world(const Vec3& e) const {
-  const Vec3 b{cos_rot_ * e.x + sin_rot_ * e.y, -sin_rot_ * e.x + cos_rot_ * e.y, e.z};
-  return up_ == EnvironmentUp::y ? Vec3{b.x, b.z, -b.y} : b;
-}
+sh::vec3 to_f(const Vec3& v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
+
+}  // namespace
 
 Vec3 EnvironmentMap::texel(int x, int y) const {
   const float* p = &texels_[(static_cast<size_t>(y) * width_ + x) * 3];
@@ -93,57 +85,43 @@ Vec3 EnvironmentMap::texel(int x, int y) const {
 }
 
 sh::vec2 EnvironmentMap::uv_of(const Vec3& dir) const {
-  const Vec3 e = to_env(dir);
-  return sh::hr_equirect_uv(sh::vec3(static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)));
-}
-
-double EnvironmentMap::texel_solid_angle(int y) const {
-  return (2 * M_PI / width_) * (row_sin_[static_cast<size_t>(y)] - row_sin_[static_cast<size_t>(y) + 1]);
+  return sh::hr_equirect_uv(sh::hr_env_from_world(to_f(dir), cos_rot_, sin_rot_, up_ == EnvironmentUp::y));
 }
 
 Vec3 EnvironmentMap::radiance(const Vec3& dir) const {
   if (texels_.empty()) return constant_;
-  const sh::vec2 uv = uv_of(dir);
-  // Bilinear, as Blender's Environment Texture (Linear): wrapping across
-  // the seam, clamped at the poles. Sampling draws whole texels; its
-  // density (pdf) need only follow the light roughly to stay unbiased.
-  const double fx = uv.x * width_ - 0.5, fy = (1 - uv.y) * height_ - 0.5;
-  const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
-  const double tx = fx - x0, ty = fy - y0;
-  auto at = [&](int x, int y) { return texel((x % width_ + width_) % width_, std::clamp(y, 0, height_ - 1)); };
-  return (at(x0, y0) * (1 - tx) + at(x0 + 1, y0) * tx) * (1 - ty) + (at(x0, y0 + 1) * (1 - tx) + at(x0 + 1, y0 + 1) * tx) * ty;
+  // Bilinear, as Blender's Environment Texture (Linear). Sampling draws
+  // whole texels; its density (pdf) need only follow the light roughly to
+  // stay unbiased.
+  sh::ivec4 q;
+  sh::vec2 t;
+  sh::hr_env_bilinear(uv_of(dir), width_, height_, q, t);
+  return (texel(q.x, q.y) * (1 - t.x) + texel(q.z, q.y) * t.x) * (1 - t.y) + (texel(q.x, q.w) * (1 - t.x) + texel(q.z, q.w) * t.x) * t.y;
 }
 
 Vec3 EnvironmentMap::sample(double u_cell, double u0, double u1, Vec3& dir, double& pdf) const {
-  const size_t n = static_cast<size_t>(width_) * height_;
+  const sh::vec2 u(static_cast<float>(u0), static_cast<float>(u1));
   if (texels_.empty() || black_) {
-    // Constant: uniform over the sphere.
-    const double z = 1 - 2 * u0, r = std::sqrt(std::fmax(0.0, 1 - z * z)), phi = 2 * M_PI * u1;
-    dir = {r * std::cos(phi), r * std::sin(phi), z};
+    const sh::vec3 d = sh::hr_uniform_sphere(u);
+    dir = {d.x, d.y, d.z};
     pdf = 1 / (4 * M_PI);
     return constant_;
   }
   float rest;
-  uint32_t cell = sh::hr_alias_cell(static_cast<float>(u_cell), static_cast<uint32_t>(n), rest);
+  uint32_t cell = sh::hr_alias_cell(static_cast<float>(u_cell), static_cast<uint32_t>(keep_.size()), rest);
   if (rest >= keep_[cell]) cell = alias_[cell];
   const int x = static_cast<int>(cell % static_cast<uint32_t>(width_)), y = static_cast<int>(cell / static_cast<uint32_t>(width_));
-  // Uniform in the texel's u, and in its sin(latitude) so that the density
-  // is constant over its solid angle.
-  const double u = (x + u0) / width_;
-  const double bottom = row_sin_[static_cast<size_t>(y) + 1], top = row_sin_[static_cast<size_t>(y)];
-  const double lat = std::asin(std::clamp(bottom + u1 * (top - bottom), -1.0, 1.0));
-  const sh::vec3 e = sh::hr_equirect_direction(sh::vec2(static_cast<float>(u), static_cast<float>(0.5 + lat / M_PI)));
-  dir = normalize(to_world(Vec3{e.x, e.y, e.z}));
-  pdf = share_[cell] / texel_solid_angle(y);
+  const sh::vec3 e = sh::hr_env_to_world(sh::hr_env_texel_direction(x, y, width_, height_, u), cos_rot_, sin_rot_,
+                                         up_ == EnvironmentUp::y);
+  dir = normalize(Vec3{e.x, e.y, e.z});
+  pdf = share_[cell] / sh::hr_env_texel_solid_angle(y, width_, height_);
   return radiance(dir);
 }
 
 double EnvironmentMap::pdf(const Vec3& dir) const {
   if (texels_.empty() || black_) return 1 / (4 * M_PI);
-  const sh::vec2 uv = uv_of(dir);
-  const int x = std::min(width_ - 1, static_cast<int>(uv.x * width_));
-  const int y = std::clamp(static_cast<int>((1 - uv.y) * height_), 0, height_ - 1);
-  return share_[static_cast<size_t>(y) * width_ + x] / texel_solid_angle(y);
+  const sh::ivec2 t = sh::hr_env_texel_of(uv_of(dir), width_, height_);
+  return share_[static_cast<size_t>(t.y) * width_ + t.x] / sh::hr_env_texel_solid_angle(t.y, width_, height_);
 }
 
 }  // namespace holoray

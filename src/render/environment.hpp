@@ -44,11 +44,23 @@ class EnvironmentMap {
   bool black() const { return black_; }
   bool constant() const { return texels_.empty(); }
 
+ // What the GPU path uploads (gpu/gpu_scene.cpp): the image's size (0 x 0
+  // for a constant), its texels (RGB, rows from the top, strength
+  // applied), the alias table (per texel: the probability of keeping it,
+  // its alias, its share of the light), the turn about the up axis and the up axis.
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const Vec3& constant_radiance() const { return constant_; }
+  const std::vector<float>& texels() const { return texels_; }
+  const std::vector<float>& keep() const { return keep_; }
+  const std::vector<uint32_t>& alias() const { return alias_; }
+  const std::vector<float>& share() const { return share_; }
+  float cos_rotation() const { return cos_rot_; }
+  float sin_rotation() const { return sin_rot_; }
+  EnvironmentUp up() const { return up_; }
+
  private:
-  Vec3 to_env(const Vec3& world) const;    // world -> the environment frame (z up)
   shading::vec2 uv_of(const Vec3& world) const;  // the image coordinates (u right, v up) a direction reads
-  double texel_solid_angle(int y) const;   // of a texel of row y (from the top)
-  Vec3 to_world(const Vec3& env) const;
   Vec3 texel(int x, int y) const;
 
   Vec3 constant_;
@@ -59,8 +71,7 @@ class EnvironmentMap {
   std::vector<float> keep_;
   std::vector<uint32_t> alias_;
   std::vector<float> share_;
-  std::vector<double> row_sin_;  // sin of each row's top latitude, and the last row's bottom
-  double cos_rot_ = 1, sin_rot_ = 0;
+  float cos_rot_ = 1, sin_rot_ = 0;  // float, as the shared mapping (shading/environment.h) takes them
   EnvironmentUp up_ = EnvironmentUp::y;
   bool black_ = false;
 };

@@ -33,6 +33,18 @@ struct uvec2 {
   uvec2(uint x_, uint y_) : x(x_), y(y_) {}
 };
 
+struct ivec2 {
+  int x = 0, y = 0;
+  ivec2() = default;
+  ivec2(int x_, int y_) : x(x_), y(y_) {}
+};
+
+struct ivec4 {
+  int x = 0, y = 0, z = 0, w = 0;
+  ivec4() = default;
+  ivec4(int x_, int y_, int z_, int w_) : x(x_), y(y_), z(z_), w(w_) {}
+};
+
 inline vec3 operator+(vec3 a, vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline vec3 operator-(vec3 a, vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline vec3 operator*(vec3 a, vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
@@ -62,6 +74,9 @@ inline float sign(float x) { return x > 0 ? 1.0f : (x < 0 ? -1.0f : 0.0f); }
 inline float min(float a, float b) { return b < a ? b : a; }  // GLSL: either operand when one is NaN
 inline float max(float a, float b) { return a < b ? b : a; }
 inline uint min(uint a, uint b) { return b < a ? b : a; }
+inline int min(int a, int b) { return b < a ? b : a; }
+inline int max(int a, int b) { return a < b ? b : a; }
+inline int clamp(int x, int lo, int hi) { return min(max(x, lo), hi); }
 inline float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
 inline float mix(float a, float b, float t) { return a * (1 - t) + b * t; }
 inline vec3 mix(vec3 a, vec3 b, float t) { return a * (1 - t) + b * t; }

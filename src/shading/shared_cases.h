@@ -35,7 +35,8 @@ HR_FN void hr_put3(HR_ARRAY_INOUT(r, 32), uint k, vec3 v) {
 /// a sample index (from 32 on, the material is Blender's principled one). Outputs: r[0..2] eval, r[3] pdf, r[4..6] sampled wi,
 /// r[7..9] its weight, r[10] its pdf, r[11] delta, r[12..13] the Sobol
 /// point, r[14..16] a cosine direction, r[17..19] a cone direction,
-/// r[20..21] equirect uv of wo, r[22..24] the direction back, r[25] a spot's
+/// r[20..21] equirect uv of wi, r[22..24] the direction back (odd cases:
+/// through a turned environment, and a direction drawn in a texel), r[25] a spot's
 /// falloff, r[26] D, r[27] G1, r[28] the power heuristic, r[29..31] the
 /// frame's tangent.
 HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
@@ -64,9 +65,17 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   hr_put3(r, 14u, hr_cosine_hemisphere(u));
   hr_put3(r, 17u, hr_uniform_cone(u, 0.9f));
   vec2 uv = hr_equirect_uv(wi);
+  vec3 back = hr_equirect_direction(uv);
+  if (c % 2u == 1u) {  // the environment turned (a[6] of a turn) and its up axis +y or +z, and a texel's direction
+    float turn = a[6] * 2.0f * HR_PI;
+    bool up_y = a[8] < 0.5f;
+    uv = hr_equirect_uv(hr_env_from_world(wi, cos(turn), sin(turn), up_y));
+    // A texel picked from the colour inputs (hr_env_texel_of of a texel's edge may fall either side).
+    back = hr_env_to_world(hr_env_texel_direction(int(a[9] * 63.0f), int(a[10] * 31.0f), 64, 32, u), cos(turn), sin(turn), up_y);
+  }
   r[20] = uv.x;
   r[21] = uv.y;
-  hr_put3(r, 22u, hr_equirect_direction(uv));
+  hr_put3(r, 22u, back);
   HrLightFalloff l;
   l.kind = HR_LIGHT_KIND_SPOT;
   l.direction = -wo;

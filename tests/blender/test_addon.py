@@ -92,8 +92,9 @@ def test_the_module_in_blenders_process_and_the_program_give_the_same_render_res
 def test_the_gpu_device_renders_the_cpus_eia_both_ways(tmp_path):
     # Device GPU, the first GPU (else lavapipe), through the module, and
     # GPU device 0 (lavapipe here) through the program: the CPU's EIA to
-    # within float rounding (PSNR on the 8-bit scale), Whitted's light on
-    # both (the GPU does not path trace yet).
+    # within float rounding (PSNR on the 8-bit scale), under Whitted's light
+    # and under path tracing (the default; the two devices draw the same
+    # samples).
     build("untextured", tmp_path)
     whitted = "bpy.context.scene.holoray.integrator = 'WHITTED'"
     log = render(tmp_path, python=whitted)
@@ -105,6 +106,15 @@ def test_the_gpu_device_renders_the_cpus_eia_both_ways(tmp_path):
         gpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
         assert gpu.shape == cpu.shape
         assert holoray.psnr(cpu, gpu) >= 50, backend
+    path = "bpy.context.scene.holoray.samples = 4"
+    (tmp_path / "frame_0001.exr").unlink()
+    log = render(tmp_path, python=path)
+    cpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
+    (tmp_path / "frame_0001.exr").unlink()
+    log = render(tmp_path, backend="MODULE", device="GPU", python=path)
+    assert "Traceback" not in log, log[-3000:]
+    gpu = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
+    assert cpu.max() > 0.05 and holoray.psnr(cpu, gpu) >= 50
 
 
 def test_the_gpu_menu_names_each_vulkan_device_holoray_lists(tmp_path):

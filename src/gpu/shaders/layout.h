@@ -60,6 +60,9 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_FEATURE_MESH_TEXTURES 4u
 #define HR_FEATURE_ALPHA_MASKS 8u
 #define HR_FEATURE_WIDE_BVH 16u
+// The path integrator (RenderSettings::integrator path): its kernel, and
+// the area lights, environment and emitters it samples.
+#define HR_FEATURE_PATH 32u
 
 // Fog modes (scene_desc.hpp, FogDesc), 0 for none.
 #define HR_FOG_LINEAR 1
@@ -174,10 +177,34 @@ HR_STRUCT GpuLevel {
 /// A light (render_scene.hpp, PointLight): position and kind, intensity and
 /// whether it reaches every point whole, direction, attenuation kc, kl, kq
 /// and range, the spot cone (start, end, cos start, cos end) and whether
-/// its edge is glTF's smooth one (x of `flags`).
+/// its edge is glTF's smooth one (x of `flags`). For the path integrator:
+/// in direction.w a point or spot light's radius, a directional light's
+/// cosine of half its angular diameter; y of `flags` 1 for the readers'
+/// stand-in headlight.
 HR_STRUCT GpuLight {
   vec4 position_kind, intensity_unit, direction, attenuation, cone;
   ivec4 flags;
+};
+
+/// An area light (render_scene.hpp, AreaLight): centre and 1 for an
+/// ellipse, the half-extent axes u (w: the light's area) and v, the unit
+/// normal of its lit side, and its radiance.
+HR_STRUCT GpuAreaLight {
+  vec4 centre_ellipse, axis_u_area, axis_v, normal, radiance;
+};
+
+/// A texel of the environment image (render/environment.hpp): its RGB
+/// radiance (strength applied) and its share of the light; the alias
+/// table's probability of keeping it and its alias (uint bits).
+HR_STRUCT GpuEnvTexel {
+  vec4 radiance_share, keep_alias;
+};
+
+/// An emissive triangle for next-event estimation (render/emitters.hpp):
+/// its power's running sum up to and including it (normalised), its
+/// GpuTriangle index (uint bits), the probability of picking it and its area.
+HR_STRUCT GpuEmitter {
+  vec4 cdf_tri_pick_area;
 };
 
 /// A shadow ray waiting in the shadow queue (trace.comp, kShadowQueue):
@@ -236,6 +263,15 @@ HR_STRUCT GpuFrame {
   ivec4 cell_kind;
   vec4 panel_view;
   vec4 cells[HR_MAX_CELLS];
+  // The path integrator (HR_FEATURE_PATH): area lights, emitters, the
+  // environment image's width and height (0, 0: the constant env_constant);
+  // flags: 1 when the environment's up is +y, 1 for Blender's Principled
+  // BSDF, 1 when the headlight is left out, 1 when the environment lights
+  // (not black); env_constant's w: 1 / the emitters' total power
+  // (luminance x area); env_turn: cosine and sine of the environment's turn.
+  ivec4 path_counts;
+  ivec4 path_flags;
+  vec4 env_constant, env_turn;
 };
 
 #ifdef __cplusplus

@@ -65,6 +65,9 @@ layout(constant_id = 11) const int kShadowPass = 0;
 // to 1.5x fewer nodes a ray on the SPD scenes, 1.3 to 1.55x the boxes
 // tested (design/gpu.md, "8-wide nodes").
 layout(constant_id = 12) const bool kWideBvh = false;
+// The path integrator (HR_FEATURE_PATH, path.glsl): one sample of each
+// pixel a pass, added to what the passes before wrote.
+layout(constant_id = 13) const bool kPath = false;
 const int kNodeRecords = kWideBvh ? 2 : 1;
 const int kNodeWidth = kWideBvh ? 8 : 4;
 
@@ -111,7 +114,8 @@ layout(std430, binding = 19) buffer ShadowQueueBlock { uvec4 shadow_head; GpuSha
 layout(std430, binding = 20) buffer ShadowLastBlock { uint shadow_last[]; };
 layout(std430, binding = 21) buffer ShadowTermBlock { vec4 shadow_terms[]; };
 
-layout(push_constant) uniform Band { int row0; int rows; int index; int frame; } band;
+// `sample_index`: the path integrator's pass (kPath).
+layout(push_constant) uniform Band { int row0; int rows; int index; int frame; int sample_index; } band;
 
 const float kInf = 1.0 / 0.0;
 
@@ -556,6 +560,58 @@ vec2 sample_offset(int i, int j, int k) {
   return fract(r + float(k) * vec2(0.7548776662466927, 0.5698402909980532));
 }
 
+// A pixel sample's eye ray: the line at (u, v) in pixel (i, j) clipped to
+// the scene's box (renderer.cpp, clip_primary and primary_over), or a
+// pinhole view's to its clipping planes (view_renderer.cpp). `traced`:
+// it meets the box; `empty_aimed`: a pinhole ray into an empty scene,
+// which the CPU counts. t_sign: the line's parameter per unit of the ray's;
+// optic0: how far the ray's origin lies behind where the CPU starts it (a
+// Tachyon texture's MIP level and fog go by that distance).
+struct EyeRay {
+  vec3 o, d, line_dir;
+  float tmin, tmax, t_sign, optic0;
+  bool traced, empty_aimed, ortho;
+};
+
+EyeRay eye_ray(int i, int j, vec2 uv) {
+  EyeRay e;
+  vec3 lo, ld;
+  pixel_line(i, j, uv.x, uv.y, lo, ld);
+  e.line_dir = ld;
+  // The line against the scene's box (renderer.cpp, clip_primary).
+  vec3 inv = safe_inverse(ld);
+  vec3 ta = (F.box_lo.xyz - lo) * inv, tb = (F.box_hi.xyz - lo) * inv;
+  float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
+  float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
+  float margin = F.box_lo.w;
+  e.ortho = F.mode.z == HR_ORTHOSCOPIC;
+  bool pinhole = F.mode.y == HR_PINHOLE || (kPanel && F.mode.y == HR_LOOKING_GLASS);
+  // A pinhole view's ray is not clipped to the box but to the view's
+  // clipping planes, perpendicular to its axis (view_renderer.cpp): a ray at
+  // cosine ca to the axis meets them at clip / ca.
+  float ca = dot(ld, -F.axis_z.xyz);
+  bool aimed = ca > 0.0 || (F.view_clip.y == 0.0 && isinf(F.view_clip.z));
+  e.traced = pinhole ? F.box_hi.w == 0.0 && aimed : F.box_hi.w == 0.0 && t0 <= t1 && (e.ortho || t1 > 0.0);
+  e.empty_aimed = pinhole && aimed && !e.traced;
+  e.o = lo, e.d = ld, e.t_sign = 1.0, e.optic0 = 0.0, e.tmin = 0.0, e.tmax = kInf;
+  if (e.ortho) {
+    // The CPU starts it beyond the box and runs back along the line
+    // (renderer.cpp, primary_over); here it starts on the lens plane and
+    // runs back over negative distances, the same segment, so that float
+    // keeps the distances that the depth AOV is (a box thousands of
+    // units deep, as Room's, lost 1e-4 of them from the far start).
+    float start = t1 + margin;
+    e.d = -ld;
+    e.t_sign = -1.0, e.optic0 = start, e.tmin = -start, e.tmax = -(t0 - margin);
+  } else if (pinhole) {
+    bool clipped = !(F.view_clip.y == 0.0 && isinf(F.view_clip.z));
+    e.tmin = clipped ? F.view_clip.y / ca : 0.0, e.tmax = clipped ? F.view_clip.z / ca : kInf;
+  } else {
+    e.tmin = max(0.0, t0 - margin), e.tmax = t1 + margin;
+  }
+  return e;
+}
+
 // ---- shading (render/models/nff_model.hpp, blinn_phong_model.cpp) ----
 
 struct Surface {
@@ -841,6 +897,72 @@ vec3 normal_mapped(GpuTriangle tri, GpuUv uv, vec3 n, vec3 texel, float scale) {
   return length(mapped) > 0.0 ? normalize(mapped) : n;
 }
 
+// A hit's material with a mesh's maps applied at a triangle with texture
+// coordinates (RenderScene::surface), read at the MIP level of the
+// pixel's footprint `optic` away along the eye's path: colour, emission,
+// metallic and roughness (pbr's x and y), Blinn-Phong's specular map; a
+// normal map turns `s`'s shading normal.
+struct MappedMaterial {
+  vec3 colour, emission;
+  vec4 pbr;
+  float highlight;
+};
+
+MappedMaterial mapped_material(GpuMaterial m, Hit h, float optic, inout Surface s) {
+  MappedMaterial mm;
+  mm.colour = m.colour_kd.xyz, mm.emission = m.emission_model.xyz, mm.pbr = m.pbr, mm.highlight = 1.0;
+  if (kMeshTextures && (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE && int(m.emission_model.w) != HR_MODEL_TACHYON) {
+    GpuTriangle tri = tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)];
+    int uv_at = floatBitsToInt(tri.v0.w);
+    if (uv_at >= 0) {
+      float width = F.footprint.x + F.footprint.y * optic;
+      vec4 texel;
+      if (texel_at(m.maps.x, uv_at, h.u, h.v, width, texel)) mm.colour *= texel.rgb;
+      if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
+        if (texel_at(m.maps2.x, uv_at, h.u, h.v, width, texel)) mm.highlight = texel.r;
+      } else if (texel_at(m.maps.y, uv_at, h.u, h.v, width, texel)) {  // blue metallic, green roughness
+        mm.pbr.x = clamp(m.pbr.x * texel.b, 0.0, 1.0), mm.pbr.y = clamp(m.pbr.y * texel.g, 0.0, 1.0);
+      }
+      if (texel_at(m.maps.z, uv_at, h.u, h.v, width, texel)) s.ns = normal_mapped(tri, uvs[uv_at], s.ns, texel.rgb, m.alpha.z);
+      if (texel_at(m.maps.w, uv_at, h.u, h.v, width, texel)) mm.emission *= texel.rgb;
+    }
+  }
+  return mm;
+}
+
+// A Tachyon surface's colour: its triangle's vertex colours interpolated,
+// else its texfunc's seen `optic` away, else `colour`
+// (RenderScene::surface_colour).
+vec3 tachyon_colour(GpuMaterial m, Hit h, vec3 p, vec3 colour, float optic) {
+  int coloured = (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE ? floatBitsToInt(tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)].e2.w) : -1;
+  if (coloured >= 0)
+    return vertex_colours[coloured].n0.xyz * (1.0 - h.u - h.v) + vertex_colours[coloured].n1.xyz * h.u +
+           vertex_colours[coloured].n2.xyz * h.v;
+  return m.maps.x >= 0 ? tachyon_texture(m.maps.x, colour, p, optic) : colour;
+}
+
+// The AOVs of pixel (i, j) from its first sample's first hit, met by the
+// line along `ld` at signed depth `depth` (render/renderer.cpp, store_pixel).
+void write_hit_aovs(int i, int j, vec3 ld, Surface s, GpuMaterial m, MappedMaterial mm, float depth) {
+  uint a = out_pixel(i, j) * 8u;
+  vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? ld : -ld;
+  vec3 n = dot(s.ns, toward) >= 0.0 ? s.ns : -s.ns;
+  // glTF's albedo: the diffuse share (render_scene.hpp, albedo_of).
+  vec3 albedo = kGltf && int(m.emission_model.w) == HR_MODEL_GLTF ? mm.colour * ((1.0 - mm.pbr.x) * (1.0 - mm.pbr.z)) : mm.colour;
+  aov_out[a + 0u] = albedo.x, aov_out[a + 1u] = albedo.y, aov_out[a + 2u] = albedo.z;
+  aov_out[a + 3u] = depth;
+  aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
+  aov_out[a + 7u] = float(s.object);
+}
+
+// The AOVs of a pixel whose first sample met nothing: zero, depth NaN, id -1.
+void write_miss_aovs(int i, int j) {
+  uint a = out_pixel(i, j) * 8u;
+  for (uint q = 0u; q < 8u; ++q) aov_out[a + q] = 0.0;
+  aov_out[a + 3u] = uintBitsToFloat(0x7fc00000u);
+  aov_out[a + 7u] = -1.0;
+}
+
 // Shadow rays prepared at once (their terms in a small array), then traced.
 const int kLightChunk = 8;
 
@@ -945,7 +1067,14 @@ void shadow_resolve() {
   if (sum != vec3(0.0)) colour_sum[p * 3u + 0u] += sum.x, colour_sum[p * 3u + 1u] += sum.y, colour_sum[p * 3u + 2u] += sum.z;
 }
 
+void add_counts(uvec4 rays);
+#include "path.glsl"
+
 void main() {
+  if (kPath) {
+    path_main();
+    return;
+  }
   if (kShadowPass == 1) {
     shadow_pass();
     return;
@@ -958,7 +1087,7 @@ void main() {
   int W = F.size.x;
   if (i >= W || int(gl_GlobalInvocationID.y) >= band.rows) return;
   log_pixel = ivec2(i, j);
-  float eps = F.extent.w, margin = F.box_lo.w;
+  float eps = F.extent.w;
   int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
   uint eye_rays = 0u, shadow_rays = 0u, reflected_rays = 0u, refracted_rays = 0u;
   uint last_run = 0x0fffffffu;  // the pixel's last run of queued shadow rays (none: past any capacity)
@@ -966,47 +1095,15 @@ void main() {
   bool first_hit = false;
   for (int k = 0; k < spp; ++k) {
     vec2 uv = sample_offset(F.tile.x + i, F.tile.y + j, k);  // the image's pixel: a quilt's, not its view's
-    vec3 lo, ld;
-    pixel_line(i, j, uv.x, uv.y, lo, ld);
-    // The line against the scene's box (renderer.cpp, clip_primary).
-    vec3 inv = safe_inverse(ld);
-    vec3 ta = (F.box_lo.xyz - lo) * inv, tb = (F.box_hi.xyz - lo) * inv;
-    float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
-    float t1 = min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z));
+    EyeRay e = eye_ray(i, j, uv);
+    vec3 ld = e.line_dir;
     vec3 c = F.background.xyz;
-    bool ortho = F.mode.z == HR_ORTHOSCOPIC;
-    bool pinhole = F.mode.y == HR_PINHOLE || (kPanel && F.mode.y == HR_LOOKING_GLASS);
-    // A pinhole view's ray is not clipped to the box but to the view's
-    // clipping planes, perpendicular to its axis (view_renderer.cpp): a ray at
-    // cosine ca to the axis meets them at clip / ca.
-    float ca = dot(ld, -F.axis_z.xyz);
-    bool aimed = ca > 0.0 || (F.view_clip.y == 0.0 && isinf(F.view_clip.z));
-    bool traced = pinhole ? F.box_hi.w == 0.0 && aimed : F.box_hi.w == 0.0 && t0 <= t1 && (ortho || t1 > 0.0);
-    if (pinhole && aimed && !traced) ++eye_rays;  // an empty scene: the CPU counts the ray it traces through nothing
-    if (traced) {
+    if (e.empty_aimed) ++eye_rays;  // an empty scene: the CPU counts the ray it traces through nothing
+    if (e.traced) {
       Pending stack[HR_MAX_DEPTH + 2];
       int sp = 0;
-      // t_sign: the line's parameter per unit of the primary ray's; optic0:
-      // how far the primary ray's origin lies behind where the CPU starts it
-      // (a Tachyon texture's MIP level and fog go by that distance).
-      float t_sign = 1.0, optic0 = 0.0, tmin0 = 0.0, tmax0;
-      if (ortho) {
-        // The CPU starts it beyond the box and runs back along the line
-        // (renderer.cpp, primary_over); here it starts on the lens plane and
-        // runs back over negative distances, the same segment, so that float
-        // keeps the distances that the depth AOV is (a box thousands of
-        // units deep, as Room's, lost 1e-4 of them from the far start).
-        float start = t1 + margin;
-        stack[sp++] = Pending(lo, -ld, vec3(1.0), 1);
-        t_sign = -1.0, optic0 = start, tmin0 = -start, tmax0 = -(t0 - margin);
-      } else if (pinhole) {
-        stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
-        bool clipped = !(F.view_clip.y == 0.0 && isinf(F.view_clip.z));
-        tmin0 = clipped ? F.view_clip.y / ca : 0.0, tmax0 = clipped ? F.view_clip.z / ca : kInf;
-      } else {
-        stack[sp++] = Pending(lo, ld, vec3(1.0), 1);
-        tmin0 = max(0.0, t0 - margin), tmax0 = t1 + margin;
-      }
+      stack[sp++] = Pending(e.o, e.d, vec3(1.0), 1);
+      float t_sign = e.t_sign, optic0 = e.optic0, tmin0 = e.tmin, tmax0 = e.tmax;
       c = vec3(0.0);
       ++eye_rays;
       while (sp > 0) {
@@ -1020,27 +1117,10 @@ void main() {
         }
         Surface s = surface_of(r.o, r.d, h);
         GpuMaterial m = materials[s.material];
-        vec3 colour = m.colour_kd.xyz, emission = m.emission_model.xyz;
-        vec4 pbr = m.pbr;       // metallic and roughness, its maps applied
-        float highlight = 1.0;  // Blinn-Phong's specular map
-        // A mesh's maps at a triangle with texture coordinates, read at the
-        // MIP level of the pixel's footprint there (RenderScene::surface).
-        if (kMeshTextures && (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE && int(m.emission_model.w) != HR_MODEL_TACHYON) {
-          GpuTriangle tri = tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)];
-          int uv_at = floatBitsToInt(tri.v0.w);
-          if (uv_at >= 0) {
-            float width = F.footprint.x + F.footprint.y * (h.t + (primary ? optic0 : 0.0));
-            vec4 texel;
-            if (texel_at(m.maps.x, uv_at, h.u, h.v, width, texel)) colour *= texel.rgb;
-            if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
-              if (texel_at(m.maps2.x, uv_at, h.u, h.v, width, texel)) highlight = texel.r;
-            } else if (texel_at(m.maps.y, uv_at, h.u, h.v, width, texel)) {  // blue metallic, green roughness
-              pbr.x = clamp(m.pbr.x * texel.b, 0.0, 1.0), pbr.y = clamp(m.pbr.y * texel.g, 0.0, 1.0);
-            }
-            if (texel_at(m.maps.z, uv_at, h.u, h.v, width, texel)) s.ns = normal_mapped(tri, uvs[uv_at], s.ns, texel.rgb, m.alpha.z);
-            if (texel_at(m.maps.w, uv_at, h.u, h.v, width, texel)) emission *= texel.rgb;
-          }
-        }
+        MappedMaterial mm = mapped_material(m, h, h.t + (primary ? optic0 : 0.0), s);
+        vec3 colour = mm.colour, emission = mm.emission;
+        vec4 pbr = mm.pbr;
+        float highlight = mm.highlight;
         // Both normals turned to the side the ray came from (nff-notes §10.2).
         vec3 view = -r.d;
         bool front = dot(s.ng, view) >= 0.0;
@@ -1050,27 +1130,11 @@ void main() {
         // of them stays live (in registers) across the traversals below.
         if (primary && k == 0) {
           first_hit = true;
-          if (aovs != 0) {
-            uint a = out_pixel(i, j) * 8u;
-            vec3 toward = F.mode.z == HR_ORTHOSCOPIC ? ld : -ld;
-            vec3 n = dot(s.ns, toward) >= 0.0 ? s.ns : -s.ns;
-            // glTF's albedo: the diffuse share (render_scene.hpp, albedo_of).
-            vec3 albedo = kGltf && int(m.emission_model.w) == HR_MODEL_GLTF ? colour * ((1.0 - pbr.x) * (1.0 - pbr.z)) : colour;
-            aov_out[a + 0u] = albedo.x, aov_out[a + 1u] = albedo.y, aov_out[a + 2u] = albedo.z;
-            aov_out[a + 3u] = t_sign * h.t;
-            aov_out[a + 4u] = n.x, aov_out[a + 5u] = n.y, aov_out[a + 6u] = n.z;
-            aov_out[a + 7u] = float(s.object);
-          }
+          if (aovs != 0) write_hit_aovs(i, j, ld, s, m, mm, t_sign * h.t);
         }
         float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
         if (kTachyon && int(m.emission_model.w) == HR_MODEL_TACHYON) {  // tachyon_model.cpp, TachyonModel::shade
-          // A vertex-coloured triangle's colour, else the texfunc's (RenderScene::surface_colour).
-          int coloured = (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE
-                             ? floatBitsToInt(tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)].e2.w) : -1;
-          vec3 tex = coloured >= 0 ? vertex_colours[coloured].n0.xyz * (1.0 - h.u - h.v) +
-                                         vertex_colours[coloured].n1.xyz * h.u + vertex_colours[coloured].n2.xyz * h.v
-                   : m.maps.x >= 0 ? tachyon_texture(m.maps.x, colour, s.p, h.t + (primary ? optic0 : 0.0))
-                                   : colour;
+          vec3 tex = tachyon_colour(m, h, s.p, colour, h.t + (primary ? optic0 : 0.0));
           if (m.tachyon.w != 0.0) {  // a light's sphere: its colour, unshaded
             c += r.weight * tex;
             continue;
@@ -1245,15 +1309,17 @@ void main() {
     colour_out[pixel * 3u + 2u] = colour.z;
   }
   if (kShadowQueue) shadow_last[out_pixel(i, j)] = last_run;
-  if (aovs != 0 && !first_hit) {  // background (a hit's were written where it was met)
-    uint a = out_pixel(i, j) * 8u;
-    for (uint q = 0u; q < 8u; ++q) aov_out[a + q] = 0.0;
-    aov_out[a + 3u] = uintBitsToFloat(0x7fc00000u);  // depth NaN
-    aov_out[a + 7u] = -1.0;
-  }
-  // One atomic per subgroup, whatever its size (NVIDIA 32, lavapipe 8).
+  if (aovs != 0 && !first_hit) write_miss_aovs(i, j);  // background (a hit's were written where it was met)
+  add_counts(uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays));
+}
+
+// This invocation's work added to its band's counters: nodes visited and
+// primitives tested, and `rays` by kind (eye, shadow, reflected,
+// refracted). One atomic per subgroup, whatever its size (NVIDIA 32,
+// lavapipe 8).
+void add_counts(uvec4 rays) {
   uvec2 work = subgroupAdd(uvec2(visited, tested));
-  uvec4 kinds = subgroupAdd(uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays));
+  uvec4 kinds = subgroupAdd(rays);
   if (subgroupElect()) {
     // Spread over HR_COUNT_SLOTS pairs per band, so that the subgroups of
     // a row do not all wait on one address.
