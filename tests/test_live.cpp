@@ -20,6 +20,7 @@
 
 #include "holoray/errors.hpp"
 #include "image/image_io.hpp"
+#include "image/metrics.hpp"
 #include "live/event_script.hpp"
 #include "live/shown_codes.hpp"
 #include "live/view_controls.hpp"
@@ -209,6 +210,42 @@ TEST(Live, TheFrameShownIsTheGpuRenderByteForByte) {
     ASSERT_EQ(render.status, 0) << render.output;
     EXPECT_TRUE(read_bytes(dir.file("shown.png")) == read_bytes(dir.file("render.png"))) << c.what;
   }
+}
+
+// Path traced live: each frame of a still view adds --spp samples to the
+// last (the samples after its own, as a render of more samples draws them),
+// so the view after 4 frames is a 16-sample render's to float rounding (the
+// mean kept between frames is its sum rounded again); the first frame
+// alone is the 4-sample render's, and past --max-spp the view is kept.
+TEST(Live, APathTracedViewRefinesToTheRenderOfAllItsSamples) {
+  NEED_XVFB();
+  TempDir dir;
+  const std::string light = " --camera pinhole --resolution 48x48 --integrator path --lights " + source_dir() +
+                            "/examples/lights/cornell_box.toml";
+  const std::string scene = source_dir() + "/examples/lights/cornell_box.nff";
+  for (const int frames : {1, 4, 6}) {
+    const CommandResult live = on_xvfb("live " + scene + light + " --spp 4 --max-spp 16 --windowed --exit-after " +
+                                       std::to_string(frames) + " --screenshot " + dir.file("shown.exr"));
+    ASSERT_EQ(live.status, 0) << live.output;
+    const int samples = std::min(4 * frames, 16);
+    const CommandResult render = run_cli("render " + scene + light + " --spp " + std::to_string(samples) +
+                                         " --device gpu -q -o " + dir.file("render.exr"));
+    ASSERT_EQ(render.status, 0) << render.output;
+    const ImageBuffer shown = read_image(dir.file("shown.exr")), rendered = read_image(dir.file("render.exr"));
+    const double psnr = compare_images(shown, rendered).psnr_all();
+    if (frames == 1) EXPECT_TRUE(std::isinf(psnr)) << "one frame: the 4-sample render itself, " << psnr << " dB";
+    else EXPECT_GE(psnr, 60) << frames << " frames";
+    if (frames == 4) {  // and not the 4-sample image any more
+      run_cli("render " + scene + light + " --spp 4 --device gpu -q -o " + dir.file("four.exr"));
+      EXPECT_LT(compare_images(shown, read_image(dir.file("four.exr"))).psnr_all(), 45);
+    }
+  }
+  const CommandResult shot = on_xvfb("live --shot " + source_dir() + "/examples/shots/sliding_primitives.toml --integrator path");
+  EXPECT_EQ(shot.status, 1);
+  EXPECT_NE(shot.output.find("--integrator path: live path traces a still scene; a shot path traces with "
+                             "`holoray animate --integrator path`"),
+            std::string::npos)
+      << shot.output;
 }
 
 TEST(Live, AReplayedOrbitAndFocusChangeShowTheRenderFromTheMovedViewpointAndPlane) {

@@ -40,6 +40,11 @@ struct LiveOptions {
   /// The 8-bit encoding shown and written; nullopt: srgb for a mesh
   /// scene, linear for NFF and Tachyon (as `holoray render`).
   std::optional<Encoding> encoding;
+  /// Under the path integrator (RenderOptions::integrator): while the view
+  /// stands still, each frame adds RenderOptions::spp samples to the one
+  /// before (the samples after its own, as a render of more samples draws
+  /// them), up to this many per pixel; 0: every frame its spp alone.
+  int max_spp = 256;
   /// Lines for the user: the files written, the view at the end.
   std::function<void(const std::string& line)> print;
   /// Asked between frames and at least twice a second while idle: true ends

@@ -1,10 +1,13 @@
 #include "cli/live_command.hpp"
 
+#include "cli/light_options.hpp"
+
 #include <fmt/format.h>
 
 #include "cli/devices_command.hpp"
 #include "cli/error_words.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/light_options.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/scene_warnings.hpp"
 #include "cli/validators.hpp"
@@ -33,6 +36,11 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
   cmd->add_option("--spp", r.spp, "Samples per pixel (jittered inside the pixel)")->check(in_range(1))->capture_default_str();
   cmd->add_option("--max-depth", r.max_depth, "Ray-tree depth limit, eye ray = 1 (default: the scene's Tachyon raydepth, else 5, the SPD's)")
       ->check(in_range(1, api::kMaxDepth));
+  add_light_options(*cmd, r.light, true);
+  cmd->get_option("--lights")->excludes(shot);
+  cmd->add_option("--max-spp", o.max_spp, "With --integrator path: while the view stands still, each frame adds --spp samples to the last, up to this many per pixel (0: every frame its --spp alone)")
+      ->check(in_range(0))
+      ->capture_default_str();
   cmd->add_option("--encoding", r.encoding, "8-bit encoding shown and written: linear, srgb, or auto (srgb for a mesh scene, linear for NFF and Tachyon), as render's PNGs")
       ->check(one_of({"auto", "linear", "srgb"}))
       ->capture_default_str();
@@ -55,7 +63,8 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
                 {"Camera", {"--camera", "--resolution", "--display", "--looking-glass", "--views", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance"}},
-                {"Tracing", {"--device", "--spp", "--max-depth"}}},
+                {"Tracing", {"--device", "--spp", "--max-spp", "--max-depth"}},
+                {"Light", light_option_names(true)}},
                {"holoray live examples/primitives.nff --lenses 64x64 --pixels-per-lens 12",
                 "holoray live --shot examples/shots/sliding_primitives.toml --play",
                 "holoray live examples/primitives.nff --display examples/displays/lenticular_4k.toml --monitor 1"},
@@ -82,6 +91,10 @@ int run_live(const LiveCommandOptions& o) {
     options.spp = r.spp;
     options.max_depth = r.max_depth;
     options.device = r.device;
+    const LightChoice light = light_choice(r.light);
+    options.integrator = light.integrator;
+    options.environment = light.environment;
+    options.blender_principled = light.blender_principled;
     const StopOnSignal interrupt;
     api::LiveOptions live;
     live.monitor = o.monitor;
@@ -94,6 +107,7 @@ int run_live(const LiveCommandOptions& o) {
     if (r.encoding != "auto") live.encoding = parse_encoding(r.encoding);
     live.play = o.play;
     live.simulate = o.simulate;
+    live.max_spp = o.max_spp;
     if (!r.quiet) live.print = [](const std::string& line) { fmt::print("{}\n", line); };
     live.stop = [&] { return interrupt.requested(); };
     api::LiveResult result;
@@ -102,7 +116,8 @@ int run_live(const LiveCommandOptions& o) {
       const bool other = v.camera == "pinhole" || !v.display.empty() || !v.looking_glass.empty();
       result = api::run_live_shot(o.shot, other ? std::optional(camera) : std::nullopt, options, live);
     } else {
-      const api::Scene scene = api::Scene::load(r.scene, {r.camera_name, r.texture_paths});
+      api::Scene scene = api::Scene::load(r.scene, {r.camera_name, r.texture_paths});
+      if (!r.light.lights.empty()) scene.add_lights(r.light.lights);
       if (!r.quiet) print_scene_warnings(scene.warnings(), scene.warning_count(), r.scene);
       result = api::run_live(scene, camera, options, live);
     }

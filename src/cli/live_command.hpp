@@ -24,6 +24,7 @@ struct LiveCommandOptions {
   std::string shot;         ///< --shot FILE (instead of a scene)
   bool play = false;        ///< --play
   bool simulate = false;    ///< --simulate
+  int max_spp = 256;        ///< --max-spp (the path integrator's refinement)
 };
 
 CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o);

@@ -332,7 +332,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
   m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
                                                              .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
-  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 20};
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 24};
   vk::DescriptorSetLayout raw_layout = *m.set_layout;
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
@@ -447,7 +447,7 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
   readback(aovs, out, stats);
 }
 
-void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats) {
+void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats, int first_sample) {
   Impl& m = *impl_;
   if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
   if (frames.empty()) throw std::logic_error("GpuRenderer::render without a frame");
@@ -545,8 +545,10 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     // longer for them.
     const bool path = (m.features & HR_FEATURE_PATH) != 0;
     const int passes = path ? std::max(1, frames[0].mode.w) : 1;
-    for (int pass = 0; pass < passes; ++pass) {
-      if (pass > 0)
+    if (first_sample < 0 || (first_sample > 0 && (!path || first_sample >= passes)))
+      throw std::logic_error("GpuRenderer::trace: a first sample past the samples per pixel, or without the path integrator");
+    for (int pass = first_sample; pass < passes; ++pass) {
+      if (pass > first_sample)
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                            vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                              .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
@@ -554,7 +556,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
       for (int b = 0; b < bands; ++b) {
         const Band& band = band_list[size_t(b)];
         cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                  {band.row0, band.rows, b, band.frame, pass});
+                                  {band.row0, band.rows, b, band.frame, pass, first_sample});
         cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
       }
     }

@@ -97,8 +97,11 @@ class GpuRenderer {
   void render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
               GpuFrameStats& stats);
   /// render() in two: the frames traced into the device's buffers, where
-  /// they stay (a Presenter shows them from there)...
-  void trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats);
+  /// they stay (a Presenter shows them from there)... Under the path
+  /// integrator, `first_sample` > 0 adds samples first_sample to spp - 1
+  /// (GpuFrame::mode.w) to the image the last trace left, the mean of its
+  /// first_sample samples: a still view refined (live's progressive samples).
+  void trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats, int first_sample = 0);
   /// ...and the last frame traced copied into `out` (W x H; the AOVs that
   /// `aovs` names, which that frame must have traced). Sets
   /// stats.readback_seconds.

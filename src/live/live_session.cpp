@@ -4,9 +4,11 @@
 // only when a shot's objects move); each change of view places the camera
 // again from the moved viewpoint, exactly as `holoray render` places it,
 // traces it into the device's buffers and shows it through the Presenter,
-// all on one device. Nothing renders while nothing changes.
+// all on one device. Nothing renders while nothing changes, but a
+// path-traced view, which takes more samples while it stands still.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -64,6 +66,8 @@ class Session {
     if (!device.gpu) throw std::invalid_argument("`device`: holoray live renders on the GPU path: gpu or gpu:N");
     if (options.spp < 1) throw std::invalid_argument(fmt::format("spp: expected at least 1 sample per pixel, got {}", options.spp));
     if (live.exit_after < 0) throw std::invalid_argument(fmt::format("exit after: expected 0 or more frames, got {}", live.exit_after));
+    if (live.max_spp < 0) throw std::invalid_argument(fmt::format("max spp: expected 0 or more samples per pixel, got {}", live.max_spp));
+    path_ = source_.settings.integrator == holoray::Integrator::path;
     if (!live.screenshot.empty() && !is_supported_output(live.screenshot))
       throw std::invalid_argument(fmt::format("screenshot: expected a .png or .exr file, got '{}'", live.screenshot));
     if (!live.events.empty()) script_ = live::read_event_script(live.events);
@@ -109,8 +113,8 @@ class Session {
     while (!window_->closed()) {
       if (live_.stop && live_.stop()) break;
       // A scripted run (--events, --exit-after) renders frame after frame,
-      // and so does a playing shot.
-      const bool busy = next < script_.size() || live_.exit_after > 0 || playing_;
+      // and so does a playing shot, and a path-traced view still refining.
+      const bool busy = next < script_.size() || live_.exit_after > 0 || playing_ || refining();
       // Idle: wait for input (at most half a second, to ask `stop` again).
       std::vector<InputEvent> input = window_->events(!dirty && !busy);
       while (next < script_.size() && script_[next].frame <= frames_) input.push_back(script_[next++].event);
@@ -118,7 +122,7 @@ class Session {
       if (quit_) break;
       if (playing_) dirty |= advance();
       if (!dirty && !busy) continue;
-      if (!show()) continue;  // minimised
+      if (!show(dirty)) continue;  // minimised
       if (frames_ == 0) first = Clock::now();
       ++frames_;
       result.seconds = std::chrono::duration<double>(Clock::now() - first).count();
@@ -253,12 +257,19 @@ class Session {
     if (source_.seek && seeked_ != shot_frame_) source_.seek(shot_frame_), seeked_ = shot_frame_;
     gpu::ScenePose now(source_.scene->accel());
     if (uploaded_ && *uploaded_ == now) return;
-    gpu_->load(gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high, gpu_->bvh_width()), image_bytes_, panel_);
+    gpu::SceneArrays arrays = gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high, gpu_->bvh_width());
+    if (path_) gpu::lay_out_path(RenderContext(*source_.scene, source_.settings), arrays);
+    gpu_->load(arrays, image_bytes_, panel_);
     uploaded_ = std::move(now);
   }
 
-  // Traces the view and shows it; false when the window had no room.
-  bool show() {
+  // Whether the path integrator's view shown is still taking samples
+  // (LiveOptions::max_spp): the panel's colours alone, not a simulated eye's view.
+  bool refining() const { return path_ && !display_ && samples_ > 0 && samples_ < live_.max_spp; }
+
+  // Traces the view and shows it; false when the window had no room. A
+  // path-traced view that did not `change` adds samples to the last.
+  bool show(bool changed) {
     const auto t0 = Clock::now();
     gpu::GpuFrameStats stats;
     try {
@@ -284,7 +295,15 @@ class Session {
         pack.step = {P, lenticular ? 1 : P};
       }
       if (!display_) {
-        gpu_->trace(gpu::camera_frames(context, *camera_, wanted, options_.spp, 0, H), W, H, stats);
+        // A path-traced view that did not change takes the samples after
+        // the last trace's, until it has max_spp; then it is shown as it is.
+        const bool still = path_ && !changed && samples_ > 0;
+        if (!still || refining()) {
+          const int first = still ? samples_ : 0;
+          const int spp = still ? std::min(first + options_.spp, live_.max_spp) : options_.spp;
+          gpu_->trace(gpu::camera_frames(context, *camera_, wanted, spp, 0, H), W, H, stats, first);
+          samples_ = spp;
+        }
         if (!presenter_->show(pack, window_->framebuffer_size())) return false;
       } else {
         // What an eye sees through the display (preview/simulate.hpp), from
@@ -352,6 +371,8 @@ class Session {
   std::optional<DisplayDesc> display_;
   Vec3 eye_mm_{0, 0, 600};
   bool retrace_ = true;
+  bool path_ = false;         // the path integrator: a still view refines (refining())
+  int samples_ = 0;           // per pixel in the view shown
   FrameBuffers panel_image_;
   ImageBuffer simulated_;
   std::optional<LiveView> moved_;  // set once the controls moved the view

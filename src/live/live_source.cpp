@@ -43,6 +43,9 @@ LiveSource shot_source(const std::string& path, const std::optional<Camera>& cam
     throw std::invalid_argument("`Quilt`: a quilt is not shown live; show a Looking Glass's own panel image (`LookingGlass`)");
   if (camera && std::holds_alternative<LensArray>(*camera))
     throw std::invalid_argument("camera: the shot's [array] places the lens array; pass a pinhole, display or Looking Glass camera");
+  if (options.integrator == Integrator::path)
+    throw std::invalid_argument("`integrator` path: live path traces a still scene; a shot path traces with "
+                                "`holoray animate --integrator path`");
   if (options.max_depth < 0 || options.max_depth > kMaxDepth)
     throw std::invalid_argument(fmt::format("max_depth: expected 1 to {} (0: the scene's), got {}", kMaxDepth, options.max_depth));
   LiveSource s;

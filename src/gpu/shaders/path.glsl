@@ -317,7 +317,9 @@ vec3 path_radiance(int i, int j, EyeRay e, inout HrSampler rng, bool aovs_now, i
 
 // One pass: sample band.sample_index of pixel (i, j), placed by the
 // pixel's sampler (path_pixel_sum: sample 0 at the centre), added to the
-// colour the passes before left; the last pass leaves the mean.
+// colour the passes before left; the last pass leaves the mean. A trace
+// that goes on from an earlier one's mean (band.first_sample > 0, live's
+// refinement) draws the samples after that one's.
 void path_main() {
   int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
   if (i >= F.size.x || int(gl_GlobalInvocationID.y) >= band.rows) return;
@@ -339,14 +341,17 @@ void path_main() {
     c = path_escape(e.d);
   }
   if (aovs_now && !first_hit) write_miss_aovs(i, j);
+  // The sum so far: none before sample 0; the mean of first_sample
+  // samples a trace before scaled back to their sum at its first pass.
+  float before = k == 0 ? 0.0 : k == band.first_sample ? float(k) : 1.0;
   float last = k == spp - 1 ? 1.0 / float(spp) : 1.0;
   if (kPanel && F.panel_kind.x == 3) {  // one channel of the pixel (display_renderer.cpp, pack_subpixels)
     int q = i % 3, ch = F.panel_kind.y != 0 ? q : 2 - q;
     uint at = out_pixel(i / 3, j) * 3u + uint(ch);
-    colour_sum[at] = ((k == 0 ? 0.0 : colour_sum[at]) + c[ch]) * last;
+    colour_sum[at] = ((before == 0.0 ? 0.0 : colour_sum[at] * before) + c[ch]) * last;
   } else {
     uint at = out_pixel(i, j) * 3u;
-    for (uint ch = 0u; ch < 3u; ++ch) colour_sum[at + ch] = ((k == 0 ? 0.0 : colour_sum[at + ch]) + c[ch]) * last;
+    for (uint ch = 0u; ch < 3u; ++ch) colour_sum[at + ch] = ((before == 0.0 ? 0.0 : colour_sum[at + ch] * before) + c[ch]) * last;
   }
   add_counts(rays);
 }

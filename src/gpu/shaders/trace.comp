@@ -114,8 +114,9 @@ layout(std430, binding = 19) buffer ShadowQueueBlock { uvec4 shadow_head; GpuSha
 layout(std430, binding = 20) buffer ShadowLastBlock { uint shadow_last[]; };
 layout(std430, binding = 21) buffer ShadowTermBlock { vec4 shadow_terms[]; };
 
-// `sample_index`: the path integrator's pass (kPath).
-layout(push_constant) uniform Band { int row0; int rows; int index; int frame; int sample_index; } band;
+// `sample_index`: the path integrator's pass (kPath); `first_sample`: its
+// first this trace (> 0: the colours hold the mean of that many already).
+layout(push_constant) uniform Band { int row0; int rows; int index; int frame; int sample_index; int first_sample; } band;
 
 const float kInf = 1.0 / 0.0;
 
