@@ -3,7 +3,8 @@
 # 420x560 px views, 40 degree view cone, focal plane at the camera's focus
 # distance, side by side in one Blender process, alternating which goes
 # first: the add-on (F12 with the quilt camera: export, holoray, loading
-# back) against Cycles rendering the 48 sheared views itself (the camera
+# back), Whitted and path traced, against Cycles rendering the 48 sheared
+# views itself at the path tracing's samples and bounces (the camera
 # moved along its x axis by D tan(phi_k) and its frame shifted back, as the
 # quilt's views are; CYCLES_SAMPLES samples, no denoising). Wall seconds,
 # ROUNDS rounds; writes bench/blender_quilt_results.md.
@@ -29,17 +30,32 @@ base, shift0 = cam.location.copy(), cam.data.shift_x
 right = (cam.matrix_world.to_3x3() @ __import__("mathutils").Vector((1, 0, 0))).normalized()
 D = cam.data.dof.focus_distance
 
-def holoray_quilt():
+BOUNCES = 4  # Cycles' bounces; holoray's ray depth is one more (the eye ray)
+
+def holoray_quilt(integrator):
     sc.render.engine = "HOLORAY"
     h.camera = "QUILT"  # the resolution follows: 3360x3360
+    h.integrator, h.samples, h.max_depth = integrator, samples if integrator == "PATH" else 1, BOUNCES + 1
     t = time.perf_counter()
     bpy.ops.render.render()
     return time.perf_counter() - t
 
+def holoray_whitted():
+    return holoray_quilt("WHITTED")
+
+def holoray_path():
+    return holoray_quilt("PATH")
+
 def cycles_views():
     sc.render.engine = "CYCLES"
-    sc.cycles.samples = samples
-    sc.cycles.use_denoising = False
+    c = sc.cycles
+    # The fair settings of tests/blender/path_oracle.py: no clamping, glossy
+    # blur, light threshold, adaptive stopping or denoiser; box filter; the
+    # same bounces as holoray's path tracing.
+    c.samples, c.use_adaptive_sampling, c.use_denoising = samples, False, False
+    c.sample_clamp_direct = c.sample_clamp_indirect = c.blur_glossy = c.light_sampling_threshold = 0.0
+    c.pixel_filter_type, c.filter_width = "BOX", 1.0
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = c.transparent_max_bounces = BOUNCES
     sc.render.resolution_x, sc.render.resolution_y, sc.render.resolution_percentage = 420, 560, 100
     n = 48
     t = time.perf_counter()
@@ -54,30 +70,33 @@ def cycles_views():
     cam.location, cam.data.shift_x = base, shift0
     return elapsed
 
-mine, theirs = [], []
+times = {holoray_whitted: [], holoray_path: [], cycles_views: []}
 for r in range(rounds):
-    order = (holoray_quilt, cycles_views) if r % 2 == 0 else (cycles_views, holoray_quilt)
+    order = list(times) if r % 2 == 0 else list(reversed(times))
     for f in order:
-        (mine if f is holoray_quilt else theirs).append(f())
-m, c = statistics.median(mine), statistics.median(theirs)
-print(f"QUILT {m:.3f} {c:.3f} {' '.join(f'{x:.3f}' for x in mine)} | {' '.join(f'{x:.3f}' for x in theirs)}", flush=True)
+        times[f].append(f())
+w, p, c = (times[f] for f in (holoray_whitted, holoray_path, cycles_views))
+row = lambda xs: ' '.join(f'{x:.3f}' for x in xs)
+print(f"QUILT {statistics.median(w):.3f} {statistics.median(p):.3f} {statistics.median(c):.3f} {row(w)} | {row(p)} | {row(c)}", flush=True)
 PY
 out=$(ROUNDS=$ROUNDS CYCLES_SAMPLES=$CYCLES_SAMPLES blender -b --factory-startup --python "$tmp/quilt.py" 2>&1 | grep '^QUILT ')
-read -r _ mine cycles rest <<<"$out"
+read -r _ whitted path cycles rest <<<"$out"
+IFS='|' read -r whitted_rounds path_rounds cycles_rounds <<<"$rest"
 {
   echo "# An 8x6 quilt in Blender: the holoray add-on against Cycles"
   echo
   echo "\`bash bench/run_blender_quilt_bench.sh\` (ROUNDS=$ROUNDS, CYCLES_SAMPLES=$CYCLES_SAMPLES) on $(machine), commit $(git describe --always --dirty)."
   echo
   echo "The add-on tests' scene as an 8x6 quilt of 420x560 views (3360x3360), 40 degree view cone, focal plane at the camera's"
-  echo "focus distance, in one Blender process, alternating which goes first. Wall seconds, medians of the rounds:"
+  echo "focus distance, in one Blender process, the three in turn, alternating the order. Wall seconds, medians of the rounds:"
   echo
   echo "| renderer | s | rounds |"
   echo "|---|---:|---|"
-  echo "| holoray add-on (F12: export, holoray's Whitted trace of every view, loading back) | $mine | ${rest%%|*}|"
-  echo "| Cycles, the 48 sheared views rendered one by one ($CYCLES_SAMPLES samples, no denoising) | $cycles | ${rest#*| } |"
+  echo "| holoray add-on, Whitted (F12: export, one sample a pixel, loading back) | $whitted | $whitted_rounds |"
+  echo "| holoray add-on, path tracing ($CYCLES_SAMPLES samples, ray depth 5) | $path | $path_rounds |"
+  echo "| Cycles, the 48 sheared views rendered one by one ($CYCLES_SAMPLES samples, 4 bounces, fair settings) | $cycles | $cycles_rounds |"
   echo
-  echo "Cycles / holoray: $(/usr/bin/python3 -c "print(f'{$cycles / $mine:.1f}x')"). The two are not the same light transport: Cycles"
-  echo "path traces (soft shadows, indirect light, noise at $CYCLES_SAMPLES samples), holoray ray traces as Whitted (one sample per pixel)."
+  echo "Cycles / holoray path tracing, at equal samples and bounces: $(/usr/bin/python3 -c "print(f'{$cycles / $path:.2f}x')")."
+  echo "Cycles / holoray Whitted: $(/usr/bin/python3 -c "print(f'{$cycles / $whitted:.1f}x')") (not the same light transport: hard shadows, no indirect light)."
 } > bench/blender_quilt_results.md
 cat bench/blender_quilt_results.md

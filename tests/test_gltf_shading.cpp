@@ -28,9 +28,9 @@ TEST(GltfBrdf, AtNormalIncidenceADielectricWithoutFresnelIsLambertian) {
   for (const double roughness : {0.2, 0.5, 1.0}) {
     const GltfSurface s{{0.3, 0.5, 0.7}, 0, roughness, 0};
     const Vec3 c = gltf_direct(s, n, n, n);
-    EXPECT_NEAR(c.x, 0.3, 1e-12);
-    EXPECT_NEAR(c.y, 0.5, 1e-12);
-    EXPECT_NEAR(c.z, 0.7, 1e-12);
+    EXPECT_NEAR(c.x, 0.3, 1e-6);  // computed in float (shading/gltf_whitted.h), on both devices
+    EXPECT_NEAR(c.y, 0.5, 1e-6);
+    EXPECT_NEAR(c.z, 0.7, 1e-6);
   }
   EXPECT_NEAR(dielectric_f0(1.5), 0.04, 1e-15);
 }
@@ -45,9 +45,9 @@ TEST(GltfBrdf, IsReciprocal) {
   for (const GltfSurface& s : {metal, plastic}) {
     const Vec3 ab = gltf_direct(s, n, a, b) * (1 / dot(n, b));
     const Vec3 ba = gltf_direct(s, n, b, a) * (1 / dot(n, a));
-    EXPECT_NEAR(ab.x, ba.x, 1e-12 * ab.x);
-    EXPECT_NEAR(ab.y, ba.y, 1e-12 * ab.y);
-    EXPECT_NEAR(ab.z, ba.z, 1e-12 * ab.z);
+    EXPECT_NEAR(ab.x, ba.x, 1e-6 * ab.x);  // float's rounding
+    EXPECT_NEAR(ab.y, ba.y, 1e-6 * ab.y);
+    EXPECT_NEAR(ab.z, ba.z, 1e-6 * ab.z);
   }
 }
 
@@ -76,10 +76,10 @@ TEST(GltfBrdf, AWhiteSurfaceReflectsAtMostWhatArrives) {
 TEST(GltfBrdf, TheMirrorWeightIsTheFresnelMixAtTheViewAngle) {
   const GltfSurface s{{0.8, 0.5, 0.2}, 0.25, 0, 0.04};
   const Vec3 w = gltf_mirror_weight(s, 1);
-  EXPECT_NEAR(w.x, 0.75 * 0.04 + 0.25 * 0.8, 1e-12);
-  EXPECT_NEAR(w.z, 0.75 * 0.04 + 0.25 * 0.2, 1e-12);
+  EXPECT_NEAR(w.x, 0.75 * 0.04 + 0.25 * 0.8, 1e-7);
+  EXPECT_NEAR(w.z, 0.75 * 0.04 + 0.25 * 0.2, 1e-7);
   const Vec3 grazing = gltf_mirror_weight(s, 0);
-  EXPECT_NEAR(grazing.y, 1, 1e-12);
+  EXPECT_NEAR(grazing.y, 1, 1e-7);
 }
 
 // A glTF scene: squares facing +z, square k with material k; the camera on

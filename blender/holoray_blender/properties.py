@@ -115,7 +115,7 @@ class HoloraySettings(bpy.types.PropertyGroup):
     integrator: EnumProperty(
         name="Integrator", default="PATH",
         items=[("PATH", "Path tracing", "Light as Cycles renders it: the World, area lights, soft shadows, light "
-                "between surfaces; noise falls with the samples (CPU)"),
+                "between surfaces; noise falls with the samples (CPU or GPU)"),
                ("WHITTED", "Whitted", "The paper's ray tracing: point, spot and sun lights, hard shadows, mirrors; "
                 "exact and fast, no World light")])
     samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,

@@ -6,6 +6,7 @@
 #include "render/emitters.hpp"
 #include "render/environment.hpp"
 #include "render/gltf_brdf.hpp"
+#include "render/light_falloff.hpp"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
 #include "shading/warp.h"
@@ -44,19 +45,6 @@ sh::HrBsdf bsdf_of(const SurfacePoint& sp, float cos_o, bool entering, bool prin
   const float ior = m.ior > 0 ? static_cast<float>(m.ior) : 1.0f;
   return sh::hr_plain_bsdf(to_f(c * m.kd), sh::vec3(static_cast<float>(m.ks)), sh::vec3(static_cast<float>(m.transmittance)),
                            entering ? 1.0f / ior : ior);
-}
-
-sh::HrLightFalloff falloff_of(const PointLight& l) {
-  sh::HrLightFalloff f;
-  f.kind = static_cast<int>(l.kind);
-  f.direction = to_f(l.direction);
-  f.kc = static_cast<float>(l.kc), f.kl = static_cast<float>(l.kl), f.kq = static_cast<float>(l.kq);
-  f.range = static_cast<float>(l.range);
-  f.fall_start = static_cast<float>(l.fall_start), f.fall_end = static_cast<float>(l.fall_end);
-  f.cos_fall_start = static_cast<float>(l.cos_fall_start), f.cos_fall_end = static_cast<float>(l.cos_fall_end);
-  f.smooth_cone = l.smooth_cone;
-  f.unit = l.unit_falloff;
-  return f;
 }
 
 bool black(const Vec3& v) { return !(v.x > 0 || v.y > 0 || v.z > 0); }
@@ -129,7 +117,7 @@ Vec3 direct_light(const RenderContext& scene, const Vertex& v, sh::HrSampler& sa
       if (!(dist > eps)) continue;
       dir = dir / dist;
     }
-    const float falloff = sh::hr_light_falloff(falloff_of(light), to_f(dir), static_cast<float>(dist));
+    const float falloff = sh::hr_light_falloff(falloff_params(light), to_f(dir), static_cast<float>(dist));
     if (falloff > 0) sum += light_sample(scene, v, dir, dist, light.intensity * (M_PI * falloff * cos_l), 0, counts);
   }
   for (const AreaLight& a : scene.scene().area_lights()) {

@@ -7,35 +7,6 @@
 
 namespace holoray {
 
-namespace shading {
-
-[[gnu::noinline]] double light_falloff(const PointLight& light, const Vec3& to_light, double dist) {
-  if (light.kind == LightKind::directional) return 1;
-  double a = 1;
-  if (light.kc != 1 || light.kl != 0 || light.kq != 0) a = 1 / (light.kc + (light.kl + light.kq * dist) * dist);
-  if (light.range > 0) {
-    const double x2 = (dist / light.range) * (dist / light.range);
-    const double w = std::clamp(1 - x2 * x2, 0.0, 1.0);
-    a *= w * w;
-  }
-  if (light.kind == LightKind::spot) {
-    const double cos_a = -dot(light.direction, to_light);
-    if (light.smooth_cone) {
-      const double cos_outer = light.cos_fall_end;
-      const double t = std::clamp((cos_a - cos_outer) / std::fmax(1e-3, light.cos_fall_start - cos_outer), 0.0, 1.0);
-      a *= t * t;
-    } else {
-      const double angle = std::acos(std::clamp(cos_a, -1.0, 1.0));
-      if (angle > light.fall_end) a = 0;
-      else if (angle > light.fall_start) a *= 1 - (angle - light.fall_start) / (light.fall_end - light.fall_start);
-    }
-  }
-  return a;
-}
-
-
-}  // namespace shading
-
 using namespace shading;
 
 Vec3 trace(const RenderContext& scene, const Ray& ray, int depth, RayCounts& counts) {

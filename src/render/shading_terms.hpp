@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "render/light_falloff.hpp"
 #include "render/ray_counts.hpp"
 #include "render/render_context.hpp"
 #include "render/shadow_cache.hpp"
@@ -47,12 +48,6 @@ inline void add_emission(const RenderContext& scene, const Ray& ray, const Surfa
   if (e.x > 0 || e.y > 0 || e.z > 0) colour += scene.emission(sp, length(sp.position - ray.org));
 }
 
-
-// How much of a light's intensity reaches a point at `dist` along
-// `to_light` (unit, toward the light): attenuation 1 / (kc + kl d + kq d^2),
-// KHR_lights_punctual's range window and the spot cone (Tachyon's linear
-// falloff in the angle, or glTF's smooth one). Exactly 1 for NFF's lights.
-double light_falloff(const PointLight& light, const Vec3& to_light, double dist);
 
 // The shadow ray toward `light` and the light's falloff there; false when
 // no shadow ray is cast (light on the surface, the normal faces away from

@@ -7,6 +7,7 @@
 
 #include "shading/bsdf.h"
 #include "shading/environment.h"
+#include "shading/gltf_whitted.h"
 #include "shading/lights.h"
 #include "shading/sampler.h"
 
@@ -37,7 +38,8 @@ HR_FN void hr_put3(HR_ARRAY_INOUT(r, 32), uint k, vec3 v) {
 /// point, r[14..16] a cosine direction, r[17..19] a cone direction,
 /// r[20..21] equirect uv of wi, r[22..24] the direction back (odd cases:
 /// through a turned environment, and a direction drawn in a texel), r[25] a spot's
-/// falloff, r[26] D, r[27] G1, r[28] the power heuristic, r[29..31] the
+/// falloff, r[26] D, r[27] G1, r[28] the power heuristic (cases 2 mod 4:
+/// r[26..28] Whitted's glTF term, hr_gltf_direct), r[29..31] the
 /// frame's tangent.
 HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   vec3 wo = normalize(vec3(a[0], a[1], abs(a[2]) + 0.05f));
@@ -93,6 +95,8 @@ HR_FN void hr_run_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   r[26] = hr_ggx_d(wo.z, max(a[13] * a[13], HR_MIN_ALPHA));
   r[27] = hr_smith_g1(wi.z, max(a[13] * a[13], HR_MIN_ALPHA));
   r[28] = hr_power_heuristic(a[6], a[7]);
+  if (c % 4u == 2u)  // Whitted's glTF term instead, lit along wi and seen along wo
+    hr_put3(r, 26u, hr_gltf_direct(vec3(a[9], a[10], a[11]), a[12], a[13], 0.04f, a[14], vec3(0.0f, 0.0f, 1.0f), wo, wi));
   vec3 t;
   vec3 bt;
   hr_frame(wi, t, bt);

@@ -11,6 +11,7 @@
 #include "shading/bsdf.h"
 #include "shading/lights.h"
 #include "shading/environment.h"
+#include "shading/gltf_whitted.h"
 
 layout(local_size_x = 64) in;
 

@@ -84,17 +84,6 @@ HrBsdf path_bsdf(GpuMaterial m, vec3 c, vec4 pbr, float cos_o, bool entering) {
   return hr_plain_bsdf(diffuse, mirror, transmit, entering ? 1.0 / ior : ior);
 }
 
-HrLightFalloff falloff_params(GpuLight L) {
-  HrLightFalloff f;
-  f.kind = int(L.position_kind.w);
-  f.direction = L.direction.xyz;
-  f.kc = L.attenuation.x, f.kl = L.attenuation.y, f.kq = L.attenuation.z, f.range = L.attenuation.w;
-  f.fall_start = L.cone.x, f.fall_end = L.cone.y, f.cos_fall_start = L.cone.z, f.cos_fall_end = L.cone.w;
-  f.smooth_cone = L.flags.x != 0;
-  f.unit = L.intensity_unit.w != 0.0;
-  return f;
-}
-
 bool any_positive(vec3 c) { return c.x > 0.0 || c.y > 0.0 || c.z > 0.0; }
 
 // ---- light sampling (path_tracer.cpp, light_sample and direct_light) ----

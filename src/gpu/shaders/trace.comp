@@ -14,6 +14,10 @@
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_basic : require
 #include "layout.h"
+// What both devices compute, one text (src/shading/): Whitted's falloff and
+// glTF terms here; the path integrator's sampling in path.glsl.
+#include "shading/lights.h"
+#include "shading/gltf_whitted.h"
 
 // Workgroup size: 32x2 by default (on an H200, 1.12x the frames of 8x8 on
 // balls_s4 and gears_s4), a specialization constant so that it can be tuned
@@ -647,63 +651,25 @@ Surface surface_of(vec3 o, vec3 d, Hit h) {
   return s;
 }
 
-// Light's falloff toward a point (shading.cpp, light_falloff).
-float falloff_of(GpuLight L, vec3 to_light, float dist) {
-  int kind = int(L.position_kind.w);
-  if (kind == HR_LIGHT_DIRECTIONAL) return 1.0;
-  float a = 1.0;
-  vec4 at = L.attenuation;
-  if (at.x != 1.0 || at.y != 0.0 || at.z != 0.0) a = 1.0 / (at.x + (at.y + at.z * dist) * dist);
-  if (at.w > 0.0) {
-    float x2 = (dist / at.w) * (dist / at.w);
-    float w = clamp(1.0 - x2 * x2, 0.0, 1.0);
-    a *= w * w;
-  }
-  if (kind == HR_LIGHT_SPOT) {
-    float cos_a = -dot(L.direction.xyz, to_light);
-    if (L.flags.x != 0) {
-      float t = clamp((cos_a - L.cone.w) / max(1e-3, L.cone.z - L.cone.w), 0.0, 1.0);
-      a *= t * t;
-    } else {
-      float angle = acos(clamp(cos_a, -1.0, 1.0));
-      if (angle > L.cone.y) a = 0.0;
-      else if (angle > L.cone.x) a *= 1.0 - (angle - L.cone.x) / (L.cone.y - L.cone.x);
-    }
-  }
-  return a;
+// A light's falloff parameters as the shared falloff takes them
+// (shading/lights.h; render/light_falloff.hpp on the CPU).
+HrLightFalloff falloff_params(GpuLight L) {
+  HrLightFalloff f;
+  f.kind = int(L.position_kind.w);
+  f.direction = L.direction.xyz;
+  f.kc = L.attenuation.x, f.kl = L.attenuation.y, f.kq = L.attenuation.z, f.range = L.attenuation.w;
+  f.fall_start = L.cone.x, f.fall_end = L.cone.y, f.cos_fall_start = L.cone.z, f.cos_fall_end = L.cone.w;
+  f.smooth_cone = L.flags.x != 0;
+  f.unit = L.intensity_unit.w != 0.0;
+  return f;
 }
 
 vec3 reflect_about(vec3 d, vec3 n) { return d - n * (2.0 * dot(d, n)); }
 
-// ---- glTF 2.0's metallic-roughness BRDF (render/gltf_brdf.cpp: the
-// specification's Appendix B) ----
+// ---- glTF 2.0's metallic-roughness BRDF: its terms are shading/gltf_whitted.h ----
 
 const float kPi = 3.141592653589793;
 const float kMirrorRoughness = 0.1;  // gltf_brdf.hpp: below it, one mirror ray
-
-float schlick_weight(float cos_theta) {
-  float m = 1.0 - clamp(cos_theta, 0.0, 1.0), m2 = m * m;
-  return m2 * m2 * m;
-}
-float smith_half(float n_dot_x, float a2) { return 1.0 / (n_dot_x + sqrt(a2 + (1.0 - a2) * n_dot_x * n_dot_x)); }
-
-// pi f(l, v) max(0, N.L) for base colour c and pbr = metallic, roughness,
-// transmission, F0 (gltf_direct).
-vec3 gltf_direct(vec3 c, vec4 pbr, vec3 n, vec3 view, vec3 to_light) {
-  float n_dot_l = dot(n, to_light);
-  if (!(n_dot_l > 0.0)) return vec3(0.0);
-  float n_dot_v = max(abs(dot(n, view)), 1e-6);
-  vec3 h = normalize(to_light + view);
-  float n_dot_h = max(dot(n, h), 0.0), v_dot_h = abs(dot(view, h));
-  float a = pbr.y * pbr.y, a2 = max(a * a, 1e-12);
-  float d_denom = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
-  float specular = a2 / (kPi * d_denom * d_denom) * smith_half(n_dot_l, a2) * smith_half(n_dot_v, a2);
-  float w = schlick_weight(v_dot_h), f_d = pbr.w + (1.0 - pbr.w) * w;
-  vec3 f_m = c + (vec3(1.0) - c) * w;
-  float metal = clamp(pbr.x, 0.0, 1.0);
-  vec3 dielectric = c * ((1.0 - f_d) * (1.0 - clamp(pbr.z, 0.0, 1.0))) + vec3(f_d * specular * kPi);
-  return (dielectric * (1.0 - metal) + f_m * (specular * kPi) * metal) * n_dot_l;
-}
 
 // ---- Tachyon's texfuncs and shading (render/textures.cpp,
 // render/models/tachyon_model.cpp; docs/tachyon-notes.md §3) ----
@@ -1180,19 +1146,18 @@ void main() {
         // the shadow rays, so that what they need is not kept across them).
         bool gltf = kGltf && int(m.emission_model.w) == HR_MODEL_GLTF;
         if (r.depth < max_depth && gltf) {  // GltfModel::secondary_rays
-          float T = m.ks_shine_t_ior.z, w = schlick_weight(abs(dot(ns, view)));
-          float f_d = pbr.w + (1.0 - pbr.w) * w, metal = clamp(pbr.x, 0.0, 1.0);
+          float T = m.ks_shine_t_ior.z, n_dot_v = dot(ns, view);
           if (pbr.y < kMirrorRoughness) {  // the Fresnel mix at N.V
             vec3 rd = reflect_about(r.d, ns);
             if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
-            vec3 mirror = vec3(f_d) * (1.0 - metal) + (colour + (vec3(1.0) - colour) * w) * metal;
+            vec3 mirror = hr_gltf_mirror_weight(colour, pbr.x, pbr.w, n_dot_v);
             stack[sp++] = Pending(above, normalize(rd), r.weight * mirror * (1.0 - T), r.depth + 1);
             ++reflected_rays;
           }
           // BLEND's uncovered share and the transmission's share of the covered
           // part both go straight through (thin-walled): one ray.
           if (T > 0.0 || pbr.z > 0.0) {
-            vec3 through = colour * ((1.0 - metal) * clamp(pbr.z, 0.0, 1.0) * (1.0 - f_d));
+            vec3 through = hr_gltf_transmit_weight(colour, pbr.x, pbr.w, pbr.z, n_dot_v);
             stack[sp++] = Pending(s.p - ng * eps, r.d, r.weight * (vec3(T) + through * (1.0 - T)), r.depth + 1);
             ++refracted_rays;
           }
@@ -1246,7 +1211,7 @@ void main() {
               to_light /= dist;
               casts = dist > eps && dot(ns, to_light) > 0.0;
               if (casts && L.intensity_unit.w == 0.0) {
-                falloff = falloff_of(L, to_light, dist);
+                falloff = hr_light_falloff(falloff_params(L), to_light, dist);
                 casts = falloff > 0.0;
               }
               dist -= eps;
@@ -1254,7 +1219,7 @@ void main() {
             if (casts) {
               vec3 term;
               if (gltf) {  // the BRDF times the part of the surface that is there
-                term = (1.0 - m.ks_shine_t_ior.z) * gltf_direct(colour, pbr, ns, view, to_light);
+                term = (1.0 - m.ks_shine_t_ior.z) * hr_gltf_direct(colour, pbr.x, pbr.y, pbr.w, pbr.z, ns, view, to_light);
               } else {
                 term = colour * (kd * dot(ns, to_light));
                 if (ks > 0.0) {
