@@ -458,6 +458,28 @@ TEST(PathIntegrator, AnimatedFramesArePathTracedAsTheStill) {
 namespace holoray {
 namespace {
 
+// A lights file's lights are the scene's own: a mesh file's stand-in
+// headlight goes (found by a Blender scene with a black world: the add-on
+// sends its lights as a file, and the headlight lit the scene besides).
+TEST(PathIntegrator, ALightsFileReplacesTheReadersHeadlight) {
+  test::TempDir dir;
+  test::write_text(dir.file("s.obj"), "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 4 3 2\n");
+  test::write_text(dir.file("l.toml"), "[[light]]\ntype = \"point\"\nposition = [0, 2, 0]\npower = 100\n");
+  api::Scene with_file = api::Scene::load(dir.file("s.obj"));
+  EXPECT_EQ(with_file.light_count(), 1) << "the headlight";
+  with_file.add_lights(dir.file("l.toml"));
+  EXPECT_EQ(with_file.light_count(), 1) << "the file's light alone";
+  api::RenderOptions o;
+  o.integrator = api::Integrator::path;
+  o.spp = 4;
+  api::Pinhole view;
+  view.width = 24, view.height = 18;
+  const api::Result file_only = api::render(with_file, view, o);
+  o.environment.colour = std::array<double, 3>{0, 0, 0};  // light of the render's own: no headlight either way
+  const api::Result black = api::render(with_file, view, o);
+  EXPECT_TRUE(std::isinf(api::psnr(file_only.colour, black.colour)));
+}
+
 // A mesh file without lights gets the readers' headlight; its emissive
 // surfaces are light of its own, so the path integrator leaves the
 // headlight out, as it does for an environment given on the command line:

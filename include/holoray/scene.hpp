@@ -77,8 +77,9 @@ class HOLORAY_API Scene {
   /// Adds the lights of a lights file (docs/lights.md, "Lights file"): point,
   /// spot, sun and area lights in Blender's words and units, in the scene's
   /// frame; area lights, light radii and sun angles light the path
-  /// integrator. Throws SceneError (file:line:col) for a malformed file,
-  /// std::runtime_error for one that cannot be read.
+  /// integrator. They replace a mesh file's stand-in headlight. Throws
+  /// SceneError (file:line:col) for a malformed file, std::runtime_error
+  /// for one that cannot be read.
   void add_lights(const std::string& path);
   /// The viewpoint every camera is placed by (NFF's `v`): eye, the point
   /// looked at, up, and the vertical field of view in degrees, in (0, 180).

@@ -142,6 +142,10 @@ void Scene::add_light(const Vec3d& position, const Vec3d& colour) {
 void Scene::add_lights(const std::string& path) {
   LightsFile file = read_lights_file(path);
   SceneDesc& desc = mutable_data().desc;
+  // A mesh file's stand-in headlight lit a scene without lights: the
+  // file's lights are the scene's own now.
+  if (!file.lights.empty() || !file.area_lights.empty())
+    std::erase_if(desc.lights, [](const Light& l) { return l.headlight; });
   desc.lights.insert(desc.lights.end(), file.lights.begin(), file.lights.end());
   desc.area_lights.insert(desc.area_lights.end(), file.area_lights.begin(), file.area_lights.end());
 }
