@@ -2,6 +2,7 @@
 
 On lavapipe where there is no GPU (setup.sh installs mesa-vulkan-drivers):
 the GPU's image agrees with the CPU's (PSNR on the 8-bit scale, the id AOV),
+path traced too,
 stats name the device, and bad values raise ValueError naming `device`.
 """
 from __future__ import annotations
@@ -31,6 +32,18 @@ def test_gpu_image_agrees_with_the_cpu_image():
     assert gpu.stats["rays"]["eye"] > 0
     assert cpu.stats["seconds"]["gpu_setup"] == 0
     assert 0 < gpu.stats["seconds"]["gpu_setup"] <= gpu.stats["seconds"]["build"]
+
+
+def test_path_tracing_on_the_gpu_agrees_with_the_cpu():
+    # The two devices draw the same samples (tests/test_gpu_light.cpp): an
+    # environment given as a colour, through Python's keywords.
+    scene = holoray.load_scene(str(REPO / "examples" / "primitives.nff"))
+    camera = holoray.Pinhole(resolution=(40, 30))
+    light = dict(integrator="path", environment=(0.3, 0.4, 0.5), spp=8)
+    cpu = holoray.render(scene, camera, **light)
+    gpu = holoray.render(scene, camera, device="gpu", **light)
+    assert cpu.colour.mean() > 0.05
+    assert psnr_8bit(cpu.colour, gpu.colour) >= 50
 
 
 def test_bad_device_names_the_keyword():
