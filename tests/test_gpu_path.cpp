@@ -522,6 +522,30 @@ void expect_a_million_triangles_right(const std::string& what) {
 
 TEST(GpuPath, AMillionTriangleMeshRendersRight) { expect_a_million_triangles_right("1M triangles"); }
 
+// Every buffer the kernel binds must fit the device's maxStorageBufferRange
+// (128 MiB on lavapipe): past it the kernel would read and write what is not
+// there. An image whose AOVs pass it is refused before anything is traced,
+// naming the sizes and the limit.
+TEST(GpuPath, AnImagePastTheDevicesBufferRangeIsRefusedNamingIt) {
+  const std::vector<gpu::DeviceInfo> devices = gpu::list_devices();
+  const auto chosen = std::find_if(devices.begin(), devices.end(), [](const gpu::DeviceInfo& d) { return d.is_gpu; });
+  const gpu::DeviceInfo& device = chosen != devices.end() ? *chosen : devices.front();  // what `gpu` takes
+  const uint64_t range = device.max_storage_buffer_range;
+  const int width = 4096, height = int((range / 32 + 1 + width - 1) / width);  // AOVs: 32 bytes a pixel
+  if (uint64_t(width) * uint64_t(height) > (uint64_t(1) << 26)) GTEST_SKIP() << "the device binds more than a test image takes";
+  const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
+  api::Pinhole view;
+  view.width = width, view.height = height;
+  RenderOptions o;
+  o.device = "gpu";
+  o.aovs = Aovs{true, true, true, true};
+  const double image_mib = double(width) * height * 32 / 1048576.0;
+  EXPECT_EQ(error_of([&] { api::render(scene, view, o); }),
+            fmt::format("the image's AOVs take {:.1f} MiB ({}x{} pixels), more than the {:.1f} MiB one buffer of {} holds "
+                        "(maxStorageBufferRange): render fewer pixels at a time, or on the CPU (`device` cpu)",
+                        image_mib, width, height, range / 1048576.0, device.name));
+}
+
 TEST(GpuPath, SummaryNamesTheDevice) {
   const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
   RenderOptions o;

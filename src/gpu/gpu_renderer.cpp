@@ -136,6 +136,7 @@ DeviceInfo info_of(const vk::raii::PhysicalDevice& pd) {
   for (uint32_t h = 0; h < m.memoryHeapCount; ++h)
     if (m.memoryHeaps[h].flags & vk::MemoryHeapFlagBits::eDeviceLocal) d.memory_bytes = std::max<uint64_t>(d.memory_bytes, m.memoryHeaps[h].size);
   d.subgroup_size = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
+  d.max_storage_buffer_range = p.limits.maxStorageBufferRange;
   return d;
 }
 
@@ -388,6 +389,20 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
   if (m.info.memory_bytes && need > m.info.memory_bytes)
     throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
                                s.bytes() / 1048576.0, image_bytes / 1048576.0, m.info.memory_bytes / 1048576.0, m.info.name));
+  // Each array is one binding, and a binding reaches maxStorageBufferRange
+  // bytes at most: past it the kernel would read what is not there.
+  auto fits = [&](const char* what, uint64_t bytes) {
+    if (bytes > m.max_storage_range)
+      throw GpuError(fmt::format("the scene's {} take {:.1f} MiB, more than the {:.1f} MiB one buffer of {} holds "
+                                 "(maxStorageBufferRange): render it on the CPU (`device` cpu)",
+                                 what, bytes / 1048576.0, m.max_storage_range / 1048576.0, m.info.name));
+  };
+  fits("hierarchy nodes", s.nodes.size() * sizeof(GpuNode)), fits("primitive references", s.refs.size() * 4);
+  fits("triangles", s.triangles.size() * sizeof(GpuTriangle)), fits("vertex normals", s.patches.size() * sizeof(GpuPatch));
+  fits("vertex colours", s.colours.size() * sizeof(GpuPatch)), fits("texture coordinates", s.uvs.size() * sizeof(GpuUv));
+  fits("spheres", s.spheres.size() * sizeof(GpuSphere)), fits("cones", s.cones.size() * sizeof(GpuCone));
+  fits("texels", s.texels.size() * 4), fits("environment texels", s.environment.size() * sizeof(GpuEnvTexel));
+  fits("emissive triangles", s.emitters.size() * sizeof(GpuEmitter));
   try {
     auto put = [&](int binding, const auto& v) {
       m.scene[binding] = m.upload(v.data(), v.size() * sizeof(v[0]));
@@ -465,6 +480,12 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
   if (m.info.memory_bytes && m.scene_bytes + need > m.info.memory_bytes)
     throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
                                m.scene_bytes / 1048576.0, need / 1048576.0, m.info.memory_bytes / 1048576.0, m.info.name));
+  // The colours and the AOVs are each one binding (the shadow queue is sized under the limit below).
+  if (const uint64_t image = pixels * (want_aovs ? 32 : 12); image > m.max_storage_range)
+    throw GpuError(fmt::format("the image's {} take {:.1f} MiB ({}x{} pixels), more than the {:.1f} MiB one buffer of {} "
+                               "holds (maxStorageBufferRange): render fewer pixels at a time, or on the CPU (`device` cpu)",
+                               want_aovs ? "AOVs" : "colours", image / 1048576.0, W, H, m.max_storage_range / 1048576.0,
+                               m.info.name));
   try {
     const vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc;
     if (m.colour.size < pixels * 12) {

@@ -32,6 +32,10 @@ struct DeviceInfo {
   bool is_gpu = false;       ///< integrated, discrete or virtual GPU (not a CPU device such as lavapipe)
   uint64_t memory_bytes = 0; ///< its largest device-local heap
   uint32_t subgroup_size = 0;
+  /// The most bytes one storage buffer binding reaches (maxStorageBufferRange:
+  /// 128 MiB on lavapipe, 4 GiB on NVIDIA): every array and image buffer the
+  /// kernel binds must fit, or GpuRenderer refuses it, saying so.
+  uint64_t max_storage_buffer_range = 0;
 };
 
 /// The devices of this machine, in the loader's order. Throws GpuError
@@ -74,7 +78,8 @@ class GpuRenderer {
   /// panels' or a Looking Glass's native images (GpuFrame::mode), else lens
   /// arrays, pinhole views or quilts. `image_bytes`: what those frames
   /// will need beside the scene. Throws GpuError, before allocating, when
-  /// the two pass the device's memory, naming all three sizes. Returns
+  /// the two pass the device's memory, naming all three sizes, or when one
+  /// array passes its max_storage_buffer_range, naming the array. Returns
   /// the seconds spent compiling (next to none where an earlier load compiled
   /// the same).
   double load(const SceneArrays& scene, uint64_t image_bytes, bool panel);
@@ -90,7 +95,9 @@ class GpuRenderer {
 
   /// Renders one frame of the loaded scene with `frame`'s camera into
   /// `out` (allocated by the caller, W x H as in `frame`; the AOVs that
-  /// `aovs` names). Throws GpuError on a lost device or failed allocation.
+  /// `aovs` names). Throws GpuError on a lost device or failed allocation,
+  /// and before tracing when the image's colours or AOVs pass the device's
+  /// max_storage_buffer_range.
   void render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats);
   /// Several cameras into one W x H image, each into its tile
   /// (GpuFrame::tile: a quilt's views), in one submission.
