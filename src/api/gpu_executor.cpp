@@ -150,8 +150,8 @@ int release_gpu_devices() noexcept {
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
   std::optional<gpu::ScenePose> uploaded;
-  bool uploaded_path = false;                 // laid out with the path integrator's lights
-  const void* uploaded_emitters = nullptr;    // ...those emitters (RenderSettings::emitters)
+  bool uploaded_path = false;       // laid out with the path integrator's lights
+  bool uploaded_emitters = false;   // ...and emitters (RenderSettings::emitters)
   uint64_t image_bytes = 0;
   bool panel = false;  // the camera's frames are panel images (gpu::renders_panel)
   int device = -1;
@@ -171,12 +171,14 @@ struct GpuExecutor::Impl {
 
   // Lays out and uploads `context`'s scene (and the path integrator's
   // lights where its settings ask for it) unless it stands as it did at the
-  // last upload, under the same integrator and emitters: seconds spent, 0
-  // when nothing changed.
+  // last upload, under the same integrator: seconds spent, 0 when nothing
+  // changed.
   double follow(const RenderContext& context) {
     const RenderScene& scene = context.scene();
     const bool path = context.settings().integrator == holoray::Integrator::path;
-    const void* emitters = context.settings().emitters;
+    // The emitters are a function of the pose (an animation builds them
+    // again every frame): whether there are any is all that can change.
+    const bool emitters = context.settings().emitters != nullptr;
     gpu::ScenePose now(scene.accel());
     if (uploaded && *uploaded == now && uploaded_path == path && uploaded_emitters == emitters) return 0;
     const auto start = std::chrono::steady_clock::now();
@@ -184,9 +186,8 @@ struct GpuExecutor::Impl {
     // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
     // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
     // against 5.8 and 1.8; docs/design/gpu.md).
-    gpu::SceneArrays arrays = gpu::lay_out(scene, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width());
-    if (path) gpu::lay_out_path(context, arrays);
-    compile_seconds = renderer->load(arrays, image_bytes, panel);
+    compile_seconds =
+        renderer->load(gpu::lay_out(context, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
     uploaded = std::move(now);
     uploaded_path = path, uploaded_emitters = emitters;
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -261,6 +261,12 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width)
   return out;
 }
 
+SceneArrays lay_out(const RenderContext& context, BvhQuality quality, int bvh_width) {
+  SceneArrays out = lay_out(context.scene(), quality, bvh_width);
+  if (context.settings().integrator == Integrator::path) lay_out_path(context, out);
+  return out;
+}
+
 void lay_out_path(const RenderContext& context, SceneArrays& out) {
   out.features |= HR_FEATURE_PATH;
   out.area_lights.clear();

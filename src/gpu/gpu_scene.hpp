@@ -81,6 +81,10 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::h
 /// std::length_error past the 2^31 texels or triangles an index holds.
 void lay_out_path(const RenderContext& context, SceneArrays& arrays);
 
+/// lay_out of `context`'s scene, with lay_out_path where its settings ask
+/// for the path integrator: what a render uploads.
+SceneArrays lay_out(const RenderContext& context, BvhQuality quality, int bvh_width);
+
 /// One frame's constants: the lens array (any grid, either recording
 /// mode), the scene's box grown by its epsilon, depth limit, background,
 /// ambient, spp, the AOVs wanted and the rows [row0, row1) rendered.

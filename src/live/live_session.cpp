@@ -257,9 +257,9 @@ class Session {
     if (source_.seek && seeked_ != shot_frame_) source_.seek(shot_frame_), seeked_ = shot_frame_;
     gpu::ScenePose now(source_.scene->accel());
     if (uploaded_ && *uploaded_ == now) return;
-    gpu::SceneArrays arrays = gpu::lay_out(*source_.scene, uploaded_ ? BvhQuality::fast : BvhQuality::high, gpu_->bvh_width());
-    if (path_) gpu::lay_out_path(RenderContext(*source_.scene, source_.settings), arrays);
-    gpu_->load(arrays, image_bytes_, panel_);
+    gpu_->load(gpu::lay_out(RenderContext(*source_.scene, source_.settings), uploaded_ ? BvhQuality::fast : BvhQuality::high,
+                            gpu_->bvh_width()),
+               image_bytes_, panel_);
     uploaded_ = std::move(now);
   }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/shading_vec.hpp"
 #include "shading/common.h"
 #include "shading/warp.h"
 
@@ -24,7 +25,7 @@ EmissiveTriangles::EmissiveTriangles(const RenderScene& scene) {
     for (uint32_t p = 0; p < count; ++p) {
       const int object = scene.object_of(g, PrimKind::triangle, p);
       const Material& m = scene.materials()[scene.material_of_object(object)];
-      const double lum = shading::hr_luminance(shading::vec3(float(m.emission.x), float(m.emission.y), float(m.emission.z)));
+      const double lum = shading::hr_luminance(to_f(m.emission));
       if (!(lum > 0)) continue;
       Vec3 v[3];
       for (int k = 0; k < 3; ++k) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "shading/environment.h"
+#include "render/shading_vec.hpp"
 
 namespace holoray {
 
@@ -72,12 +73,6 @@ EnvironmentMap::EnvironmentMap(const ImageBuffer& image, double strength, double
   }
   // What remains holds 1 to rounding: kept whole.
 }
-
-namespace {
-
-sh::vec3 to_f(const Vec3& v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
-
-}  // namespace
 
 Vec3 EnvironmentMap::texel(int x, int y) const {
   const float* p = &texels_[(static_cast<size_t>(y) * width_ + x) * 3];

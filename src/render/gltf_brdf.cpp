@@ -5,17 +5,11 @@
 #include <numbers>
 
 #include "shading/gltf_whitted.h"
+#include "render/shading_vec.hpp"
 
 namespace holoray {
 
-namespace {
-
 namespace sh = shading;
-
-sh::vec3 to_f(const Vec3& v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
-Vec3 to_d(const sh::vec3& v) { return {v.x, v.y, v.z}; }
-
-}  // namespace
 
 double dielectric_f0(double ior) {
   if (!(ior > 0)) return 0.04;

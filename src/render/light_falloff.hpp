@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/render_scene.hpp"
+#include "render/shading_vec.hpp"
 #include "shading/lights.h"
 
 namespace holoray {
@@ -13,7 +14,7 @@ namespace holoray {
 inline shading::HrLightFalloff falloff_params(const PointLight& light) {
   shading::HrLightFalloff f;
   f.kind = static_cast<int>(light.kind);
-  f.direction = {static_cast<float>(light.direction.x), static_cast<float>(light.direction.y), static_cast<float>(light.direction.z)};
+  f.direction = to_f(light.direction);
   f.kc = static_cast<float>(light.kc), f.kl = static_cast<float>(light.kl), f.kq = static_cast<float>(light.kq);
   f.range = static_cast<float>(light.range);
   f.fall_start = static_cast<float>(light.fall_start), f.fall_end = static_cast<float>(light.fall_end);
@@ -26,10 +27,7 @@ inline shading::HrLightFalloff falloff_params(const PointLight& light) {
 /// The falloff of `light` toward a point `dist` away along `to_light`
 /// (unit, from the point toward the light; world).
 inline double light_falloff(const PointLight& light, const Vec3& to_light, double dist) {
-  return shading::hr_light_falloff(falloff_params(light),
-                                   shading::vec3(static_cast<float>(to_light.x), static_cast<float>(to_light.y),
-                                                 static_cast<float>(to_light.z)),
-                                   static_cast<float>(dist));
+  return shading::hr_light_falloff(falloff_params(light), to_f(to_light), static_cast<float>(dist));
 }
 
 }  // namespace holoray

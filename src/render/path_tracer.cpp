@@ -7,6 +7,7 @@
 #include "render/environment.hpp"
 #include "render/gltf_brdf.hpp"
 #include "render/light_falloff.hpp"
+#include "render/shading_vec.hpp"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
 #include "shading/warp.h"
@@ -17,8 +18,6 @@ namespace sh = shading;
 
 namespace {
 
-sh::vec3 to_f(const Vec3& v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
-Vec3 to_d(const sh::vec3& v) { return {v.x, v.y, v.z}; }
 
 // Russian roulette starts after this many bounces (pbrt-v4's depth 1 of
 // its 0-based count is our third vertex: the eye's, and two more).
