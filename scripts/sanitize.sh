@@ -40,7 +40,9 @@ for kind in "${kinds[@]}"; do
       # reports the table as a 128-byte leak from an unknown module in every
       # process that used the device. Preloaded, the driver stays mapped and
       # its globals stay roots; a leak of ours is reported as before.
-      preload=$(ldconfig -p | awk '/libvulkan_lvp\.so / {print $NF; exit}')
+      # awk reads to the end: leaving early would end ldconfig on SIGPIPE,
+      # which pipefail turns into this script's exit status (141).
+      preload=$(ldconfig -p | awk '/libvulkan_lvp\.so / && !found {print $NF; found = 1}')
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ;;
     thread)
       dir=build-tsan
