@@ -50,62 +50,40 @@ DisplayCamera::DisplayCamera(const DisplayGeometry& g) : g_(g) {
   // the middle row; a lenticule's strip is measured across its axis.
   left_ = g.grid == Grid::lenticular ? (-half_w_ + g.offset) * cos_ : -half_w_ + g.offset;
   row_step_ = g.pitch * kSqrt3 / 2;
+  grid_ = {.grid = g.grid == Grid::square ? HR_LINE_GRID_SQUARE : g.grid == Grid::hex ? HR_LINE_GRID_HEX : HR_LINE_GRID_LENTICULAR,
+           .converging = std::isinf(g.view_distance) ? 0 : 1,
+           .pitch = g.pitch,
+           .gap = g.gap,
+           .sample_width = sw_,
+           .pixel_pitch = g.pixel_pitch,
+           .half_w = half_w_,
+           .half_h = half_h_,
+           .left = left_,
+           .row_step = row_step_,
+           .sin_slant = sin_,
+           .cos_slant = cos_,
+           .view_distance = g.view_distance};
 }
 
 Vec3 DisplayCamera::panel_point_local(int c, int j, double u, double v) const {
-  return {(c + u) * sw_ - half_w_, half_h_ - (j + v) * g_.pixel_pitch, -g_.gap};
+  return camera_lines::hr_panel_sample_point(grid_, c, j, u, v);
 }
 
 DisplayLens DisplayCamera::lens_at(const Vec3& p) const {
-  const double P = g_.pitch;
-  switch (g_.grid) {
-    case Grid::lenticular: return {static_cast<int>(std::floor((across(p) - left_) / P)), 0};
-    case Grid::square:
-      return {static_cast<int>(std::floor((p.x - left_) / P)), static_cast<int>(std::floor((half_h_ - p.y) / P))};
-    case Grid::hex: break;
-  }
-  // Hex: the nearest centre of the two rows around the point; ties go to the
-  // lower row, then the lower column (contract, "Hexagonal grid").
-  const int row0 = static_cast<int>(std::floor((half_h_ - P / 2 - p.y) / row_step_));
-  DisplayLens best{};
-  double best_d2 = INFINITY;
-  for (int ly = row0; ly <= row0 + 1; ++ly) {
-    const double shift = (ly & 1) ? 0.5 : 0.0;
-    // The cell [lx + shift, lx + 1 + shift) pitches from the left edge; at an
-    // exact boundary ceil - 1 picks the lower column.
-    const int lx = static_cast<int>(std::ceil((p.x - left_) / P - shift)) - 1;
-    const Vec3 c = lens_centre_local({lx, ly});
-    const double d2 = (p.x - c.x) * (p.x - c.x) + (p.y - c.y) * (p.y - c.y);
-    if (d2 < best_d2) best_d2 = d2, best = {lx, ly};
-  }
-  return best;
+  const shading::ivec2 l = camera_lines::hr_panel_lens_at(grid_, p);
+  return {l.x, l.y};
 }
 
-Vec3 DisplayCamera::lens_centre_local(DisplayLens l) const {
-  const double P = g_.pitch;
-  if (g_.grid == Grid::hex)
-    return {left_ + (l.x + 0.5 + ((l.y & 1) ? 0.5 : 0.0)) * P, half_h_ - P / 2 - l.y * row_step_, 0};
-  return {left_ + (l.x + 0.5) * P, half_h_ - (l.y + 0.5) * P, 0};
-}
+Vec3 DisplayCamera::lens_centre_local(DisplayLens l) const { return camera_lines::hr_panel_lens_centre(grid_, l.x, l.y); }
 
 Vec3 DisplayCamera::axis_point_local(DisplayLens l, const Vec3& p) const {
-  const double a = left_ + (l.x + 0.5) * g_.pitch, b = along(p);
-  return {a * cos_ + b * sin_, -a * sin_ + b * cos_, 0};
+  return camera_lines::hr_panel_axis_point(grid_, l.x, p);
 }
 
 PixelLine DisplayCamera::line_local(int c, int j, double u, double v) const {
-  const Vec3 p = panel_point_local(c, j, u, v);
-  const DisplayLens l = lens_at(p);
-  if (g_.grid != Grid::lenticular) {
-    const Vec3 centre = lens_centre_local(l);
-    return {centre, normalize(centre - p)};
-  }
-  // Across the lenticule the line is the pinhole's through its axis; along
-  // it the lens has no power, and the line aims at the viewer's height at
-  // distance V (contract, "Lenticular sheet", rotated by the slant).
-  const Vec3 q = axis_point_local(l, p);
-  const double k = (across(q) - across(p)) / g_.gap;
-  return {q, normalize(Vec3{k * cos_, -k * sin_ - q.y / g_.view_distance, 1})};
+  PixelLine l;
+  camera_lines::hr_panel_line(grid_, c, j, u, v, l.origin, l.dir);
+  return l;
 }
 
 PixelLine DisplayCamera::line(int c, int j, double u, double v) const {

@@ -20,6 +20,7 @@
 
 #include "camera/camera.hpp"
 #include "camera/lens_array.hpp"
+#include "camera/pixel_lines.h"
 #include "math/vec.hpp"
 
 namespace holoray {
@@ -86,8 +87,8 @@ class DisplayCamera final : public Camera {
 
  private:
   // Across- and along-axis coordinates of a lens-plane point (lenticular).
-  double across(const Vec3& p) const { return p.x * cos_ - p.y * sin_; }
-  double along(const Vec3& p) const { return p.x * sin_ + p.y * cos_; }
+  double across(const Vec3& p) const { return camera_lines::hr_panel_across(grid_, p); }
+  double along(const Vec3& p) const { return camera_lines::hr_panel_along(grid_, p); }
   bool sample_at(const Vec3& p_local, PanelHit& h) const;
 
   DisplayGeometry g_;
@@ -97,6 +98,7 @@ class DisplayCamera final : public Camera {
   double sin_ = 0, cos_ = 1;     // of the slant
   double left_ = 0;              // lens grid's left edge, x (square, hex) or across coordinate (lenticular)
   double row_step_ = 0;          // hex: pitch*sqrt(3)/2
+  camera_lines::HrPanelGrid grid_{};    // the grid as the shared line functions take it (camera/pixel_lines.h)
 };
 
 }  // namespace holoray

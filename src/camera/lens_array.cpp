@@ -58,6 +58,18 @@ LensArray::LensArray(const LensArrayDesc& d) : desc_(d) {
   half_w_ = width_ * s_ / 2;
   half_h_ = height_ * s_ / 2;
   row_step_ = d.pitch * kSqrt3 / 2;
+  grid_ = {.grid = d.grid == Grid::square ? HR_LINE_GRID_SQUARE : d.grid == Grid::hex ? HR_LINE_GRID_HEX : HR_LINE_GRID_LENTICULAR,
+           .pixels_per_lens = d.pixels_per_lens,
+           .lenses_x = d.lenses_x,
+           .lenses_y = d.lenses_y,
+           .converging = std::isinf(d.view_distance) ? 0 : 1,
+           .pitch = d.pitch,
+           .gap = d.gap,
+           .s = s_,
+           .half_w = half_w_,
+           .half_h = half_h_,
+           .row_step = row_step_,
+           .view_distance = d.view_distance};
   switch (d.grid) {
     case Grid::square:
       reach_x_ = reach_y_ = d.pitch / 2;
@@ -77,43 +89,14 @@ LensArray::LensArray(const LensArrayDesc& d) : desc_(d) {
 double LensArray::lens_fov_deg() const { return 2 * std::atan(desc_.pitch / (2 * desc_.gap)) * 180 / kPi; }
 
 LensIndex LensArray::hex_lens_of_pixel(int i, int j) const {
-  const int P = desc_.pixels_per_lens;
-  // Hex, in pixel units measured from the top-left corner: x offsets are
-  // multiples of 1/2, so ties within a row are decided exactly.
-  const double px = i + 0.5, py = j + 0.5;
-  const double row_step = P * kSqrt3 / 2;
-  const int ny = desc_.lenses_y, nx = desc_.lenses_x;
-  const int ly0 = std::clamp(static_cast<int>(std::lround((py - P / 2.0) / row_step)), 0, ny - 1);
-  LensIndex best;
-  double best_d2 = INFINITY;
-  for (int ly = std::max(0, ly0 - 1); ly <= std::min(ny - 1, ly0 + 1); ++ly) {
-    const double shift = (ly & 1) ? 0.5 : 0.0;
-    const double cy = P / 2.0 + ly * row_step;
-    const int lx0 = std::clamp(static_cast<int>(std::lround(px / P - 0.5 - shift)), 0, nx - 1);
-    for (int lx = std::max(0, lx0 - 1); lx <= std::min(nx - 1, lx0 + 1); ++lx) {
-      const double dx = px - (lx + 0.5 + shift) * P, dy = py - cy;
-      const double d2 = dx * dx + dy * dy;
-      if (d2 < best_d2) {  // strict: ties keep the lower ly, then the lower lx
-        best_d2 = d2;
-        best = {lx, ly};
-      }
-    }
-  }
-  return best;
-}
-
-Vec3 LensArray::panel_point_local(int i, int j, double u, double v) const {
-  return {(i + u) * s_ - half_w_, half_h_ - (j + v) * s_, -desc_.gap};
+  const shading::ivec2 l = camera_lines::hr_hex_lens_of_pixel(grid_, i, j);
+  return {l.x, l.y};
 }
 
 PixelLine LensArray::line_local(int i, int j, double u, double v) const {
-  const Vec3 p = panel_point_local(i, j, u, v);
-  const Vec3 c = lens_centre_local(lens_of_pixel(i, j));
-  if (desc_.grid == Grid::lenticular) {
-    const double dy = std::isinf(desc_.view_distance) ? 0.0 : -p.y / desc_.view_distance;
-    return {{c.x, p.y, 0}, normalize(Vec3{(c.x - p.x) / desc_.gap, dy, 1})};
-  }
-  return {c, normalize(c - p)};
+  PixelLine l;
+  camera_lines::hr_lens_array_line(grid_, i, j, u, v, l.origin, l.dir);
+  return l;
 }
 
 PixelLine LensArray::line(int i, int j, double u, double v) const {

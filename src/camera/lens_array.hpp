@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "camera/camera.hpp"
+#include "camera/pixel_lines.h"
 #include "math/vec.hpp"
 
 namespace holoray {
@@ -86,10 +87,8 @@ class LensArray final : public Camera {
   /// Square and lenticular grids are a division, inlined because the
   /// reprojection asks once per neighbour of every pixel.
   LensIndex lens_of_pixel(int i, int j) const {
-    const int P = desc_.pixels_per_lens;
-    if (desc_.grid == Grid::square) return {i / P, j / P};
-    if (desc_.grid == Grid::lenticular) return {i / P, 0};
-    return hex_lens_of_pixel(i, j);
+    const shading::ivec2 l = camera_lines::hr_lens_of_pixel(grid_, i, j);
+    return {l.x, l.y};
   }
   /// lens_of_pixel(i, j) == lens, without its divisions on square and
   /// lenticular grids (the reverse reprojection asks for every reused hit).
@@ -103,21 +102,11 @@ class LensArray final : public Camera {
   }
   /// Lens centre c in the array frame (z = 0). Lenticular: (c_x, 0, 0).
   /// Inline: every reprojection lookup asks for one or two.
-  Vec3 lens_centre_local(LensIndex l) const {
-    const double pitch = desc_.pitch;
-    const double half_array_w = desc_.lenses_x * pitch / 2;
-    switch (desc_.grid) {
-      case Grid::square:
-        return {(l.x + 0.5) * pitch - half_array_w, desc_.lenses_y * pitch / 2 - (l.y + 0.5) * pitch, 0};
-      case Grid::hex:
-        return {(l.x + 0.5 + ((l.y & 1) ? 0.5 : 0.0)) * pitch - half_array_w, half_h_ - pitch / 2 - l.y * row_step_, 0};
-      case Grid::lenticular:
-        return {(l.x + 0.5) * pitch - half_array_w, 0, 0};
-    }
-    return {};
-  }
+  Vec3 lens_centre_local(LensIndex l) const { return camera_lines::hr_lens_centre(grid_, l.x, l.y); }
   /// Panel point p of pixel (i, j) at offset (u, v) in the pixel, array frame (z = -gap).
-  Vec3 panel_point_local(int i, int j, double u = 0.5, double v = 0.5) const;
+  Vec3 panel_point_local(int i, int j, double u = 0.5, double v = 0.5) const {
+    return camera_lines::hr_panel_point(grid_, i, j, u, v);
+  }
 
   /// The pixel's line in the array frame; (u, v) jitters p inside the pixel
   /// (contract: "Sampling") and keeps the lens centre fixed.
@@ -171,6 +160,7 @@ class LensArray final : public Camera {
   double half_w_ = 0, half_h_ = 0;  // W*s/2, H*s/2
   double row_step_ = 0;    // hex: pitch*sqrt(3)/2
   double reach_x_ = 0, reach_y_ = 0;  // max |p - c| per axis over the panel (scene units)
+  camera_lines::HrLensGrid grid_{};  // the grid as the shared line functions take it (camera/pixel_lines.h)
 };
 
 }  // namespace holoray

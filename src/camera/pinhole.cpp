@@ -36,14 +36,20 @@ PinholeCamera::PinholeCamera(const PinholeDesc& desc) : desc_(desc) {
   if (desc.mirrored) frame_.x = -frame_.x;
   pixel_ = desc.ortho_height > 0 ? desc.ortho_height / desc.height
                                  : 2 * std::tan(desc.fov_deg * std::numbers::pi / 360) / desc.height;
+  lines_ = {.width = desc.width,
+            .height = desc.height,
+            .ortho = desc.ortho_height > 0 ? 1 : 0,
+            .pixel = pixel_,
+            .sample_u = desc.sample_u,
+            .sample_v = desc.sample_v,
+            .shift_x = desc.shift_x,
+            .shift_y = desc.shift_y};
 }
 
 PixelLine PinholeCamera::line(int i, int j, double u, double v) const {
-  // The image plane at distance 1 in front of the eye, centred on d.
-  const double x = (i + u + (desc_.sample_u - 0.5) - 0.5 * desc_.width) * pixel_ + desc_.shift_x;
-  const double y = (0.5 * desc_.height - (j + v + (desc_.sample_v - 0.5))) * pixel_ + desc_.shift_y;
-  if (desc_.ortho_height > 0) return {frame_.to_world_point({x, y, 0}), -frame_.z};
-  return {desc_.from, normalize(frame_.to_world_dir({x, y, -1}))};
+  PixelLine l;
+  camera_lines::hr_pinhole_line(lines_, frame_, i, j, u, v, l.origin, l.dir);
+  return l;
 }
 
 bool PinholeCamera::project(const Vec3& p_world, PanelHit& out) const {

@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "camera/camera.hpp"
+#include "camera/pixel_lines.h"
 #include "math/vec.hpp"
 #include "scene/scene_desc.hpp"
 
@@ -108,6 +109,7 @@ class PinholeCamera final : public Camera {
   PinholeDesc desc_;
   Frame frame_;            // x = image right, y = image up, z = -d (toward the eye)
   double pixel_ = 0;       // one pixel's size on the image plane at distance 1
+  camera_lines::HrPinhole lines_{};  // the view as the shared line function takes it (camera/pixel_lines.h)
 };
 
 }  // namespace holoray

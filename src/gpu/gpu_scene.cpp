@@ -351,6 +351,10 @@ void set_frame(GpuFrame& f, const Frame& fr) {
   f.origin = v4(fr.origin), f.axis_x = v4(fr.x), f.axis_y = v4(fr.y), f.axis_z = v4(fr.z);
 }
 
+// The kernel hands F.mode.y (a lens array's) and F.panel_kind.z (a panel's)
+// to the shared line functions as their grid.
+static_assert(HR_GRID_SQUARE == HR_LINE_GRID_SQUARE && HR_GRID_HEX == HR_LINE_GRID_HEX &&
+              HR_GRID_LENTICULAR == HR_LINE_GRID_LENTICULAR);
 int grid_of(Grid g) { return g == Grid::square ? HR_GRID_SQUARE : g == Grid::hex ? HR_GRID_HEX : HR_GRID_LENTICULAR; }
 
 // x's leading 10 significant bits: i x_hi is exact in float for i < 2^14.

@@ -14,7 +14,7 @@ const uint32_t kSharedSpirv[] = {
 
 }  // namespace
 
-std::vector<float> run_shared_functions(const std::vector<float>& inputs) {
+std::vector<float> run_shared_functions(const std::vector<float>& inputs, SharedSuite suite) {
   if (inputs.size() % kSharedCaseInputs)
     throw std::invalid_argument(fmt::format("{} inputs are not whole cases of {}", inputs.size(), kSharedCaseInputs));
   const uint32_t cases = static_cast<uint32_t>(inputs.size() / kSharedCaseInputs);
@@ -63,7 +63,7 @@ std::vector<float> run_shared_functions(const std::vector<float>& inputs) {
     const vk::DescriptorSetLayoutBinding bindings[2] = {{0, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute},
                                                         {1, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute}};
     vk::raii::DescriptorSetLayout set_layout(device, vk::DescriptorSetLayoutCreateInfo{.bindingCount = 2, .pBindings = bindings});
-    const vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 4};
+    const vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 8};
     const vk::DescriptorSetLayout raw_layout = *set_layout;
     vk::raii::PipelineLayout layout(device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout,
                                                                          .pushConstantRangeCount = 1, .pPushConstantRanges = &push});
@@ -88,7 +88,8 @@ std::vector<float> run_shared_functions(const std::vector<float>& inputs) {
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*sets[0]}, nullptr);
-    cb.pushConstants<uint32_t>(*layout, vk::ShaderStageFlagBits::eCompute, 0, cases);
+    const uint32_t push_values[2] = {cases, static_cast<uint32_t>(suite)};
+    cb.pushConstants<uint32_t>(*layout, vk::ShaderStageFlagBits::eCompute, 0, push_values);
     cb.dispatch((cases + 63) / 64, 1, 1);
     const vk::MemoryBarrier to_host{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
     cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr, nullptr);

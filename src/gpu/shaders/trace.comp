@@ -18,6 +18,7 @@
 // glTF terms here; the path integrator's sampling in path.glsl.
 #include "shading/lights.h"
 #include "shading/gltf_whitted.h"
+#include "camera/pixel_lines.h"
 
 // Workgroup size: 32x2 by default (on an H200, 1.12x the frames of 8x8 on
 // balls_s4 and gears_s4), a specialization constant so that it can be tuned
@@ -420,61 +421,39 @@ bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
 }
 #undef HR_MEET_CHILDREN
 
-// ---- the camera (camera/lens_array.cpp) ----
+// ---- the cameras: their lines are camera/pixel_lines.h, the CPU's text ----
 
-ivec2 hex_lens(int i, int j) {
-  int P = F.size.z, nx = F.size.w, ny = F.mode.x;
-  float px = float(i) + 0.5, py = float(j) + 0.5;
-  float row_step = float(P) * 0.8660254037844386;
-  int ly0 = clamp(int(round((py - float(P) / 2.0) / row_step)), 0, ny - 1);
-  ivec2 best = ivec2(0);
-  float best_d2 = kInf;
-  for (int ly = max(0, ly0 - 1); ly <= min(ny - 1, ly0 + 1); ++ly) {
-    float shift = (ly & 1) != 0 ? 0.5 : 0.0;
-    float cy = float(P) / 2.0 + float(ly) * row_step;
-    int lx0 = clamp(int(round(px / float(P) - 0.5 - shift)), 0, nx - 1);
-    for (int lx = max(0, lx0 - 1); lx <= min(nx - 1, lx0 + 1); ++lx) {
-      float dx = px - (float(lx) + 0.5 + shift) * float(P), dy = py - cy;
-      float d2 = dx * dx + dy * dy;
-      if (d2 < best_d2) best_d2 = d2, best = ivec2(lx, ly);
-    }
-  }
-  return best;
+// The frame's camera as the shared line functions take it (gpu_scene.cpp
+// lays the fields out per camera kind).
+HrFrame camera_frame() {
+  HrFrame f;
+  f.origin = F.origin.xyz, f.x = F.axis_x.xyz, f.y = F.axis_y.xyz, f.z = F.axis_z.xyz;
+  return f;
 }
 
-// ---- the panels (camera/display_camera.cpp, display/looking_glass.cpp) ----
+HrLensGrid lens_grid() {
+  HrLensGrid g;
+  g.grid = F.mode.y, g.pixels_per_lens = F.size.z, g.lenses_x = F.size.w, g.lenses_y = F.mode.x;
+  g.converging = F.lens.w > 0.0 ? 1 : 0;
+  g.pitch = F.lens.x, g.gap = F.lens.y, g.s = F.lens.z, g.half_w = F.extent.x, g.half_h = F.extent.y;
+  g.row_step = F.extent.z, g.view_distance = F.lens.w;
+  return g;
+}
 
-// Sample c of row j of a display's panel: through its lens centre (square,
-// hex: the nearest, ties to the lower row then column) or its lenticule's
-// axis (lenticular, rotated by the slant), toward +z of the array (local).
-void display_line(int c, int j, float u, float v, out vec3 o, out vec3 d) {
-  float P = F.lens.x, gap = F.lens.y, half_h = F.extent.y, left = F.panel.y;
-  vec3 p = vec3((float(c) + u) * F.panel.x - F.extent.x, half_h - (float(j) + v) * F.lens.z, -gap);
-  int grid = F.panel_kind.z;
-  if (grid == HR_GRID_LENTICULAR) {
-    float sn = F.panel.z, cs = F.panel.w;
-    float across_p = p.x * cs - p.y * sn, along_p = p.x * sn + p.y * cs;
-    float a = left + (floor((across_p - left) / P) + 0.5) * P;  // the axis, across
-    o = vec3(a * cs + along_p * sn, -a * sn + along_p * cs, 0.0);
-    float k = (a - across_p) / gap;
-    float dy = F.lens.w > 0.0 ? -o.y / F.lens.w : 0.0;
-    d = normalize(vec3(k * cs, -k * sn + dy, 1.0));
-    return;
-  }
-  if (grid == HR_GRID_SQUARE) {
-    o = vec3(left + (floor((p.x - left) / P) + 0.5) * P, half_h - (floor((half_h - p.y) / P) + 0.5) * P, 0.0);
-  } else {
-    float row_step = F.extent.z, best_d2 = kInf;
-    int row0 = int(floor((half_h - P / 2.0 - p.y) / row_step));
-    for (int ly = row0; ly <= row0 + 1; ++ly) {
-      float shift = (ly & 1) != 0 ? 0.5 : 0.0;
-      float lx = ceil((p.x - left) / P - shift) - 1.0;
-      vec2 centre = vec2(left + (lx + 0.5 + shift) * P, half_h - P / 2.0 - float(ly) * row_step);
-      vec2 off = p.xy - centre;
-      if (dot(off, off) < best_d2) best_d2 = dot(off, off), o = vec3(centre, 0.0);
-    }
-  }
-  d = normalize(o - p);
+HrPanelGrid panel_grid() {
+  HrPanelGrid g;
+  g.grid = F.panel_kind.z, g.converging = F.lens.w > 0.0 ? 1 : 0;
+  g.pitch = F.lens.x, g.gap = F.lens.y, g.sample_width = F.panel.x, g.pixel_pitch = F.lens.z;
+  g.half_w = F.extent.x, g.half_h = F.extent.y, g.left = F.panel.y, g.row_step = F.extent.z;
+  g.sin_slant = F.panel.z, g.cos_slant = F.panel.w, g.view_distance = F.lens.w;
+  return g;
+}
+
+HrPinhole pinhole_view() {
+  HrPinhole c;
+  c.width = F.size.x, c.height = F.size.y, c.ortho = F.view_clip.w != 0.0 ? 1 : 0;
+  c.pixel = F.view.x, c.sample_u = F.view.w, c.sample_v = F.view_clip.x, c.shift_x = F.view.y, c.shift_y = F.view.z;
+  return c;
 }
 
 // Subpixel c (s = c mod 3 of pixel i) of row j of a Looking Glass: its view
@@ -505,51 +484,23 @@ void looking_glass_line(int c, int j, float u, float v, out vec3 origin, out vec
 
 // The pixel's line (world): origin at its lens centre, unit direction.
 void pixel_line(int i, int j, float u, float v, out vec3 origin, out vec3 dir) {
-  int P = F.size.z, grid = F.mode.y;
-  if (kPanel) {
-    if (grid == HR_LOOKING_GLASS) {
-      looking_glass_line(i, j, u, v, origin, dir);
-      return;
-    }
-    vec3 c, d;
-    display_line(i, j, u, v, c, d);
-    origin = F.origin.xyz + F.axis_x.xyz * c.x + F.axis_y.xyz * c.y + F.axis_z.xyz * c.z;
-    dir = normalize(F.axis_x.xyz * d.x + F.axis_y.xyz * d.y + F.axis_z.xyz * d.z);
+  int grid = F.mode.y;
+  if (kPanel && grid == HR_LOOKING_GLASS) {
+    looking_glass_line(i, j, u, v, origin, dir);
     return;
   }
-  if (grid == HR_PINHOLE) {  // camera/pinhole.cpp: the image plane at distance 1 (orthographic: the eye's plane)
-    float x = (float(i) + u + (F.view.w - 0.5) - 0.5 * float(F.size.x)) * F.view.x + F.view.y;
-    float y = (0.5 * float(F.size.y) - (float(j) + v + (F.view_clip.x - 0.5))) * F.view.x + F.view.z;
-    if (F.view_clip.w != 0.0) {
-      origin = F.origin.xyz + F.axis_x.xyz * x + F.axis_y.xyz * y;
-      dir = -F.axis_z.xyz;
-    } else {
-      origin = F.origin.xyz;
-      dir = normalize(F.axis_x.xyz * x + F.axis_y.xyz * y - F.axis_z.xyz);
-    }
+  if (grid == HR_PINHOLE) {
+    hr_pinhole_line(pinhole_view(), camera_frame(), i, j, u, v, origin, dir);
     return;
   }
-  float pitch = F.lens.x, gap = F.lens.y, s = F.lens.z;
-  vec3 p = vec3((float(i) + u) * s - F.extent.x, F.extent.y - (float(j) + v) * s, -gap);
-  float half_array_w = float(F.size.w) * pitch / 2.0;
   vec3 c, d;
-  if (grid == HR_GRID_LENTICULAR) {
-    c = vec3((float(i / P) + 0.5) * pitch - half_array_w, p.y, 0.0);
-    float dy = F.lens.w > 0.0 ? -p.y / F.lens.w : 0.0;
-    d = normalize(vec3((c.x - p.x) / gap, dy, 1.0));
-  } else {
-    if (grid == HR_GRID_SQUARE) {
-      ivec2 l = ivec2(i / P, j / P);
-      c = vec3((float(l.x) + 0.5) * pitch - half_array_w, float(F.mode.x) * pitch / 2.0 - (float(l.y) + 0.5) * pitch, 0.0);
-    } else {
-      ivec2 l = hex_lens(i, j);
-      c = vec3((float(l.x) + 0.5 + ((l.y & 1) != 0 ? 0.5 : 0.0)) * pitch - half_array_w,
-               F.extent.y - pitch / 2.0 - float(l.y) * F.extent.z, 0.0);
-    }
-    d = normalize(c - p);
-  }
-  origin = F.origin.xyz + F.axis_x.xyz * c.x + F.axis_y.xyz * c.y + F.axis_z.xyz * c.z;
-  dir = normalize(F.axis_x.xyz * d.x + F.axis_y.xyz * d.y + F.axis_z.xyz * d.z);
+  if (kPanel)
+    hr_panel_line(panel_grid(), i, j, u, v, c, d);
+  else
+    hr_lens_array_line(lens_grid(), i, j, u, v, c, d);
+  HrFrame f = camera_frame();
+  origin = hr_to_world_point(f, c);
+  dir = normalize(hr_to_world_dir(f, d));
 }
 
 // renderer.cpp's sample_offset: the pixel centre first, then a hashed
