@@ -21,8 +21,11 @@
 #endif
 #endif
 
-/// The camera kinds the cases cycle through (case c is kind c mod 7).
-#define HR_LINE_CASE_KINDS 7u
+/// The camera kinds the cases cycle through (case c is kind c mod 8).
+#define HR_LINE_CASE_KINDS 8u
+/// The kind whose line goes through a tangent (the Looking Glass's view
+/// angle), which GLSL bounds only to 2^-11.
+#define HR_LINE_CASE_TANGENT 7u
 
 HR_LINES_BEGIN
 
@@ -33,13 +36,13 @@ HR_FN void hr_put_line3(HR_ARRAY_INOUT(r, 32), uint k, hr_vec3 v) {
   r[k + 2u] = float(v.z);
 }
 
-/// Case c: kind c mod 7 of camera (a square, hex and lenticular lens array;
+/// Case c: kind c mod 8 of camera (a square, hex and lenticular lens array;
 /// a display's square, hex and slanted lenticular panel; a pinhole or
-/// orthographic view), sized and placed by a[0..7] and a[12..15], and its
+/// orthographic view; a Looking Glass's panel), sized and placed by a[0..7] and a[12..15], and its
 /// line at the sample a[8..11] picks. Outputs: r[0..2] the line's origin
 /// and r[3..5] its direction (world: an array's turned by a[12] about z and
-/// moved by a[13..15]), r[6..7] the lens (arrays and panels), r[8..10] the
-/// panel point (arrays and panels).
+/// moved by a[13..15]), r[6..7] the lens (arrays and panels; a Looking
+/// Glass's subpixel cell), r[8..10] the panel point (arrays and panels).
 HR_FN void hr_run_line_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
   for (uint k = 0u; k < 32u; ++k) r[k] = 0.0f;
   uint kind = c % HR_LINE_CASE_KINDS;
@@ -105,6 +108,26 @@ HR_FN void hr_run_line_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
     r[6] = float(l.x);
     r[7] = float(l.y);
     hr_put_line3(r, 8u, p);
+  } else if (kind == HR_LINE_CASE_TANGENT) {
+    HrLookingGlass g;
+    g.width = 100 + int(a[0] * 2000.0f);
+    g.height = 100 + int(a[1] * 2000.0f);
+    g.views = 1 + int(a[2] * 100.0f);
+    g.pixel = (0.5 + hr_real(a[3])) * 2.0 / hr_real(g.height);
+    g.sample_u = a[4] > 0.5f ? 1.0 : 0.5;
+    g.sample_v = g.sample_u;
+    g.shift_x = (hr_real(a[5]) - 0.5) * 0.2;
+    g.view_cone_deg = 20.0 + 40.0 * hr_real(a[6]);
+    g.distance = 1.0 + 20.0 * hr_real(a[7]);
+    int i = min(int(a[8] * float(g.width)), g.width - 1);
+    int j = min(int(a[9] * float(g.height)), g.height - 1);
+    hr_real x = 0.00001 + 0.99998 * hr_real(a[10]);  // a view value in (0, 1)
+    hr_looking_glass_line(g, f, i, j, hr_real(a[11]), hr_real(a[12]), x, o, d);
+    // The subpixel cell of every pattern (0 to 4) with 0 to 4 cells.
+    r[6] = float(hr_looking_glass_cell(int((c / 8u) % 5u), int((c / 40u) % 5u), g.height, i, j));
+    hr_put_line3(r, 0u, o);
+    hr_put_line3(r, 3u, d);
+    return;
   } else {
     HrPinhole v;
     v.width = 64 + int(a[0] * 512.0f);

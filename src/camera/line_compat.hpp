@@ -24,6 +24,7 @@ using std::floor;
 using std::max;
 using std::min;
 using std::sqrt;
+using std::tan;
 
 /// std::lround, as the CPU cameras have always rounded.
 HR_FN int hr_round(double x) { return static_cast<int>(std::lround(x)); }

@@ -242,6 +242,47 @@ HR_FN void hr_pinhole_line(HrPinhole c, HrFrame f, int i, int j, hr_real u, hr_r
   dir = normalize(hr_to_world_dir(f, hr_vec3(x, y, -1.0)));
 }
 
+// ---- a Looking Glass's native panel (display/looking_glass.hpp) ----
+
+/// A Looking Glass's panel as the continuous version of its quilt: `views`
+/// views over a cone of view_cone_deg degrees, each a view of the centre
+/// one (a pinhole of `pixel` at distance 1, its sample offset and
+/// horizontal shift) sheared about the zero-parallax plane at `distance`.
+struct HrLookingGlass {
+  int width, height, views;
+  hr_real pixel, sample_u, sample_v, shift_x, view_cone_deg, distance;
+};
+
+/// The subpixel cell of pixel (i, j) (the calibration's cell pattern
+/// 0 to 4, as the official shader's GetCellForPixel: the row counted from
+/// the bottom), of `cells` cells; 0 where the calibration has none.
+HR_FN int hr_looking_glass_cell(int pattern, int cells, int height, int i, int j) {
+  if (cells == 0) return 0;
+  int x = i;
+  int y = height - 1 - j;
+  int cell = 0;
+  if (pattern == 1) cell = (y % 2 == 0) == (x % 2 == 0) ? 0 : 1;  // checkerboard AB / BA
+  if (pattern == 2) cell = x % 2;
+  if (pattern == 3) cell = (y + (x % 2) * 2) % 4;
+  if (pattern == 4) cell = y % 2;
+  return cell % cells;
+}
+
+/// The line of a subpixel of pixel (i, j), at (u, v) inside the pixel,
+/// whose view value from the calibration's phase is x in (0, 1)
+/// (looking_glass_view): the view of continuous quilt index x views, the
+/// centre view sheared by t = tan(its angle) (world).
+HR_FN void hr_looking_glass_line(HrLookingGlass g, HrFrame f, int i, int j, hr_real u, hr_real v, hr_real x,
+                                 HR_OUT(hr_vec3) origin, HR_OUT(hr_vec3) dir) {
+  hr_real index = x * hr_real(g.views);
+  hr_real along = g.views == 1 ? 0.5 : index / hr_real(g.views - 1);
+  hr_real t = tan((along - 0.5) * g.view_cone_deg * 3.141592653589793 / 180.0);
+  hr_real px = (hr_real(i) + u + (g.sample_u - 0.5) - 0.5 * hr_real(g.width)) * g.pixel + (g.shift_x - t);
+  hr_real py = (0.5 * hr_real(g.height) - (hr_real(j) + v + (g.sample_v - 0.5))) * g.pixel;
+  origin = f.origin + f.x * (g.distance * t);
+  dir = normalize(hr_to_world_dir(f, hr_vec3(px, py, -1.0)));
+}
+
 HR_LINES_END
 
 #endif

@@ -86,19 +86,7 @@ LookingGlassCalibration parse_looking_glass(std::string_view text, const std::st
 LookingGlassCalibration read_looking_glass(const std::string& path) { return parse_looking_glass(read_text_file(path), path); }
 
 int looking_glass_cell(const LookingGlassCalibration& c, int i, int j) {
-  if (c.cells.empty()) return 0;
-  // The shader's int(u W) and int(v H) at the pixel's centre: the column
-  // and the row counted from the bottom.
-  const int x = i, y = c.height - 1 - j;
-  int cell = 0;
-  switch (c.cell_pattern) {
-    case 0: cell = 0; break;
-    case 1: cell = (y % 2 == 0) == (x % 2 == 0) ? 0 : 1; break;  // checkerboard AB / BA
-    case 2: cell = x % 2; break;
-    case 3: cell = (y + (x % 2) * 2) % 4; break;
-    case 4: cell = y % 2; break;
-  }
-  return cell % static_cast<int>(c.cells.size());
+  return camera_lines::hr_looking_glass_cell(c.cell_pattern, static_cast<int>(c.cells.size()), c.height, i, j);
 }
 
 double looking_glass_view(const LookingGlassCalibration& c, int i, int j, int s) {
@@ -142,18 +130,22 @@ LookingGlassCamera::LookingGlassCamera(const LookingGlassCalibration& c, const P
   if (centre_.mirrored) frame_.x = -frame_.x;
   distance_ = length(centre_.at - centre_.from);
   pixel_ = 2 * std::tan(centre_.fov_deg * kPi / 360) / c.height;
+  lines_ = {.width = c.width,
+            .height = c.height,
+            .views = views,
+            .pixel = pixel_,
+            .sample_u = centre_.sample_u,
+            .sample_v = centre_.sample_v,
+            .shift_x = centre_.shift_x,
+            .view_cone_deg = c.view_cone_deg,
+            .distance = distance_};
 }
 
 PixelLine LookingGlassCamera::line(int c, int j, double u, double v) const {
-  // PinholeCamera(sheared_view(centre, phi)).line(i, j, u, v), with the
-  // centre view's frame computed once instead of per subpixel.
   const int i = c / 3, s = c % 3;
-  const double index = looking_glass_view(c_, i, j, s) * views_;  // continuous quilt view index
-  const double along = views_ == 1 ? 0.5 : index / (views_ - 1);
-  const double t = std::tan((along - 0.5) * c_.view_cone_deg * kPi / 180);
-  const double x = (i + u + (centre_.sample_u - 0.5) - 0.5 * c_.width) * pixel_ + (centre_.shift_x - t);
-  const double y = (0.5 * c_.height - (j + v + (centre_.sample_v - 0.5))) * pixel_;
-  return {centre_.from + frame_.x * (distance_ * t), normalize(frame_.to_world_dir({x, y, -1}))};
+  PixelLine l;
+  camera_lines::hr_looking_glass_line(lines_, frame_, i, j, u, v, looking_glass_view(c_, i, j, s), l.origin, l.dir);
+  return l;
 }
 
 void LookingGlassCamera::project(const Vec3&, std::vector<PanelHit>&) const {

@@ -26,6 +26,7 @@
 
 #include "camera/camera.hpp"
 #include "camera/pinhole.hpp"
+#include "camera/pixel_lines.h"
 #include "camera/quilt_camera.hpp"
 #include "image/image.hpp"
 
@@ -120,6 +121,7 @@ class LookingGlassCamera final : public Camera {
   double distance_ = 0;    // |at - from|
   double pixel_ = 0;       // one pixel on the image plane at distance 1
   int views_ = kDefaultLookingGlassViews;
+  camera_lines::HrLookingGlass lines_{};  // as the shared line function takes it (camera/pixel_lines.h)
 };
 
 /// The native panel made from a quilt as the device software makes it: each

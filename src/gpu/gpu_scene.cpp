@@ -448,7 +448,7 @@ GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera&
       for (int s = 0; s < 3; ++s)
         (&f.cells[k].x)[s] = float(fraction((c.cells[k].dx[s] / W + c.cells[k].dy[s] / H * tilt) * L + C));
   }
-  f.panel_view = {0, float(c.view_cone_deg * std::numbers::pi / 180), float(camera.distance()), 0};
+  f.panel_view = {0, float(c.view_cone_deg), float(camera.distance()), 0};
   return f;
 }
 

@@ -257,7 +257,7 @@ HR_STRUCT GpuFrame {
   // of subpixel s of pixel (i, j), with panel = A and B each split in two
   // (hi, lo; i A_hi and j B_hi exact in float, so that the phase keeps its
   // fraction across a whole panel); cell_kind = cell pattern, cells (0:
-  // none, cells[0] serves); panel_view = -, view cone (radians), |at - from|.
+  // none, cells[0] serves); panel_view = -, view cone (degrees), |at - from|.
   vec4 panel;
   ivec4 panel_kind;
   ivec4 cell_kind;

@@ -458,28 +458,21 @@ HrPinhole pinhole_view() {
 
 // Subpixel c (s = c mod 3 of pixel i) of row j of a Looking Glass: its view
 // value from the calibration's phase, then the sheared view of that
-// continuous quilt index through the pixel (LookingGlassCamera::line).
+// continuous quilt index through the pixel (camera/pixel_lines.h). The
+// phase is looking_glass_view()'s, as i A + j B + K_s with A and B split in
+// two floats each and K_s taken mod 1 on the CPU (gpu_scene.cpp): the
+// CPU's form in float would lose the view's fraction across a 2K panel.
 void looking_glass_line(int c, int j, float u, float v, out vec3 origin, out vec3 dir) {
-  int i = c / 3, s = c - 3 * i, W = F.panel_kind.w, H = F.size.y, views = F.panel_kind.z;
-  int cell = 0;
-  if (F.cell_kind.y > 0) {  // the shader's GetCellForPixel: the row counted from the bottom
-    int x = i, y = H - 1 - j;
-    int pattern = F.cell_kind.x;
-    cell = pattern == 1 ? ((y % 2 == 0) == (x % 2 == 0) ? 0 : 1)
-         : pattern == 2 ? x % 2
-         : pattern == 3 ? (y + (x % 2) * 2) % 4
-         : pattern == 4 ? y % 2 : 0;
-    cell %= F.cell_kind.y;
-  }
+  int i = c / 3, s = c - 3 * i;
+  HrLookingGlass g;
+  g.width = F.panel_kind.w, g.height = F.size.y, g.views = F.panel_kind.z;
+  g.pixel = F.view.x, g.sample_u = F.view.w, g.sample_v = F.view_clip.x, g.shift_x = F.view.y;
+  g.view_cone_deg = F.panel_view.y, g.distance = F.panel_view.z;
+  int cell = hr_looking_glass_cell(F.cell_kind.x, F.cell_kind.y, g.height, i, j);
   float a = fract(float(i) * F.panel.x) + float(i) * F.panel.y + fract(float(j) * F.panel.z) + float(j) * F.panel.w +
             F.cells[cell][s];
   float x = clamp(1.0 - fract(a), 0.00001, 0.999999);
-  float along = views == 1 ? 0.5 : x * float(views) / float(views - 1);
-  float t = tan((along - 0.5) * F.panel_view.y);
-  float px = (float(i) + u + (F.view.w - 0.5) - 0.5 * float(W)) * F.view.x + (F.view.y - t);
-  float py = (0.5 * float(H) - (float(j) + v + (F.view_clip.x - 0.5))) * F.view.x;
-  origin = F.origin.xyz + F.axis_x.xyz * (F.panel_view.z * t);
-  dir = normalize(F.axis_x.xyz * px + F.axis_y.xyz * py - F.axis_z.xyz);
+  hr_looking_glass_line(g, camera_frame(), i, j, u, v, x, origin, dir);
 }
 
 // The pixel's line (world): origin at its lens centre, unit direction.
