@@ -75,28 +75,28 @@ TEST(PinholeCamera, RightIsDirectionCrossUpAndTheAngleSpansTheImageHeight) {
   EXPECT_FALSE(cam.project(d.from + (dir * std::cos(half + 0.01) + up * std::sin(half + 0.01)) * 3, h)) << "above the image";
 }
 
-// The Camera interface (camera.hpp), for the integral and the pinhole camera
-// alike: every pixel's line, at any offset in the pixel, projects back onto
-// that pixel and offset.
+// What every camera offers (camera.hpp's PixelCamera), for the integral
+// and the pinhole camera alike: every pixel's line, at any offset in the
+// pixel, projects back onto that pixel and offset.
 TEST(CameraInterface, EveryCameraProjectsItsPixelLinesBackToThem) {
   LensArrayDesc ld;
   ld.lenses_x = ld.lenses_y = 6;
   ld.pixels_per_lens = 5;
-  const LensArray integral(ld);
-  const PinholeCamera pinhole(view(30, 20));
-  const Camera* cameras[] = {&integral, &pinhole};
   std::vector<PanelHit> hits;
-  for (const Camera* cam : cameras)
-    for (int j = 0; j < cam->height(); ++j)
-      for (int i = 0; i < cam->width(); ++i) {
-        const PixelLine l = cam->line(i, j, 0.3, 0.6);
-        cam->project(l.origin + l.dir * 2.5, hits);
+  auto check = [&](const PixelCamera auto& cam, const char* name) {
+    for (int j = 0; j < cam.height(); ++j)
+      for (int i = 0; i < cam.width(); ++i) {
+        const PixelLine l = cam.line(i, j, 0.3, 0.6);
+        cam.project(l.origin + l.dir * 2.5, hits);
         const bool found = std::any_of(hits.begin(), hits.end(), [&](const PanelHit& h) {
           return h.i == i && h.j == j && std::fabs(h.u - 0.3) < 1e-7 && std::fabs(h.v - 0.6) < 1e-7 &&
                  std::fabs(h.t - 2.5) < 1e-9;
         });
-        EXPECT_TRUE(found) << (cam == &integral ? "integral " : "pinhole ") << i << "," << j;
+        EXPECT_TRUE(found) << name << " " << i << "," << j;
       }
+  };
+  check(LensArray(ld), "integral");
+  check(PinholeCamera(view(30, 20)), "pinhole");
 }
 
 TEST(PinholeCamera, RefusesViewsThatCannotBeBuilt) {

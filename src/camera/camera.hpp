@@ -1,10 +1,9 @@
-// holoray/camera: the one interface every camera offers (issue 13): the
-// line a pixel records and, the other way, the pixels that record a point.
-// The integral camera (lens_array.hpp) and the pinhole camera (pinhole.hpp)
-// implement it; renderers take the concrete (final) classes, so their hot
-// loops pay no virtual call.
+// holoray/camera: what every camera offers (issue 13): the line a pixel
+// records and, the other way, the pixels that record a point; the
+// PixelCamera concept says it and each camera's file checks it.
 #pragma once
 
+#include <concepts>
 #include <vector>
 
 #include "math/vec.hpp"
@@ -29,18 +28,19 @@ struct PanelHit {
   double t = 0;
 };
 
-class Camera {
- public:
-  virtual ~Camera() = default;
-  virtual int width() const = 0;   ///< pixels
-  virtual int height() const = 0;  ///< pixels
-  /// The line of pixel (i, j) at offset (u, v) inside it (world frame).
-  virtual PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const = 0;
-  /// Every pixel whose line passes through the world point, appended to
-  /// `out` (cleared first): line(h.i, h.j, h.u, h.v) passes through it at
-  /// parameter h.t. An integral camera gives one per lens that sees it, a
-  /// pinhole at most one.
-  virtual void project(const Vec3& p_world, std::vector<PanelHit>& out) const = 0;
+/// What every camera offers (issue 13): its size in pixels, the line a
+/// pixel records and, the other way, every pixel that records a point
+/// (appended to `out`, cleared first; line(h.i, h.j, h.u, h.v) passes
+/// through the point at parameter h.t: one hit per lens that sees it for an
+/// integral camera, at most one for a pinhole). A concept, not a base
+/// class: the renderers take the concrete cameras, and their lines come
+/// from camera/pixel_lines.h, the text the GPU compiles too.
+template <class C>
+concept PixelCamera = requires(const C& c, int i, double u, const Vec3& p, std::vector<PanelHit>& out) {
+  { c.width() } -> std::convertible_to<int>;
+  { c.height() } -> std::convertible_to<int>;
+  { c.line(i, i, u, u) } -> std::same_as<PixelLine>;
+  c.project(p, out);
 };
 
 }  // namespace holoray

@@ -46,7 +46,7 @@ struct DisplayGeometry {
 /// the left); for a lenticular sheet, x is the lenticule and y is 0.
 using DisplayLens = LensIndex;
 
-class DisplayCamera final : public Camera {
+class DisplayCamera {
  public:
   /// Validates and precomputes. Throws std::invalid_argument naming the bad
   /// value and its unit: non-positive or non-finite pitch, pixel pitch or
@@ -55,8 +55,8 @@ class DisplayCamera final : public Camera {
   explicit DisplayCamera(const DisplayGeometry& g);
 
   const DisplayGeometry& geometry() const { return g_; }
-  int width() const override { return width_; }    ///< samples across: panel width x samples per pixel
-  int height() const override { return g_.height; }  ///< rows
+  int width() const { return width_; }    ///< samples across: panel width x samples per pixel
+  int height() const { return g_.height; }  ///< rows
   double sample_width() const { return sw_; }      ///< s / samples per pixel
 
   /// Centre of sample (c, j) at offset (u, v) inside it, on the panel (z = -gap).
@@ -77,13 +77,13 @@ class DisplayCamera final : public Camera {
   /// passes through the sample's lens centre (square, hex) or its
   /// lenticule's axis (lenticular) on the lens plane, toward +z.
   PixelLine line_local(int c, int j, double u = 0.5, double v = 0.5) const;
-  PixelLine line(int c, int j, double u = 0.5, double v = 0.5) const override;
+  PixelLine line(int c, int j, double u = 0.5, double v = 0.5) const;
 
   /// Forward projection, the exact inverse of line(): every sample whose line
   /// passes through the world point, one per lens whose covered samples hold
   /// its landing point (pseudoscopic: t > 0 only). Points on the lens plane
   /// project nowhere.
-  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
  private:
   // Across- and along-axis coordinates of a lens-plane point (lenticular).
@@ -100,5 +100,6 @@ class DisplayCamera final : public Camera {
   double row_step_ = 0;          // hex: pitch*sqrt(3)/2
   camera_lines::HrPanelGrid grid_{};    // the grid as the shared line functions take it (camera/pixel_lines.h)
 };
+static_assert(PixelCamera<DisplayCamera>);
 
 }  // namespace holoray

@@ -66,7 +66,7 @@ struct LensIndex {
 /// (RenderSettings::footprint).
 inline double pixel_angle(const LensArrayDesc& d) { return d.pitch / d.pixels_per_lens / d.gap; }
 
-class LensArray final : public Camera {
+class LensArray {
  public:
   /// Validates and precomputes. Throws std::invalid_argument naming the bad
   /// value: pitch or gap <= 0 or not finite, zero or negative lens or pixel
@@ -74,8 +74,8 @@ class LensArray final : public Camera {
   explicit LensArray(const LensArrayDesc& desc);
 
   const LensArrayDesc& desc() const { return desc_; }
-  int width() const override { return width_; }    ///< W, pixels
-  int height() const override { return height_; }  ///< H, pixels
+  int width() const { return width_; }    ///< W, pixels
+  int height() const { return height_; }  ///< H, pixels
   int64_t pixel_count() const { return static_cast<int64_t>(width_) * height_; }
   double pixel_pitch() const { return s_; }  ///< s = pitch / P (scene units)
   /// Full field of view of one lens, 2*atan(pitch / (2g)), in degrees.
@@ -112,7 +112,7 @@ class LensArray final : public Camera {
   /// (contract: "Sampling") and keeps the lens centre fixed.
   PixelLine line_local(int i, int j, double u = 0.5, double v = 0.5) const;
   /// The pixel's line in the world frame.
-  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const override;
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
   /// line() for n <= PixelLineLanes::kLaneCount pixels (i[k], j[k]) at
   /// offsets (u[k], v[k]), one array per coordinate (world): lane k equals
   /// line(i[k], j[k], u[k], v[k]) bit for bit. A lens's centre is computed
@@ -127,7 +127,7 @@ class LensArray final : public Camera {
   /// appended to `out` (cleared first). Pseudoscopic keeps only t > 0. The
   /// exact inverse of line(): line(h.i, h.j, h.u, h.v) passes through the
   /// point at parameter h.t. Points on the lens plane (z = 0) project nowhere.
-  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
   /// Forward projection through one lens (array-frame point): true and `out`
   /// when the point's line through that lens centre lands in the lens's own
@@ -162,5 +162,6 @@ class LensArray final : public Camera {
   double reach_x_ = 0, reach_y_ = 0;  // max |p - c| per axis over the panel (scene units)
   camera_lines::HrLensGrid grid_{};  // the grid as the shared line functions take it (camera/pixel_lines.h)
 };
+static_assert(PixelCamera<LensArray>);
 
 }  // namespace holoray

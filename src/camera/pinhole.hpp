@@ -2,7 +2,7 @@
 // nff-notes §2), for previews and for checking holoray pixel for pixel
 // against other ray tracers (issue 13). It shares the integral camera's
 // vocabulary: line() gives a pixel's ray, project() the inverse, with the
-// same PanelHit, through the Camera interface (camera.hpp).
+// same PanelHit, as every camera does (camera.hpp's PixelCamera).
 //
 // Conventions (nff-notes §2): d = normalize(at - from) looks at the image
 // centre; image right r = normalize(d x up), image up u = r x d (right-handed,
@@ -76,7 +76,7 @@ inline PinholeDesc view_of(const Viewpoint& vp, int width, int height) {
 }
 
 /// A pinhole camera. Immutable after construction; safe to share between threads.
-class PinholeCamera final : public Camera {
+class PinholeCamera {
  public:
   /// Validates and precomputes. Throws std::invalid_argument naming the bad
   /// value: `from` equal to `at`, `up` parallel to the view direction, a
@@ -84,8 +84,8 @@ class PinholeCamera final : public Camera {
   explicit PinholeCamera(const PinholeDesc& desc);
 
   const PinholeDesc& desc() const { return desc_; }
-  int width() const override { return desc_.width; }
-  int height() const override { return desc_.height; }
+  int width() const { return desc_.width; }
+  int height() const { return desc_.height; }
   int64_t pixel_count() const { return static_cast<int64_t>(desc_.width) * desc_.height; }
   /// The view axis d (unit, world): the clipping planes are perpendicular to it.
   Vec3 axis() const { return -frame_.z; }
@@ -97,13 +97,13 @@ class PinholeCamera final : public Camera {
 
   /// The ray of pixel (i, j) at offset (u, v): origin `from`, unit direction
   /// (world frame). The line parameter t is the distance from the eye.
-  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const override;
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const;
   /// Where a world point appears: true and `out` (pixel, offset, t = its
   /// distance along the pixel's ray) when it lies in front of the eye and
   /// inside the image. The exact inverse of line().
   bool project(const Vec3& p_world, PanelHit& out) const;
   /// Camera::project: the one pixel of project(p, PanelHit&), if any.
-  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
  private:
   PinholeDesc desc_;
@@ -111,5 +111,6 @@ class PinholeCamera final : public Camera {
   double pixel_ = 0;       // one pixel's size on the image plane at distance 1
   camera_lines::HrPinhole lines_{};  // the view as the shared line function takes it (camera/pixel_lines.h)
 };
+static_assert(PixelCamera<PinholeCamera>);
 
 }  // namespace holoray

@@ -45,7 +45,7 @@ std::string quilt_file_name(const std::string& path, const QuiltDesc& q);
 
 /// The whole quilt as one camera: pixel (i, j) of the C*w x R*h image is
 /// pixel (i mod w, j mod h) of the view whose tile holds it.
-class QuiltCamera final : public Camera {
+class QuiltCamera {
  public:
   /// Throws std::invalid_argument for fewer than one view or more than 4096,
   /// views of fewer than one pixel, a quilt over 2^30 pixels a side, or bad
@@ -53,21 +53,22 @@ class QuiltCamera final : public Camera {
   QuiltCamera(const QuiltDesc& q, const PinholeDesc& centre);
 
   const QuiltDesc& desc() const { return q_; }
-  int width() const override { return q_.columns * q_.view_width; }
-  int height() const override { return q_.rows * q_.view_height; }
+  int width() const { return q_.columns * q_.view_width; }
+  int height() const { return q_.rows * q_.view_height; }
   const PinholeCamera& view(int k) const { return views_[static_cast<size_t>(k)]; }
   /// The view whose tile holds quilt pixel (i, j).
   int view_at(int i, int j) const { return (q_.rows - 1 - j / q_.view_height) * q_.columns + i / q_.view_width; }
 
-  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const override {
+  PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const {
     return views_[static_cast<size_t>(view_at(i, j))].line(i % q_.view_width, j % q_.view_height, u, v);
   }
   /// One hit per view that sees the point, in quilt pixels.
-  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
  private:
   QuiltDesc q_;
   std::vector<PinholeCamera> views_;
 };
+static_assert(PixelCamera<QuiltCamera>);
 
 }  // namespace holoray

@@ -95,14 +95,14 @@ inline constexpr int kDefaultLookingGlassViews = 48;
 /// is quilt view k's own pixel, so tracing natively and interlacing an N-view
 /// quilt agree there. `centre` is the scene's own view (its size is
 /// replaced by the panel's). Throws std::invalid_argument for views < 1.
-class LookingGlassCamera final : public Camera {
+class LookingGlassCamera {
  public:
   LookingGlassCamera(const LookingGlassCalibration& c, const PinholeDesc& centre, int views = kDefaultLookingGlassViews);
-  int width() const override { return 3 * c_.width; }
-  int height() const override { return c_.height; }
-  PixelLine line(int c, int j, double u = 0.5, double v = 0.5) const override;
+  int width() const { return 3 * c_.width; }
+  int height() const { return c_.height; }
+  PixelLine line(int c, int j, double u = 0.5, double v = 0.5) const;
   /// Forward projection is not offered (one view per subpixel): throws std::logic_error.
-  void project(const Vec3& p_world, std::vector<PanelHit>& out) const override;
+  void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
   const LookingGlassCalibration& calibration() const { return c_; }
   /// The centre view (the panel's size), its frame (x right, y up, z toward
   /// the eye; world), |at - from| (scene units), one pixel's size on the
@@ -123,6 +123,7 @@ class LookingGlassCamera final : public Camera {
   int views_ = kDefaultLookingGlassViews;
   camera_lines::HrLookingGlass lines_{};  // as the shared line function takes it (camera/pixel_lines.h)
 };
+static_assert(PixelCamera<LookingGlassCamera>);
 
 /// The native panel made from a quilt as the device software makes it: each
 /// subpixel's channel is looking_glass_blend of two views, each read as the

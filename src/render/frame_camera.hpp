@@ -81,7 +81,7 @@ struct PanelView {
   bool red_first = true;  ///< subpixel order RGB (else BGR)
 };
 
-/// A FrameCameraDesc placed: one camera of five, each the Camera interface
+/// A FrameCameraDesc placed: one camera of five, each a PixelCamera
 /// (camera/camera.hpp) of its kind. A display whose lenses are whole pixels
 /// is its integral camera (as_lens_array), so it renders with every
 /// integral-camera feature. `render_through` is the one place that
