@@ -11,6 +11,7 @@
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "render/gltf_brdf.hpp"
+#include "gltf_squares.hpp"
 #include "test_util.hpp"
 
 namespace holoray {
@@ -82,55 +83,12 @@ TEST(GltfBrdf, TheMirrorWeightIsTheFresnelMixAtTheViewAngle) {
   EXPECT_NEAR(grazing.y, 1, 1e-7);
 }
 
-// A glTF scene: squares facing +z, square k with material k; the camera on
-// the +z axis at z = 4 looking down -z; KHR_lights_punctual's `lights` and
-// the one node that places them.
-struct Scene {
-  std::string materials, lights, light_node;
-  std::vector<std::pair<double, double>> squares;  // (half-size, z)
-};
-
-std::string gltf(const Scene& s) {
-  std::vector<uint8_t> buffer;
-  std::vector<std::string> views, accessors, meshes, nodes;
-  auto add = [&](const void* data, size_t bytes) {
-    const size_t offset = buffer.size();
-    buffer.resize(offset + bytes);
-    std::memcpy(buffer.data() + offset, data, bytes);
-    views.push_back(fmt::format(R"({{"buffer": 0, "byteOffset": {}, "byteLength": {}}})", offset, bytes));
-    return views.size() - 1;
-  };
-  for (size_t k = 0; k < s.squares.size(); ++k) {
-    const auto h = static_cast<float>(s.squares[k].first), z = static_cast<float>(s.squares[k].second);
-    const float p[12] = {-h, -h, z, h, -h, z, h, h, z, -h, h, z};
-    const uint16_t i[6] = {0, 1, 2, 0, 2, 3};
-    const size_t pv = add(p, sizeof p), iv = add(i, sizeof i);
-    accessors.push_back(fmt::format(
-        R"({{"bufferView": {}, "componentType": 5126, "count": 4, "type": "VEC3", "min": [{}, {}, {}], "max": [{}, {}, {}]}})",
-        pv, -h, -h, z, h, h, z));
-    accessors.push_back(fmt::format(R"({{"bufferView": {}, "componentType": 5123, "count": 6, "type": "SCALAR"}})", iv));
-    meshes.push_back(fmt::format(R"({{"primitives": [{{"attributes": {{"POSITION": {}}}, "indices": {}, "material": {}}}]}})",
-                                 accessors.size() - 2, accessors.size() - 1, k));
-    nodes.push_back(fmt::format(R"({{"mesh": {}}})", k));
-  }
-  nodes.push_back(R"({"camera": 0, "translation": [0, 0, 4]})");
-  nodes.push_back(s.light_node);
-  std::string scene_nodes;
-  for (size_t k = 0; k < nodes.size(); ++k) scene_nodes += fmt::format("{}{}", k ? ", " : "", k);
-  return fmt::format(R"({{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [{}]}}],
- "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission"], "extensions": {{"KHR_lights_punctual": {{"lights": [{}]}}}},
- "nodes": [{}],
- "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.6, "aspectRatio": 1.0, "znear": 0.1}}}}],
- "meshes": [{}], "materials": [{}],
- "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{}"}}],
- "bufferViews": [{}], "accessors": [{}]}})",
-                     scene_nodes, s.lights, fmt::join(nodes, ", "), fmt::join(meshes, ", "), s.materials, buffer.size(),
-                     test::base64(buffer), fmt::join(views, ", "), fmt::join(accessors, ", "));
-}
+using test::GltfSquares;
+using test::gltf;
 
 // The pinhole image (9x9, linear EXR) of `s`; its centre pixel looks along
 // the square's normal.
-ImageBuffer render(const Scene& s, const test::TempDir& dir) {
+ImageBuffer render(const GltfSquares& s, const test::TempDir& dir) {
   test::write_text(dir.file("s.gltf"), gltf(s));
   const auto r = test::run_cli(
       fmt::format("render {} --camera pinhole --resolution 9x9 -q -o {}", dir.file("s.gltf"), dir.file("o.exr")));
@@ -154,7 +112,7 @@ void expect_rgb(const float* px, Vec3 expected, double tol) {
 // facing them to radiance 1 (the light's colour scales it).
 TEST(GltfLights, ADirectionalLightOf683PiLuxShowsAWhiteSurfaceFacingItAtItsColour) {
   test::TempDir dir;
-  Scene s;
+  GltfSquares s;
   s.materials = kWhiteDiffuse;
   s.squares = {{1.5, 0}};
   s.lights = fmt::format(R"({{"type": "directional", "color": [1, 0.5, 0.25], "intensity": {}}})", 683 * kPi);
@@ -166,7 +124,7 @@ TEST(GltfLights, ADirectionalLightOf683PiLuxShowsAWhiteSurfaceFacingItAtItsColou
 // by (1 - (d / range)^4)^2.
 TEST(GltfLights, PointLightsFallOffWithTheSquareOfTheDistanceAndTheirRange) {
   test::TempDir dir;
-  Scene s;
+  GltfSquares s;
   s.materials = kWhiteDiffuse;
   s.squares = {{1.5, 0}};
   for (const double d : {1.0, 2.0}) {
@@ -183,7 +141,7 @@ TEST(GltfLights, PointLightsFallOffWithTheSquareOfTheDistanceAndTheirRange) {
 // past its outer cone it gives nothing.
 TEST(GltfLights, ASpotIsItsPointLightInsideTheInnerConeAndDarkPastTheOuter) {
   test::TempDir dir;
-  Scene s;
+  GltfSquares s;
   s.materials = kWhiteDiffuse;
   s.squares = {{1.5, 0}};
   s.lights = fmt::format(
@@ -204,7 +162,7 @@ TEST(GltfLights, ASpotIsItsPointLightInsideTheInnerConeAndDarkPastTheOuter) {
 TEST(GltfMaterials, ASmoothMetalMirrorsTheSceneInItsColourARoughOneDoesNot) {
   test::TempDir dir;
   for (const double roughness : {0.05, 0.2}) {
-    Scene s;
+    GltfSquares s;
     s.materials = fmt::format(
         R"({{"name": "mirror", "pbrMetallicRoughness": {{"baseColorFactor": [1, 0.8, 0.6, 1], "metallicFactor": 1, "roughnessFactor": {}}}}},
  {{"name": "glow", "emissiveFactor": [0.5, 0.5, 0.5], "pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 1}}}})",
@@ -225,7 +183,7 @@ TEST(GltfMaterials, ASmoothMetalMirrorsTheSceneInItsColourARoughOneDoesNot) {
 TEST(GltfMaterials, ATransmittingSurfacePassesTheLightBehindItTintedByItsColour) {
   test::TempDir dir;
   for (const double transmission : {1.0, 0.0}) {
-    Scene s;
+    GltfSquares s;
     s.materials = fmt::format(
         R"({{"name": "glass", "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": {}}}}},
  "pbrMetallicRoughness": {{"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 0, "roughnessFactor": 0.5}}}},
@@ -238,7 +196,7 @@ TEST(GltfMaterials, ATransmittingSurfacePassesTheLightBehindItTintedByItsColour)
   }
   // Lit from the front, a white one passes its diffuse share on: only the
   // specular 0.04 / 4 of kWhiteAtNormal is left (nothing behind it).
-  Scene s;
+  GltfSquares s;
   s.materials = R"({"name": "glass", "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}},
  "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0, "roughnessFactor": 1}})";
   s.squares = {{1.5, 0}};

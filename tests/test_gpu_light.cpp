@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string>
 
+#include "gltf_squares.hpp"
 #include "test_util.hpp"
 
 namespace holoray::test {
@@ -89,6 +90,25 @@ TEST(GpuPathIntegrator, EmissiveSurfacesLightAsOnTheCpu) {
   RenderOptions o;
   o.spp = 16;
   EXPECT_GE(both_devices(scene, view(40, 30), o), kAgree);
+}
+
+// glTF's rough thin-walled transmission (shading/bsdf.h): a rough glass
+// square in front of a glowing one, lit through the glass by both the
+// BSDF's rays and the light sampling from behind it.
+TEST(GpuPathIntegrator, RoughTransmissionMatchesTheCpu) {
+  TempDir dir;
+  GltfSquares s;
+  s.materials = R"({"name": "glass", "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}},
+ "pbrMetallicRoughness": {"baseColorFactor": [1, 0.8, 0.6, 1], "metallicFactor": 0, "roughnessFactor": 0.4}},
+ {"name": "glow", "emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 1}})";
+  s.squares = {{1.5, 0}, {0.4, -1}};
+  s.lights = "";
+  s.light_node = "{}";
+  write_text(dir.file("s.gltf"), gltf(s));
+  const Scene scene = Scene::load(dir.file("s.gltf"));
+  RenderOptions o;
+  o.spp = 16;
+  EXPECT_GE(both_devices(scene, view(32, 32), o), kAgree);
 }
 
 // An equirectangular image, importance-sampled by its alias table on the

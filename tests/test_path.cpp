@@ -4,6 +4,7 @@
 // the image's independence of the thread count, the noise's fall with the
 // sample count, and the options the API refuses.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "scene/lights_file.hpp"
 #include "scene/nff_reader.hpp"
 #include "shading/environment.h"
+#include "gltf_squares.hpp"
 #include "test_util.hpp"
 
 namespace holoray {
@@ -294,6 +296,42 @@ TEST(PathIntegrator, TheApiRefusesWhatItCannotRenderSayingWhy) {
   o.environment = {};
   o.environment.file = dir + "/missing.exr";
   EXPECT_NE(test::error_of([&] { api::Renderer(scene, api::Camera{api::LensArray{}}, o); }).find("missing.exr"), std::string::npos);
+}
+
+// glTF's thin-walled transmission over a glowing square of radiance 1, the
+// sky black. Smooth, the glass passes the glow on unbent, c (1 - F) with F
+// Schlick's at the view angle (0.04 along the axis), and nothing beside it
+// (a pixel that sees past the glow's edge through the glass is black).
+// Rough, it spreads the glow: the pixel beside it is lit, the centre is
+// dimmer than the smooth glass's and never brighter.
+TEST(PathIntegrator, RoughTransmissionSpreadsTheLightBehindTheGlassAndSmoothPassesItUnbent) {
+  const test::TempDir dir;
+  auto render = [&](double roughness) {
+    test::GltfSquares s;
+    s.materials = fmt::format(R"({{"name": "glass", "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}}}},
+ "pbrMetallicRoughness": {{"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0, "roughnessFactor": {}}}}},
+ {{"name": "glow", "emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 1}}}})",
+                              roughness);
+    s.squares = {{1.5, 0}, {0.3, -1}};
+    s.lights = "";
+    s.light_node = "{}";
+    test::write_text(dir.file("s.gltf"), test::gltf(s));
+    api::RenderOptions o;
+    o.integrator = api::Integrator::path;
+    o.spp = 256;
+    api::Pinhole view;
+    view.width = view.height = 21;
+    return api::render(api::Scene::load(dir.file("s.gltf")), api::Camera{view}, o);
+  };
+  // The glow spans about 0.3 / 5 of the 0.6 radian field: 4 of 21 pixels
+  // across; pixel (10, 10) looks at its centre, (10, 16) well beside it.
+  auto at = [](const api::Result& r, int i, int j) { return r.colour.data()[(size_t(j) * r.colour.width() + i) * 3]; };
+  const api::Result smooth = render(0), rough = render(0.5);
+  EXPECT_NEAR(at(smooth, 10, 10), 0.96, 0.01);
+  EXPECT_EQ(at(smooth, 10, 16), 0.0f);
+  EXPECT_GT(at(rough, 10, 16), 0.01);
+  EXPECT_LT(at(rough, 10, 10), at(smooth, 10, 10) - 0.05);
+  EXPECT_GT(at(rough, 10, 10), 0.05);
 }
 
 }  // namespace

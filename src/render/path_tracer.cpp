@@ -70,15 +70,19 @@ struct Vertex {
 // (world, unit) from `dist` away, `le` its radiance over the density it was
 // drawn with (solid angle; `pdf` 0 for a delta light, which nothing else can
 // draw), MIS-weighted against the BSDF's own sampling of `dir`. Zero when
-// the surface faces away or the light is blocked.
+// the light is behind the surface (unless it transmits, rough: then from
+// behind, on that side of the shading normal too) or blocked.
 Vec3 light_sample(const RenderContext& scene, const Vertex& v, const Vec3& dir, double dist, const Vec3& le, double pdf,
                   RayCounts& counts) {
-  if (dot(dir, v.ng) <= 0) return {};
+  const bool behind = dot(dir, v.ng) <= 0;
+  if (behind && !(v.bsdf.transmit_alpha > 0)) return {};
   const sh::vec3 wi = sh::hr_to_local(to_f(dir), v.t, v.b, v.n);
+  if (behind != (wi.z < 0)) return {};
   const sh::vec3 f = sh::hr_bsdf_eval(v.bsdf, v.wo, wi);
   if (!(f.x > 0 || f.y > 0 || f.z > 0)) return {};
   ++counts.shadow;
-  if (scene.accel().occluded(Ray{v.above, dir, 0, std::isinf(dist) ? INFINITY : dist - 2 * scene.epsilon()})) return {};
+  const Vec3 from = behind ? v.below : v.above;
+  if (scene.accel().occluded(Ray{from, dir, 0, std::isinf(dist) ? INFINITY : dist - 2 * scene.epsilon()})) return {};
   const double w = pdf > 0 ? sh::hr_power_heuristic(static_cast<float>(pdf), sh::hr_bsdf_pdf(v.bsdf, v.wo, wi)) : 1.0;
   return mul(to_d(f), le) * w;
 }
@@ -256,6 +260,7 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, sh::HrSampler& sa
     // A reflected direction below the geometric surface (the shading
     // normal's tilt) would leave from inside: the path ends there.
     if (!through && dot(dir, v.ng) <= 0) break;
+    if (through && !delta && dot(dir, v.ng) >= 0) break;  // rough transmission back above it: the same, mirrored
     throughput = mul(throughput, to_d(weight));
     specular = delta;
     last_pdf = pdf;

@@ -13,12 +13,18 @@
 //             metal F_m D V, V Smith's separable term / (4 |n.l| |n.v|)
 //   mirror    a delta reflection of weight `mirror` (NFF's Ks, Tachyon's
 //             specular): a perfect mirror, as Whitted's ray
-//   transmit  a delta transmission of weight `transmit`, refracted by
-//             `eta` (NFF's T and ior; 1: straight on, Tachyon's opacity and
-//             glTF's thin-walled KHR_materials_transmission)
+//   transmit  a transmission of weight `transmit`: a delta lobe refracted
+//             by `eta` (NFF's T and ior; 1: straight on, Tachyon's opacity
+//             and glTF's thin-walled KHR_materials_transmission when
+//             smooth); or, rough (`transmit_alpha` > 0), glTF's thin-walled
+//             specular BTDF: the GGX reflection lobe mirrored through the
+//             surface, centred on the straight-on direction, with the
+//             specification's D V (KHR_materials_transmission, "Transmission
+//             BTDF"; the sample viewer mirrors the light the same way)
 //
 // hr_bsdf_eval and hr_bsdf_pdf cover the non-delta lobes (what light
-// sampling can reach); hr_bsdf_sample picks any lobe.
+// sampling can reach: below the surface, wi.z < 0, only rough
+// transmission); hr_bsdf_sample picks any lobe.
 #ifndef HOLORAY_SHADING_BSDF_H
 #define HOLORAY_SHADING_BSDF_H
 
@@ -36,6 +42,7 @@ struct HrBsdf {
   vec3 mirror;    ///< delta reflection weight
   vec3 transmit;  ///< delta transmission weight
   float eta;      ///< incident over transmitted index for `transmit`; 1: unbent
+  float transmit_alpha;  ///< 0: `transmit` is a delta lobe; else its GGX alpha (thin-walled rough transmission)
   float principled;  ///< 1: the diffuse lobe as Blender's Principled BSDF (above), with `roughness`; 0: glTF's
   float roughness;   ///< the surface's roughness, for the principled diffuse's retro-reflection
 };
@@ -76,7 +83,16 @@ HR_FN void hr_bsdf_lobes(HrBsdf b, vec3 wo, HR_OUT(vec3) a, HR_OUT(float) t) {
 /// f(wo, wi) |wi.z| of the diffuse and glossy lobes (local frame); zero
 /// unless both directions are above the surface.
 HR_FN vec3 hr_bsdf_eval(HrBsdf b, vec3 wo, vec3 wi) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return vec3(0.0f);
+  if (wo.z <= 0.0f) return vec3(0.0f);
+  if (wi.z < 0.0f && b.transmit_alpha > 0.0f) {
+    // The reflection lobe at wi mirrored above the surface, wm:
+    // transmit D G1(wo) G1(wm) / (4 wo.z wm.z), times |wi.z| = wm.z.
+    vec3 wm = vec3(wi.x, wi.y, -wi.z);
+    vec3 h = normalize(wo + wm);
+    float ta = b.transmit_alpha;
+    return b.transmit * (hr_ggx_d(h.z, ta) * hr_smith_g1(wo.z, ta) * hr_smith_g1(wm.z, ta) / (4.0f * wo.z));
+  }
+  if (wi.z <= 0.0f) return vec3(0.0f);
   if (!(b.alpha > 0.0f)) return b.diffuse * (HR_INV_PI * wi.z);
   vec3 h = normalize(wo + wi);
   float voh = max(dot(wo, h), 0.0f);
@@ -88,9 +104,12 @@ HR_FN vec3 hr_bsdf_eval(HrBsdf b, vec3 wo, vec3 wi) {
   return f * wi.z;
 }
 
-/// hr_bsdf_pdf with the lobes' probabilities `a` (hr_bsdf_lobes) given.
-HR_FN float hr_bsdf_pdf_of_lobes(HrBsdf b, vec3 wo, vec3 wi, vec3 a) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+/// hr_bsdf_pdf with the lobes' probabilities `a` and `t` (hr_bsdf_lobes) given.
+HR_FN float hr_bsdf_pdf_of_lobes(HrBsdf b, vec3 wo, vec3 wi, vec3 a, float t) {
+  if (wo.z <= 0.0f) return 0.0f;
+  if (wi.z < 0.0f && b.transmit_alpha > 0.0f)
+    return t * hr_ggx_reflection_pdf(wo, vec3(wi.x, wi.y, -wi.z), b.transmit_alpha);
+  if (wi.z <= 0.0f) return 0.0f;
   float p = a.x * hr_cosine_pdf(wi.z);
   if (b.alpha > 0.0f) p += a.y * hr_ggx_reflection_pdf(wo, wi, b.alpha);
   return p;
@@ -102,7 +121,7 @@ HR_FN float hr_bsdf_pdf(HrBsdf b, vec3 wo, vec3 wi) {
   vec3 a;
   float t;
   hr_bsdf_lobes(b, wo, a, t);
-  return hr_bsdf_pdf_of_lobes(b, wo, wi, a);
+  return hr_bsdf_pdf_of_lobes(b, wo, wi, a, t);
 }
 
 /// Refracts `wo` (local, wo.z > 0) through the surface: `wt` below it, for
@@ -138,19 +157,30 @@ HR_FN bool hr_bsdf_sample(HrBsdf b, vec3 wo, float u_lobe, vec2 u, HR_OUT(vec3) 
       wi = reflect(-wo, h);
     }
     if (wi.z <= 0.0f) return false;
-    pdf = hr_bsdf_pdf_of_lobes(b, wo, wi, a);
+    pdf = hr_bsdf_pdf_of_lobes(b, wo, wi, a, t);
     if (!(pdf > 0.0f)) return false;
     weight = hr_bsdf_eval(b, wo, wi) / pdf;
     return true;
   }
-  delta = true;
   if (u_lobe < a.x + a.y + a.z) {
+    delta = true;
     wi = vec3(-wo.x, -wo.y, wo.z);
     weight = b.mirror / a.z;
     return true;
   }
   if (!(t > 0.0f)) return false;
   through = true;
+  if (b.transmit_alpha > 0.0f) {  // a reflected microfacet direction, mirrored below
+    vec3 h = hr_ggx_sample_visible(wo, b.transmit_alpha, u);
+    vec3 r = reflect(-wo, h);
+    if (r.z <= 0.0f) return false;
+    wi = vec3(r.x, r.y, -r.z);
+    pdf = hr_bsdf_pdf_of_lobes(b, wo, wi, a, t);
+    if (!(pdf > 0.0f)) return false;
+    weight = hr_bsdf_eval(b, wo, wi) / pdf;
+    return true;
+  }
+  delta = true;
   weight = b.transmit / t;
   if (b.eta == 1.0f) {
     wi = -wo;
@@ -166,8 +196,9 @@ HR_FN bool hr_bsdf_sample(HrBsdf b, vec3 wo, float u_lobe, vec2 u, HR_OUT(vec3) 
 }
 
 /// A glTF metallic-roughness material as an HrBsdf (Appendix B; T the
-/// KHR_materials_transmission factor, thin-walled: the transmitted share
-/// goes on unbent, (1 - metallic) T c (1 - F(wo.z)), as the Whitted path's).
+/// KHR_materials_transmission factor, thin-walled: the transmitted share,
+/// (1 - metallic) T c (1 - F(wo.z)), goes on unbent when smooth, as the
+/// Whitted path's, and spread by the roughness's GGX lobe when rough).
 HR_FN HrBsdf hr_gltf_bsdf(vec3 base, float metallic, float roughness, float f0, float transmission, float cos_o) {
   HrBsdf b;
   b.base = base;
@@ -178,6 +209,8 @@ HR_FN HrBsdf hr_gltf_bsdf(vec3 base, float metallic, float roughness, float f0, 
   b.mirror = vec3(0.0f);
   b.transmit = base * ((1.0f - b.metallic) * transmission * (1.0f - hr_schlick(f0, cos_o)));
   b.eta = 1.0f;
+  // Rough where the glossy lobe is: below HR_MIN_ALPHA a delta, as before.
+  b.transmit_alpha = roughness * roughness > HR_MIN_ALPHA ? b.alpha : 0.0f;
   b.principled = 0.0f;
   b.roughness = roughness;
   return b;
@@ -204,6 +237,7 @@ HR_FN HrBsdf hr_plain_bsdf(vec3 diffuse, vec3 mirror, vec3 transmit, float eta) 
   b.mirror = mirror;
   b.transmit = transmit;
   b.eta = eta;
+  b.transmit_alpha = 0.0f;
   b.principled = 0.0f;
   b.roughness = 1.0f;
   return b;

@@ -90,16 +90,20 @@ bool any_positive(vec3 c) { return c.x > 0.0 || c.y > 0.0 || c.z > 0.0; }
 
 // One light sample's share at `v`: light along `dir` (unit) from `dist`
 // away, `le` its radiance over its density `pdf` (0: a delta light),
-// MIS-weighted against the BSDF's sampling; 0 when blocked.
+// MIS-weighted against the BSDF's sampling; 0 when behind the surface
+// (unless it transmits, rough) or blocked.
 vec3 light_sample(PathVertex v, vec3 dir, float dist, vec3 le, float pdf, inout uint shadow_rays) {
-  if (dot(dir, v.ng) <= 0.0) return vec3(0.0);
+  bool behind = dot(dir, v.ng) <= 0.0;
+  if (behind && !(v.bsdf.transmit_alpha > 0.0)) return vec3(0.0);
   vec3 wi = hr_to_local(dir, v.t, v.b, v.n);
+  if (behind != (wi.z < 0.0)) return vec3(0.0);
   vec3 f = hr_bsdf_eval(v.bsdf, v.wo, wi);
   if (!any_positive(f)) return vec3(0.0);
   ++shadow_rays;
   log_kind = 0x80u;
   Hit blocker;
-  if (trace_ray(v.above, dir, 0.0, isinf(dist) ? kInf : dist - 2.0 * F.extent.w, true, blocker)) return vec3(0.0);
+  if (trace_ray(behind ? v.below : v.above, dir, 0.0, isinf(dist) ? kInf : dist - 2.0 * F.extent.w, true, blocker))
+    return vec3(0.0);
   float w = pdf > 0.0 ? hr_power_heuristic(pdf, hr_bsdf_pdf(v.bsdf, v.wo, wi)) : 1.0;
   return f * le * w;
 }
@@ -288,6 +292,7 @@ vec3 path_radiance(int i, int j, EyeRay e, inout HrSampler rng, bool aovs_now, i
     if (!hr_bsdf_sample(v.bsdf, v.wo, u_lobe.x, u_dir, wi, weight, pdf, delta, through)) break;
     vec3 dir = normalize(hr_to_world(wi, v.t, v.b, v.n));
     if (!through && dot(dir, v.ng) <= 0.0) break;  // below the geometric surface: it would leave from inside
+    if (through && !delta && dot(dir, v.ng) >= 0.0) break;  // rough transmission back above it: the same, mirrored
     throughput *= weight;
     specular = delta;
     last_pdf = pdf;
