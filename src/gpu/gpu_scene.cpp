@@ -155,13 +155,13 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width)
         pn.n0 = v4(nn[0]), pn.n1 = v4(nn[1]), pn.n2 = v4(nn[2]);
         out.patches.push_back(pn);
       }
-      tri.e1 = v4(v[1] - v[0], bits(patch));
+      tri.v1 = v4(v[1], bits(patch));
       int32_t coloured = -1;
       if (const auto* c = scene.vertex_colours(g, t)) {
         coloured = static_cast<int32_t>(out.colours.size());
         out.colours.push_back({v4((*c)[0]), v4((*c)[1]), v4((*c)[2])});
       }
-      tri.e2 = v4(v[2] - v[0], bits(coloured));
+      tri.v2 = v4(v[2], bits(coloured));
       const Vec3& wn = scene.winding_normal(g, t);
       tri.ng = v4(moved ? xf.normal(wn) : wn, bits(scene.object_of(g, PrimKind::triangle, t)));
       PrimitiveBox b{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};

@@ -105,13 +105,15 @@ HR_STRUCT GpuNode {
   ivec4 index, count;
 };
 
-/// A triangle: vertex 0 and its two edges (Moller-Trumbore), the winding
-/// normal (w: the object id's bits), and in e1.w the index of its three
-/// vertex normals in the patch buffer (-1: flat), in e2.w that of its
-/// vertex colours in the colour buffer (-1: none), in v0.w that of its
-/// texture coordinates (GpuUv, -1: none), as float bits.
+/// A triangle: its three vertices, each rounded to float once, so that
+/// triangles sharing a vertex hold the same bits of it (the watertight
+/// test needs them, trace.comp), the winding normal (w: the object id's
+/// bits), and in v1.w the index of its three vertex normals in the patch
+/// buffer (-1: flat), in v2.w that of its vertex colours in the colour
+/// buffer (-1: none), in v0.w that of its texture coordinates (GpuUv, -1:
+/// none), as float bits.
 HR_STRUCT GpuTriangle {
-  vec4 v0, e1, e2, ng;
+  vec4 v0, v1, v2, ng;
 };
 
 /// Vertex normals of a smooth triangle (NFF `pp`, a mesh's normals), or the

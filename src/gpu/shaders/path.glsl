@@ -185,10 +185,11 @@ vec3 direct_light(PathVertex v, inout HrSampler rng, inout uint shadow_rays) {
     uint k = floatBitsToUint(e.y);
     GpuTriangle tri = tris[k];
     vec2 b = hr_uniform_triangle(u_emit);
-    vec3 dir = tri.v0.xyz + tri.e1.xyz * b.x + tri.e2.xyz * b.y - v.p;
+    vec3 e1 = tri.v1.xyz - tri.v0.xyz, e2 = tri.v2.xyz - tri.v0.xyz;
+    vec3 dir = tri.v0.xyz + e1 * b.x + e2 * b.y - v.p;
     float dist2 = dot(dir, dir), dist = sqrt(dist2);
     dir /= dist;
-    float cos_l = abs(dot(normalize(cross(tri.e1.xyz, tri.e2.xyz)), dir));  // emission is two-sided
+    float cos_l = abs(dot(normalize(cross(e1, e2)), dir));  // emission is two-sided
     if (dist > 2.0 * eps && cos_l > 0.0) {
       float pdf = e.z / e.w * dist2 / cos_l;
       GpuMaterial m = materials[object_material[floatBitsToInt(tri.ng.w)]];

@@ -234,21 +234,48 @@ bool cut_away(GpuTriangle tri, float bu, float bv) {
   return alpha < m.alpha.y;
 }
 
-bool hit_triangle(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
+// A ray as the watertight triangle test takes it (Woop, Benthin and Wald
+// 2013, "Watertight Ray/Triangle Intersection", JCGT 2(1)): its axes
+// permuted so that its largest direction component is z (k), and the shear
+// that turns it into +z (s), once per ray.
+struct ShearedRay {
+  ivec3 k;
+  vec3 s;
+};
+
+ShearedRay sheared(vec3 d) {
+  vec3 a = abs(d);
+  int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
+  if (d[kz] < 0.0) {  // keeps the triangles' winding
+    int swap = kx;
+    kx = ky, ky = swap;
+  }
+  ShearedRay r;
+  r.k = ivec3(kx, ky, kz);
+  r.s = vec3(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+  return r;
+}
+
+// Where the ray (origin o, sheared r) meets triangle k, in (tmin, h.t).
+// Each vertex is moved to the ray's frame by the same float operations
+// whichever triangle holds it, and the edge functions are `precise` (no
+// fused multiply-add): two triangles sharing an edge compute it as exact
+// negatives, so a ray on the edge meets one of them or both, never neither.
+bool hit_triangle(uint k, vec3 o, ShearedRay r, float tmin, inout Hit h) {
   GpuTriangle tri = tris[k];
-  vec3 e1 = tri.e1.xyz, e2 = tri.e2.xyz;
-  vec3 p = cross(d, e2);
-  float det = dot(e1, p);
+  vec3 a = tri.v0.xyz - o, b = tri.v1.xyz - o, c = tri.v2.xyz - o;
+  precise float ax = a[r.k.x] - r.s.x * a[r.k.z], ay = a[r.k.y] - r.s.y * a[r.k.z];
+  precise float bx = b[r.k.x] - r.s.x * b[r.k.z], by = b[r.k.y] - r.s.y * b[r.k.z];
+  precise float cx = c[r.k.x] - r.s.x * c[r.k.z], cy = c[r.k.y] - r.s.y * c[r.k.z];
+  precise float e0 = cx * by - cy * bx, e1 = ax * cy - ay * cx, e2 = bx * ay - by * ax;
+  if ((e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0)) return false;
+  float det = e0 + e1 + e2;
   if (det == 0.0) return false;
   float inv = 1.0 / det;
-  vec3 s = o - tri.v0.xyz;
-  float u = dot(s, p) * inv;
-  if (u < 0.0 || u > 1.0) return false;
-  vec3 q = cross(s, e1);
-  float v = dot(d, q) * inv;
-  if (v < 0.0 || u + v > 1.0) return false;
-  float t = dot(e2, q) * inv;
+  float t = (e0 * (r.s.z * a[r.k.z]) + e1 * (r.s.z * b[r.k.z]) + e2 * (r.s.z * c[r.k.z])) * inv;
   if (!(t > tmin && t < h.t)) return false;
+  float u = e1 * inv, v = e2 * inv;  // vertex 1's and vertex 2's weights
   if (kAlphaMasks && cut_away(tri, u, v)) return false;
   h.t = t, h.u = u, h.v = v, h.ng = tri.ng.xyz;
   h.ref = (HR_PRIM_TRIANGLE << HR_PRIM_SHIFT) | k;
@@ -323,10 +350,10 @@ bool hit_cone(uint k, vec3 o, vec3 d, float tmin, inout Hit h) {
   return false;
 }
 
-bool hit_ref(uint ref, vec3 o, vec3 d, float tmin, bool shadow, inout Hit h) {
+bool hit_ref(uint ref, vec3 o, vec3 d, ShearedRay r, float tmin, bool shadow, inout Hit h) {
   if (kCountWork) ++tested;
   uint kind = ref >> HR_PRIM_SHIFT, k = ref & ((1u << HR_PRIM_SHIFT) - 1u);
-  if (kind == HR_PRIM_TRIANGLE) return hit_triangle(k, o, d, tmin, h);
+  if (kind == HR_PRIM_TRIANGLE) return hit_triangle(k, o, r, tmin, h);
   if (kind == HR_PRIM_SPHERE) return hit_sphere(k, o, d, tmin, shadow, h);
   return hit_cone(k, o, d, tmin, h);
 }
@@ -344,13 +371,20 @@ vec3 safe_inverse(vec3 d) {
 
 // Where the ray (origin o, 1 / direction inv) enters and leaves each of
 // node n's four child boxes, clipped to [tmin, tmax]: child c is met
-// where t0[c] <= t1[c] (slabs, axis by axis).
+// where t0[c] <= t1[c] (slabs, axis by axis). Each slab distance is three
+// roundings from exact (1 / d, the subtraction, the product): the span is
+// widened by twice their bound, so a ray that grazes a box's face or edge,
+// as one through a triangle's vertex on it does, still enters the box
+// (Ize 2013, "Robust BVH Ray Traversal", JCGT 2(2)).
+const float kSlabGrowth = 2.0 * 3.0 * 5.9604645e-8 / (1.0 - 3.0 * 5.9604645e-8);
 void child_spans(GpuNode n, vec3 o, vec3 inv, float tmin, float tmax, out vec4 t0, out vec4 t1) {
   vec4 ax = (n.lo_x - o.x) * inv.x, bx = (n.hi_x - o.x) * inv.x;
   vec4 ay = (n.lo_y - o.y) * inv.y, by = (n.hi_y - o.y) * inv.y;
   vec4 az = (n.lo_z - o.z) * inv.z, bz = (n.hi_z - o.z) * inv.z;
-  t0 = max(max(min(ax, bx), min(ay, by)), max(min(az, bz), vec4(tmin)));
-  t1 = min(min(max(ax, bx), max(ay, by)), min(max(az, bz), vec4(tmax)));
+  vec4 near = max(max(min(ax, bx), min(ay, by)), min(az, bz));
+  vec4 far = min(min(max(ax, bx), max(ay, by)), max(az, bz));
+  t0 = max(near - abs(near) * kSlabGrowth, vec4(tmin));
+  t1 = min(far + abs(far) * kSlabGrowth, vec4(tmax));
 }
 
 bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h);
@@ -378,7 +412,7 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
       if (n.count[c] < 0 || !(t0[c] <= t1[c])) continue;                                                  \
       if (n.count[c] > 0) { /* a leaf: test it now */                                                     \
         for (int r = 0; r < n.count[c]; ++r)                                                              \
-          if (hit_ref(refs[n.index[c] + r], o, d, tmin, any, h)) {                                        \
+          if (hit_ref(refs[n.index[c] + r], o, d, sr, tmin, any, h)) {                                    \
             found = true;                                                                                 \
             if (any) return true;                                                                         \
           }                                                                                               \
@@ -396,6 +430,7 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
 bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
   h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
   vec3 inv = safe_inverse(d);
+  ShearedRay sr = sheared(d);
   // The node to visit next stays in a register: only the other children
   // met go through the stack (local memory).
   int stack[HR_STACK];
@@ -577,7 +612,7 @@ Surface surface_of(vec3 o, vec3 d, Hit h) {
     GpuTriangle tri = tris[k];
     s.ng = tri.ng.xyz;
     s.ns = s.ng;
-    int patch_at = floatBitsToInt(tri.e1.w);
+    int patch_at = floatBitsToInt(tri.v1.w);
     if (patch_at >= 0) {
       GpuPatch pn = patches[patch_at];
       vec3 ns = pn.n0.xyz * (1.0 - h.u - h.v) + pn.n1.xyz * h.u + pn.n2.xyz * h.v;
@@ -794,7 +829,7 @@ uint out_pixel(int i, int j) { return uint(F.tile.y + j - F.rows.x) * uint(F.til
 // the tangent along increasing u, the bitangent along increasing v, both
 // made orthonormal to the interpolated normal n; x and y times `scale`).
 vec3 normal_mapped(GpuTriangle tri, GpuUv uv, vec3 n, vec3 texel, float scale) {
-  vec3 e1 = tri.e1.xyz, e2 = tri.e2.xyz;
+  vec3 e1 = tri.v1.xyz - tri.v0.xyz, e2 = tri.v2.xyz - tri.v0.xyz;
   float du1 = uv.uv01.z - uv.uv01.x, dv1 = uv.uv01.w - uv.uv01.y;
   float du2 = uv.uv2_scale.x - uv.uv01.x, dv2 = uv.uv2_scale.y - uv.uv01.y;
   float det = du1 * dv2 - du2 * dv1;
@@ -845,7 +880,7 @@ MappedMaterial mapped_material(GpuMaterial m, Hit h, float optic, inout Surface 
 // else its texfunc's seen `optic` away, else `colour`
 // (RenderScene::surface_colour).
 vec3 tachyon_colour(GpuMaterial m, Hit h, vec3 p, vec3 colour, float optic) {
-  int coloured = (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE ? floatBitsToInt(tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)].e2.w) : -1;
+  int coloured = (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE ? floatBitsToInt(tris[h.ref & ((1u << HR_PRIM_SHIFT) - 1u)].v2.w) : -1;
   if (coloured >= 0)
     return vertex_colours[coloured].n0.xyz * (1.0 - h.u - h.v) + vertex_colours[coloured].n1.xyz * h.u +
            vertex_colours[coloured].n2.xyz * h.v;
@@ -895,6 +930,7 @@ void shadow_pass() {
   uint budget = uint(HR_SHADOW_RAYS_PER_LANE) * gl_SubgroupSize, taken = 0u;
   bool live = false, drained = false;
   vec3 o = vec3(0.0), d = vec3(0.0), inv = vec3(0.0);
+  ShearedRay sr = sheared(vec3(0.0, 0.0, 1.0));
   float tmax = 0.0;
   uint at = 0u;
   int stack[HR_STACK];
@@ -913,7 +949,7 @@ void shadow_pass() {
       if (!live && rank < k && base + rank < queued) {
         at = base + rank;
         GpuShadowRay r = shadow_queue[at];
-        o = r.origin_tmax.xyz, tmax = r.origin_tmax.w, d = r.dir_lit.xyz, inv = safe_inverse(d);
+        o = r.origin_tmax.xyz, tmax = r.origin_tmax.w, d = r.dir_lit.xyz, inv = safe_inverse(d), sr = sheared(d);
         live = true, sp = 0, next = 0;
       }
     }
@@ -931,7 +967,7 @@ void shadow_pass() {
             for (int q = 0; q < n.count[c] && !blocked; ++q) {
               Hit h;
               h.t = tmax, h.ref = 0xffffffffu, h.u = 0.0, h.v = 0.0, h.ng = vec3(0.0);
-              blocked = hit_ref(refs[n.index[c] + q], o, d, 0.0, true, h);
+              blocked = hit_ref(refs[n.index[c] + q], o, d, sr, 0.0, true, h);
             }
           } else if (first < 0) {
             first = n.index[c];
