@@ -9,18 +9,6 @@
 
 #include "camera/pixel_lines.h"
 
-#ifndef HR_ARRAY_IN
-#ifdef __cplusplus
-#define HR_ARRAY_IN(name, n) const float* name
-#define HR_ARRAY_OUT(name, n) float* name
-#define HR_ARRAY_INOUT(name, n) float* name
-#else
-#define HR_ARRAY_IN(name, n) float name[n]
-#define HR_ARRAY_OUT(name, n) out float name[n]
-#define HR_ARRAY_INOUT(name, n) inout float name[n]
-#endif
-#endif
-
 /// The camera kinds the cases cycle through (case c is kind c mod 8).
 #define HR_LINE_CASE_KINDS 8u
 /// The kind whose line goes through a tangent (the Looking Glass's view

@@ -28,6 +28,18 @@
 #define HR_END
 #endif
 
+// A float array parameter (the tests' cases: shared_cases.h,
+// camera/line_cases.h): a pointer in C++, a sized array in GLSL.
+#ifdef __cplusplus
+#define HR_ARRAY_IN(name, n) const float* name
+#define HR_ARRAY_OUT(name, n) float* name
+#define HR_ARRAY_INOUT(name, n) float* name
+#else
+#define HR_ARRAY_IN(name, n) float name[n]
+#define HR_ARRAY_OUT(name, n) out float name[n]
+#define HR_ARRAY_INOUT(name, n) inout float name[n]
+#endif
+
 #define HR_PI 3.14159265358979f
 #define HR_INV_PI 0.318309886183791f
 

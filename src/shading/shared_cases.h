@@ -11,16 +11,6 @@
 #include "shading/lights.h"
 #include "shading/sampler.h"
 
-#ifdef __cplusplus
-#define HR_ARRAY_IN(name, n) const float* name
-#define HR_ARRAY_OUT(name, n) float* name
-#define HR_ARRAY_INOUT(name, n) float* name
-#else
-#define HR_ARRAY_IN(name, n) float name[n]
-#define HR_ARRAY_OUT(name, n) out float name[n]
-#define HR_ARRAY_INOUT(name, n) inout float name[n]
-#endif
-
 HR_BEGIN
 
 /// r[k], r[k + 1], r[k + 2] = v.
