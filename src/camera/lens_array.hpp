@@ -83,12 +83,17 @@ class LensArray {
   int lens_count_x() const { return desc_.lenses_x; }
   int lens_count_y() const { return desc_.grid == Grid::lenticular ? 1 : desc_.lenses_y; }
 
-  /// The lens a pixel belongs to (hex: nearest centre, ties to lower ly then lx).
-  /// Square and lenticular grids are a division, inlined because the
-  /// reprojection asks once per neighbour of every pixel.
+  /// The lens a pixel belongs to (hex: nearest centre, ties to lower ly then lx):
+  /// camera_lines::hr_lens_of_pixel. Square and lenticular grids are a
+  /// division, inlined because the reprojection asks once per neighbour of
+  /// every pixel; the hex case stays out of line (the shared function
+  /// inlined whole made this too large to inline: 2 % of a reprojected
+  /// shot's time went to the call).
   LensIndex lens_of_pixel(int i, int j) const {
-    const shading::ivec2 l = camera_lines::hr_lens_of_pixel(grid_, i, j);
-    return {l.x, l.y};
+    const int P = desc_.pixels_per_lens;
+    if (desc_.grid == Grid::square) return {i / P, j / P};
+    if (desc_.grid == Grid::lenticular) return {i / P, 0};
+    return hex_lens_of_pixel(i, j);
   }
   /// lens_of_pixel(i, j) == lens, without its divisions on square and
   /// lenticular grids (the reverse reprojection asks for every reused hit).
