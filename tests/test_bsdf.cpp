@@ -33,12 +33,11 @@ sh::vec3 albedo_by_quadrature(const sh::HrBsdf& b, sh::vec3 wo) {
 }
 
 // The mean weight of the non-delta samples (the delta lobes' are left out:
-// eval never sees them), and the share of samples that passed below.
-sh::vec3 albedo_by_sampling(const sh::HrBsdf& b, sh::vec3 wo, int n, double* through_share = nullptr) {
+// eval never sees them).
+sh::vec3 albedo_by_sampling(const sh::HrBsdf& b, sh::vec3 wo, int n) {
   std::mt19937 rng(72);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   double sum[3] = {0, 0, 0};
-  int through = 0;
   for (int k = 0; k < n; ++k) {
     sh::vec3 wi, w;
     float pdf;
@@ -47,9 +46,7 @@ sh::vec3 albedo_by_sampling(const sh::HrBsdf& b, sh::vec3 wo, int n, double* thr
     const sh::vec2 u(unit(rng), unit(rng));
     if (!sh::hr_bsdf_sample(b, wo, u_lobe, u, wi, w, pdf, delta, passed) || delta) continue;
     sum[0] += w.x, sum[1] += w.y, sum[2] += w.z;
-    through += passed;
   }
-  if (through_share) *through_share = double(through) / n;
   return sh::vec3(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 

@@ -98,21 +98,23 @@ HR_FN void hr_run_line_case(uint c, HR_ARRAY_IN(a, 16), HR_ARRAY_OUT(r, 32)) {
     hr_put_line3(r, 8u, p);
   } else if (kind == HR_LINE_CASE_TANGENT) {
     HrLookingGlass g;
-    g.width = 100 + int(a[0] * 2000.0f);
-    g.height = 100 + int(a[1] * 2000.0f);
+    g.centre.width = 100 + int(a[0] * 2000.0f);
+    g.centre.height = 100 + int(a[1] * 2000.0f);
+    g.centre.ortho = 0;
     g.views = 1 + int(a[2] * 100.0f);
-    g.pixel = (0.5 + hr_real(a[3])) * 2.0 / hr_real(g.height);
-    g.sample_u = a[4] > 0.5f ? 1.0 : 0.5;
-    g.sample_v = g.sample_u;
-    g.shift_x = (hr_real(a[5]) - 0.5) * 0.2;
+    g.centre.pixel = (0.5 + hr_real(a[3])) * 2.0 / hr_real(g.centre.height);
+    g.centre.sample_u = a[4] > 0.5f ? 1.0 : 0.5;
+    g.centre.sample_v = g.centre.sample_u;
+    g.centre.shift_x = (hr_real(a[5]) - 0.5) * 0.2;
+    g.centre.shift_y = 0.0;
     g.view_cone_deg = 20.0 + 40.0 * hr_real(a[6]);
     g.distance = 1.0 + 20.0 * hr_real(a[7]);
-    int i = min(int(a[8] * float(g.width)), g.width - 1);
-    int j = min(int(a[9] * float(g.height)), g.height - 1);
+    int i = min(int(a[8] * float(g.centre.width)), g.centre.width - 1);
+    int j = min(int(a[9] * float(g.centre.height)), g.centre.height - 1);
     hr_real x = 0.00001 + 0.99998 * hr_real(a[10]);  // a view value in (0, 1)
     hr_looking_glass_line(g, f, i, j, hr_real(a[11]), hr_real(a[12]), x, o, d);
     // The subpixel cell of every pattern (0 to 4) with 0 to 4 cells.
-    r[6] = float(hr_looking_glass_cell(int((c / 8u) % 5u), int((c / 40u) % 5u), g.height, i, j));
+    r[6] = float(hr_looking_glass_cell(int((c / 8u) % 5u), int((c / 40u) % 5u), g.centre.height, i, j));
     hr_put_line3(r, 0u, o);
     hr_put_line3(r, 3u, d);
     return;

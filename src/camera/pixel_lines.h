@@ -226,13 +226,23 @@ struct HrPinhole {
   hr_real pixel, sample_u, sample_v, shift_x, shift_y;
 };
 
+/// Where pixel (i, j)'s sample at (u, v) lies on the image plane (the
+/// view's frame; distance 1, orthographic: the eye's plane), its window
+/// shifted by (shift_x, shift_y).
+HR_FN void hr_image_plane_point(HrPinhole c, int i, int j, hr_real u, hr_real v, hr_real shift_x, hr_real shift_y,
+                                HR_OUT(hr_real) x, HR_OUT(hr_real) y) {
+  x = (hr_real(i) + u + (c.sample_u - 0.5) - 0.5 * hr_real(c.width)) * c.pixel + shift_x;
+  y = (0.5 * hr_real(c.height) - (hr_real(j) + v + (c.sample_v - 0.5))) * c.pixel + shift_y;
+}
+
 /// Pixel (i, j)'s line at (u, v) inside it, in the world: from the eye
 /// (f.origin; f.z points back toward it) through the image plane at
 /// distance 1; orthographic, from the eye's plane along -f.z.
 HR_FN void hr_pinhole_line(HrPinhole c, HrFrame f, int i, int j, hr_real u, hr_real v, HR_OUT(hr_vec3) origin,
                            HR_OUT(hr_vec3) dir) {
-  hr_real x = (hr_real(i) + u + (c.sample_u - 0.5) - 0.5 * hr_real(c.width)) * c.pixel + c.shift_x;
-  hr_real y = (0.5 * hr_real(c.height) - (hr_real(j) + v + (c.sample_v - 0.5))) * c.pixel + c.shift_y;
+  hr_real x;
+  hr_real y;
+  hr_image_plane_point(c, i, j, u, v, c.shift_x, c.shift_y, x, y);
   if (c.ortho != 0) {
     origin = hr_to_world_point(f, hr_vec3(x, y, 0.0));
     dir = -f.z;
@@ -245,12 +255,13 @@ HR_FN void hr_pinhole_line(HrPinhole c, HrFrame f, int i, int j, hr_real u, hr_r
 // ---- a Looking Glass's native panel (display/looking_glass.hpp) ----
 
 /// A Looking Glass's panel as the continuous version of its quilt: `views`
-/// views over a cone of view_cone_deg degrees, each a view of the centre
-/// one (a pinhole of `pixel` at distance 1, its sample offset and
-/// horizontal shift) sheared about the zero-parallax plane at `distance`.
+/// views over a cone of view_cone_deg degrees, each the `centre` view
+/// (perspective, no vertical shift) sheared about the zero-parallax plane
+/// at `distance`.
 struct HrLookingGlass {
-  int width, height, views;
-  hr_real pixel, sample_u, sample_v, shift_x, view_cone_deg, distance;
+  HrPinhole centre;
+  int views;
+  hr_real view_cone_deg, distance;
 };
 
 /// The subpixel cell of pixel (i, j) (the calibration's cell pattern
@@ -277,8 +288,9 @@ HR_FN void hr_looking_glass_line(HrLookingGlass g, HrFrame f, int i, int j, hr_r
   hr_real index = x * hr_real(g.views);
   hr_real along = g.views == 1 ? 0.5 : index / hr_real(g.views - 1);
   hr_real t = tan((along - 0.5) * g.view_cone_deg * 3.141592653589793 / 180.0);
-  hr_real px = (hr_real(i) + u + (g.sample_u - 0.5) - 0.5 * hr_real(g.width)) * g.pixel + (g.shift_x - t);
-  hr_real py = (0.5 * hr_real(g.height) - (hr_real(j) + v + (g.sample_v - 0.5))) * g.pixel;
+  hr_real px;
+  hr_real py;
+  hr_image_plane_point(g.centre, i, j, u, v, g.centre.shift_x - t, 0.0, px, py);
   origin = f.origin + f.x * (g.distance * t);
   dir = normalize(hr_to_world_dir(f, hr_vec3(px, py, -1.0)));
 }

@@ -130,13 +130,15 @@ LookingGlassCamera::LookingGlassCamera(const LookingGlassCalibration& c, const P
   if (centre_.mirrored) frame_.x = -frame_.x;
   distance_ = length(centre_.at - centre_.from);
   pixel_ = 2 * std::tan(centre_.fov_deg * kPi / 360) / c.height;
-  lines_ = {.width = c.width,
-            .height = c.height,
+  lines_ = {.centre = {.width = c.width,
+                       .height = c.height,
+                       .ortho = 0,
+                       .pixel = pixel_,
+                       .sample_u = centre_.sample_u,
+                       .sample_v = centre_.sample_v,
+                       .shift_x = centre_.shift_x,
+                       .shift_y = 0},
             .views = views,
-            .pixel = pixel_,
-            .sample_u = centre_.sample_u,
-            .sample_v = centre_.sample_v,
-            .shift_x = centre_.shift_x,
             .view_cone_deg = c.view_cone_deg,
             .distance = distance_};
 }

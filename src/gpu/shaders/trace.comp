@@ -500,10 +500,10 @@ HrPinhole pinhole_view() {
 void looking_glass_line(int c, int j, float u, float v, out vec3 origin, out vec3 dir) {
   int i = c / 3, s = c - 3 * i;
   HrLookingGlass g;
-  g.width = F.panel_kind.w, g.height = F.size.y, g.views = F.panel_kind.z;
-  g.pixel = F.view.x, g.sample_u = F.view.w, g.sample_v = F.view_clip.x, g.shift_x = F.view.y;
-  g.view_cone_deg = F.panel_view.y, g.distance = F.panel_view.z;
-  int cell = hr_looking_glass_cell(F.cell_kind.x, F.cell_kind.y, g.height, i, j);
+  g.centre = pinhole_view();  // the centre view's constants, laid out as a pinhole view's
+  g.centre.width = F.panel_kind.w;  // pixels, not the subpixels F.size.x counts
+  g.views = F.panel_kind.z, g.view_cone_deg = F.panel_view.y, g.distance = F.panel_view.z;
+  int cell = hr_looking_glass_cell(F.cell_kind.x, F.cell_kind.y, g.centre.height, i, j);
   float a = fract(float(i) * F.panel.x) + float(i) * F.panel.y + fract(float(j) * F.panel.z) + float(j) * F.panel.w +
             F.cells[cell][s];
   float x = clamp(1.0 - fract(a), 0.00001, 0.999999);
