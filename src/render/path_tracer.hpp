@@ -1,10 +1,11 @@
 // holoray/render: the path integrator (RenderSettings::integrator = path):
 // unidirectional path tracing with next-event estimation and multiple
 // importance sampling (Veach 1997, ch. 9; pbrt-v4's PathIntegrator), Russian
-// roulette after the third bounce, on the CPU over Embree. What it computes
-// per vertex (the BSDF, its sampling, the lights' falloff, the
-// environment's mapping, the sampler) is the shared shading/ headers, the
-// same text the GPU kernels compile.
+// roulette after the third bounce, on the CPU over Embree. The integrator
+// itself is render/path_integrator.h, the text the GPU kernel compiles too
+// (gpu/shaders/path.glsl); path_tracer.cpp gives it the CPU's scene through
+// its hooks. What it computes per vertex (the BSDF, its sampling, the
+// lights' falloff, the environment's mapping, the sampler) is shading/.
 //
 // Light it sees: the scene's point, spot and directional lights (delta
 // lights, sampled every vertex), the environment (RenderSettings::

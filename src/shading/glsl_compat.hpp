@@ -84,7 +84,10 @@ inline vec3 max(vec3 a, vec3 b) { return {max(a.x, b.x), max(a.y, b.y), max(a.z,
 inline float dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline vec3 cross(vec3 a, vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline float length(vec3 a) { return sqrt(dot(a, a)); }
-inline vec3 normalize(vec3 a) { return a / length(a); }
+// Always inlined: left to the inliner, the shared path integrator's bounce
+// loop (render/path_integrator.h) called it out of line, 0.7 % of a path's
+// instructions; Whitted's count is unchanged (callgrind).
+[[gnu::always_inline]] inline vec3 normalize(vec3 a) { return a / length(a); }
 inline vec3 reflect(vec3 i, vec3 n) { return i - n * (2 * dot(n, i)); }
 
 }  // namespace holoray::shading

@@ -1,8 +1,6 @@
-// holoray/gpu: the path integrator on the device (trace.comp's kPath):
-// render/path_tracer.cpp's estimator step for step (next-event estimation
-// with MIS, Russian roulette after the third vertex), over the GPU path's
-// scene arrays, with the same shared shading/ headers for the BSDFs, the
-// lights, the environment's mapping and the sampler. One sample of each
+// holoray/gpu: the path integrator on the device (trace.comp's kPath): the
+// shared integrator (render/path_integrator.h, the text the CPU compiles)
+// over the GPU path's scene arrays, through the hooks below. One sample of each
 // pixel a pass (band.sample_index), added to the passes before: an
 // invocation's loops stay inside lavapipe's 65535 iterations whatever the
 // samples per pixel (shared/docs/gpu-notes.md). Included by trace.comp,
@@ -11,13 +9,11 @@
 #include "shading/bsdf.h"
 #include "shading/lights.h"
 #include "shading/environment.h"
+#include "render/path_records.h"
 
 layout(std430, binding = 22) readonly buffer AreaLightBlock { GpuAreaLight area_lights[]; };
 layout(std430, binding = 23) readonly buffer EnvironmentBlock { GpuEnvTexel env_texels[]; };
 layout(std430, binding = 24) readonly buffer EmitterBlock { GpuEmitter emitters[]; };
-
-// Russian roulette starts at this vertex (path_tracer.cpp, kRouletteDepth).
-const int kRouletteDepth = 3;
 
 // ---- the environment (render/environment.cpp) ----
 
@@ -63,50 +59,151 @@ vec3 env_sample(float u_cell, vec2 u, out vec3 dir, out float pdf) {
   return path_escape(dir);
 }
 
-// ---- a path's vertex (path_tracer.cpp, Vertex and bsdf_of) ----
+// ---- the device's hooks of the shared integrator (render/path_integrator.h) ----
 
-struct PathVertex {
-  vec3 p, ng, above, below;
-  vec3 t, b, n, wo;  // the shading frame (n toward the side the path came from), the way back in it
-  HrBsdf bsdf;
+// What the integrator carries for the device: the pixel, whether its AOVs
+// are written now (sample 0), the eye ray's optical offset, its line and
+// depth sign (for the AOVs), whether the eye ray met anything, and the ray
+// counts (eye, shadow, reflected, refracted).
+struct HrPathDevice {
+  ivec2 pixel;
+  bool aovs_now;
+  float optic0;
+  vec3 line_dir;
+  float t_sign;
+  bool first_hit;
+  uvec4 rays;
 };
 
-// A vertex's BSDF from its material, colour `c` and glTF parameters `pbr`
-// (metallic, roughness, transmission, F0), maps applied; `entering`: the
-// ray met the outward side.
-HrBsdf path_bsdf(GpuMaterial m, vec3 c, vec4 pbr, float cos_o, bool entering) {
+// What a ray met: the hit, its surface after normal mapping, the
+// material's maps, the colour Tachyon's texture gives, a Tachyon light's
+// sphere.
+struct HrPathHit {
+  Hit hit;
+  Surface s;
+  MappedMaterial mm;
+  vec3 colour;
+  uint material;
+  bool sphere;
+};
+
+bool any_positive(vec3 c) { return c.x > 0.0 || c.y > 0.0 || c.z > 0.0; }
+
+bool hr_path_trace(inout HrPathDevice d, vec3 o, vec3 dir, float tmin, float tmax, int depth, out HrPathHit h) {
+  log_kind = uint(depth);
+  if (!trace_ray(o, dir, tmin, tmax, false, h.hit)) return false;
+  bool primary = depth == 1;
+  float optic = h.hit.t + (primary ? d.optic0 : 0.0);  // along the eye's way, as the CPU measures it
+  h.s = surface_of(o, dir, h.hit);
+  h.material = h.s.material;
+  GpuMaterial m = materials[h.material];
+  h.mm = mapped_material(m, h.hit, optic, h.s);
+  if (primary) {
+    d.first_hit = true;
+    if (d.aovs_now) write_hit_aovs(d.pixel.x, d.pixel.y, d.line_dir, h.s, m, h.mm, d.t_sign * h.hit.t);
+  }
+  h.colour = h.mm.colour;
+  h.sphere = false;
+  if (kTachyon && int(m.emission_model.w) == HR_MODEL_TACHYON) {
+    h.colour = tachyon_colour(m, h.hit, h.s.p, h.colour, optic);
+    h.sphere = m.tachyon.w != 0.0;
+  }
+  return true;
+}
+
+float hr_path_hit_t(HrPathHit h) { return h.hit.t; }
+vec3 hr_path_hit_p(HrPathHit h) { return h.s.p; }
+vec3 hr_path_hit_ng(HrPathHit h) { return h.s.ng; }
+vec3 hr_path_hit_ns(HrPathHit h) { return h.s.ns; }
+
+bool hr_path_occluded(inout HrPathDevice d, vec3 from, vec3 dir, float tmax) {
+  log_kind = 0x80u;
+  Hit blocker;
+  return trace_ray(from, dir, 0.0, tmax, true, blocker);
+}
+
+void hr_path_count(inout HrPathDevice d, int kind) {
+  if (kind == HR_PATH_RAY_SHADOW) ++d.rays.y;
+  else if (kind == HR_PATH_RAY_REFRACTED) ++d.rays.w;
+  else ++d.rays.z;
+}
+
+float hr_path_epsilon(inout HrPathDevice d) { return F.extent.w; }
+int hr_path_max_depth(inout HrPathDevice d) { return F.counts.z; }
+
+bool hr_path_light_sphere(inout HrPathDevice d, HrPathHit h, out vec3 colour) {
+  colour = h.colour;
+  return h.sphere;
+}
+
+vec3 hr_path_emission(inout HrPathDevice d, HrPathHit h, vec3 dir, bool specular, float last_pdf) {
+  GpuMaterial m = materials[h.material];
+  if (!any_positive(m.emission_model.xyz)) return vec3(0.0);
+  float w = 1.0;
+  if (!specular && F.path_counts.y > 0 && (h.hit.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE) {
+    // The emitters draw a point with area density luminance / their power.
+    float pdf_area = hr_luminance(m.emission_model.xyz) * F.env_constant.w;
+    w = hr_power_heuristic(last_pdf, hr_area_to_solid_angle(pdf_area, h.hit.t * h.hit.t, abs(dot(h.s.ng, dir))));
+  }
+  return h.mm.emission * w;
+}
+
+// The BSDF from the material, its colour and its glTF parameters (metallic,
+// roughness, transmission, F0), maps applied: render/path_tracer.cpp's.
+HrBsdf hr_path_bsdf(inout HrPathDevice d, HrPathHit h, float cos_o, bool entering) {
+  GpuMaterial m = materials[h.material];
+  vec4 pbr = h.mm.pbr;
   int model = int(m.emission_model.w);
-  vec3 diffuse = c * m.colour_kd.w, mirror = vec3(m.ks_shine_t_ior.x), transmit = vec3(m.ks_shine_t_ior.z);
+  vec3 diffuse = h.colour * m.colour_kd.w, mirror = vec3(m.ks_shine_t_ior.x), transmit = vec3(m.ks_shine_t_ior.z);
   if (model == HR_MODEL_GLTF)
-    return F.path_flags.y != 0 ? hr_principled_bsdf(c, pbr.x, pbr.y, pbr.w, pbr.z, cos_o) : hr_gltf_bsdf(c, pbr.x, pbr.y, pbr.w, pbr.z, cos_o);
+    return F.path_flags.y != 0 ? hr_principled_bsdf(h.colour, pbr.x, pbr.y, pbr.w, pbr.z, cos_o)
+                               : hr_gltf_bsdf(h.colour, pbr.x, pbr.y, pbr.w, pbr.z, cos_o);
   if (model == HR_MODEL_TACHYON) return hr_plain_bsdf(diffuse, mirror, transmit, 1.0);  // its transparency goes straight on
   float ior = m.ks_shine_t_ior.w > 0.0 ? m.ks_shine_t_ior.w : 1.0;
   return hr_plain_bsdf(diffuse, mirror, transmit, entering ? 1.0 / ior : ior);
 }
 
-bool any_positive(vec3 c) { return c.x > 0.0 || c.y > 0.0 || c.z > 0.0; }
+int hr_path_light_count(inout HrPathDevice d) { return F.counts.x; }
 
-// ---- light sampling (path_tracer.cpp, light_sample and direct_light) ----
-
-// One light sample's share at `v`: light along `dir` (unit) from `dist`
-// away, `le` its radiance over its density `pdf` (0: a delta light),
-// MIS-weighted against the BSDF's sampling; 0 when behind the surface
-// (unless it transmits, rough) or blocked.
-vec3 light_sample(PathVertex v, vec3 dir, float dist, vec3 le, float pdf, inout uint shadow_rays) {
-  bool behind = dot(dir, v.ng) <= 0.0;
-  if (behind && !(v.bsdf.transmit_alpha > 0.0)) return vec3(0.0);
-  vec3 wi = hr_to_local(dir, v.t, v.b, v.n);
-  if (behind != (wi.z < 0.0)) return vec3(0.0);
-  vec3 f = hr_bsdf_eval(v.bsdf, v.wo, wi);
-  if (!any_positive(f)) return vec3(0.0);
-  ++shadow_rays;
-  log_kind = 0x80u;
-  Hit blocker;
-  if (trace_ray(behind ? v.below : v.above, dir, 0.0, isinf(dist) ? kInf : dist - 2.0 * F.extent.w, true, blocker))
-    return vec3(0.0);
-  float w = pdf > 0.0 ? hr_power_heuristic(pdf, hr_bsdf_pdf(v.bsdf, v.wo, wi)) : 1.0;
-  return f * le * w;
+HrPathLight hr_path_light(inout HrPathDevice d, int l) {
+  GpuLight L = lights[l];
+  HrPathLight r;
+  r.kind = int(L.position_kind.w);
+  r.position = L.position_kind.xyz;
+  r.direction = L.direction.xyz;
+  r.intensity = L.intensity_unit.xyz;
+  bool directional = r.kind == HR_LIGHT_KIND_DIRECTIONAL;
+  r.cos_half_angle = directional ? L.direction.w : 1.0;
+  r.radius = directional ? 0.0 : L.direction.w;
+  r.falloff = falloff_params(L);
+  r.skip = L.flags.y != 0 && F.path_flags.z != 0;
+  return r;
 }
+
+int hr_path_area_light_count(inout HrPathDevice d) { return F.path_counts.x; }
+
+HrPathAreaLight hr_path_area_light(inout HrPathDevice d, int a) {
+  GpuAreaLight A = area_lights[a];
+  HrPathAreaLight r;
+  r.centre = A.centre_ellipse.xyz;
+  r.axis_u = A.axis_u_area.xyz;
+  r.axis_v = A.axis_v.xyz;
+  r.normal = A.normal.xyz;
+  r.radiance = A.radiance.xyz;
+  r.area = A.axis_u_area.w;
+  r.ellipse = A.centre_ellipse.w != 0.0;
+  return r;
+}
+
+vec3 hr_path_escape(inout HrPathDevice d, vec3 dir) { return path_escape(dir); }
+bool hr_path_env_lights(inout HrPathDevice d) { return F.path_flags.w != 0; }
+float hr_path_env_pdf(inout HrPathDevice d, vec3 dir) { return env_pdf(dir); }
+
+vec3 hr_path_env_sample(inout HrPathDevice d, float u_cell, vec2 u, out vec3 dir, out float pdf) {
+  return env_sample(u_cell, u, dir, pdf);
+}
+
+bool hr_path_has_emitters(inout HrPathDevice d) { return F.path_counts.y > 0; }
 
 // Emission of triangle `k` at barycentrics `b`, its map read at a
 // footprint `dist` away (RenderScene::emission).
@@ -120,195 +217,35 @@ vec3 emission_at(uint k, GpuMaterial m, vec2 b, float dist) {
   return e;
 }
 
-// Next-event estimation at `v`: every point, spot and directional light,
-// every area light, one direction of the environment, one point of the
-// emitters; each draws its pair of numbers whether or not it lights `v`.
-vec3 direct_light(PathVertex v, inout HrSampler rng, inout uint shadow_rays) {
-  float eps = F.extent.w;
-  vec3 sum = vec3(0.0);
-  for (int l = 0; l < F.counts.x; ++l) {
-    GpuLight L = lights[l];
-    if (L.flags.y != 0 && F.path_flags.z != 0) continue;
-    vec2 u = hr_next2(rng);
-    vec3 dir = -L.direction.xyz, from = L.position_kind.xyz;
-    float dist = kInf, cos_l = 1.0;
-    if (int(L.position_kind.w) == HR_LIGHT_DIRECTIONAL) {
-      if (L.direction.w < 1.0) {  // the sun's cone, uniformly
-        vec3 ct, cb;
-        hr_frame(dir, ct, cb);
-        dir = normalize(hr_to_world(hr_uniform_cone(u, L.direction.w), ct, cb, dir));
-      }
-    } else {
-      if (L.direction.w > 0.0) {  // a disk of the light's radius facing the point
-        vec3 facing = normalize(v.p - from);
-        from = hr_disk_light_point(from, facing, L.direction.w, u);
-        cos_l = abs(dot(facing, normalize(v.p - from)));
-      }
-      dir = from - v.p;
-      dist = length(dir);
-      if (!(dist > eps)) continue;
-      dir /= dist;
-    }
-    float falloff = hr_light_falloff(falloff_params(L), dir, dist);
-    if (falloff > 0.0) sum += light_sample(v, dir, dist, L.intensity_unit.xyz * (kPi * falloff * cos_l), 0.0, shadow_rays);
-  }
-  for (int a = 0; a < F.path_counts.x; ++a) {
-    GpuAreaLight A = area_lights[a];
-    vec2 u = hr_next2(rng);
-    vec3 dir = hr_area_light_point(A.centre_ellipse.xyz, A.axis_u_area.xyz, A.axis_v.xyz, A.centre_ellipse.w != 0.0, u) - v.p;
-    float dist2 = dot(dir, dir), dist = sqrt(dist2);
-    if (!(dist > eps)) continue;
-    dir /= dist;
-    float cos_l = -dot(dir, A.normal.xyz);  // one-sided
-    if (!(cos_l > 0.0)) continue;
-    float pdf = dist2 / (cos_l * A.axis_u_area.w);
-    sum += light_sample(v, dir, dist, A.radiance.xyz * (1.0 / pdf), pdf, shadow_rays);
-  }
-  if (F.path_flags.w != 0) {
-    vec2 u_cell = hr_next2(rng), u_env = hr_next2(rng);
-    vec3 dir;
-    float pdf;
-    vec3 le = env_sample(u_cell.x, u_env, dir, pdf);
-    if (pdf > 0.0) sum += light_sample(v, dir, kInf, le * (1.0 / pdf), pdf, shadow_rays);
-  }
+// An emitter by its power (the first whose running sum passes u_pick:
+// upper_bound), a point uniform on it.
+bool hr_path_emitter_sample(inout HrPathDevice d, vec2 u_pick, vec2 u_emit, vec3 p, out vec3 dir, out float dist,
+                            out vec3 le, out float pdf) {
   int n = F.path_counts.y;
-  if (n > 0) {
-    vec2 u_pick = hr_next2(rng), u_emit = hr_next2(rng);
-    // The first emitter whose running sum passes u_pick (upper_bound).
-    int lo = 0, hi = n;
-    while (lo < hi) {
-      int mid = (lo + hi) / 2;
-      if (emitters[mid].cdf_tri_pick_area.x > u_pick.x) hi = mid;
-      else lo = mid + 1;
-    }
-    vec4 e = emitters[min(lo, n - 1)].cdf_tri_pick_area;
-    uint k = floatBitsToUint(e.y);
-    GpuTriangle tri = tris[k];
-    vec2 b = hr_uniform_triangle(u_emit);
-    vec3 e1 = tri.v1.xyz - tri.v0.xyz, e2 = tri.v2.xyz - tri.v0.xyz;
-    vec3 dir = tri.v0.xyz + e1 * b.x + e2 * b.y - v.p;
-    float dist2 = dot(dir, dir), dist = sqrt(dist2);
-    dir /= dist;
-    float cos_l = abs(dot(normalize(cross(e1, e2)), dir));  // emission is two-sided
-    if (dist > 2.0 * eps && cos_l > 0.0) {
-      float pdf = e.z / e.w * dist2 / cos_l;
-      GpuMaterial m = materials[object_material[floatBitsToInt(tri.ng.w)]];
-      sum += light_sample(v, dir, dist, emission_at(k, m, b, dist) * (1.0 / pdf), pdf, shadow_rays);
-    }
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    if (emitters[mid].cdf_tri_pick_area.x > u_pick.x) hi = mid;
+    else lo = mid + 1;
   }
-  return sum;
+  vec4 e = emitters[min(lo, n - 1)].cdf_tri_pick_area;
+  uint k = floatBitsToUint(e.y);
+  GpuTriangle tri = tris[k];
+  vec2 b = hr_uniform_triangle(u_emit);
+  vec3 e1 = tri.v1.xyz - tri.v0.xyz, e2 = tri.v2.xyz - tri.v0.xyz;
+  dir = tri.v0.xyz + e1 * b.x + e2 * b.y - p;
+  float dist2 = dot(dir, dir);
+  dist = sqrt(dist2);
+  dir /= dist;
+  float cos_l = abs(dot(normalize(cross(e1, e2)), dir));  // emission is two-sided
+  if (!(dist > 2.0 * F.extent.w && cos_l > 0.0)) return false;
+  pdf = e.z / e.w * dist2 / cos_l;
+  GpuMaterial m = materials[object_material[floatBitsToInt(tri.ng.w)]];
+  le = emission_at(k, m, b, dist) * (1.0 / pdf);
+  return true;
 }
 
-// The area lights the ray o + t d meets before `t_max` from their lit
-// side, each weighted against its light sampling unless the bounce was a
-// delta lobe (area_lights_met).
-vec3 area_lights_met(vec3 o, vec3 d, float t_max, bool specular, float last_pdf) {
-  vec3 sum = vec3(0.0);
-  for (int a = 0; a < F.path_counts.x; ++a) {
-    GpuAreaLight A = area_lights[a];
-    float t = hr_area_light_hit(o, d, min(t_max, 3.0e38), A.centre_ellipse.xyz, A.axis_u_area.xyz, A.axis_v.xyz, A.normal.xyz,
-                                A.centre_ellipse.w != 0.0);
-    float cos_l = -dot(d, A.normal.xyz);
-    if (!(t > 0.0) || !(cos_l > 0.0)) continue;
-    float pdf_light = hr_area_to_solid_angle(1.0 / A.axis_u_area.w, t * t, cos_l);
-    sum += A.radiance.xyz * (specular ? 1.0 : hr_power_heuristic(last_pdf, pdf_light));
-  }
-  return sum;
-}
-
-// ---- the path (path_tracer.cpp, path_radiance) ----
-
-// Radiance along the eye ray `e` of pixel (i, j); its first hit's AOVs
-// written when `aovs_now` (sample 0). Counts rays into `rays` (eye,
-// shadow, reflected, refracted).
-vec3 path_radiance(int i, int j, EyeRay e, inout HrSampler rng, bool aovs_now, inout uvec4 rays, out bool first_hit) {
-  float eps = F.extent.w;
-  int max_depth = F.counts.z;
-  vec3 radiance = vec3(0.0), throughput = vec3(1.0);
-  vec3 ro = e.o, rd = e.d;
-  float tmin = e.tmin, tmax = e.tmax;
-  bool specular = true;  // the last bounce was a delta lobe (or there was none): no MIS on what it meets
-  float last_pdf = 0.0;
-  first_hit = false;
-  // max_depth counts the eye ray as 1: a vertex past it only shows its
-  // emission, which completes the MIS of the vertex before.
-  for (int depth = 1; depth <= max_depth + 1; ++depth) {
-    log_kind = uint(depth);
-    Hit h;
-    bool found = trace_ray(ro, rd, tmin, tmax, false, h);
-    if (depth > 1) radiance += throughput * area_lights_met(ro, rd, found ? h.t : kInf, specular, last_pdf);
-    if (!found) {
-      float w = !specular && F.path_flags.w != 0 ? hr_power_heuristic(last_pdf, env_pdf(rd)) : 1.0;
-      radiance += throughput * path_escape(rd) * w;
-      break;
-    }
-    bool primary = depth == 1;
-    float optic = h.t + (primary ? e.optic0 : 0.0);  // along the eye's way, as the CPU measures it
-    Surface s = surface_of(ro, rd, h);
-    GpuMaterial m = materials[s.material];
-    MappedMaterial mm = mapped_material(m, h, optic, s);
-    if (primary) {
-      first_hit = true;
-      if (aovs_now) write_hit_aovs(i, j, e.line_dir, s, m, mm, e.t_sign * h.t);
-    }
-    vec3 colour = mm.colour;
-    if (kTachyon && int(m.emission_model.w) == HR_MODEL_TACHYON) {
-      colour = tachyon_colour(m, h, s.p, colour, optic);
-      if (m.tachyon.w != 0.0) {  // a light's sphere: its colour, unshaded
-        radiance += throughput * colour;
-        break;
-      }
-    }
-    if (any_positive(m.emission_model.xyz)) {
-      float w = 1.0;
-      if (!specular && F.path_counts.y > 0 && (h.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE) {
-        // The emitters draw a point with area density luminance / their power.
-        float pdf_area = hr_luminance(m.emission_model.xyz) * F.env_constant.w;
-        w = hr_power_heuristic(last_pdf, hr_area_to_solid_angle(pdf_area, h.t * h.t, abs(dot(s.ng, rd))));
-      }
-      radiance += throughput * mm.emission * w;
-    }
-    if (depth > max_depth) break;
-
-    PathVertex v;
-    v.p = s.p;
-    vec3 view = -rd;
-    bool front = dot(s.ng, view) >= 0.0;
-    v.ng = front ? s.ng : -s.ng;
-    vec3 ns = front ? s.ns : -s.ns;
-    if (dot(ns, view) <= 0.0) ns = v.ng;  // a shading normal turned away from the viewer by interpolation
-    v.n = ns;
-    hr_frame(v.n, v.t, v.b);
-    v.wo = hr_to_local(view, v.t, v.b, v.n);
-    v.bsdf = path_bsdf(m, colour, mm.pbr, v.wo.z, front);
-    v.above = s.p + v.ng * eps;
-    v.below = s.p - v.ng * eps;
-    if (any_positive(v.bsdf.diffuse) || v.bsdf.alpha > 0.0) radiance += throughput * direct_light(v, rng, rays.y);
-
-    // The next direction, from the BSDF.
-    vec2 u_lobe = hr_next2(rng), u_dir = hr_next2(rng);
-    vec3 wi, weight;
-    float pdf;
-    bool delta, through;
-    if (!hr_bsdf_sample(v.bsdf, v.wo, u_lobe.x, u_dir, wi, weight, pdf, delta, through)) break;
-    vec3 dir = normalize(hr_to_world(wi, v.t, v.b, v.n));
-    if (!through && dot(dir, v.ng) <= 0.0) break;  // below the geometric surface: it would leave from inside
-    if (through && !delta && dot(dir, v.ng) >= 0.0) break;  // rough transmission back above it: the same, mirrored
-    throughput *= weight;
-    specular = delta;
-    last_pdf = pdf;
-    if (through) ++rays.w;
-    else ++rays.z;
-    ro = through ? v.below : v.above, rd = dir, tmin = 0.0, tmax = kInf;
-    // Russian roulette (pbrt-v4's): below 1, go on with that probability.
-    float keep = max(throughput.x, max(throughput.y, throughput.z));
-    if (depth >= kRouletteDepth && keep < 1.0) {
-      if (!(u_lobe.y < keep)) break;
-      throughput *= 1.0 / keep;
-    }
-  }
-  return radiance;
-}
+#include "render/path_integrator.h"
 
 // One pass: sample band.sample_index of pixel (i, j), placed by the
 // pixel's sampler (path_pixel_sum: sample 0 at the centre), added to the
@@ -325,17 +262,23 @@ void path_main() {
   HrSampler rng = hr_sampler(seed, uint(k));
   vec2 uv = hr_pixel_position(rng, hr_pixel_shift(seed));
   EyeRay e = eye_ray(i, j, uv);
-  uvec4 rays = uvec4(0u);
+  HrPathDevice d;
+  d.pixel = ivec2(i, j);
+  d.aovs_now = aovs_now;
+  d.optic0 = e.optic0;
+  d.line_dir = e.line_dir;
+  d.t_sign = e.t_sign;
+  d.first_hit = false;
+  d.rays = uvec4(0u);
   vec3 c;
-  bool first_hit = false;
   if (e.traced) {
-    ++rays.x;
-    c = path_radiance(i, j, e, rng, aovs_now, rays, first_hit);
+    ++d.rays.x;
+    c = hr_path_radiance(d, e.o, e.d, e.tmin, e.tmax, rng);
   } else {
-    if (e.empty_aimed) ++rays.x;
+    if (e.empty_aimed) ++d.rays.x;
     c = path_escape(e.d);
   }
-  if (aovs_now && !first_hit) write_miss_aovs(i, j);
+  if (aovs_now && !d.first_hit) write_miss_aovs(i, j);
   // The sum so far: none before sample 0; the mean of first_sample
   // samples a trace before scaled back to their sum at its first pass.
   float before = k == 0 ? 0.0 : k == band.first_sample ? float(k) : 1.0;
@@ -348,5 +291,5 @@ void path_main() {
     uint at = out_pixel(i, j) * 3u;
     for (uint ch = 0u; ch < 3u; ++ch) colour_sum[at + ch] = ((before == 0.0 ? 0.0 : colour_sum[at + ch] * before) + c[ch]) * last;
   }
-  add_counts(rays);
+  add_counts(d.rays);
 }
