@@ -178,6 +178,17 @@ TEST(GpuPathIntegrator, TachyonScenesMatchTheCpu) {
   EXPECT_GE(both_devices(scene, view(64, 64), o), kAgree);
 }
 
+// Tachyon's texture functions (checker, wood, the cylindrical, spherical
+// and planar image maps) colour what the paths meet on both devices: before the CPU's
+// hook read them, its image was the materials' plain colours, 7 dB from
+// the GPU's.
+TEST(GpuPathIntegrator, TachyonTexturesColourThePathsAsOnTheCpu) {
+  const Scene scene = Scene::load(source_dir() + "/tests/data/tachyon/features.dat");
+  RenderOptions o;
+  o.spp = 4;
+  EXPECT_GE(both_devices(scene, view(64, 64), o), kAgree);
+}
+
 // The light issue's bar: at equal samples, each device's image against a
 // converged reference (the CPU's at 64 times the samples) is within 0.5 dB
 // of the other's.

@@ -58,6 +58,10 @@ static inline bool hr_path_trace(HrPathDevice& d, const Vec3& o, const Vec3& dir
     if (d.first_hit) *d.first_hit = h.hit;
     if (d.hit_found) *d.hit_found = true;
   }
+  // Tachyon's colour is its texture's (or its vertex colours') at the hit,
+  // seen at the distance along this ray, as Whitted's shading and the GPU's
+  // hook read it; the AOVs above keep the material's own colour, as theirs.
+  if (h.sp.material->model == ShadingModel::tachyon) h.sp.colour = d.scene.surface_colour(h.sp, length(h.sp.position - o));
   return true;
 }
 
