@@ -731,6 +731,30 @@ TEST(GpuPath, TheShadowQueueRendersWhatTheKernelTracesItself) {
   EXPECT_EQ(std::stoull(m[2]), 0u);
 }
 
+// Every dispatch in bands of at most N invocations (HOLORAY_GPU_BAND;
+// 2^20 by default, inside a desktop watchdog's seconds): the pixels', the
+// shadow pass's and its resolve's, each resolve band told its first pixel.
+// Banded small, the frame is the one its few large bands give, bit for bit
+// (the resolve's bands told nothing would add the first band's terms over
+// and over and leave the rest unlit).
+TEST(GpuPath, DispatchesInBandsGiveTheImageOfFewBands) {
+  const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
+  RenderOptions o;
+  o.device = "gpu";
+  o.spp = 2;
+  ::setenv("HOLORAY_GPU_SHADOW_QUEUE", "1", 1);
+  const auto render = [&] { return api::Renderer(scene, array_of(api::Grid::square, api::Mode::pseudoscopic), o).render(); };
+  const Result few = render();
+  ::setenv("HOLORAY_GPU_BAND", "1024", 1);
+  const Result banded = render();
+  ::unsetenv("HOLORAY_GPU_BAND"), ::unsetenv("HOLORAY_GPU_SHADOW_QUEUE");
+  const uint64_t pixels = uint64_t(few.colour.width()) * few.colour.height();
+  ASSERT_GT(pixels, 8u * 1024u) << "too few pixels to make bands of";
+  ASSERT_EQ(banded.colour.size(), few.colour.size());
+  EXPECT_EQ(std::memcmp(banded.colour.data(), few.colour.data(), few.colour.size() * sizeof(float)), 0);
+  EXPECT_EQ(banded.stats.rays.shadow, few.stats.rays.shadow);
+}
+
 // ---- refusals and faults, each with its message ----
 
 TEST(GpuPath, RefusesWhatItDoesNotRenderYet) {

@@ -297,6 +297,8 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
+  if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
+    m.band_invocations = uint64_t(std::atoll(band_env));
   m.memory_types = m.physical.getMemoryProperties();
   m.max_storage_range = m.physical.getProperties().limits.maxStorageBufferRange;
   const auto families = m.physical.getQueueFamilyProperties();
@@ -497,9 +499,10 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
       m.aov = m.make_buffer(aov_size, usage, false);
       m.bind(11, m.aov);
     }
-    // Each camera's rows in bands of about 2^20 pixels, each its own
-    // dispatch (well inside a desktop watchdog's seconds), all in one
-    // submission; each band its own 32-bit counters, summed here in 64 bits.
+    // Each camera's rows in bands of about m.band_invocations pixels (2^20),
+    // each its own dispatch (well inside a desktop watchdog's seconds), all
+    // in one submission; each band its own 32-bit counters, summed here in
+    // 64 bits.
     struct Band {
       int32_t row0, rows, frame;
       uint32_t width;
@@ -507,7 +510,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     std::vector<Band> band_list;
     for (size_t f = 0; f < frames.size(); ++f) {
       const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
-      const int band_rows = std::max(8, int((1 << 20) / std::max(1, w)) / 8 * 8);
+      const int band_rows = std::max(8, int(m.band_invocations / uint64_t(std::max(1, w))) / 8 * 8);
       for (int row0 = y0; row0 < y1; row0 += band_rows)
         band_list.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
     }
@@ -586,21 +589,32 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                          vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
                          nullptr, nullptr);
+      // Both passes in bands of at most m.band_invocations invocations, each
+      // its own dispatch, as the pixels' are (issue 71: no dispatch sized by
+      // the frame). The shadow pass's lanes fetch from one queue, so its
+      // bands need nothing more; the resolve's are told their first pixel.
       const uint64_t group = m.workgroup[0] * m.workgroup[1];
-      auto dispatch_over = [&](uint64_t invocations) {
+      const uint64_t band_groups = std::max<uint64_t>(1, m.band_invocations / group);
+      auto dispatch_over = [&](uint64_t invocations, auto&& before_band) {
         const uint64_t groups = std::max<uint64_t>(1, (invocations + group - 1) / group);
-        const uint32_t gx = uint32_t(std::min<uint64_t>(groups, 65535));
-        cb.dispatch(gx, uint32_t((groups + gx - 1) / gx), 1);
+        for (uint64_t first = 0; first < groups; first += band_groups) {
+          const uint64_t n = std::min(band_groups, groups - first);
+          before_band(first * group);
+          const uint32_t gx = uint32_t(std::min<uint64_t>(n, 65535));
+          cb.dispatch(gx, uint32_t((n + gx - 1) / gx), 1);
+        }
       };
       const vk::MemoryBarrier written{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                       .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 1));
-      dispatch_over((queue_rays + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE);
+      dispatch_over((queue_rays + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE, [](uint64_t) {});
       stamp(2);
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr, nullptr);
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 2));
-      cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0, {int32_t(pixels), 0, 0, 0});
-      dispatch_over(pixels);
+      dispatch_over(pixels, [&](uint64_t first_pixel) {
+        cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                  {int32_t(pixels), int32_t(first_pixel), 0, 0});
+      });
       stamp(3);
       if (*m.timestamps) {
         if (!m.queue_head.mapped) m.queue_head = m.make_buffer(16, vk::BufferUsageFlagBits::eTransferDst, true);

@@ -80,6 +80,10 @@ struct GpuRenderer::Impl {
   // (0: 8 a pixel).
   bool shadow_queue_on = false;
   uint64_t shadow_queue_rays = 0;
+  // Invocations a dispatch holds at most (a pixel band's pixels, a shadow
+  // pass's lanes, a resolve's pixels): 2^20, well inside a desktop
+  // watchdog's seconds; HOLORAY_GPU_BAND=N sets N (the tests' banding).
+  uint64_t band_invocations = uint64_t(1) << 20;
   // HOLORAY_GPU_STATS: each frame's passes timed on the device (the pixel
   // kernel, the shadow pass, its resolve), printed on stderr.
   vk::raii::QueryPool timestamps = nullptr;

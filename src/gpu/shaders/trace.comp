@@ -996,9 +996,9 @@ void shadow_pass() {
 
 // Each pixel's unblocked shadow terms added to its colour (kShadowPass 2),
 // from its last queued ray back; invocations by colour buffer pixel, the
-// image's count in the push constants' row0.
+// image's count in the push constants' row0, the band's first pixel in rows.
 void shadow_resolve() {
-  uint p = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) +
+  uint p = uint(band.rows) + (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) +
            gl_LocalInvocationIndex;
   if (p >= uint(band.row0)) return;
   uint capacity = shadow_head.z, run = shadow_last[p];
