@@ -928,6 +928,42 @@ TEST(GpuPath, ALostDeviceOrExhaustedMemoryEndsWithTheMessageAndNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(dir.path)) << "a file was left behind";
 }
 
+// A device that does not finish a submission within its wait (issue 71: a
+// hung GPU must not hang holoray; HOLORAY_GPU_TIMEOUT sets the wait, here
+// 1 us, which lavapipe cannot finish a frame in): exit status 1, the
+// message naming what did not finish, no output file. The path integrator
+// waits on its passes, about 4 bands' pixel samples a submission (one pass
+// each with HOLORAY_GPU_BAND=256 and 1024 pixels); a renderer that stopped
+// refuses more work, and the next render makes a new one.
+TEST(GpuPath, ADeviceThatStopsRespondingEndsTheRenderWithTheMessageAndNoFile) {
+  TempDir dir;
+  const std::string scene = source_dir() + "/examples/primitives.nff";
+  const std::string name = gpu::GpuRenderer().describe();
+  const std::string device = name.substr(0, name.rfind(" ("));
+  const std::string expected = "holoray: error: the GPU (" + device + ") stopped responding: ";
+  const std::string waited = " did not finish in 1e-06 s (HOLORAY_GPU_TIMEOUT sets the wait); nothing was written\n";
+  const CommandResult whitted = run_shell("HOLORAY_GPU_TIMEOUT=0.000001 " + std::string(HOLORAY_CLI) + " render " + scene +
+                                          " --lenses 8 --pixels-per-lens 4 --device gpu -q -o " + dir.file("eia.png"));
+  EXPECT_EQ(whitted.status, 1);
+  EXPECT_EQ(whitted.output, expected + "the frame" + waited);
+  const CommandResult path = run_shell("HOLORAY_GPU_TIMEOUT=0.000001 HOLORAY_GPU_BAND=256 " + std::string(HOLORAY_CLI) + " render " + scene +
+                                       " --lenses 8 --pixels-per-lens 4 --integrator path --spp 4 --device gpu -q -o " +
+                                       dir.file("eia.png"));
+  EXPECT_EQ(path.status, 1);
+  EXPECT_EQ(path.output, expected + "a pass of the path integrator" + waited);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path)) << "a file was left behind";
+
+  // In one process: the renderer that stopped refuses more; a new one renders.
+  const Scene nff = Scene::load(scene);
+  RenderOptions o;
+  o.device = "gpu";
+  ::setenv("HOLORAY_GPU_TIMEOUT", "0.000001", 1);
+  EXPECT_NE(error_of([&] { api::render(nff, array_of(api::Grid::square), o); }).find("stopped responding"), std::string::npos);
+  ::unsetenv("HOLORAY_GPU_TIMEOUT");
+  const Result after = api::render(nff, array_of(api::Grid::square), o);
+  EXPECT_GT(after.stats.rays.eye, 0u);
+}
+
 // The summary's preprocess line parts the GPU's set-up (the device and its
 // kernel compiled) from the scene's build, and its parts add up to it.
 TEST(GpuPath, TheSummaryPartsTheGpusSetUpFromTheBuild) {

@@ -297,6 +297,9 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
+  m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
+  if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
+  m.timeout_ns = m.timeout_s > 0 ? uint64_t(m.timeout_s * 1e9) : UINT64_MAX;
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
     m.band_invocations = uint64_t(std::atoll(band_env));
   m.memory_types = m.physical.getMemoryProperties();
@@ -373,7 +376,15 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   m.set = std::move(sets[0]);
 }
 
-GpuRenderer::~GpuRenderer() = default;
+GpuRenderer::~GpuRenderer() {
+  // A device that stopped responding may still be running what it was
+  // given: its buffers and its device are kept, never freed, where they
+  // stay reachable (no leak report), rather than freed under it.
+  if (impl_ && impl_->stopped) {
+    static auto* stopped_devices = new std::vector<std::unique_ptr<Impl>>;
+    stopped_devices->push_back(std::move(impl_));
+  }
+}
 
 const DeviceInfo& GpuRenderer::device() const { return impl_->info; }
 
@@ -387,6 +398,7 @@ uint64_t GpuRenderer::frame_bytes(int width, int height, bool aovs) {
 
 double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel) {
   Impl& m = *impl_;
+  m.check_responding();
   const uint64_t need = s.bytes() + image_bytes;
   if (m.info.memory_bytes && need > m.info.memory_bytes)
     throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
@@ -445,6 +457,7 @@ size_t GpuRenderer::pipelines_compiled() const { return impl_->pipelines.size();
 
 void GpuRenderer::release() {
   Impl& m = *impl_;
+  if (m.stopped) return;  // its buffers may still be in use: kept (the destructor says why)
   for (Buffer& b : m.scene) b = Buffer{};
   for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
                     &m.shadow_terms})
@@ -466,6 +479,7 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
 
 void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats, int first_sample) {
   Impl& m = *impl_;
+  m.check_responding();
   if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
   if (frames.empty()) throw std::logic_error("GpuRenderer::render without a frame");
   const bool want_aovs = frames[0].counts.y != 0;
@@ -571,7 +585,29 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     const int passes = path ? std::max(1, frames[0].mode.w) : 1;
     if (first_sample < 0 || (first_sample > 0 && (!path || first_sample >= passes)))
       throw std::logic_error("GpuRenderer::trace: a first sample past the samples per pixel, or without the path integrator");
+    // The passes in submissions of about 4 bands' pixel samples (2^22; one
+    // pass at least), each waited on under the timeout (Impl::wait): a submission
+    // is a bounded piece of work however many samples a pixel the render
+    // takes, so a fixed wait can tell a device that stopped from a long
+    // render. (A submission a pass cost a 128x128 view 2.5 % of its trace
+    // on lavapipe, in waits.)
+    const int passes_per_submission = int(std::max<uint64_t>(1, 4 * m.band_invocations / std::max<uint64_t>(1, pixels)));
+    auto submit_and_wait = [&](const char* what) {
+      cb.end();
+      vk::CommandBuffer raw = *cb;
+      m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *m.fence);
+      m.wait(m.fence, what);
+      m.device.resetFences({*m.fence});
+    };
+    const auto t0 = std::chrono::steady_clock::now();
     for (int pass = first_sample; pass < passes; ++pass) {
+      if (pass > first_sample && (pass - first_sample) % passes_per_submission == 0) {
+        submit_and_wait("a pass of the path integrator");
+        cb.reset();
+        cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+        cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 0));
+        cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
+      }
       if (pass > first_sample)
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                            vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
@@ -624,14 +660,8 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
         cb.copyBuffer(*m.shadow_queue.buffer, *m.queue_head.buffer, vk::BufferCopy{0, 0, 16});
       }
     }
-    cb.end();
-    vk::CommandBuffer raw = *cb;
-    const auto t0 = std::chrono::steady_clock::now();
-    m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *m.fence);
-    if (m.device.waitForFences({*m.fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-      throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
+    submit_and_wait("the frame");
     stats.trace_seconds = seconds_since(t0);
-    m.device.resetFences({*m.fence});
     if (*m.timestamps) {
       const uint32_t n = queue ? 4 : 2;
       const auto got = m.timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
@@ -667,6 +697,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
 
 void GpuRenderer::readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
   Impl& m = *impl_;
+  m.check_responding();
   const int W = m.traced[0], H = m.traced[1];
   if (W == 0) throw std::logic_error("GpuRenderer::readback before trace");
   const bool want_aovs = m.traced_aovs;
@@ -684,8 +715,7 @@ void GpuRenderer::readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats&
     rc.end();
     vk::CommandBuffer raw_readback = *rc;
     m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw_readback}, *m.readback_fence);
-    if (m.device.waitForFences({*m.readback_fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-      throw GpuError(fmt::format("the GPU ({}) did not finish", m.info.name));
+    m.wait(m.readback_fence, "the image's copy back");
     m.device.resetFences({*m.readback_fence});
     // Out of the staging buffer in bands of rows on every core: the colour
     // as it is, the AOVs' interleaved records split into their images.

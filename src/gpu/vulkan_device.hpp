@@ -106,6 +106,34 @@ struct GpuRenderer::Impl {
   // The last frame traced: its size (0 x 0 before any) and whether the AOVs were.
   std::array<int, 2> traced{0, 0};
   bool traced_aovs = false;
+  // How long a submission may run before the device counts as stopped
+  // (issue 71): 120 s a submission on a GPU (a pass of the path integrator,
+  // or a Whitted frame: milliseconds to seconds), no bound on a CPU device
+  // such as lavapipe, whose long frames are work, not a hang;
+  // HOLORAY_GPU_TIMEOUT=S (seconds) sets it on either.
+  uint64_t timeout_ns = UINT64_MAX;
+  double timeout_s = 0;
+  // A wait ran out: the device may still be running what it was given, so
+  // nothing it holds may be freed (GpuRenderer's destructor keeps this Impl
+  // whole) and the renderer refuses further work.
+  bool stopped = false;
+
+  void check_responding() const {
+    if (stopped)
+      throw GpuError(fmt::format("the GPU ({}) stopped responding in an earlier render: make a new renderer", info.name));
+  }
+
+  // Waits for `f`; past timeout_ns, the device counts as stopped: GpuError.
+  void wait(const vk::raii::Fence& f, const char* what) {
+    const vk::Result r = device.waitForFences({*f}, VK_TRUE, timeout_ns);
+    if (r == vk::Result::eTimeout) {
+      stopped = true;
+      throw GpuError(fmt::format("the GPU ({}) stopped responding: {} did not finish in {:g} s (HOLORAY_GPU_TIMEOUT sets "
+                                 "the wait); nothing was written",
+                                 info.name, what, timeout_s));
+    }
+    if (r != vk::Result::eSuccess) throw GpuError(fmt::format("the GPU ({}) did not finish", info.name));
+  }
 
   uint32_t memory_type(uint32_t allowed, vk::MemoryPropertyFlags want, vk::MemoryPropertyFlags prefer = {}) const {
     std::optional<uint32_t> fallback;
