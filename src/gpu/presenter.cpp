@@ -284,8 +284,7 @@ bool Presenter::present(const PackParams& p, std::array<int, 2> window, const Bu
       } catch (const vk::OutOfDateKHRError&) {
         m.window = {-1, -1};
       }
-      if (r.device.waitForFences({*m.fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-        throw GpuError(fmt::format("the GPU ({}) did not finish", r.info.name));
+      r.wait(m.fence, "a frame's copy to the window");
       r.device.resetFences({*m.fence});
       m.shown = p.shown;
       return true;

@@ -171,6 +171,9 @@ struct GpuRenderer::Impl {
     vk::raii::Fence fence(device, vk::FenceCreateInfo{});
     vk::CommandBuffer raw = *cb;
     queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
+    // Unbounded, unlike the frames' waits (wait()): the staging buffer and
+    // this command buffer are the caller's locals, which an exception would
+    // free under a device that may still be copying from them.
     if (device.waitForFences({*fence}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
       throw GpuError(fmt::format("the GPU ({}) did not finish", info.name));
   }
