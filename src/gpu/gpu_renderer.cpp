@@ -299,7 +299,6 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   }
   m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
   if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
-  m.timeout_ns = m.timeout_s > 0 ? uint64_t(m.timeout_s * 1e9) : UINT64_MAX;
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
     m.band_invocations = uint64_t(std::atoll(band_env));
   m.memory_types = m.physical.getMemoryProperties();

@@ -111,8 +111,7 @@ struct GpuRenderer::Impl {
   // or a Whitted frame: milliseconds to seconds), no bound on a CPU device
   // such as lavapipe, whose long frames are work, not a hang;
   // HOLORAY_GPU_TIMEOUT=S (seconds) sets it on either.
-  uint64_t timeout_ns = UINT64_MAX;
-  double timeout_s = 0;
+  double timeout_s = 0;  // 0: no bound
   // A wait ran out: the device may still be running what it was given, so
   // nothing it holds may be freed (GpuRenderer's destructor keeps this Impl
   // whole) and the renderer refuses further work.
@@ -123,9 +122,10 @@ struct GpuRenderer::Impl {
       throw GpuError(fmt::format("the GPU ({}) stopped responding in an earlier render: make a new renderer", info.name));
   }
 
-  // Waits for `f`; past timeout_ns, the device counts as stopped: GpuError.
+  // Waits for `f`; past timeout_s, the device counts as stopped: GpuError.
   void wait(const vk::raii::Fence& f, const char* what) {
-    const vk::Result r = device.waitForFences({*f}, VK_TRUE, timeout_ns);
+    const uint64_t ns = timeout_s > 0 ? uint64_t(timeout_s * 1e9) : UINT64_MAX;
+    const vk::Result r = device.waitForFences({*f}, VK_TRUE, ns);
     if (r == vk::Result::eTimeout) {
       stopped = true;
       throw GpuError(fmt::format("the GPU ({}) stopped responding: {} did not finish in {:g} s (HOLORAY_GPU_TIMEOUT sets "

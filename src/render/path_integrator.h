@@ -67,8 +67,6 @@
 
 HR_BEGIN
 
-HR_FN bool hr_path_positive(vec3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
-
 /// One light sample's share at vertex `v`: light arriving along `dir`
 /// (world, unit) from `dist` away, `le` its radiance over the density it
 /// was drawn with (solid angle; `pdf` 0 for a delta light, which nothing

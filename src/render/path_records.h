@@ -32,6 +32,9 @@
 
 HR_BEGIN
 
+/// Whether a colour has any light in it (NaN counts as none).
+HR_FN bool hr_path_positive(vec3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
+
 /// A point, spot or directional light (render_scene.hpp, PointLight).
 /// `intensity` is its colour (the radiance a white Lambertian surface
 /// facing it shows at unit falloff); `direction` where its light travels;

@@ -144,7 +144,7 @@ static inline HrPathAreaLight hr_path_area_light(HrPathDevice& d, int a) {
   return A;
 }
 
-static inline Vec3 hr_path_escape(HrPathDevice& d, const Vec3& dir) { return d.env ? d.env->radiance(dir) : d.scene.background(); }
+static inline Vec3 hr_path_escape(HrPathDevice& d, const Vec3& dir) { return path_escape(d.scene, dir); }
 static inline bool hr_path_env_lights(HrPathDevice& d) { return d.env && !d.env->black(); }
 static inline float hr_path_env_pdf(HrPathDevice& d, const Vec3& dir) { return static_cast<float>(d.env->pdf(dir)); }
 

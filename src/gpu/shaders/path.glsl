@@ -87,8 +87,6 @@ struct HrPathHit {
   bool sphere;
 };
 
-bool any_positive(vec3 c) { return c.x > 0.0 || c.y > 0.0 || c.z > 0.0; }
-
 bool hr_path_trace(inout HrPathDevice d, vec3 o, vec3 dir, float tmin, float tmax, int depth, out HrPathHit h) {
   log_kind = uint(depth);
   if (!trace_ray(o, dir, tmin, tmax, false, h.hit)) return false;
@@ -138,7 +136,7 @@ bool hr_path_light_sphere(inout HrPathDevice d, HrPathHit h, out vec3 colour) {
 
 vec3 hr_path_emission(inout HrPathDevice d, HrPathHit h, vec3 dir, bool specular, float last_pdf) {
   GpuMaterial m = materials[h.material];
-  if (!any_positive(m.emission_model.xyz)) return vec3(0.0);
+  if (!hr_path_positive(m.emission_model.xyz)) return vec3(0.0);
   float w = 1.0;
   if (!specular && F.path_counts.y > 0 && (h.hit.ref >> HR_PRIM_SHIFT) == HR_PRIM_TRIANGLE) {
     // The emitters draw a point with area density luminance / their power.
