@@ -7,9 +7,12 @@
 // (counted in one more frame by a Renderer built to count them: counting
 // slows the kernel, RenderOptions::count_work),
 // and with --cpu the PSNR of the last frame against the CPU path's image,
-// with the depth and id AOVs' agreement where both hit.
+// with the depth and id AOVs' agreement where both hit. With --integrator
+// path, the path integrator at --spp samples per pixel, lit by the scene's
+// lights, a lights file (--lights) and an environment image (--environment).
 //
 // Usage: holoray_gpu_frames SCENE [--device gpu] [--lenses 240x135] [--ppl 16] [--frames 20] [--warmup 3] [--cpu]
+//          [--integrator whitted|path] [--spp N] [--max-depth D] [--lights FILE] [--environment FILE]
 #include <holoray/holoray.hpp>
 
 #include <algorithm>
@@ -35,11 +38,14 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE [--device gpu] [--lenses NXxNY] [--ppl P] [--frames N] [--warmup K] [--cpu]\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s SCENE [--device gpu] [--lenses NXxNY] [--ppl P] [--frames N] [--warmup K] [--cpu] "
+                 "[--integrator whitted|path] [--spp N] [--max-depth D] [--lights FILE] [--environment FILE]\n",
+                 argv[0]);
     return 2;
   }
-  std::string scene_path = argv[1], device = "gpu";
-  int lx = 240, ly = 135, ppl = 16, frames = 20, warmup = 3;
+  std::string scene_path = argv[1], device = "gpu", integrator = "whitted", lights, environment;
+  int lx = 240, ly = 135, ppl = 16, frames = 20, warmup = 3, spp = 1, max_depth = 0;
   bool cpu = false;
   for (int k = 2; k < argc; ++k) {
     const std::string a = argv[k];
@@ -50,18 +56,28 @@ int main(int argc, char** argv) {
     else if (a == "--frames") frames = std::atoi(next().c_str());
     else if (a == "--warmup") warmup = std::atoi(next().c_str());
     else if (a == "--cpu") cpu = true;
+    else if (a == "--integrator") integrator = next();
+    else if (a == "--spp") spp = std::atoi(next().c_str());
+    else if (a == "--max-depth") max_depth = std::atoi(next().c_str());
+    else if (a == "--lights") lights = next();
+    else if (a == "--environment") environment = next();
     else {
       std::fprintf(stderr, "unknown argument %s\n", a.c_str());
       return 2;
     }
   }
   try {
-    const Scene scene = Scene::load(scene_path);
+    Scene scene = Scene::load(scene_path);
+    if (!lights.empty()) scene.add_lights(lights);
     LensArray array;
     array.lenses_x = lx, array.lenses_y = ly, array.pixels_per_lens = ppl;
     RenderOptions options;
     options.device = device;
     options.aovs.depth = options.aovs.id = cpu;
+    options.integrator = integrator == "path" ? Integrator::path : Integrator::whitted;
+    options.spp = spp;
+    options.max_depth = max_depth;
+    options.environment.file = environment;
     const auto t0 = std::chrono::steady_clock::now();
     const Renderer renderer(scene, array, options);
     const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -77,10 +93,10 @@ int main(int argc, char** argv) {
     counting.count_work = true;
     const RenderStats st = Renderer(scene, array, counting).render().stats;
     const double rays = double(st.rays.total()), ms = median(trace) * 1e3;
-    std::printf("scene=%s device=\"%s\" size=%dx%d frames=%d setup_s=%.3f ms_median=%.3f ms_min=%.3f ms_max=%.3f "
+    std::printf("scene=%s device=\"%s\" size=%dx%d spp=%d frames=%d setup_s=%.3f ms_median=%.3f ms_min=%.3f ms_max=%.3f "
                 "fps=%.1f readback_ms=%.3f rays=%.0f mrays_s=%.1f nodes_per_ray=%.2f prims_per_ray=%.2f",
                 scene_path.c_str(), renderer.device_name().empty() ? "cpu" : renderer.device_name().c_str(),
-                renderer.width(), renderer.height(), frames, setup, ms, *std::min_element(trace.begin(), trace.end()) * 1e3,
+                renderer.width(), renderer.height(), spp, frames, setup, ms, *std::min_element(trace.begin(), trace.end()) * 1e3,
                 *std::max_element(trace.begin(), trace.end()) * 1e3, 1e3 / ms, median(readback) * 1e3, rays,
                 rays / (ms * 1e-3) / 1e6, double(st.nodes_visited) / rays, double(st.primitives_tested) / rays);
     if (cpu) {

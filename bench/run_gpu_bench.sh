@@ -37,3 +37,25 @@ for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do
   f() { echo "$line" | field "$1"; }
   echo "| $scene | $(f ms_median) ($(f ms_min)-$(f ms_max)) | $(f fps) | $(f mrays_s) | $(f nodes_per_ray) | $(f prims_per_ray) | $(f readback_ms) | $(f setup_s) | $(f cpu_trace_s) | $(f psnr_db) | $(f depth_off_pct) | $(f id_equal_pct) |"
 done
+# The path integrator (issue 70) at SPP samples per pixel on the same EIAs:
+# the four SPD scenes under their point lights, and two scenes lit as the
+# path integrator lights them: the Cornell box's area light and a glTF under
+# Blender's courtyard HDRI (ENVIRONMENT, where Blender's data is at hand).
+spp=${SPP:-1}
+environment=${ENVIRONMENT:-/usr/share/blender/datafiles/studiolights/world/courtyard.exr}
+echo
+echo "The path integrator, $spp sample(s) per pixel, 5 bounces at most:"
+echo
+echo "| scene | ms/frame median (min-max) | fps | Mrays/s | nodes/ray | prims/ray |"
+echo "|---|---:|---:|---:|---:|---:|"
+path_row() {
+  local name=$1 line
+  line=$(run "${@:2}" --integrator path --spp "$spp")
+  f() { echo "$line" | field "$1"; }
+  echo "| $name | $(f ms_median) ($(f ms_min)-$(f ms_max)) | $(f fps) | $(f mrays_s) | $(f nodes_per_ray) | $(f prims_per_ray) |"
+}
+for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do path_row "$scene" "$shared/scenes/nff/$scene.nff"; done
+path_row "cornell_box (area light)" examples/lights/cornell_box.nff --lights examples/lights/cornell_box.toml
+if [[ -f $environment ]]; then
+  path_row "swinging_box ($(basename "$environment"))" examples/swinging_box.gltf --environment "$environment"
+fi
