@@ -51,7 +51,8 @@ struct MemoryShare {
 /// and refraction rays), exact and fast. `path`: path tracing with next-event
 /// estimation and multiple importance sampling (Veach 1997), soft light from
 /// an environment and emissive surfaces, light bouncing between surfaces,
-/// noise falling as 1 / sqrt(spp); on the CPU.
+/// noise falling as 1 / sqrt(spp); on the CPU and the GPU, from one text
+/// of the integrator (src/render/path_integrator.h).
 enum class Integrator { whitted, path };
 
 /// The light around the scene that the path integrator sees (docs/lights.md,
@@ -82,7 +83,7 @@ struct RenderOptions {
   /// pixel centre (the AOVs'), the others spread by a scrambled Sobol
   /// sequence; lens arrays of every grid, pinhole views,
   /// quilts and panels; max_depth counts the eye ray as 1 (Cycles' bounces
-  /// plus 1). Not with device gpu or the shadow cache (std::invalid_argument).
+  /// plus 1). Not with the shadow cache (std::invalid_argument).
   Integrator integrator = Integrator::whitted;
   /// The path integrator's environment; given with Whitted's, refused.
   Environment environment;
