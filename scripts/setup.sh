@@ -33,7 +33,13 @@ packages=(
   hyperfine                 # bench/run_startup_deps.sh: start-up per library
   tachyon povray            # bench/run_bench.sh: the yardsticks of issue 4; povray and tachyon the pinhole tests' references
   tachyon-doc               # bench/run_tachyon_compare.sh: Tachyon's manual and example scenes
+  libcpp-httplib-dev        # holoray web --serve: the light-field page served on this machine
+  chromium                  # the light-field page's tests (tests/web): headless, WebGL2 on SwiftShader
 )
+# The page's tests drive Chromium from Node (playwright-core, pinned in
+# tests/web/package-lock.json): Debian's nodejs and npm where the machine
+# has no Node of its own.
+command -v npm >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -44,6 +50,10 @@ if ((${#missing[@]})); then
   echo "installing: ${missing[*]}"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+if [ ! -d tests/web/node_modules/playwright-core ] || [ tests/web/package-lock.json -nt tests/web/node_modules/.package-lock.json ]; then
+  npm ci --prefix tests/web --no-audit --no-fund --loglevel=error
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release

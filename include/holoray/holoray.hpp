@@ -28,6 +28,7 @@
 #include "holoray/scene.hpp"
 #include "holoray/stopwatch.hpp"
 #include "holoray/video.hpp"
+#include "holoray/web.hpp"
 
 namespace holoray::api {
 

@@ -2,9 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
-#include <regex>
-
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
 #include "cli/validators.hpp"
@@ -35,15 +32,7 @@ int run_interlace(const InterlaceCommandOptions& o) {
       throw std::invalid_argument(fmt::format("-o: unsupported output '{}' (use .png or .exr)", o.output));
     const api::Encoding encoding = parse_encoding(o.encoding);
     api::QuiltLayout q;
-    if (!o.quilt.empty()) {
-      parse_lens_count(o.quilt, q.columns, q.rows, "--quilt");
-    } else {
-      std::smatch m;
-      const std::string name = std::filesystem::path(o.input).filename().string();
-      if (!std::regex_search(name, m, std::regex("_qs([0-9]{1,4})x([0-9]{1,4})")))
-        throw std::invalid_argument(fmt::format("'{}' names no quilt layout (_qsCxR); give --quilt CxR", name));
-      parse_lens_count(m[1].str() + "x" + m[2].str(), q.columns, q.rows, "--quilt");
-    }
+    parse_quilt_layout(o.quilt, o.input, q.columns, q.rows);
     const api::Image quilt = api::read_image(o.input);
     const auto start = Clock::now();
     const api::Image panel = api::interlace_quilt(quilt, q.columns, q.rows, o.calibration);

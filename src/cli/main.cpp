@@ -13,6 +13,7 @@
 #include "cli/preview_commands.hpp"
 #include "cli/render_command.hpp"
 #include "cli/subaperture_command.hpp"
+#include "cli/web_command.hpp"
 #include "cli/version.hpp"
 #include "cluster/mpi_world.hpp"
 
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   CLI::App* views = holoray::cli::add_views_command(app, views_opts);
   holoray::cli::LiveCommandOptions live_opts;
   CLI::App* live = holoray::cli::add_live_command(app, live_opts);
+  holoray::cli::WebCommandOptions web_opts;
+  CLI::App* web = holoray::cli::add_web_command(app, web_opts);
   CLI::App* devices = holoray::cli::add_devices_command(app);
   holoray::cli::add_completion_option(app);
   app.footer(
@@ -65,7 +68,7 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, live, compare, simulate, views, interlace or devices)\n", argv[1]);
+    std::fprintf(stderr, "holoray: error: unknown command '%s' (expected render, subaperture, animate, live, compare, simulate, views, interlace, web or devices)\n", argv[1]);
     return 2;
   }
   try {
@@ -90,6 +93,7 @@ int main(int argc, char** argv) {
   if (views->parsed()) return holoray::cli::run_views(views_opts);
   if (interlace->parsed()) return holoray::cli::run_interlace(interlace_opts);
   if (live->parsed()) return holoray::cli::run_live(live_opts);
+  if (web->parsed()) return holoray::cli::run_web(web_opts);
   if (devices->parsed()) return holoray::cli::run_devices();
   return 2;
 }

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <filesystem>
+#include <regex>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -99,6 +101,15 @@ api::Aovs parse_aovs(const std::string& text) {
     else throw std::invalid_argument(fmt::format("--aov: unknown AOV '{}' (expected albedo, depth, normal, id)", item));
   }
   return a;
+}
+
+void parse_quilt_layout(const std::string& option_text, const std::string& path, int& columns, int& rows) {
+  if (!option_text.empty()) return parse_lens_count(option_text, columns, rows, "--quilt");
+  std::smatch m;
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (!std::regex_search(name, m, std::regex("_qs([0-9]{1,4})x([0-9]{1,4})")))
+    throw std::invalid_argument(fmt::format("'{}' names no quilt layout (_qsCxR); give --quilt CxR", name));
+  parse_lens_count(m[1].str() + "x" + m[2].str(), columns, rows, "--quilt");
 }
 
 }  // namespace holoray::cli

@@ -25,6 +25,11 @@ namespace holoray::cli {
 void parse_lens_count(const std::string& text, int& nx, int& ny, std::string_view option = "--lenses");
 /// "WxH" (e.g. 512x512) for --resolution; sizes from 1 to 65536 each.
 void parse_resolution(const std::string& text, int& width, int& height);
+/// A quilt's columns and rows: `option_text` ("CxR", --quilt) where given,
+/// else the _qsCxR in the file name of `path`, as Looking Glass tools name
+/// quilts. Throws std::invalid_argument saying to give --quilt when neither
+/// tells.
+void parse_quilt_layout(const std::string& option_text, const std::string& path, int& columns, int& rows);
 /// "X,Y,Z" with finite numbers.
 std::array<double, 3> parse_vec3(const std::string& option, const std::string& text);
 /// "square", "hex" or "lenticular" (--grid).

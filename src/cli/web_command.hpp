@@ -1,0 +1,23 @@
+// holoray/cli: `holoray web RESULT -o DIR`: a light-field page of an EIA or
+// a quilt that any browser opens (docs/guide/web.md); `holoray web --serve
+// DIR` serves it on this machine.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace holoray::cli {
+
+struct WebCommandOptions {
+  std::string input, output, grid = "square", quilt, name, encoding = "auto", serve, host = "127.0.0.1";
+  int pixels_per_lens = 8, port = 8000;
+  bool quiet = false;
+};
+
+CLI::App* add_web_command(CLI::App& app, WebCommandOptions& opts);
+/// Returns the exit status (0 success, 1 failure with one message on
+/// stderr). With --serve it returns only on failure (the server runs until
+/// the process is stopped).
+int run_web(const WebCommandOptions& opts);
+
+}  // namespace holoray::cli
