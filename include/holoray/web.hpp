@@ -29,11 +29,16 @@ HOLORAY_API void write_web_eia(const Image& eia, const EiaLayout& layout, const 
 
 /// The same page for a quilt of `columns` x `rows` views tiled as Looking
 /// Glass tools tile them (view 0, the leftmost, bottom left): views.png is
-/// the quilt; u counts its views left to right. Throws
-/// std::invalid_argument when the image is not columns x rows views of
-/// whole pixels (1 to 4096 views), std::runtime_error as write_web_eia.
+/// the quilt; u counts its views left to right. With `looking_glass`, a
+/// device's calibration file (visual.json), copied beside the page as
+/// visual.json: the page's Looking Glass window (#show=looking-glass) then
+/// shows the device's native image, interlaced in the fragment shader as
+/// interlace_quilt interlaces it. Throws std::invalid_argument when the
+/// image is not columns x rows views of whole pixels (1 to 4096 views),
+/// std::runtime_error naming the calibration when it is malformed, and as
+/// write_web_eia.
 HOLORAY_API void write_web_quilt(const Image& quilt, int columns, int rows, const std::string& dir,
-                                 const std::string& name, Encoding encoding);
+                                 const std::string& name, Encoding encoding, const std::string& looking_glass = "");
 
 /// Serves the folder `dir` over HTTP on `host`:`port` (0: a free port) until
 /// the process ends, so that the page's modules load (browsers refuse them

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "display/looking_glass.hpp"
 #include "scene/file_text.hpp"
 #include "util/module_loader.hpp"
 #include "web_page.inc"
@@ -58,7 +59,7 @@ void write_web_eia(const Image& eia, const EiaLayout& layout, const std::string&
 }
 
 void write_web_quilt(const Image& quilt, int columns, int rows, const std::string& dir, const std::string& name,
-                     Encoding encoding) {
+                     Encoding encoding, const std::string& looking_glass) {
   if (columns < 1 || rows < 1 || int64_t{columns} * rows > 4096)
     throw std::invalid_argument(fmt::format("quilt: expected 1 to 4096 views, got {}x{}", columns, rows));
   if (quilt.empty() || quilt.width() % columns || quilt.height() % rows)
@@ -74,6 +75,18 @@ void write_web_quilt(const Image& quilt, int columns, int rows, const std::strin
   m["tile_order"] = "quilt";
   m["views_image"] = "views.png";
   m["eia_image"] = nullptr;
+  m["looking_glass"] = nullptr;
+  std::string calibration;
+  if (!looking_glass.empty()) {
+    calibration = read_text_file(looking_glass);
+    parse_looking_glass(calibration, looking_glass);  // refused here, not in the page
+    m["looking_glass"] = "visual.json";
+  }
+  if (!calibration.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    write_text_file((std::filesystem::path(dir) / "visual.json").string(), calibration);
+  }
   write_page(dir, m, quilt, Image(), encoding);
 }
 

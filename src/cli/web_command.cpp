@@ -24,6 +24,10 @@ CLI::App* add_web_command(CLI::App& app, WebCommandOptions& o) {
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   cmd->add_option("--quilt", o.quilt, "The result is a quilt of CxR views (default: from a _qsCxR file name)");
+  cmd->add_option("--looking-glass", o.looking_glass,
+                  "A Looking Glass's calibration (visual.json), for a quilt: the page's Looking Glass window shows the "
+                  "device's native image")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--name", o.name, "Name shown under the view (default: the file's stem)");
   cmd->add_option("--encoding", o.encoding,
                   "How the image's values become the page's sRGB codes: auto (srgb for EXR and HDR, whose values are "
@@ -74,11 +78,13 @@ int run_web(const WebCommandOptions& o) {
     if (quilt) {
       int columns = 0, rows = 0;
       parse_quilt_layout(o.quilt, o.input, columns, rows);
-      api::write_web_quilt(image, columns, rows, o.output, name, encoding);
+      api::write_web_quilt(image, columns, rows, o.output, name, encoding, o.looking_glass);
       if (!o.quiet)
         fmt::print("page       {}/index.html: a {}x{} quilt of {}x{} views\n", o.output, columns, rows, image.width() / columns,
                    image.height() / rows);
     } else {
+      if (!o.looking_glass.empty())
+        throw std::invalid_argument("--looking-glass: a Looking Glass shows a quilt (--quilt CxR, or a _qsCxR file name), not an EIA");
       const api::EiaLayout layout{parse_grid(o.grid), o.pixels_per_lens};
       api::write_web_eia(image, layout, o.output, name, encoding);
       if (!o.quiet)

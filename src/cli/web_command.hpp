@@ -9,7 +9,7 @@
 namespace holoray::cli {
 
 struct WebCommandOptions {
-  std::string input, output, grid = "square", quilt, name, encoding = "auto", serve, host = "127.0.0.1";
+  std::string input, output, grid = "square", quilt, name, encoding = "auto", looking_glass, serve, host = "127.0.0.1";
   int pixels_per_lens = 8, port = 8000;
   bool quiet = false;
 };

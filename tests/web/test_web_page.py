@@ -218,3 +218,28 @@ def test_a_malformed_or_missing_image_shows_a_message_not_a_blank_canvas(browser
     (page / "views.png").unlink()
     (missing,) = capture(page, [""], tmp_path / "missing")
     assert missing == "views.png: the server answered 404 Not Found", missing
+
+
+def test_the_looking_glass_window_is_holoray_interlace_of_the_quilt(browser_ready, tmp_path):
+    run("render", PRIMITIVES, "--quilt", "4x2", "--resolution", "48x64", "-q", "--threads", 2, "-o", tmp_path / "q.png")
+    quilt_file = next(tmp_path.glob("q_qs4x2*.png"))
+    example = REPO / "examples" / "displays" / "looking_glass_example_calibration.json"
+    # The example, and the same with subpixel cells in a checkerboard (the
+    # newer devices' calibrations).
+    cells = example.read_text().rstrip().rstrip("}") + (
+        ', "CellPatternMode": {"value": 1}, "subpixelCells": ['
+        '{"ROffsetX": 0.0, "ROffsetY": 0.0, "GOffsetX": 0.333, "GOffsetY": 0.0, "BOffsetX": 0.667, "BOffsetY": 0.0},'
+        '{"ROffsetX": 0.667, "ROffsetY": 0.0, "GOffsetX": 0.333, "GOffsetY": 0.0, "BOffsetX": 0.0, "BOffsetY": 0.0}]}')
+    (tmp_path / "cells.json").write_text(cells)
+    for k, calibration in enumerate([example, tmp_path / "cells.json"]):
+        run("web", quilt_file, "--looking-glass", calibration, "-o", tmp_path / f"page{k}")
+        run("interlace", quilt_file, "--looking-glass", calibration, "-q", "-o", tmp_path / f"native{k}.png")
+        (shown,) = capture(tmp_path / f"page{k}", ["#show=looking-glass"], tmp_path / f"shots{k}")
+        native = holoray.read_image(str(tmp_path / f"native{k}.png"))
+        assert shown.shape[:2] == native.shape[:2] == (2048, 1536)
+        assert psnr(shown, native) >= 40, calibration.name
+    # Without a calibration the window shows the views (and says how to give one).
+    run("web", quilt_file, "-o", tmp_path / "plain")
+    (plain,) = capture(tmp_path / "plain", ["#show=looking-glass&u=3"], tmp_path / "plain_shots")
+    quilt = holoray.read_image(str(quilt_file))[..., :3]
+    assert psnr(plain, quilt[64:128, 3 * 48:4 * 48]) >= 45

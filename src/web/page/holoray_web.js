@@ -10,7 +10,11 @@
 // shift, in lenses per view, of each view before the views are averaged
 // (shift-and-add, as a plenoptic camera refocuses); aperture is the radius,
 // in views, of the disc of views averaged around (u, v); 0 shows the one
-// view. Once the state in the address is drawn, document.body.dataset.drawn
+// view. show=looking-glass (a quilt with a Looking Glass's calibration,
+// given at export or loaded in the page) draws the device's native image,
+// one canvas pixel per panel pixel, interlaced as `holoray interlace` does:
+// the window the page's button opens, to be moved to the device's screen and
+// made full screen (double-click). Once the state in the address is drawn, document.body.dataset.drawn
 // holds that fragment; a file that cannot be read sets dataset.error and
 // shows why in the page.
 
@@ -90,6 +94,106 @@ const COPY_SHADER = COMMON + `
 uniform int height;
 void main() { colour = vec4(encode(texelFetch(atlas, pixel(height), 0).rgb), 1.0); }`;
 
+// A Looking Glass's native image from the quilt and the device's
+// calibration, as the device's own shader interlaces it and as
+// display/looking_glass.cpp's interlace_quilt does: each subpixel's view
+// from the lenticular's phase, the two views around it blended. The quilt
+// is read as codes (no sRGB decoding: the device shader blends codes),
+// filtered, repeating.
+const LOOKING_GLASS_SHADER = `#version 300 es
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+uniform sampler2D quilt;
+uniform ivec2 screen;
+uniform int columns, rows;
+uniform float lenticules, tilt, center;  // computed in double (the page's script): the shader's atan and cos are not exact enough
+uniform bool flipX;
+uniform int cellPattern, cellCount;
+uniform vec2 cells[30];  // subpixel s of cell k: cells[3 k + s], (dx, dy) in pixels
+out vec4 colour;
+
+int cellOf(int i, int j) {  // camera/pixel_lines.h's hr_looking_glass_cell
+  if (cellCount == 0) return 0;
+  int x = i, y = screen.y - 1 - j, cell = 0;
+  if (cellPattern == 1) cell = (y % 2 == 0) == (x % 2 == 0) ? 0 : 1;
+  if (cellPattern == 2) cell = x % 2;
+  if (cellPattern == 3) cell = (y + (x % 2) * 2) % 4;
+  if (cellPattern == 4) cell = y % 2;
+  return cell % cellCount;
+}
+float viewOf(int i, int j, int s) {  // display/looking_glass.cpp's looking_glass_view
+  float W = float(screen.x), H = float(screen.y);
+  float u = (float(i) + 0.5) / W, v = (H - float(j) - 0.5) / H;
+  float flip = flipX ? -1.0 : 1.0;
+  float a;
+  if (cellCount == 0) {
+    a = u + float(s) * (flip / (3.0 * W)) + v * tilt;
+  } else {
+    vec2 d = cells[3 * cellOf(i, j) + s];
+    a = (u + d.x / W) + (v + d.y / H) * tilt;
+  }
+  a = a * lenticules - center;
+  return clamp(1.0 - fract(a), 0.00001, 0.999999);
+}
+vec4 viewSample(int k, vec2 uv) {  // GetQuiltCoordinates, its 0.00001 included
+  float n = float(columns * rows), tx = float(columns) - 0.00001;
+  float view = clamp(float(k), 0.0, n);
+  float row = floor(view / tx), column = view - tx * row;
+  // (s, t) from the quilt's bottom left; its rows are stored top first.
+  return texture(quilt, vec2((column + uv.x) / tx, 1.0 - (row + uv.y) / float(rows)));
+}
+void main() {
+  int i = int(gl_FragCoord.x), j = screen.y - 1 - int(gl_FragCoord.y);
+  vec2 uv = vec2((float(i) + 0.5) / float(screen.x), (float(screen.y - j) - 0.5) / float(screen.y));
+  int n = columns * rows;
+  vec3 c;
+  for (int s = 0; s < 3; ++s) {
+    float x = viewOf(i, j, s), xn = x * float(n);
+    int first = min(int(xn), n - 1), second = int((x + 1.0 / float(n)) * float(n));
+    if (second >= n) second = 0;
+    int next = first == n - 1 ? n : second;  // tile N: the repeating texture's view 0
+    c[s] = mix(viewSample(first, uv)[s], viewSample(next, uv)[s], xn - floor(xn));
+  }
+  colour = vec4(c, 1.0);
+}`;
+
+// A calibration file's fields (visual.json: numbers, or {"value": number}),
+// checked as display/looking_glass.cpp checks them.
+function parseCalibration(text, source) {
+  let j;
+  try {
+    j = JSON.parse(text);
+  } catch (e) {
+    fail(`${source}: not a Looking Glass calibration (JSON): ${e.message}`);
+  }
+  const field = (key, fallback) => {
+    const raw = j?.[key];
+    const x = raw !== null && typeof raw === "object" && "value" in raw ? raw.value : raw;
+    if (x === undefined && fallback !== undefined) return fallback;
+    if (typeof x !== "number" || !Number.isFinite(x)) fail(`${source}: expected '${key}' to be a finite number, found ${JSON.stringify(x)}`);
+    return x;
+  };
+  const c = {
+    pitch: field("pitch"), slope: field("slope"), center: field("center"), dpi: field("DPI"),
+    width: field("screenW"), height: field("screenH"), flipX: field("flipImageX", 0) !== 0,
+    cellPattern: field("CellPatternMode", 1), cells: [],
+  };
+  if (!(c.pitch > 0) || c.slope === 0 || !(c.dpi > 0)) fail(`${source}: expected a positive pitch and DPI and a non-zero slope`);
+  if (!Number.isInteger(c.width) || !Number.isInteger(c.height) || c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
+    fail(`${source}: expected 'screenW' and 'screenH' whole numbers of pixels from 1 to 16384, found ${c.width}x${c.height}`);
+  const cells = j.subpixelCells ?? [];
+  if (!Array.isArray(cells) || cells.length > 10) fail(`${source}: expected 'subpixelCells' to be an array of at most 10 cells`);
+  for (const cell of cells)
+    for (const ch of ["R", "G", "B"]) {
+      const at = (k) => (typeof cell?.[k] === "number" ? cell[k] : typeof cell?.[k]?.value === "number" ? cell[k].value : NaN);
+      const d = [at(`${ch}OffsetX`), at(`${ch}OffsetY`)];
+      if (!d.every(Number.isFinite)) fail(`${source}: expected ${ch}OffsetX and ${ch}OffsetY in every subpixel cell`);
+      c.cells.push(...d);
+    }
+  return c;
+}
+
 const page = {
   canvas: document.getElementById("view"),
   message: document.getElementById("message"),
@@ -114,12 +218,13 @@ function readState(field) {
     return Number.isFinite(x) ? x : fallback;
   };
   const show = q.get("show");
+  const lookingGlass = show === "looking-glass" && field.kind === "quilt";
   return {
     u: number("u", Math.floor(field.views[0] / 2)),
     v: number("v", Math.floor(field.views[1] / 2)),
     focus: number("focus", 0),
     aperture: Math.max(0, number("aperture", 0)),
-    show: show === "eia" && field.eia_image ? "eia" : show === "grid" ? "grid" : "view",
+    show: show === "eia" && field.eia_image ? "eia" : show === "grid" ? "grid" : lookingGlass ? "looking-glass" : "view",
   };
 }
 
@@ -163,14 +268,36 @@ function compile(gl, vertex, fragment) {
   return program;
 }
 
-function texture(gl, bitmap) {
+// The views as linear light, fetched texel by texel; or (codes) as the
+// Looking Glass shader reads its quilt: codes, filtered, repeating. Rows
+// top first either way (an ImageBitmap ignores UNPACK_FLIP_Y_WEBGL).
+function texture(gl, bitmap, codes = false) {
   const t = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D, t);
-  gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
-  gl.texImage2D(gl.TEXTURE_2D, 0, gl.SRGB8_ALPHA8, gl.RGBA, gl.UNSIGNED_BYTE, bitmap);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  gl.texImage2D(gl.TEXTURE_2D, 0, codes ? gl.RGBA8 : gl.SRGB8_ALPHA8, gl.RGBA, gl.UNSIGNED_BYTE, bitmap);
+  const filter = codes ? gl.LINEAR : gl.NEAREST, wrap = codes ? gl.REPEAT : gl.CLAMP_TO_EDGE;
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, filter);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, filter);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, wrap);
   return t;
+}
+
+const CALIBRATION_KEY = "holoray-looking-glass";
+
+// The quilt's Looking Glass calibration: the exported one, else the last
+// loaded in a page of this site (kept for the window the button opens).
+async function loadCalibration(field) {
+  if (field.looking_glass) return parseCalibration(await (await fetchOk(field.looking_glass)).text(), field.looking_glass);
+  const kept = localStorage.getItem(CALIBRATION_KEY);
+  if (!kept) return null;
+  try {
+    return parseCalibration(kept, "the calibration loaded before");
+  } catch {
+    delete document.body.dataset.error;
+    page.message.textContent = "";
+    return null;
+  }
 }
 
 function checkManifest(f) {
@@ -179,6 +306,7 @@ function checkManifest(f) {
   for (const key of ["views", "view_size", "tiles"])
     if (!pair(f[key])) fail(`light_field.json: "${key}" must be two positive whole numbers, got ${JSON.stringify(f[key])}`);
   if (typeof f.views_image !== "string") fail(`light_field.json: "views_image" must name the views' image`);
+  if (f.looking_glass != null && typeof f.looking_glass !== "string") fail(`light_field.json: "looking_glass" must name a calibration file`);
 }
 
 async function main() {
@@ -189,6 +317,7 @@ async function main() {
   if (atlas.width !== tw || atlas.height !== th)
     fail(`${field.views_image}: ${atlas.width}x${atlas.height} pixels, but light_field.json describes ${field.tiles[0]}x${field.tiles[1]} views of ${field.view_size[0]}x${field.view_size[1]} (${tw}x${th})`);
   const eia = field.eia_image ? await loadBitmap(field.eia_image) : null;
+  let calibration = field.kind === "quilt" ? await loadCalibration(field) : null;
 
   const gl = page.canvas.getContext("webgl2", { preserveDrawingBuffer: true, antialias: false, alpha: false });
   if (!gl) fail("this browser has no WebGL2: the page needs it");
@@ -196,6 +325,7 @@ async function main() {
   const copyProgram = compile(gl, VERTEX, COPY_SHADER);
   const atlasTexture = texture(gl, atlas);
   const eiaTexture = eia ? texture(gl, eia) : null;
+  let lookingGlassProgram = null, quiltCodes = null;  // made when first shown
   gl.bindVertexArray(gl.createVertexArray());
 
   const lenses = field.kind === "quilt" ? `${field.views[0]} views of ${field.view_size[0]}x${field.view_size[1]} pixels (a quilt)`
@@ -206,12 +336,37 @@ async function main() {
   let state = readState(field);
   const draw = () => {
     const s = state;
-    const [w, h] = s.show === "eia" ? [eia.width, eia.height] : s.show === "grid" ? [tw, th] : field.view_size;
+    if (s.show === "looking-glass" && !calibration) {
+      page.message.textContent = "no Looking Glass calibration: write the page with --looking-glass visual.json, or load the device's visual.json below";
+      s.show = "view";
+    }
+    const [w, h] = s.show === "eia" ? [eia.width, eia.height] : s.show === "grid" ? [tw, th]
+      : s.show === "looking-glass" ? [calibration.width, calibration.height] : field.view_size;
     page.canvas.width = w, page.canvas.height = h;
     page.canvas.classList.toggle("zoomed", s.show !== "view" || Number(page.zoom.value) > 1);
-    page.canvas.style.width = page.canvas.classList.contains("zoomed") ? `${w * Number(page.zoom.value)}px` : "";
+    page.canvas.style.width = s.show === "looking-glass" ? `${w / devicePixelRatio}px`  // a canvas pixel a panel pixel
+      : page.canvas.classList.contains("zoomed") ? `${w * Number(page.zoom.value)}px` : "";
     gl.viewport(0, 0, w, h);
-    if (s.show === "view") {
+    if (s.show === "looking-glass") {
+      lookingGlassProgram ??= compile(gl, VERTEX, LOOKING_GLASS_SHADER);
+      quiltCodes ??= texture(gl, atlas, true);
+      gl.useProgram(lookingGlassProgram);
+      gl.bindTexture(gl.TEXTURE_2D, quiltCodes);
+      const at = (name) => gl.getUniformLocation(lookingGlassProgram, name);
+      const c = calibration;
+      gl.uniform2i(at("screen"), c.width, c.height);
+      gl.uniform1i(at("columns"), field.tiles[0]);
+      gl.uniform1i(at("rows"), field.tiles[1]);
+      // The phase's scale, in double: a relative error of 1e-5 in it moved
+      // the views by 2 % at the panel's far corner (SwiftShader's cos(atan())).
+      gl.uniform1f(at("lenticules"), c.pitch * c.width / c.dpi * Math.cos(Math.atan(1 / c.slope)));
+      gl.uniform1f(at("tilt"), (c.height / (c.width * c.slope)) * (c.flipX ? -1 : 1));
+      gl.uniform1f(at("center"), c.center);
+      gl.uniform1i(at("flipX"), c.flipX ? 1 : 0);
+      gl.uniform1i(at("cellPattern"), c.cellPattern);
+      gl.uniform1i(at("cellCount"), c.cells.length / 6);
+      if (c.cells.length) gl.uniform2fv(at("cells"), new Float32Array(c.cells));
+    } else if (s.show === "view") {
       gl.useProgram(viewProgram);
       gl.bindTexture(gl.TEXTURE_2D, atlasTexture);
       const at = (name) => gl.getUniformLocation(viewProgram, name);
@@ -257,6 +412,26 @@ async function main() {
   page.focus.addEventListener("input", () => change({ focus: Number(page.focus.value) }));
   page.aperture.addEventListener("input", () => change({ aperture: Number(page.aperture.value) }));
   page.zoom.addEventListener("input", draw);
+  // The Looking Glass: a window of its own for the device's screen.
+  document.getElementById("looking-glass-controls").hidden = field.kind !== "quilt";
+  document.getElementById("looking-glass").addEventListener("click", () =>
+    window.open(`${location.pathname}#show=looking-glass`, "holoray-looking-glass", "popup"));
+  document.getElementById("calibration").addEventListener("change", async (e) => {
+    const file = e.target.files[0];
+    if (!file) return;
+    const text = await file.text();
+    try {
+      calibration = parseCalibration(text, file.name);
+    } catch {
+      return;  // fail() has shown why
+    }
+    page.message.textContent = "";
+    delete document.body.dataset.error;
+    localStorage.setItem(CALIBRATION_KEY, text);
+  });
+  page.canvas.addEventListener("dblclick", () => {
+    if (state.show === "looking-glass") page.canvas.requestFullscreen?.();
+  });
   for (const b of document.querySelectorAll("button[data-show]"))
     b.addEventListener("click", () => change({ show: b.dataset.show === "eia" && !eia ? "view" : b.dataset.show }));
   window.addEventListener("hashchange", () => {
