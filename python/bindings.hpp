@@ -14,6 +14,7 @@ void bind_cameras(py::module_& m);  ///< LensArray, Pinhole, Quilt, Display, Loo
 void bind_render(py::module_& m);   ///< Result, render (render_bindings.cpp)
 void bind_animate(py::module_& m);  ///< the animation iterator (animate_bindings.cpp)
 void bind_preview(py::module_& m);  ///< subaperture_view, simulate_view, interlace_quilt (preview_bindings.cpp)
+void bind_web(py::module_& m);      ///< write_web (web_bindings.cpp)
 
 /// A camera object of this module as the API's camera; TypeError otherwise.
 api::Camera camera_of(const py::handle& camera, const char* name);

@@ -85,4 +85,5 @@ PYBIND11_MODULE(_holoray, m) {
   python::bind_render(m);
   python::bind_animate(m);
   python::bind_preview(m);
+  python::bind_web(m);
 }

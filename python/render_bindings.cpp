@@ -8,6 +8,7 @@
 #include "holoray/pick.hpp"
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "result.hpp"
 #include "holoray/render.hpp"
 #include "worker.hpp"
 
@@ -51,11 +52,6 @@ std::optional<api::Placement> placement_of(const py::handle& origin, const py::h
   return api::Placement{vec3_of(origin, "origin"), vec3_of(normal, "normal"), vec3_of(up, "up")};
 }
 
-struct PyResult {
-  py::array colour;
-  py::dict aovs, stats;
-  std::string description;
-};
 
 py::dict stats_dict(const api::RenderStats& s) {
   py::dict rays, seconds, out;
@@ -193,6 +189,7 @@ void bind_render(py::module_& m) {
       .def_readonly("aovs", &PyResult::aovs, "'albedo' (H, W, 3), 'depth' (H, W), 'normal' (H, W, 3), 'id' int32 (H, W)")
       .def_readonly("stats", &PyResult::stats, "{'rays': {...}, 'seconds': {'build', 'trace'}}")
       .def_readonly("description", &PyResult::description, "what was rendered, as `holoray render` prints it")
+      .def_readonly("camera", &PyResult::camera, "the camera it was rendered through")
       .def("__repr__", [](const PyResult& r) {
         return "<holoray.Result " + std::string(py::str(r.colour.attr("shape"))) + ": " + r.description.substr(0, r.description.find('\n')) + ">";
       });
@@ -269,6 +266,8 @@ void bind_render(py::module_& m) {
         res.stats = stats_dict(rr.stats);
         res.stats["device"] = out.device;
         res.description = out.description;
+        res.camera = py::reinterpret_borrow<py::object>(camera);
+        res.encoding = api::default_encoding(scene.source());
         return res;
       },
       py::arg("scene"), py::arg("camera"), py::kw_only(), py::arg("threads") = py::none(), py::arg("spp") = 1,

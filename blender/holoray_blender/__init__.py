@@ -4,7 +4,8 @@ holoray (docs/guide/blender.md).
 
 Registers the render engine HOLORAY (F12, `blender -b f.blend -E HOLORAY -f 1`),
 the operators holoray.render_animation (a shot with keyframe reuse) and
-holoray.preview (the last render as a viewer sees it),
+holoray.preview (the last render as a viewer sees it), holoray.export_web (the
+last EIA or quilt as a light-field page any browser opens),
 its settings `scene.holoray` in the Render properties, and the add-on's
 preferences (the holoray binary). Blender's own glTF exporter hands the scene
 over; holoray renders it (its Python module in Blender's process, else the
@@ -39,7 +40,8 @@ import bpy
 from . import animation, devices, engine, inprocess, job, preview, properties, ui
 
 _classes = (properties.HolorayPreferences, properties.HoloraySettings, engine.HolorayRenderEngine,
-            animation.HOLORAY_OT_render_animation, preview.HOLORAY_OT_preview) + ui.classes
+            animation.HOLORAY_OT_render_animation, preview.HOLORAY_OT_preview,
+            preview.HOLORAY_OT_export_web) + ui.classes
 
 
 def register():

@@ -3,7 +3,8 @@ turns the last EIA (kept by the engine as last.exr in Blender's temporary
 folder) into the centre sub-aperture view, the grid of every sub-aperture
 view, or what an eye sees on the chosen display (`holoray subaperture`,
 `holoray views`, `holoray simulate`), loaded as the image "holoray preview"
-and shown in an image editor."""
+and shown in an image editor; holoray.export_web writes the last EIA or
+quilt as a light-field page any browser opens (`holoray web`)."""
 
 import json
 import os
@@ -37,7 +38,8 @@ def last_render():
 def _keep_settings(path, s):
     with open(path + ".json", "w") as f:
         json.dump({"camera": s.camera, "grid": s.grid.lower(), "pixels_per_lens": s.pixels_per_lens,
-                   "display_file": bpy.path.abspath(s.display_file) if s.display_file else ""}, f)
+                   "display_file": bpy.path.abspath(s.display_file) if s.display_file else "",
+                   "quilt": f"{s.quilt_columns}x{s.quilt_rows}"}, f)
 
 
 def keep_last(output, settings):
@@ -111,4 +113,47 @@ class HOLORAY_OT_preview(bpy.types.Operator):
                 if area.type == "IMAGE_EDITOR":
                     area.spaces[0].image = img
         self.report({"INFO"}, f"holoray: {img.size[0]}x{img.size[1]} preview in the image 'holoray preview'")
+        return {"FINISHED"}
+
+
+class HOLORAY_OT_export_web(bpy.types.Operator):
+    """Write the last holoray render (a lens array's EIA or a quilt) as a light-field page any browser opens"""
+
+    bl_idname = "holoray.export_web"
+    bl_label = "Export web page"
+
+    directory: bpy.props.StringProperty(name="Folder", subtype="DIR_PATH",
+                                        description="Folder to write the page into (index.html, its script, the views)")
+
+    def invoke(self, context, event):
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        last = last_render()
+        if last is None:
+            self.report({"ERROR"}, "holoray: nothing rendered yet: render with holoray (F12) first")
+            return {"CANCELLED"}
+        path, info = last
+        binary = holoray_binary(context)
+        if binary is None:
+            self.report({"ERROR"}, "holoray: the holoray program was not found")
+            return {"CANCELLED"}
+        if not self.directory:
+            self.report({"ERROR"}, "holoray: choose a folder for the page")
+            return {"CANCELLED"}
+        out = bpy.path.abspath(self.directory)
+        name = bpy.path.display_name_from_filepath(bpy.data.filepath) or context.scene.name
+        if info["camera"] == "INTEGRAL":
+            cmd = [binary, "web", path, "--grid", info["grid"], "--pixels-per-lens", str(info["pixels_per_lens"])]
+        elif info["camera"] == "QUILT":
+            cmd = [binary, "web", path, "--quilt", info.get("quilt", "8x6")]
+        else:
+            self.report({"ERROR"}, "holoray: a web page shows a lens array's EIA or a quilt (camera: Lens array or Quilt)")
+            return {"CANCELLED"}
+        run = subprocess.run(cmd + ["--name", name, "-q", "-o", out], capture_output=True, text=True)
+        if run.returncode != 0:
+            self.report({"ERROR"}, f"holoray: {run.stderr.strip()}")
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"holoray: page written in {out}: open it with `holoray web --serve {out}`")
         return {"FINISHED"}

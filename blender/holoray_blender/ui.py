@@ -54,6 +54,8 @@ class HOLORAY_PT_camera(_RenderPanel, bpy.types.Panel):
         row.operator("holoray.preview", text="Every view").kind = "VIEWS"
         if s.camera == "DISPLAY":
             row.operator("holoray.preview", text="Eye").kind = "EYE"
+        if s.camera in ("INTEGRAL", "QUILT"):
+            layout.operator("holoray.export_web", icon="WORLD")
 
 
 class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):

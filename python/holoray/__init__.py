@@ -36,7 +36,7 @@ __all__ = [
     "Display", "LensArray", "LookingGlass", "Pinhole", "Quilt", "Result", "Scene", "SceneError",
     "animate", "gpu_devices", "interlace_quilt", "light_field", "load_scene", "psnr", "read_image",
     "release_gpu_devices", "render", "simulate_view",
-    "subaperture_view", "write_image",
+    "subaperture_view", "write_image", "write_web",
 ]
 
 
@@ -73,6 +73,22 @@ def interlace_quilt(quilt, columns, rows, calibration):
     not columns x rows views of whole pixels; SceneError for a malformed
     calibration."""
     return _holoray.interlace_quilt(quilt, columns, rows, os.fspath(calibration))
+
+
+def write_web(result, dir, *, name="holoray", encoding=None, pixels_per_lens=None, grid="square", quilt=None,
+              looking_glass=None):
+    """Writes the light-field page of `result` into the folder `dir`, as
+    `holoray web`: a Result rendered through a LensArray (an EIA of any grid)
+    or a Quilt, or an image array with pixels_per_lens (and grid) or
+    quilt=(columns, rows). Open it with `holoray web --serve DIR`
+    (docs/guide/web.md). encoding: 'linear' or 'srgb', how the values become
+    the page's 8-bit codes (default: a Result's scene's, as `holoray render`
+    writes it; 'srgb' for an array). looking_glass: a Looking Glass's
+    calibration (visual.json) for a quilt's Looking Glass window. ValueError
+    for another camera or an image that is not whole lenses or views."""
+    return _holoray.write_web(result, os.fspath(dir), name=name, encoding=encoding, pixels_per_lens=pixels_per_lens,
+                              grid=grid, quilt=quilt,
+                              looking_glass=None if looking_glass is None else os.fspath(looking_glass))
 
 
 def read_image(path):

@@ -6,7 +6,7 @@ Images are float32, linear, row 0 at the top, shaped (H, W, C).
 from __future__ import annotations
 
 import os
-from typing import Callable, Iterator, Mapping, Sequence
+from typing import Callable, Iterator, Literal, Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -119,6 +119,8 @@ class Result:
         'device': 'cpu' or the GPU's name}"""
     description: str
     """What was rendered, as `holoray render` prints it."""
+    camera: LensArray | Pinhole | Quilt | Display | LookingGlass
+    """The camera it was rendered through."""
 
 def render(scene: Scene, camera: Camera, *, threads: int | None = None, spp: int = 1,
            max_depth: int | None = None, aovs: Sequence[str] = (),
@@ -173,6 +175,14 @@ def interlace_quilt(quilt: ArrayLike, columns: int, rows: int, calibration: Path
     """A Looking Glass's native panel image, float32 (H, W, 3), from a quilt of
     columns x rows views and the device's calibration (visual.json), as
     `holoray interlace`. ValueError when the quilt is not whole views."""
+
+def write_web(result: Result | ArrayLike, dir: PathLike, *, name: str = "holoray",
+              encoding: Literal["linear", "srgb"] | None = None, pixels_per_lens: int | None = None,
+              grid: Literal["square", "hex", "lenticular"] = "square", quilt: tuple[int, int] | None = None,
+              looking_glass: PathLike | None = None) -> None:
+    """Writes the light-field page of a Result (an EIA or a quilt) or an image
+    array (with pixels_per_lens, or quilt=(columns, rows)) into dir, as
+    `holoray web`; open it with `holoray web --serve DIR`."""
 
 def animate(shot_path: PathLike, *, output: PathLike | None = None, **options: object
             ) -> Iterator[tuple[int, np.ndarray, dict[str, object]]]:

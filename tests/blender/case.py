@@ -136,6 +136,18 @@ elif case == "preview":
     print("RESULT " + json.dumps({"size": list(view.size),
                                   "max_difference": float(np.abs(pixels(view)[:, :, :3] - centre).max())}), flush=True)
     raise SystemExit(0)
+elif case == "export_web":
+    # F12, then the page: holoray web of the last EIA, the add-on's settings told.
+    bpy.context.preferences.addons["holoray_blender"].preferences.binary = binary
+    sc.render.filepath = os.path.join(out, "eia.exr")
+    sc.render.image_settings.file_format = "OPEN_EXR"
+    sc.render.image_settings.color_depth = "32"
+    bpy.ops.render.render(write_still=True)
+    bpy.ops.holoray.export_web(directory=os.path.join(out, "page"))
+    with open(os.path.join(out, "page", "light_field.json")) as f:
+        manifest = json.load(f)
+    print("RESULT " + json.dumps({"manifest": manifest, "files": sorted(os.listdir(os.path.join(out, "page")))}), flush=True)
+    raise SystemExit(0)
 elif case == "shot_placement":
     # The shot operator's array against F12's, with a lens shift: the first
     # key's `at` is the array's centre, `from` lies along its normal, and

@@ -273,6 +273,17 @@ def test_the_centre_view_preview_is_the_eias_lens_centre_pixels(tmp_path):
     assert r["max_difference"] < 1e-6
 
 
+def test_export_web_writes_the_last_eias_page_as_holoray_web_does(tmp_path):
+    r = build("export_web", tmp_path)
+    assert r["files"] == ["eia.png", "holoray_web.js", "index.html", "light_field.json", "views.png"]
+    m = r["manifest"]
+    assert (m["kind"], m["grid"], m["pixels_per_lens"], m["lenses"], m["views"]) == ("eia", "square", 5, [24, 16], [5, 5])
+    # The page's views are `holoray web`'s of the EIA Blender wrote (linear EXR: sRGB-encoded for the page).
+    subprocess.run([os.environ["HOLORAY_CLI"], "web", str(tmp_path / "eia.exr"), "--pixels-per-lens", "5", "-q",
+                    "-o", str(tmp_path / "ref")], check=True)
+    assert np.array_equal(holoray.read_image(tmp_path / "page" / "views.png"), holoray.read_image(tmp_path / "ref" / "views.png"))
+
+
 def holoray_processes(marker):
     """PIDs of holoray processes whose command line holds `marker` (their temporary folder)."""
     out = []

@@ -2,7 +2,9 @@
 // and saves what the light-field page drew: OUT/N.png, the view canvas as
 // canvas.toDataURL() reads it, once the page has drawn the state in its
 // address (document.body.dataset.drawn), or OUT/N.error.txt with the
-// message the page shows when it could not. For tests/web/test_web_page.py.
+// message the page shows when it could not; OUT/N.figures.txt, the figures
+// under the view; with SCREENSHOT=FILE, the first page as a reader sees it
+// (1100x900 CSS pixels). For tests/web/test_web_page.py.
 // Usage: node capture.mjs OUT URL... (CHROMIUM=path, default /usr/bin/chromium)
 import { chromium } from "playwright-core";
 import { writeFileSync } from "node:fs";
@@ -20,7 +22,7 @@ const browser = await chromium.launch({
 });
 try {
   for (const [k, url] of urls.entries()) {
-    const page = await browser.newPage();
+    const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
     const logs = [];
     page.on("console", (m) => logs.push(`${m.type()}: ${m.text()}`));
     page.on("pageerror", (e) => logs.push(`pageerror: ${e.message}`));
@@ -30,7 +32,10 @@ try {
       error: document.body.dataset.error ?? null,
       shown: document.getElementById("message").textContent,
       png: "drawn" in document.body.dataset ? document.getElementById("view").toDataURL("image/png") : null,
+      figures: document.getElementById("figures").textContent,
     }));
+    writeFileSync(join(out, `${k}.figures.txt`), `${state.figures}\n`);
+    if (k === 0 && process.env.SCREENSHOT) await page.screenshot({ path: process.env.SCREENSHOT });
     if (state.error !== null) {
       writeFileSync(join(out, `${k}.error.txt`), `${state.shown}\n`);
     } else {

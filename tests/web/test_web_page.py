@@ -90,13 +90,16 @@ class Served:
         self.process.wait(timeout=10)
 
 
-def capture(folder: pathlib.Path, states: list[str], out: pathlib.Path) -> list[np.ndarray | str]:
+def capture(folder: pathlib.Path, states: list[str], out: pathlib.Path,
+            screenshot: pathlib.Path | None = None) -> list[np.ndarray | str]:
     """What the page in `folder` draws for each state (a fragment): an image
-    of codes 0..1, or the message the page shows instead."""
+    of codes 0..1, or the message the page shows instead; with `screenshot`,
+    the first state's page as a reader sees it, saved there."""
     out.mkdir(exist_ok=True)
+    env = dict(os.environ, **({"SCREENSHOT": str(screenshot)} if screenshot else {}))
     with Served(folder) as server:
         done = subprocess.run(["node", str(HERE / "capture.mjs"), str(out), *[server.url + s for s in states]],
-                              capture_output=True, text=True, timeout=300)
+                              capture_output=True, text=True, timeout=300, env=env)
     assert done.returncode == 0, done.stderr
     shown: list[np.ndarray | str] = []
     for k in range(len(states)):
@@ -243,3 +246,35 @@ def test_the_looking_glass_window_is_holoray_interlace_of_the_quilt(browser_read
     (plain,) = capture(tmp_path / "plain", ["#show=looking-glass&u=3"], tmp_path / "plain_shots")
     quilt = holoray.read_image(str(quilt_file))[..., :3]
     assert psnr(plain, quilt[64:128, 3 * 48:4 * 48]) >= 45
+
+
+def test_python_write_web_writes_the_page_the_cli_writes(tmp_path):
+    scene = holoray.load_scene(PRIMITIVES)
+    result = holoray.render(scene, holoray.LensArray(lenses=(24, 16), pixels_per_lens=6), threads=2)
+    holoray.write_web(result, tmp_path / "from_python", name="primitives")
+    # The CLI's page of the PNG `holoray render` writes of the same scene.
+    run("render", PRIMITIVES, "--lenses", "24x16", "--pixels-per-lens", 6, "-q", "--threads", 2, "-o", tmp_path / "eia.png")
+    run("web", tmp_path / "eia.png", "--pixels-per-lens", 6, "--name", "primitives", "-o", tmp_path / "from_cli")
+    for f in ["index.html", "holoray_web.js", "light_field.json"]:
+        assert (tmp_path / "from_python" / f).read_bytes() == (tmp_path / "from_cli" / f).read_bytes(), f
+    for f in ["views.png", "eia.png"]:
+        a = holoray.read_image(str(tmp_path / "from_python" / f))
+        b = holoray.read_image(str(tmp_path / "from_cli" / f))
+        assert np.array_equal(a, b), f
+    with pytest.raises(ValueError, match="pixels_per_lens"):
+        holoray.write_web(result.colour, tmp_path / "array")
+    with pytest.raises(ValueError, match="not this camera's image"):
+        holoray.write_web(holoray.render(scene, holoray.Pinhole((8, 8)), threads=2), tmp_path / "pinhole")
+
+
+def test_the_page_names_what_it_shows_under_the_view(browser_ready, tmp_path):
+    """Also the guide's picture: HOLORAY_WEB_SCREENSHOT=docs/images/web_page.png
+    keeps the page's screenshot there (docs/guide/web.md)."""
+    run("render", PRIMITIVES, "--lenses", "128x96", "--pixels-per-lens", 7, "-q", "--threads", 2, "-o", tmp_path / "eia.png")
+    run("web", tmp_path / "eia.png", "--pixels-per-lens", 7, "--name", "primitives.nff", "-o", tmp_path / "page")
+    shot = pathlib.Path(os.environ.get("HOLORAY_WEB_SCREENSHOT", tmp_path / "page.png")).resolve()
+    (view,) = capture(tmp_path / "page", ["#u=1.5&v=3"], tmp_path / "shots", screenshot=shot)
+    assert view.shape == (96, 128, 3)
+    figures = (tmp_path / "shots" / "0.figures.txt").read_text().strip()
+    assert figures == "primitives.nff: 128x96 lenses (square), 7 pixels per lens, 7x7 views", figures
+    assert holoray.read_image(str(shot)).shape[:2] == (900, 1100)

@@ -57,13 +57,12 @@ vec3 texel(int a, int b, ivec2 p) {
   return texelFetch(atlas, tileOf(a, b) * viewSize + p, 0).rgb;
 }
 // View (a, b) at q, in pixels (pixel centres at whole numbers), bilinear,
-// the edge pixels repeated beyond the view.
+// the edge pixels repeated beyond the view: one filtered read (in linear
+// light: the texture is sRGB), q clamped to the view's edge pixels so that
+// the filter never reaches the next tile.
 vec3 sampleView(int a, int b, vec2 q) {
-  vec2 f = floor(q);
-  ivec2 i = ivec2(f);
-  vec2 w = q - f;
-  return mix(mix(texel(a, b, i), texel(a, b, i + ivec2(1, 0)), w.x),
-             mix(texel(a, b, i + ivec2(0, 1)), texel(a, b, i + ivec2(1, 1)), w.x), w.y);
+  q = clamp(q, vec2(0.0), vec2(viewSize - 1));
+  return texture(atlas, (vec2(tileOf(a, b) * viewSize) + q + 0.5) / vec2(textureSize(atlas, 0))).rgb;
 }
 // The four views around e blended (bilinear in u, v) at pixel p.
 vec3 between(vec2 e, ivec2 p) {
@@ -275,7 +274,8 @@ function texture(gl, bitmap, codes = false) {
   const t = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D, t);
   gl.texImage2D(gl.TEXTURE_2D, 0, codes ? gl.RGBA8 : gl.SRGB8_ALPHA8, gl.RGBA, gl.UNSIGNED_BYTE, bitmap);
-  const filter = codes ? gl.LINEAR : gl.NEAREST, wrap = codes ? gl.REPEAT : gl.CLAMP_TO_EDGE;
+  // Filtered for refocus's shifted reads (texelFetch ignores the filter).
+  const filter = gl.LINEAR, wrap = codes ? gl.REPEAT : gl.CLAMP_TO_EDGE;
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, filter);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, filter);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
