@@ -132,7 +132,9 @@ def room():
 def swinging_box():
     """box_on_floor.obj as glTF 2.0 with node animation (docs/mesh-import.md,
     "Node animation"): the red box slides across the floor and turns half a
-    turn about the vertical (y) in 2 s; a KHR_lights_punctual point light.
+    turn about the vertical (y) in 2 s; a KHR_lights_punctual point light of
+    100,000 cd (glTF lights are in candela: about unit radiance on the white
+    floor 7 units away; at 1 cd, as first written, the scene rendered black).
     Played by examples/shots/swinging_box.toml."""
     buf = bytearray()
     views, accessors = [], []
@@ -165,7 +167,7 @@ def swinging_box():
     gltf = {
         "asset": {"version": "2.0", "generator": "examples/generate_examples.py"},
         "extensionsUsed": ["KHR_lights_punctual"],
-        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 1}]}},
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 100000}]}},
         "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
         "nodes": [{"name": "floor", "mesh": 1}, {"name": "box", "mesh": 0, "scale": [0.75, 0.75, 0.75]},
                   {"name": "light", "translation": [3, 5, 4], "extensions": {"KHR_lights_punctual": {"light": 0}}}],

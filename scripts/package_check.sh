@@ -4,7 +4,8 @@
 # system's folders on PATH, checks that /usr/bin/holoray runs (--version, a
 # small render of an installed example, an animation with --video, which loads
 # the FFmpeg module from /usr/lib/holoray, a frame of holoray live under Xvfb,
-# which loads the window module from there), that the man page and the bash
+# which loads the window module from there, a light-field page served by the
+# HTTP module from there), that the man page and the bash
 # completion are installed (the completion completing in bash), that Debian's
 # python3 imports the module and renders with it, that examples/api builds
 # against the installed C++ package (find_package(holoray)), and removes
@@ -49,6 +50,17 @@ holoray animate "$examples/shots/swinging_box.toml" -o frames --video s.mkv -q
 [ -f /usr/lib/holoray/holoray_glfw.so ] || { echo "package_check: no /usr/lib/holoray/holoray_glfw.so" >&2; exit 1; }
 xvfb-run -a holoray live "$examples/primitives.nff" --lenses 16x16 --pixels-per-lens 4 --exit-after 1 --screenshot l.png -q
 [ -s l.png ] || { echo "package_check: holoray live wrote no l.png" >&2; exit 1; }
+# holoray web from the package: the page embedded in the library, served by
+# the HTTP module from /usr/lib/holoray.
+[ -f /usr/lib/holoray/holoray_http.so ] || { echo "package_check: no /usr/lib/holoray/holoray_http.so" >&2; exit 1; }
+holoray web t.png --pixels-per-lens 4 -o page -q
+holoray web --serve page --port 0 > serve.log &
+for _ in $(seq 50); do grep -q http serve.log && break; sleep 0.1; done
+url=$(sed -n 's/.* at \(http[^ ]*\) .*/\1/p' serve.log)
+served=$(python3 -c "import sys, urllib.request; print(urllib.request.urlopen(sys.argv[1] + 'light_field.json').read().decode())" "$url")
+kill %1
+wait %1 2>/dev/null || true
+grep -q '"format": "holoray-web 1"' <<<"$served" || { echo "package_check: holoray web --serve did not serve the page ($url)" >&2; exit 1; }
 # Under mpirun, the installed holoray becomes /usr/lib/holoray/holoray-mpi:
 # two ranks write the still of one process.
 if [ -x /usr/lib/holoray/holoray-mpi ] && command -v mpirun >/dev/null; then

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "holoray/export.hpp"
@@ -39,6 +40,27 @@ HOLORAY_API void write_web_eia(const Image& eia, const EiaLayout& layout, const 
 /// write_web_eia.
 HOLORAY_API void write_web_quilt(const Image& quilt, int columns, int rows, const std::string& dir,
                                  const std::string& name, Encoding encoding, const std::string& looking_glass = "");
+
+/// The page of an animation's frames (EIAs of one layout, or quilts of one
+/// layout), written a frame at a time so that only one is held: frame k's
+/// views go to views_NNNN.png (and its EIA to eia_NNNN.png) as add_eia or
+/// add_quilt is called; finish() writes the manifest and the page, which
+/// plays the frames in a loop at `fps` (a still, one frame: views.png and
+/// eia.png, as write_web_eia writes them). Throws as write_web_eia, and
+/// std::invalid_argument for a frame whose layout or size is not the first
+/// frame's, or finish() without frames.
+class HOLORAY_API WebAnimation {
+ public:
+  WebAnimation(const std::string& dir, const std::string& name, Encoding encoding, double fps = 24);
+  ~WebAnimation();
+  void add_eia(const Image& eia, const EiaLayout& layout);
+  void add_quilt(const Image& quilt, int columns, int rows, const std::string& looking_glass = "");
+  void finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// Serves the folder `dir` over HTTP on `host`:`port` (0: a free port) until
 /// the process ends, so that the page's modules load (browsers refuse them

@@ -16,7 +16,9 @@ namespace holoray::cli {
 
 CLI::App* add_web_command(CLI::App& app, WebCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand("web", "Write a light-field page of an EIA or a quilt that any browser opens, or serve one");
-  CLI::Option* input = cmd->add_option("result", o.input, "EIA or quilt image (PNG, EXR, JPEG, ...); a quilt by --quilt or its _qsCxR name")
+  CLI::Option* input = cmd->add_option("result", o.inputs,
+                                       "EIA or quilt image (PNG, EXR, JPEG, ...), a quilt by --quilt or its _qsCxR name; "
+                                       "several: an animation's frames, in order")
                            ->check(CLI::ExistingFile);
   CLI::Option* output = cmd->add_option("-o,--output", o.output, "Folder to write the page into (made if missing)");
   cmd->add_option("--grid", o.grid, "Lens grid of the EIA: square, hex or lenticular")->capture_default_str();
@@ -28,7 +30,8 @@ CLI::App* add_web_command(CLI::App& app, WebCommandOptions& o) {
                   "A Looking Glass's calibration (visual.json), for a quilt: the page's Looking Glass window shows the "
                   "device's native image")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--name", o.name, "Name shown under the view (default: the file's stem)");
+  cmd->add_option("--name", o.name, "Name shown under the view (default: the first file's stem)");
+  cmd->add_option("--fps", o.fps, "An animation's frames per second")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
   cmd->add_option("--encoding", o.encoding,
                   "How the image's values become the page's sRGB codes: auto (srgb for EXR and HDR, whose values are "
                   "linear light; else as they are), linear or srgb")
@@ -64,32 +67,40 @@ int serve(const WebCommandOptions& o) {
 int run_web(const WebCommandOptions& o) {
   try {
     if (!o.serve.empty()) return serve(o);
-    if (o.input.empty()) {
+    if (o.inputs.empty()) {
       fmt::print(stderr, "holoray: error: web: give the result to show (an EIA or a quilt) and -o DIR, or --serve DIR\n");
       return 2;
     }
-    const std::string ext = api::lower_extension(o.input);
+    const std::string& first = o.inputs.front();
+    const std::string ext = api::lower_extension(first);
     const api::Encoding encoding = o.encoding == "auto" ? (ext == ".exr" || ext == ".hdr" ? api::Encoding::srgb : api::Encoding::linear)
                                                         : parse_encoding(o.encoding);
-    const std::string name = o.name.empty() ? std::filesystem::path(o.input).stem().string() : o.name;
-    const bool quilt = !o.quilt.empty() || std::regex_search(std::filesystem::path(o.input).filename().string(),
+    const std::string name = o.name.empty() ? std::filesystem::path(first).stem().string() : o.name;
+    const bool quilt = !o.quilt.empty() || std::regex_search(std::filesystem::path(first).filename().string(),
                                                              std::regex("_qs[0-9]{1,4}x[0-9]{1,4}"));
-    const api::Image image = api::read_image(o.input);
-    if (quilt) {
-      int columns = 0, rows = 0;
-      parse_quilt_layout(o.quilt, o.input, columns, rows);
-      api::write_web_quilt(image, columns, rows, o.output, name, encoding, o.looking_glass);
-      if (!o.quiet)
-        fmt::print("page       {}/index.html: a {}x{} quilt of {}x{} views\n", o.output, columns, rows, image.width() / columns,
-                   image.height() / rows);
-    } else {
-      if (!o.looking_glass.empty())
-        throw std::invalid_argument("--looking-glass: a Looking Glass shows a quilt (--quilt CxR, or a _qsCxR file name), not an EIA");
-      const api::EiaLayout layout{parse_grid(o.grid), o.pixels_per_lens};
-      api::write_web_eia(image, layout, o.output, name, encoding);
-      if (!o.quiet)
-        fmt::print("page       {}/index.html: a {} EIA of {}x{} px, {} pixels per lens\n", o.output, o.grid, image.width(),
-                   image.height(), o.pixels_per_lens);
+    int columns = 0, rows = 0;
+    if (quilt) parse_quilt_layout(o.quilt, first, columns, rows);
+    if (!quilt && !o.looking_glass.empty())
+      throw std::invalid_argument("--looking-glass: a Looking Glass shows a quilt (--quilt CxR, or a _qsCxR file name), not an EIA");
+    const api::EiaLayout layout{parse_grid(o.grid), o.pixels_per_lens};
+    // One frame held at a time, however long the animation.
+    api::WebAnimation page(o.output, name, encoding, o.fps);
+    int width = 0, height = 0;
+    for (const std::string& input : o.inputs) {
+      const api::Image image = api::read_image(input);
+      width = image.width(), height = image.height();
+      if (quilt) page.add_quilt(image, columns, rows, o.looking_glass);
+      else page.add_eia(image, layout);
+    }
+    page.finish();
+    if (!o.quiet) {
+      const std::string frames = o.inputs.size() > 1 ? fmt::format("; {} frames at {} fps", o.inputs.size(), o.fps) : "";
+      if (quilt)
+        fmt::print("page       {}/index.html: a {}x{} quilt of {}x{} views{}\n", o.output, columns, rows, width / columns,
+                   height / rows, frames);
+      else
+        fmt::print("page       {}/index.html: a {} EIA of {}x{} px, {} pixels per lens{}\n", o.output, o.grid, width, height,
+                   o.pixels_per_lens, frames);
     }
     if (!o.quiet) fmt::print("open it    holoray web --serve {}   (or any static server)\n", o.output);
     return 0;

@@ -278,3 +278,28 @@ def test_the_page_names_what_it_shows_under_the_view(browser_ready, tmp_path):
     figures = (tmp_path / "shots" / "0.figures.txt").read_text().strip()
     assert figures == "primitives.nff: 128x96 lenses (square), 7 pixels per lens, 7x7 views", figures
     assert holoray.read_image(str(shot)).shape[:2] == (900, 1100)
+
+
+def test_an_animations_frames_play_in_a_loop_and_each_can_be_held(browser_ready, tmp_path):
+    shot = REPO / "examples" / "shots" / "swinging_box.toml"
+    run("animate", shot, "-o", tmp_path / "frames", "--frames", "1:3", "-q", "--threads", 2)
+    frames = sorted((tmp_path / "frames").glob("frame_*.png"))
+    assert len(frames) == 3
+    run("web", *frames, "--pixels-per-lens", 8, "--fps", 12, "-o", tmp_path / "page")
+    manifest = (tmp_path / "page" / "light_field.json").read_text()
+    assert '"fps": 12' in manifest and "views_0002.png" in manifest
+    shown = capture(tmp_path / "page", [f"#frame={k}&u=2&v=5" for k in range(3)] + ["#frame=1&show=eia"], tmp_path / "shots")
+    eias = [holoray.read_image(str(f))[..., :3] for f in frames]
+    for k in range(3):
+        assert psnr(shown[k], view_of(eias[k], 8, 2, 5)) >= 45, k
+    assert psnr(shown[0], shown[2]) < 45  # the box moved
+    assert psnr(shown[3], eias[1]) >= 45
+    figures = (tmp_path / "shots" / "0.figures.txt").read_text().strip()
+    assert figures.endswith("; 3 frames at 12 fps"), figures
+    # Frames of another layout are refused, naming the frame.
+    run("render", PRIMITIVES, "--lenses", "24x16", "--pixels-per-lens", 8, "-q", "-o", tmp_path / "other.png")
+    done = subprocess.run([str(CLI), "web", str(frames[0]), str(tmp_path / "other.png"), "--pixels-per-lens", "8",
+                           "-o", str(tmp_path / "bad")], capture_output=True, text=True)
+    assert done.returncode == 1
+    assert done.stderr.strip() == ("holoray: error: frame 1: eia of 8x8 views of 24x16 pixels, "
+                                   "but frame 0 is eia of 8x8 views of 64x64"), done.stderr

@@ -1,9 +1,11 @@
 // holoray's light-field page (docs/guide/web.md): the sub-aperture views of
 // an EIA or the views of a quilt, written by `holoray web` beside this file
-// as light_field.json and views.png, looked through in WebGL2.
+// as light_field.json and views.png (an animation: views_NNNN.png, played in
+// a loop), looked through in WebGL2.
 //
 // The state lives in the address's fragment, so that a view can be linked
-// and the tests can open it: #u=U&v=V&focus=S&aperture=R&show=view|eia|grid.
+// and the tests can open it: #u=U&v=V&focus=S&aperture=R&show=view|eia|grid
+// (&frame=K: an animation held at frame K).
 // u and v count views as `holoray subaperture --u --v` counts them (u the
 // column within the elemental image, v the row); fractions between views
 // blend the four nearest (bilinear in u, v), in linear light. focus is the
@@ -223,12 +225,14 @@ function readState(field) {
     v: number("v", Math.floor(field.views[1] / 2)),
     focus: number("focus", 0),
     aperture: Math.max(0, number("aperture", 0)),
-    show: show === "eia" && field.eia_image ? "eia" : show === "grid" ? "grid" : lookingGlass ? "looking-glass" : "view",
+    show: show === "eia" && field.frames[0].eia ? "eia" : show === "grid" ? "grid" : lookingGlass ? "looking-glass" : "view",
+    frame: q.has("frame") ? Math.min(field.frames.length - 1, Math.max(0, Math.floor(number("frame", 0)))) : null,
   };
 }
 
 function writeState(s) {
-  const hash = `#u=${+s.u.toFixed(3)}&v=${+s.v.toFixed(3)}&focus=${+s.focus.toFixed(3)}&aperture=${+s.aperture.toFixed(2)}&show=${s.show}`;
+  const hash = `#u=${+s.u.toFixed(3)}&v=${+s.v.toFixed(3)}&focus=${+s.focus.toFixed(3)}&aperture=${+s.aperture.toFixed(2)}&show=${s.show}` +
+    (s.frame === null ? "" : `&frame=${s.frame}`);
   history.replaceState(null, "", hash);
 }
 
@@ -305,37 +309,44 @@ function checkManifest(f) {
   if (f.format !== "holoray-web 1") fail(`light_field.json: expected "format": "holoray-web 1", got ${JSON.stringify(f.format)}`);
   for (const key of ["views", "view_size", "tiles"])
     if (!pair(f[key])) fail(`light_field.json: "${key}" must be two positive whole numbers, got ${JSON.stringify(f[key])}`);
-  if (typeof f.views_image !== "string") fail(`light_field.json: "views_image" must name the views' image`);
+  if (!Array.isArray(f.frames) || f.frames.length === 0 || !f.frames.every((x) => typeof x?.views === "string"))
+    fail(`light_field.json: "frames" must list each frame's views image`);
+  if (!(f.fps > 0)) fail(`light_field.json: "fps" must be a positive number, got ${JSON.stringify(f.fps)}`);
   if (f.looking_glass != null && typeof f.looking_glass !== "string") fail(`light_field.json: "looking_glass" must name a calibration file`);
 }
 
 async function main() {
   const field = await (await fetchOk("light_field.json")).json().catch((e) => fail(`light_field.json: not JSON (${e.message})`));
   checkManifest(field);
-  const atlas = await loadBitmap(field.views_image);
   const [tw, th] = [field.tiles[0] * field.view_size[0], field.tiles[1] * field.view_size[1]];
-  if (atlas.width !== tw || atlas.height !== th)
-    fail(`${field.views_image}: ${atlas.width}x${atlas.height} pixels, but light_field.json describes ${field.tiles[0]}x${field.tiles[1]} views of ${field.view_size[0]}x${field.view_size[1]} (${tw}x${th})`);
-  const eia = field.eia_image ? await loadBitmap(field.eia_image) : null;
+  const loaded = await Promise.all(field.frames.map(async (f) => {
+    const atlas = await loadBitmap(f.views);
+    if (atlas.width !== tw || atlas.height !== th)
+      fail(`${f.views}: ${atlas.width}x${atlas.height} pixels, but light_field.json describes ${field.tiles[0]}x${field.tiles[1]} views of ${field.view_size[0]}x${field.view_size[1]} (${tw}x${th})`);
+    return { atlas, eia: f.eia ? await loadBitmap(f.eia) : null };
+  }));
+  const eia = loaded[0].eia;  // its size: every frame's
   let calibration = field.kind === "quilt" ? await loadCalibration(field) : null;
 
   const gl = page.canvas.getContext("webgl2", { preserveDrawingBuffer: true, antialias: false, alpha: false });
   if (!gl) fail("this browser has no WebGL2: the page needs it");
   const viewProgram = compile(gl, VERTEX, VIEW_SHADER);
   const copyProgram = compile(gl, VERTEX, COPY_SHADER);
-  const atlasTexture = texture(gl, atlas);
-  const eiaTexture = eia ? texture(gl, eia) : null;
-  let lookingGlassProgram = null, quiltCodes = null;  // made when first shown
+  const frames = loaded.map((f) => ({ atlas: f.atlas, views: texture(gl, f.atlas), eia: f.eia ? texture(gl, f.eia) : null, codes: null }));
+  let lookingGlassProgram = null;  // made when first shown
+  let playing = 0;  // the frame shown while the animation plays (state.frame null)
   gl.bindVertexArray(gl.createVertexArray());
 
   const lenses = field.kind === "quilt" ? `${field.views[0]} views of ${field.view_size[0]}x${field.view_size[1]} pixels (a quilt)`
     : `${field.lenses[0]}x${field.lenses[1]} lenses (${field.grid}), ${field.pixels_per_lens} pixels per lens, ${field.views[0]}x${field.views[1]} views`;
-  page.figures.textContent = `${field.name}: ${lenses}`;
+  const animation = field.frames.length > 1 ? `; ${field.frames.length} frames at ${field.fps} fps` : "";
+  page.figures.textContent = `${field.name}: ${lenses}${animation}`;
   page.aperture.max = String(Math.max(field.views[0], field.views[1]));
 
   let state = readState(field);
   const draw = () => {
     const s = state;
+    const frame = frames[s.frame ?? playing];
     if (s.show === "looking-glass" && !calibration) {
       page.message.textContent = "no Looking Glass calibration: write the page with --looking-glass visual.json, or load the device's visual.json below";
       s.show = "view";
@@ -349,9 +360,9 @@ async function main() {
     gl.viewport(0, 0, w, h);
     if (s.show === "looking-glass") {
       lookingGlassProgram ??= compile(gl, VERTEX, LOOKING_GLASS_SHADER);
-      quiltCodes ??= texture(gl, atlas, true);
+      frame.codes ??= texture(gl, frame.atlas, true);
       gl.useProgram(lookingGlassProgram);
-      gl.bindTexture(gl.TEXTURE_2D, quiltCodes);
+      gl.bindTexture(gl.TEXTURE_2D, frame.codes);
       const at = (name) => gl.getUniformLocation(lookingGlassProgram, name);
       const c = calibration;
       gl.uniform2i(at("screen"), c.width, c.height);
@@ -368,7 +379,7 @@ async function main() {
       if (c.cells.length) gl.uniform2fv(at("cells"), new Float32Array(c.cells));
     } else if (s.show === "view") {
       gl.useProgram(viewProgram);
-      gl.bindTexture(gl.TEXTURE_2D, atlasTexture);
+      gl.bindTexture(gl.TEXTURE_2D, frame.views);
       const at = (name) => gl.getUniformLocation(viewProgram, name);
       gl.uniform2i(at("viewSize"), ...field.view_size);
       gl.uniform2i(at("views"), ...field.views);
@@ -379,7 +390,7 @@ async function main() {
       gl.uniform1f(at("aperture"), s.aperture);
     } else {
       gl.useProgram(copyProgram);
-      gl.bindTexture(gl.TEXTURE_2D, s.show === "eia" ? eiaTexture : atlasTexture);
+      gl.bindTexture(gl.TEXTURE_2D, s.show === "eia" ? frame.eia : frame.views);
       gl.uniform1i(gl.getUniformLocation(copyProgram, "height"), h);
     }
     gl.drawArrays(gl.TRIANGLES, 0, 3);
@@ -438,6 +449,18 @@ async function main() {
     state = readState(field);
     draw();
   });
+  // An animation plays in a loop unless the address holds it at a frame;
+  // the play button holds it or lets it go.
+  const play = document.getElementById("play");
+  play.hidden = frames.length < 2;
+  play.addEventListener("click", () => change({ frame: state.frame === null ? playing : null }));
+  if (frames.length > 1)
+    setInterval(() => {
+      play.textContent = state.frame === null ? "pause" : "play";
+      if (state.frame !== null) return;
+      playing = (playing + 1) % frames.length;
+      draw();
+    }, 1000 / field.fps);
   draw();
 }
 
