@@ -62,6 +62,20 @@ def keep_last_image(image, write_image, settings):
     _keep_settings(path, settings)
 
 
+def _last_and_binary(operator, context):
+    """(the last render's path, its settings, the holoray program), or None
+    once the operator has reported which is missing."""
+    last = last_render()
+    if last is None:
+        operator.report({"ERROR"}, "holoray: nothing rendered yet: render with holoray (F12) first")
+        return None
+    binary = holoray_binary(context)
+    if binary is None:
+        operator.report({"ERROR"}, "holoray: the holoray program was not found")
+        return None
+    return last[0], last[1], binary
+
+
 class HOLORAY_OT_preview(bpy.types.Operator):
     """Show the last holoray render as a viewer would see it, in the image editor"""
 
@@ -75,15 +89,10 @@ class HOLORAY_OT_preview(bpy.types.Operator):
                ("EYE", "Eye on the display", "What an eye 600 mm in front of the display sees (display camera)")])
 
     def execute(self, context):
-        last = last_render()
-        if last is None:
-            self.report({"ERROR"}, "holoray: nothing rendered yet: render with holoray (F12) first")
+        found = _last_and_binary(self, context)
+        if found is None:
             return {"CANCELLED"}
-        path, info = last
-        binary = holoray_binary(context)
-        if binary is None:
-            self.report({"ERROR"}, "holoray: the holoray program was not found")
-            return {"CANCELLED"}
+        path, info, binary = found
         out = os.path.join(bpy.app.tempdir, f"holoray_preview_{self.kind.lower()}.exr")
         p = str(info["pixels_per_lens"])
         if self.kind == "EYE":
@@ -130,15 +139,10 @@ class HOLORAY_OT_export_web(bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        last = last_render()
-        if last is None:
-            self.report({"ERROR"}, "holoray: nothing rendered yet: render with holoray (F12) first")
+        found = _last_and_binary(self, context)
+        if found is None:
             return {"CANCELLED"}
-        path, info = last
-        binary = holoray_binary(context)
-        if binary is None:
-            self.report({"ERROR"}, "holoray: the holoray program was not found")
-            return {"CANCELLED"}
+        path, info, binary = found
         if not self.directory:
             self.report({"ERROR"}, "holoray: choose a folder for the page")
             return {"CANCELLED"}

@@ -21,6 +21,15 @@ binary = os.environ.get("HOLORAY_CLI", "")
 h.lenses_x, h.lenses_y, h.pixels_per_lens = 24, 16, 5
 
 
+def f12_to_exr():
+    """F12 with the holoray program, the EIA written as out/eia.exr (32-bit)."""
+    bpy.context.preferences.addons["holoray_blender"].preferences.binary = binary
+    sc.render.filepath = os.path.join(out, "eia.exr")
+    sc.render.image_settings.file_format = "OPEN_EXR"
+    sc.render.image_settings.color_depth = "32"
+    bpy.ops.render.render(write_still=True)
+
+
 def facing_plane(scale):
     """The camera looking along +y from (0, -5, 0), focused at 5, and a plane
     at y = 0 facing it, `scale` times the camera's field of view there."""
@@ -122,11 +131,7 @@ elif case == "animation":
 elif case == "preview":
     # F12, then the centre-view preview: the EIA's lens-centre pixels.
     import numpy as np
-    bpy.context.preferences.addons["holoray_blender"].preferences.binary = binary
-    sc.render.filepath = os.path.join(out, "eia.exr")
-    sc.render.image_settings.file_format = "OPEN_EXR"
-    sc.render.image_settings.color_depth = "32"
-    bpy.ops.render.render(write_still=True)
+    f12_to_exr()
     bpy.ops.holoray.preview(kind="CENTRE")
     view = bpy.data.images["holoray preview"]
     eia = bpy.data.images.load(os.path.join(out, "eia.exr"))
@@ -138,11 +143,7 @@ elif case == "preview":
     raise SystemExit(0)
 elif case == "export_web":
     # F12, then the page: holoray web of the last EIA, the add-on's settings told.
-    bpy.context.preferences.addons["holoray_blender"].preferences.binary = binary
-    sc.render.filepath = os.path.join(out, "eia.exr")
-    sc.render.image_settings.file_format = "OPEN_EXR"
-    sc.render.image_settings.color_depth = "32"
-    bpy.ops.render.render(write_still=True)
+    f12_to_exr()
     bpy.ops.holoray.export_web(directory=os.path.join(out, "page"))
     with open(os.path.join(out, "page", "light_field.json")) as f:
         manifest = json.load(f)
