@@ -63,7 +63,8 @@ echo "== in Debian 13, as the README says:"
 printf '%s\n' "$quick_start"
 
 # Inside a private mount namespace: the kernel's file systems, the network's
-# resolver, ../shared read-only and apt's download cache; then chroot. The
+# resolver and certificate authorities, ../shared read-only and apt's
+# download cache; then chroot. The
 # script is an argument, not stdin, so that nothing it runs can read it.
 inside='
 root=$1 shared=$2 archives=$3 quick_start=$4
@@ -77,7 +78,11 @@ if [ -d "$shared" ]; then
   mount -o remount,bind,ro "$root/root/shared"
 fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
-chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" \
+# The certificate authorities of this machine too, for the npm of the set-up
+# (HTTPS): a network that inspects TLS is trusted through them here, as apt
+# reaches its mirror through the resolver.
+cp /etc/ssl/certs/ca-certificates.crt "$root/etc/holoray-host-ca.crt" 2>/dev/null || : > "$root/etc/holoray-host-ca.crt"
+chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" NODE_EXTRA_CA_CERTS=/etc/holoray-host-ca.crt \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
   bash -euo pipefail -c "cd /root/holoray
 grep PRETTY_NAME /etc/os-release
