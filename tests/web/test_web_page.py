@@ -192,12 +192,19 @@ def test_a_hexagonal_eias_views_are_holoray_subapertures(browser_ready, tmp_path
     run("render", PRIMITIVES, "--grid", "hex", "--lenses", "20x14", "--pixels-per-lens", 7, "-q", "--threads", 2,
         "-o", tmp_path / "hex.png")
     run("web", tmp_path / "hex.png", "--grid", "hex", "--pixels-per-lens", 7, "-o", tmp_path / "page")
-    pairs = [(3, 3), (0, 6), (5, 2)]
-    shown = capture(tmp_path / "page", [f"#u={u}&v={v}" for u, v in pairs], tmp_path / "shots")
-    for (u, v), got in zip(pairs, shown):
+    def sub(u: int, v: int) -> np.ndarray:
         run("subaperture", tmp_path / "hex.png", "--grid", "hex", "--pixels-per-lens", 7, "--u", u, "--v", v,
             "-o", tmp_path / "sub.png")
-        assert psnr(got, holoray.read_image(str(tmp_path / "sub.png"))) >= 45, (u, v)
+        return holoray.read_image(str(tmp_path / "sub.png"))[..., :3]
+
+    pairs = [(3, 3), (0, 6), (5, 2)]
+    shown = capture(tmp_path / "page", [f"#u={u}&v={v}" for u, v in pairs] + ["#u=2.25&v=4.5"], tmp_path / "shots")
+    for (u, v), got in zip(pairs, shown):
+        assert psnr(got, sub(u, v)) >= 45, (u, v)
+    # Between views: the bilinear blend of the four subapertures around (2.25, 4.5), in linear light.
+    blend = (0.75 * 0.5 * decode(sub(2, 4)) + 0.25 * 0.5 * decode(sub(3, 4)) + 0.75 * 0.5 * decode(sub(2, 5))
+             + 0.25 * 0.5 * decode(sub(3, 5)))
+    assert psnr(shown[3], encode(blend)) >= 40
 
 
 def test_a_quilts_views_run_left_to_right_from_the_bottom_left_tile(browser_ready, tmp_path):
