@@ -53,17 +53,17 @@ void bind_web(py::module_& m) {
           }
         }
         if (encoding) chosen = encoding_of(*encoding);
-        if (looking_glass && !std::holds_alternative<api::Quilt>(*camera))
+        const auto* lenses = std::get_if<api::LensArray>(&*camera);
+        const auto* quilt_camera = std::get_if<api::Quilt>(&*camera);
+        if (!lenses && !quilt_camera)
+          throw py::value_error("result: a page shows an EIA (LensArray) or a quilt (Quilt), not this camera's image");
+        if (looking_glass && !quilt_camera)
           throw py::value_error("looking_glass: a Looking Glass shows a quilt, not this camera's image");
         py::gil_scoped_release nogil;
-        if (const auto* a = std::get_if<api::LensArray>(&*camera)) {
-          api::write_web_eia(image, api::EiaLayout{a->grid, a->pixels_per_lens}, dir, name, chosen);
-        } else if (const auto* q = std::get_if<api::Quilt>(&*camera)) {
-          api::write_web_quilt(image, q->columns, q->rows, dir, name, chosen, looking_glass.value_or(""));
-        } else {
-          py::gil_scoped_acquire gil;
-          throw py::value_error("result: a page shows an EIA (LensArray) or a quilt (Quilt), not this camera's image");
-        }
+        if (lenses)
+          api::write_web_eia(image, api::EiaLayout{lenses->grid, lenses->pixels_per_lens}, dir, name, chosen);
+        else
+          api::write_web_quilt(image, quilt_camera->columns, quilt_camera->rows, dir, name, chosen, looking_glass.value_or(""));
       },
       py::arg("result"), py::arg("dir"), py::kw_only(), py::arg("name") = "holoray", py::arg("encoding") = py::none(),
       py::arg("pixels_per_lens") = py::none(), py::arg("grid") = "square", py::arg("quilt") = py::none(),

@@ -156,13 +156,8 @@ void serve_folder(const std::string& dir, const std::string& host, int port,
   if (!std::filesystem::exists(std::filesystem::path(dir) / "index.html"))
     throw std::runtime_error(fmt::format("'{}' holds no index.html: write a page there with `holoray web RESULT -o {}`", dir, dir));
   using Serve = int (*)(const char*, const char*, int, void (*)(const char*, void*), void*, char*, size_t);
-  const auto serve = reinterpret_cast<Serve>(module_symbol("holoray_http.so",
-#ifdef HOLORAY_HTTP_MODULE
-                                                           HOLORAY_HTTP_MODULE,
-#else
-                                                           "",
-#endif
-                                                           "holoray_serve_folder", "holoray's HTTP module"));
+  const auto serve = reinterpret_cast<Serve>(module_symbol("holoray_http.so", HOLORAY_HTTP_MODULE, "holoray_serve_folder",
+                                                           "holoray's HTTP module is not installed"));
   char error[512] = "";
   const auto call = [](const char* url, void* user) { (*static_cast<const std::function<void(const std::string&)>*>(user))(url); };
   if (serve(dir.c_str(), host.c_str(), port, call, const_cast<std::function<void(const std::string&)>*>(&listening), error,

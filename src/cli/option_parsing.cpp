@@ -103,11 +103,19 @@ api::Aovs parse_aovs(const std::string& text) {
   return a;
 }
 
+namespace {
+const std::regex kQuiltName("_qs([0-9]{1,4})x([0-9]{1,4})");
+}  // namespace
+
+bool names_quilt(const std::string& path) {
+  return std::regex_search(std::filesystem::path(path).filename().string(), kQuiltName);
+}
+
 void parse_quilt_layout(const std::string& option_text, const std::string& path, int& columns, int& rows) {
   if (!option_text.empty()) return parse_lens_count(option_text, columns, rows, "--quilt");
   std::smatch m;
   const std::string name = std::filesystem::path(path).filename().string();
-  if (!std::regex_search(name, m, std::regex("_qs([0-9]{1,4})x([0-9]{1,4})")))
+  if (!std::regex_search(name, m, kQuiltName))
     throw std::invalid_argument(fmt::format("'{}' names no quilt layout (_qsCxR); give --quilt CxR", name));
   parse_lens_count(m[1].str() + "x" + m[2].str(), columns, rows, "--quilt");
 }

@@ -25,6 +25,9 @@ namespace holoray::cli {
 void parse_lens_count(const std::string& text, int& nx, int& ny, std::string_view option = "--lenses");
 /// "WxH" (e.g. 512x512) for --resolution; sizes from 1 to 65536 each.
 void parse_resolution(const std::string& text, int& width, int& height);
+/// Whether `path`'s file name holds a quilt layout (_qsCxR), as Looking
+/// Glass tools name quilts.
+bool names_quilt(const std::string& path);
 /// A quilt's columns and rows: `option_text` ("CxR", --quilt) where given,
 /// else the _qsCxR in the file name of `path`, as Looking Glass tools name
 /// quilts. Throws std::invalid_argument saying to give --quilt when neither

@@ -4,7 +4,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 
 #include "cli/error_words.hpp"
 #include "cli/option_parsing.hpp"
@@ -76,8 +75,7 @@ int run_web(const WebCommandOptions& o) {
     const api::Encoding encoding = o.encoding == "auto" ? (ext == ".exr" || ext == ".hdr" ? api::Encoding::srgb : api::Encoding::linear)
                                                         : parse_encoding(o.encoding);
     const std::string name = o.name.empty() ? std::filesystem::path(first).stem().string() : o.name;
-    const bool quilt = !o.quilt.empty() || std::regex_search(std::filesystem::path(first).filename().string(),
-                                                             std::regex("_qs[0-9]{1,4}x[0-9]{1,4}"));
+    const bool quilt = !o.quilt.empty() || names_quilt(first);
     int columns = 0, rows = 0;
     if (quilt) parse_quilt_layout(o.quilt, first, columns, rows);
     if (!quilt && !o.looking_glass.empty())
