@@ -18,6 +18,7 @@
 #include <map>
 #include <string>
 
+#include "api/renderer_state.hpp"
 #include "gpu/gpu_renderer.hpp"
 #include "image/metrics.hpp"
 #include "render/view_renderer.hpp"
@@ -851,6 +852,22 @@ TEST(GpuPath, ARendererKeptBetweenRendersGivesWhatANewOneGives) {
     EXPECT_TRUE(same(kept[k].depth, made[k].depth)) << "step " << k;
     EXPECT_TRUE(same(kept[k].normal, made[k].normal)) << "step " << k;
     EXPECT_TRUE(same(kept[k].id, made[k].id)) << "step " << k;
+  }
+}
+
+// One scene, one hierarchy per device (issue 71): a GPU render lays out
+// and builds its own, and never has Embree build the CPU path's; a CPU
+// render has it built before its threads start.
+TEST(GpuPath, AGpuRenderBuildsNoEmbreeHierarchy) {
+  const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
+  for (const char* device : {"gpu", "cpu"}) {
+    RenderOptions o;
+    o.device = device;
+    const api::Renderer renderer(scene, array_of(api::Grid::square), o);
+    const AccelScene& accel = api::detail::RendererAccess::state(renderer).render_scene->accel();
+    const Result r = renderer.render();
+    EXPECT_GT(*std::max_element(r.colour.data(), r.colour.data() + r.colour.size()), 0.1f) << device;
+    EXPECT_EQ(accel.built(), std::string(device) == "cpu") << device;
   }
 }
 

@@ -2,10 +2,13 @@
 
 #include "accel/embree_api.hpp"
 #include "math/vec_pair.hpp"
+#include "util/parallel.hpp"
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <cstddef>
 #include <cstring>
 #include <type_traits>
@@ -128,6 +131,17 @@ struct AccelScene::Impl {
   std::vector<RTCScene> children;                  // per group; null for static groups
   std::vector<RTCGeometry> instances;              // per group; null for static groups
   bool instanced = false;                          // some group is movable (an instance)
+  // What build() still has to commit: the child scenes marked here, then
+  // the top level whenever `built` is false.
+  std::mutex build_lock;
+  std::atomic<bool> built{false};
+  std::vector<char> child_stale;  // per group
+
+  // The scene, its hierarchies built: what every query traces.
+  RTCScene traced(const AccelScene& owner) {
+    if (!built.load(std::memory_order_acquire)) owner.build();
+    return scene;
+  }
 
   void check(const char* what) {
     if (!last_error.empty()) throw std::runtime_error(fmt::format("{}: {}", what, last_error));
@@ -268,7 +282,6 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
     m.instanced = true;
     RTCScene child = new_scene(g.geo.deformable);
     attach_geometry(m.device, child, g.geo, g.cones, 0, &g.cutout_ref);
-    rtcCommitScene(child);
     m.children[gi] = child;
     RTCGeometry inst = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst, child);
@@ -280,12 +293,35 @@ AccelScene::AccelScene(std::vector<GeometryGroup> groups) : impl_(std::make_uniq
     m.instances[gi] = inst;  // owned by the scene; kept to update its transform
     rtcReleaseGeometry(inst);
   }
-  rtcCommitScene(m.scene);
   m.check("building the Embree scene");
+  m.child_stale.assign(groups_.size(), 1);
   for (const Group& g : groups_) bounds_.extend(g.object_bounds);
 }
 
 AccelScene::~AccelScene() = default;
+
+void AccelScene::build() const {
+  Impl& m = *impl_;
+  if (m.built.load(std::memory_order_acquire)) return;
+  const std::lock_guard lock(m.build_lock);
+  if (m.built.load(std::memory_order_relaxed)) return;
+  // Isolated: while Embree's build waits on its tasks, this thread must not
+  // take a tile of the render that called it, whose query would wait on
+  // the lock it holds.
+  run_isolated([&] {
+    for (size_t gi = 0; gi < m.children.size(); ++gi)
+      if (m.children[gi] && m.child_stale[gi]) {
+        rtcCommitScene(m.children[gi]);
+        if (m.instances[gi]) rtcCommitGeometry(m.instances[gi]);
+        m.child_stale[gi] = 0;
+      }
+    rtcCommitScene(m.scene);
+  });
+  m.check("building the Embree scene");
+  m.built.store(true, std::memory_order_release);
+}
+
+bool AccelScene::built() const { return impl_->built.load(std::memory_order_acquire); }
 
 void AccelScene::set_transforms(const std::vector<Affine>& object_to_world) {
   if (object_to_world.size() != groups_.size())
@@ -316,7 +352,7 @@ void AccelScene::set_transforms(const std::vector<Affine>& object_to_world) {
     }
     bounds_.extend(transformed(g.object_bounds, g.to_world));
   }
-  if (changed) rtcCommitScene(m.scene);
+  if (changed) m.built.store(false, std::memory_order_release);
   m.check("moving the scene's objects");
 }
 
@@ -334,9 +370,8 @@ void AccelScene::set_positions(uint32_t group, const std::vector<float>& positio
     RTCGeometry geom = rtcGetGeometry(m.children[group], static_cast<unsigned>(PrimKind::triangle));
     rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
     rtcCommitGeometry(geom);
-    rtcCommitScene(m.children[group]);
-    rtcCommitGeometry(m.instances[group]);
-    rtcCommitScene(m.scene);
+    m.child_stale[group] = 1;
+    m.built.store(false, std::memory_order_release);
   }
   g.object_bounds = geometry_bounds(g.geo);
   g.pose = pose;
@@ -362,7 +397,7 @@ size_t AccelScene::cone_count() const {
                          [](size_t n, const Group& g) { return n + g.geo.cones.size(); });
 }
 
-void* AccelScene::rtc_scene() const { return impl_->scene; }
+void* AccelScene::rtc_scene() const { return impl_->traced(*this); }
 
 bool AccelScene::refine(const Group& g, const Ray& r, bool strict, double t_guess, Hit& hit) const {
   // Work in the group's object space: there the geometry is exact (double)
@@ -453,7 +488,7 @@ bool AccelScene::intersect(const Ray& r, Hit& hit, RayCoherence coherence, bool 
   rh.ray = to_rtc_ray(r);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  embree::intersect1(impl_->scene, rh, coherence == RayCoherence::coherent);
+  embree::intersect1(impl_->traced(*this), rh, coherence == RayCoherence::coherent);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const float ng[3] = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
   resolve(r, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, ng, rh.hit.u, rh.hit.v, rh.ray.tfar, hit, refined);
@@ -494,7 +529,7 @@ void AccelScene::intersect_raw(const RayPacket& p, RawHit raw[kPacketSize], bool
     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
   }
-  embree::intersect16(valid, impl_->scene, rh, coherence == RayCoherence::coherent);
+  embree::intersect16(valid, impl_->traced(*this), rh, coherence == RayCoherence::coherent);
   for (int k = 0; k < kPacketSize; ++k) {
     found[k] = p.active[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
     if (!found[k]) continue;
@@ -594,7 +629,7 @@ void AccelScene::occluded(const RayPacket& p, bool blocked[kPacketSize], RayCohe
   alignas(64) int valid[kPacketSize];
   alignas(64) RTCRay16 ray;
   to_rtc_packet(p, ray, valid);
-  embree::occluded16(valid, impl_->scene, ray, coherent_occlusion(coherence, impl_->instanced));
+  embree::occluded16(valid, impl_->traced(*this), ray, coherent_occlusion(coherence, impl_->instanced));
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.active[k] && ray.tfar[k] == -INFINITY;
 }
 
@@ -604,7 +639,7 @@ static_assert(sizeof(RTCRay16) == offsetof(ShadowPacket, valid) && offsetof(Shad
 
 void AccelScene::occluded(ShadowPacket& p, bool blocked[kPacketSize], RayCoherence coherence) const {
   static_assert(alignof(ShadowPacket) >= alignof(RTCRay16));
-  embree::occluded16(p.valid, impl_->scene, *reinterpret_cast<RTCRay16*>(&p),
+  embree::occluded16(p.valid, impl_->traced(*this), *reinterpret_cast<RTCRay16*>(&p),
                      coherent_occlusion(coherence, impl_->instanced));
   for (int k = 0; k < kPacketSize; ++k) blocked[k] = p.valid[k] != 0 && p.tfar[k] == -INFINITY;
 }
@@ -624,7 +659,7 @@ bool AccelScene::intersect_primitive(const Ray& r, uint32_t group, PrimKind kind
 
 bool AccelScene::occluded(const Ray& r) const {
   RTCRay ray = to_rtc_ray(r);
-  embree::occluded1(impl_->scene, ray, false);
+  embree::occluded1(impl_->traced(*this), ray, false);
   return ray.tfar == -INFINITY;
 }
 

@@ -121,15 +121,28 @@ struct ShadowPacket {
 
 class AccelScene {
  public:
-  /// Builds one BVH per movable group and the top level (Embree's build runs
-  /// on the caller's oneTBB pool). Transforms start as the identity. Throws
-  /// std::runtime_error with Embree's message on failure.
+  /// Hands the groups to Embree; their hierarchies (one per movable group
+  /// and the top level) are built by build(), or by the first query: a
+  /// scene only the GPU path traces never builds them (issue 71). Transforms
+  /// start as the identity. Throws std::runtime_error with Embree's message
+  /// on failure.
   explicit AccelScene(std::vector<GeometryGroup> groups);
   /// One static group (a still scene).
   AccelScene(TriangleData triangles, std::vector<Sphere> spheres, std::vector<Cone> cones);
   ~AccelScene();
   AccelScene(const AccelScene&) = delete;
   AccelScene& operator=(const AccelScene&) = delete;
+
+  /// Builds (or, after set_transforms or set_positions, updates) Embree's
+  /// hierarchies now, on the caller's oneTBB pool; a no-op when they stand.
+  /// Every query calls it, so calling it is never needed for a right
+  /// answer: a render calls it before its threads start, so that the build
+  /// is not timed as tracing and is not run under a tile. Thread-safe.
+  /// Throws std::runtime_error with Embree's message on failure.
+  void build() const;
+  /// Whether Embree's hierarchies stand for the current transforms and
+  /// vertices (false before the first build() or query, and after a move).
+  bool built() const;
 
   /// Object-to-world transform per group, for the next queries (not
   /// thread-safe against them). Throws std::invalid_argument when the count
@@ -208,7 +221,8 @@ class AccelScene {
   size_t sphere_count() const;
   size_t cone_count() const;
 
-  /// Raw handle for the benchmark's plain-Embree yardstick (an RTCScene).
+  /// Raw handle for the benchmark's plain-Embree yardstick (an RTCScene),
+  /// built.
   void* rtc_scene() const;
 
  private:

@@ -171,7 +171,10 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     lit->desc.lights.push_back(headlight);
     s.scene = std::move(lit);
   }
+  const DeviceChoice device = parse_device(options.device);
   s.render_scene = std::make_unique<RenderScene>(s.scene->desc);
+  // Embree's hierarchy is the CPU path's: a GPU render builds only its own.
+  if (!device.gpu) s.render_scene->accel().build();
   s.settings = file_settings(*s.render_scene);
   if (options.max_depth != 0) s.settings.max_depth = options.max_depth;
   if (options.integrator == Integrator::path) {
@@ -195,7 +198,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
     s.settings.shadow_cache = s.cache.get();
   }
   s.style = trace_style(options.style, frame_camera);
-  if (const DeviceChoice device = parse_device(options.device); device.gpu)
+  if (device.gpu)
     s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(*s.render_scene, s.settings), frame_camera, options);
   s.build.build_seconds = seconds_since(t_build);
   s.build.gpu_setup_seconds = s.gpu ? s.gpu->setup_seconds() : 0;

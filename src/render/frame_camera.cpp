@@ -104,6 +104,9 @@ FrameCamera make_frame_camera(const FrameCameraDesc& d, const std::optional<View
 
 FrameBuffers render_through(const RenderContext& scene, const FrameCamera& camera, const RenderOptions& options,
                             RenderStats& stats) {
+  // Embree's hierarchy, built here when a move or a new scene left it
+  // stale: on all cores, and before the tiles' clocks start.
+  scene.accel().build();
   return std::visit(
       Overloaded{[&](const LensArray& a) { return render_frame(scene, a, options, stats); },
                  [&](const PinholeCamera& v) { return render_view(scene, v, options, stats); },

@@ -461,6 +461,7 @@ class Reprojection {
 ReprojectedFrame reproject(const RenderContext& scene, const LensArray& camera, int frame, const PointImage* prev,
                            const PointImage* next, const ReprojectOptions& opt) {
   if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
+  scene.accel().build();  // before the tiles, on all cores (AccelScene::build)
   check_key(scene, prev);
   check_key(scene, next);
   Reprojection r(scene, camera, frame, prev, next, opt);

@@ -521,6 +521,7 @@ ReprojectedFrame copy_of(const LensArray& camera, const PointImage& key) {
 
 PointImage trace_point_image(const RenderContext& scene, const LensArray& camera, int frame, ReverseReuse reuse,
                              int threads, RenderStats& stats) {
+  scene.accel().build();  // before the clock, on all cores (AccelScene::build)
   const auto start = std::chrono::steady_clock::now();
   PointImage key{frame, camera, {}, {}, {}, {}, {}, {}, {}, {}};
   const bool want_parts = reuse == ReverseReuse::visibility && scene.lights().size() <= kMaxPartLights &&
@@ -551,6 +552,7 @@ PointImage trace_point_image(const RenderContext& scene, const LensArray& camera
 ReprojectedFrame reverse_reproject(const RenderContext& scene, const LensArray& camera, int frame,
                                    const PointImage* prev, const PointImage* next, const ReverseOptions& opt) {
   if (!prev && !next) throw std::invalid_argument("reprojection needs at least one keyframe");
+  scene.accel().build();  // before the tiles, on all cores (AccelScene::build)
   // More lights than a mask holds, or Tachyon's shading (which ShadeParts do
   // not split): keyframes carry no parts, every hit is shaded.
   const bool reusable = opt.reuse == ReverseReuse::color ||

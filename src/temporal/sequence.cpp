@@ -25,6 +25,7 @@ struct Traced {
 
 // Frame `frame` traced in full through `scene` (the shot moved there).
 Traced trace_frame(const ShotFrames& shot, const RenderContext& scene, int frame, bool keep_points, int threads) {
+  scene.accel().build();  // before the clock, on all cores (AccelScene::build)
   RenderOptions ro;
   ro.spp = shot.shot().spp;
   ro.threads = threads;

@@ -40,6 +40,8 @@ void parallel_for_n(int n, int threads, const std::function<void(int)>& fn) {
   }
   if (failure) std::rethrow_exception(failure);
 }
+
+void run_isolated(const std::function<void()>& fn) { fn(); }
 #else
 void parallel_for_n(int n, int threads, const std::function<void(int)>& fn) {
   auto run = [&] {
@@ -54,6 +56,8 @@ void parallel_for_n(int n, int threads, const std::function<void(int)>& fn) {
     run();
   }
 }
+
+void run_isolated(const std::function<void()>& fn) { tbb::this_task_arena::isolate(fn); }
 #endif
 
 }  // namespace holoray

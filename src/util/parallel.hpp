@@ -11,4 +11,10 @@ namespace holoray {
 /// is rethrown on the calling thread.
 void parallel_for_n(int n, int threads, const std::function<void(int)>& fn);
 
+/// Runs fn() so that, while it waits on parallel work of its own, the
+/// calling thread takes no task of an enclosing loop (oneTBB's
+/// this_task_arena::isolate): fn may then hold a lock that such a task
+/// would take. Plain call in the std::threads build.
+void run_isolated(const std::function<void()>& fn);
+
 }  // namespace holoray
