@@ -476,219 +476,237 @@ void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, cons
   readback(aovs, out, stats);
 }
 
+GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<GpuFrame>& frames, int W, int H) const {
+  FramePlan plan;
+  plan.want_aovs = frames[0].counts.y != 0;
+  plan.pixels = uint64_t(W) * uint64_t(H);
+  const uint64_t pixels = plan.pixels;
+  const uint64_t need = frame_bytes(W, H, plan.want_aovs);
+  // The shadow queue holds 8 rays a pixel, at most 2^26 rays (3 GiB) and a
+  // quarter of the memory the scene and image leave: a frame that queues
+  // more traces the rest where they are made, so it never refuses an image.
+  const uint64_t spare = info.memory_bytes > scene_bytes + need ? (info.memory_bytes - scene_bytes - need) / 4 : 0;
+  const uint64_t range = (max_storage_range - 16) / sizeof(GpuShadowRay);  // a storage buffer's largest binding
+  const uint64_t queue_rays =
+      shadow_queue_on ? std::min({shadow_queue_rays ? shadow_queue_rays : pixels * 8, uint64_t(1) << 26,
+                                  spare / (sizeof(GpuShadowRay) + 16), range}) : 0;
+  if (info.memory_bytes && scene_bytes + need > info.memory_bytes)
+    throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
+                               scene_bytes / 1048576.0, need / 1048576.0, info.memory_bytes / 1048576.0, info.name));
+  // The colours and the AOVs are each one binding (the shadow queue is sized under the limit above).
+  if (const uint64_t image = pixels * (plan.want_aovs ? 32 : 12); image > max_storage_range)
+    throw GpuError(fmt::format("the image's {} take {:.1f} MiB ({}x{} pixels), more than the {:.1f} MiB one buffer of {} "
+                               "holds (maxStorageBufferRange): render fewer pixels at a time, or on the CPU (`device` cpu)",
+                               plan.want_aovs ? "AOVs" : "colours", image / 1048576.0, W, H, max_storage_range / 1048576.0,
+                               info.name));
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
+    const int band_rows = std::max(8, int(band_invocations / uint64_t(std::max(1, w))) / 8 * 8);
+    for (int row0 = y0; row0 < y1; row0 += band_rows)
+      plan.bands.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
+  }
+  plan.panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
+  plan.path = (features & HR_FEATURE_PATH) != 0;
+  plan.queue = queue_rays > 0 && !plan.panel && !plan.path;  // a path traces its own
+  plan.queue_rays = plan.queue ? queue_rays : 0;
+  plan.passes = plan.path ? std::max(1, frames[0].mode.w) : 1;
+  return plan;
+}
+
+void GpuRenderer::Impl::prepare_frame(const std::vector<GpuFrame>& frames, const FramePlan& plan) {
+  const uint64_t pixels = plan.pixels;
+  const vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc;
+  if (colour.size < pixels * 12) {
+    colour = make_buffer(pixels * 12, usage, false);
+    bind(10, colour);
+  }
+  const uint64_t aov_size = plan.want_aovs ? pixels * 32 : 16;
+  if (aov.size < aov_size) {
+    aov = make_buffer(aov_size, usage, false);
+    bind(11, aov);
+  }
+  const uint64_t count_bytes = uint64_t(plan.bands.size()) * HR_COUNT_SLOTS * 32;
+  if (counts.size < count_bytes) {
+    counts = make_buffer(count_bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    bind(12, counts);
+  }
+  if (scene[0].size < frames.size() * sizeof(GpuFrame)) {
+    scene[0] = make_buffer(frames.size() * sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
+    bind(0, scene[0]);
+  }
+  std::memcpy(scene[0].mapped, frames.data(), frames.size() * sizeof(GpuFrame));
+  std::memset(counts.mapped, 0, count_bytes);
+  std::memset(ray_log.mapped, 0, 16);
+  vk::raii::CommandBuffer& cb = commands;
+  cb.reset();
+  cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  if (!plan.queue) return;
+  const uint64_t queue_rays = plan.queue_rays;
+  if (shadow_queue.size < 16 + queue_rays * sizeof(GpuShadowRay)) {
+    shadow_queue = make_buffer(16 + queue_rays * sizeof(GpuShadowRay),
+                               vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst |
+                                   vk::BufferUsageFlagBits::eTransferSrc, false);
+    bind(19, shadow_queue);
+  }
+  if (shadow_terms.size < queue_rays * 16) {
+    shadow_terms = make_buffer(queue_rays * 16, vk::BufferUsageFlagBits::eStorageBuffer, false);
+    bind(21, shadow_terms);
+  }
+  if (shadow_last.size < pixels * 4) {
+    shadow_last = make_buffer(pixels * 4, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    bind(20, shadow_last);
+  }
+  cb.fillBuffer(*shadow_queue.buffer, 0, 16, 0);
+  cb.fillBuffer(*shadow_queue.buffer, 8, 4, uint32_t(queue_rays));  // its capacity
+  cb.fillBuffer(*shadow_last.buffer, 0, VK_WHOLE_SIZE, 0xffffffffu);  // a pixel no dispatch writes has no runs
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {},
+                     vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
+                     nullptr, nullptr);
+}
+
+void GpuRenderer::Impl::submit_and_wait(const char* what) {
+  commands.end();
+  vk::CommandBuffer raw = *commands;
+  queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
+  wait(fence, what);
+  device.resetFences({*fence});
+}
+
+void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sample) {
+  vk::raii::CommandBuffer& cb = commands;
+  auto bind_kernel = [&] {
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, plan.queue, 0));
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_layout, 0, {*set}, nullptr);
+  };
+  bind_kernel();
+  // The path integrator takes one sample of every pixel a pass, each
+  // pass adding to the colours the one before wrote: an invocation's
+  // loops then stay inside lavapipe's 65535 iterations whatever the
+  // samples per pixel (shared/docs/gpu-notes.md), and no dispatch runs
+  // longer for them.
+  // The passes go in submissions of about 4 bands' pixel samples (2^22; one
+  // pass at least), each waited on under the timeout (wait()): a submission
+  // is a bounded piece of work however many samples a pixel the render
+  // takes, so a fixed wait can tell a device that stopped from a long
+  // render. (A submission a pass cost a 128x128 view 2.5 % of its trace
+  // on lavapipe, in waits.)
+  const int passes_per_submission = int(std::max<uint64_t>(1, 4 * band_invocations / std::max<uint64_t>(1, plan.pixels)));
+  for (int pass = first_sample; pass < plan.passes; ++pass) {
+    if (pass > first_sample && (pass - first_sample) % passes_per_submission == 0) {
+      submit_and_wait("a pass of the path integrator");
+      cb.reset();
+      cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+      bind_kernel();
+    }
+    if (pass > first_sample)
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                         vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                           .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
+                         nullptr, nullptr);
+    for (size_t b = 0; b < plan.bands.size(); ++b) {
+      const Band& band = plan.bands[b];
+      cb.pushConstants<int32_t>(*pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                {band.row0, band.rows, int32_t(b), band.frame, pass, first_sample});
+      cb.dispatch((band.width + workgroup[0] - 1) / workgroup[0], (uint32_t(band.rows) + workgroup[1] - 1) / workgroup[1], 1);
+    }
+  }
+}
+
+void GpuRenderer::Impl::record_shadow_passes(const FramePlan& plan) {
+  vk::raii::CommandBuffer& cb = commands;
+  // The queued shadow rays, once every band has queued its own.
+  const vk::MemoryBarrier written{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                  .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr, nullptr);
+  // Both passes in bands of at most band_invocations invocations, each its
+  // own dispatch, as the pixels' are (issue 71: no dispatch sized by the
+  // frame). The shadow pass's lanes fetch from one queue, so its bands need
+  // nothing more; the resolve's are told their first pixel.
+  const uint64_t group = workgroup[0] * workgroup[1];
+  const uint64_t band_groups = std::max<uint64_t>(1, band_invocations / group);
+  auto dispatch_over = [&](uint64_t invocations, auto&& before_band) {
+    const uint64_t groups = std::max<uint64_t>(1, (invocations + group - 1) / group);
+    for (uint64_t first = 0; first < groups; first += band_groups) {
+      const uint64_t n = std::min(band_groups, groups - first);
+      before_band(first * group);
+      const uint32_t gx = uint32_t(std::min<uint64_t>(n, 65535));
+      cb.dispatch(gx, uint32_t((n + gx - 1) / gx), 1);
+    }
+  };
+  cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, plan.queue, 1));
+  dispatch_over((plan.queue_rays + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE, [](uint64_t) {});
+  if (*timestamps) cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps, 2);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr, nullptr);
+  cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, plan.queue, 2));
+  dispatch_over(plan.pixels, [&](uint64_t first_pixel) {
+    cb.pushConstants<int32_t>(*pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
+                              {int32_t(plan.pixels), int32_t(first_pixel), 0, 0});
+  });
+  if (!*timestamps) return;
+  cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps, 3);
+  if (!queue_head.mapped) queue_head = make_buffer(16, vk::BufferUsageFlagBits::eTransferDst, true);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {},
+                     vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead},
+                     nullptr, nullptr);
+  cb.copyBuffer(*shadow_queue.buffer, *queue_head.buffer, vk::BufferCopy{0, 0, 16});
+}
+
+void GpuRenderer::Impl::print_pass_times(const FramePlan& plan) {
+  const uint32_t n = plan.queue ? 4 : 2;
+  const auto got = timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
+                                                   vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+  const vk::Result result = got.first;
+  const std::vector<uint64_t>& t = got.second;  // not a structured binding: a lambda below reads it (clang 14)
+  auto ms = [&](uint32_t a, uint32_t b) { return double(t[b] - t[a]) * timestamp_ns * 1e-6; };
+  const uint64_t made = plan.queue ? static_cast<const uint32_t*>(queue_head.mapped)[0] : 0;
+  const uint64_t queued = std::min(made, plan.queue_rays), past = made - queued;
+  if (result == vk::Result::eSuccess)
+    std::fprintf(stderr, "holoray gpu: pixel kernel %.3f ms, shadow pass %.3f ms, resolve %.3f ms; shadow queue of %llu rays: %llu queued, %llu traced where made\n",
+                 ms(0, 1), plan.queue ? ms(1, 2) : 0.0, plan.queue ? ms(2, 3) : 0.0, (unsigned long long)plan.queue_rays,
+                 (unsigned long long)queued, (unsigned long long)past);
+}
+
+void GpuRenderer::Impl::sum_counts(const FramePlan& plan, GpuFrameStats& stats) const {
+  const uint32_t* c = static_cast<const uint32_t*>(counts.mapped);
+  for (size_t b = 0; b < plan.bands.size() * HR_COUNT_SLOTS; ++b, c += 8) {
+    stats.nodes_visited += c[0], stats.primitives_tested += c[1];
+    stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
+  }
+}
+
 void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats, int first_sample) {
   Impl& m = *impl_;
   m.check_responding();
   if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
   if (frames.empty()) throw std::logic_error("GpuRenderer::render without a frame");
-  const bool want_aovs = frames[0].counts.y != 0;
-  const uint64_t pixels = uint64_t(W) * uint64_t(H);
-  const uint64_t need = frame_bytes(W, H, want_aovs);
-  // The shadow queue holds 8 rays a pixel, at most 2^26 rays (3 GiB) and a
-  // quarter of the memory the scene and image leave: a frame that queues
-  // more traces the rest where they are made, so it never refuses an image.
-  const uint64_t spare = m.info.memory_bytes > m.scene_bytes + need ? (m.info.memory_bytes - m.scene_bytes - need) / 4 : 0;
-  const uint64_t range = (m.max_storage_range - 16) / sizeof(GpuShadowRay);  // a storage buffer's largest binding
-  const uint64_t queue_rays =
-      m.shadow_queue_on ? std::min({m.shadow_queue_rays ? m.shadow_queue_rays : pixels * 8, uint64_t(1) << 26,
-                                    spare / (sizeof(GpuShadowRay) + 16), range}) : 0;
-  if (m.info.memory_bytes && m.scene_bytes + need > m.info.memory_bytes)
-    throw GpuError(fmt::format("the scene needs {:.1f} MiB on the GPU and the image {:.1f} MiB, more than the {:.1f} MiB of {}",
-                               m.scene_bytes / 1048576.0, need / 1048576.0, m.info.memory_bytes / 1048576.0, m.info.name));
-  // The colours and the AOVs are each one binding (the shadow queue is sized under the limit below).
-  if (const uint64_t image = pixels * (want_aovs ? 32 : 12); image > m.max_storage_range)
-    throw GpuError(fmt::format("the image's {} take {:.1f} MiB ({}x{} pixels), more than the {:.1f} MiB one buffer of {} "
-                               "holds (maxStorageBufferRange): render fewer pixels at a time, or on the CPU (`device` cpu)",
-                               want_aovs ? "AOVs" : "colours", image / 1048576.0, W, H, m.max_storage_range / 1048576.0,
-                               m.info.name));
+  const Impl::FramePlan plan = m.plan_frame(frames, W, H);
+  if (first_sample < 0 || (first_sample > 0 && (!plan.path || first_sample >= plan.passes)))
+    throw std::logic_error("GpuRenderer::trace: a first sample past the samples per pixel, or without the path integrator");
   try {
-    const vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc;
-    if (m.colour.size < pixels * 12) {
-      m.colour = m.make_buffer(pixels * 12, usage, false);
-      m.bind(10, m.colour);
-    }
-    const uint64_t aov_size = want_aovs ? pixels * 32 : 16;
-    if (m.aov.size < aov_size) {
-      m.aov = m.make_buffer(aov_size, usage, false);
-      m.bind(11, m.aov);
-    }
-    // Each camera's rows in bands of about m.band_invocations pixels (2^20),
-    // each its own dispatch (well inside a desktop watchdog's seconds), all
-    // in one submission; each band its own 32-bit counters, summed here in
-    // 64 bits.
-    struct Band {
-      int32_t row0, rows, frame;
-      uint32_t width;
-    };
-    std::vector<Band> band_list;
-    for (size_t f = 0; f < frames.size(); ++f) {
-      const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
-      const int band_rows = std::max(8, int(m.band_invocations / uint64_t(std::max(1, w))) / 8 * 8);
-      for (int row0 = y0; row0 < y1; row0 += band_rows)
-        band_list.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
-    }
-    const int bands = int(band_list.size());
-    const uint64_t count_bytes = uint64_t(bands) * HR_COUNT_SLOTS * 32;
-    if (m.counts.size < count_bytes) {
-      m.counts = m.make_buffer(count_bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
-      m.bind(12, m.counts);
-    }
-    if (m.scene[0].size < frames.size() * sizeof(GpuFrame)) {
-      m.scene[0] = m.make_buffer(frames.size() * sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
-      m.bind(0, m.scene[0]);
-    }
-    std::memcpy(m.scene[0].mapped, frames.data(), frames.size() * sizeof(GpuFrame));
-    std::memset(m.counts.mapped, 0, count_bytes);
-    std::memset(m.ray_log.mapped, 0, 16);
+    m.prepare_frame(frames, plan);
     stats = GpuFrameStats{};
     vk::raii::CommandBuffer& cb = m.commands;
-    cb.reset();
-    cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    const bool panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
-    const bool queue = queue_rays > 0 && !panel && !(m.features & HR_FEATURE_PATH);  // a path traces its own
-    if (queue) {
-      if (m.shadow_queue.size < 16 + queue_rays * sizeof(GpuShadowRay)) {
-        m.shadow_queue = m.make_buffer(16 + queue_rays * sizeof(GpuShadowRay),
-                                       vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst |
-                                           vk::BufferUsageFlagBits::eTransferSrc, false);
-        m.bind(19, m.shadow_queue);
-      }
-      if (m.shadow_terms.size < queue_rays * 16) {
-        m.shadow_terms = m.make_buffer(queue_rays * 16, vk::BufferUsageFlagBits::eStorageBuffer, false);
-        m.bind(21, m.shadow_terms);
-      }
-      if (m.shadow_last.size < pixels * 4) {
-        m.shadow_last = m.make_buffer(pixels * 4, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
-        m.bind(20, m.shadow_last);
-      }
-      cb.fillBuffer(*m.shadow_queue.buffer, 0, 16, 0);
-      cb.fillBuffer(*m.shadow_queue.buffer, 8, 4, uint32_t(queue_rays));  // its capacity
-      cb.fillBuffer(*m.shadow_last.buffer, 0, VK_WHOLE_SIZE, 0xffffffffu);  // a pixel no dispatch writes has no runs
-      cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {},
-                         vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
-                         nullptr, nullptr);
-    }
-    auto stamp = [&](uint32_t k) {
-      if (*m.timestamps) cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *m.timestamps, k);
-    };
-    if (*m.timestamps) cb.resetQueryPool(*m.timestamps, 0, 4);
-    stamp(0);
-    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 0));
-    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
-    // The path integrator takes one sample of every pixel a pass, each
-    // pass adding to the colours the one before wrote: an invocation's
-    // loops then stay inside lavapipe's 65535 iterations whatever the
-    // samples per pixel (shared/docs/gpu-notes.md), and no dispatch runs
-    // longer for them.
-    const bool path = (m.features & HR_FEATURE_PATH) != 0;
-    const int passes = path ? std::max(1, frames[0].mode.w) : 1;
-    if (first_sample < 0 || (first_sample > 0 && (!path || first_sample >= passes)))
-      throw std::logic_error("GpuRenderer::trace: a first sample past the samples per pixel, or without the path integrator");
-    // The passes in submissions of about 4 bands' pixel samples (2^22; one
-    // pass at least), each waited on under the timeout (Impl::wait): a submission
-    // is a bounded piece of work however many samples a pixel the render
-    // takes, so a fixed wait can tell a device that stopped from a long
-    // render. (A submission a pass cost a 128x128 view 2.5 % of its trace
-    // on lavapipe, in waits.)
-    const int passes_per_submission = int(std::max<uint64_t>(1, 4 * m.band_invocations / std::max<uint64_t>(1, pixels)));
-    auto submit_and_wait = [&](const char* what) {
-      cb.end();
-      vk::CommandBuffer raw = *cb;
-      m.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *m.fence);
-      m.wait(m.fence, what);
-      m.device.resetFences({*m.fence});
-    };
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int pass = first_sample; pass < passes; ++pass) {
-      if (pass > first_sample && (pass - first_sample) % passes_per_submission == 0) {
-        submit_and_wait("a pass of the path integrator");
-        cb.reset();
-        cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-        cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 0));
-        cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.pipeline_layout, 0, {*m.set}, nullptr);
-      }
-      if (pass > first_sample)
-        cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
-                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                                             .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
-                           nullptr, nullptr);
-      for (int b = 0; b < bands; ++b) {
-        const Band& band = band_list[size_t(b)];
-        cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                  {band.row0, band.rows, b, band.frame, pass, first_sample});
-        cb.dispatch((band.width + m.workgroup[0] - 1) / m.workgroup[0], (uint32_t(band.rows) + m.workgroup[1] - 1) / m.workgroup[1], 1);
-      }
-    }
-    stamp(1);
-    if (queue) {  // the queued shadow rays, once every band has queued its own
-      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
-                         vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
-                         nullptr, nullptr);
-      // Both passes in bands of at most m.band_invocations invocations, each
-      // its own dispatch, as the pixels' are (issue 71: no dispatch sized by
-      // the frame). The shadow pass's lanes fetch from one queue, so its
-      // bands need nothing more; the resolve's are told their first pixel.
-      const uint64_t group = m.workgroup[0] * m.workgroup[1];
-      const uint64_t band_groups = std::max<uint64_t>(1, m.band_invocations / group);
-      auto dispatch_over = [&](uint64_t invocations, auto&& before_band) {
-        const uint64_t groups = std::max<uint64_t>(1, (invocations + group - 1) / group);
-        for (uint64_t first = 0; first < groups; first += band_groups) {
-          const uint64_t n = std::min(band_groups, groups - first);
-          before_band(first * group);
-          const uint32_t gx = uint32_t(std::min<uint64_t>(n, 65535));
-          cb.dispatch(gx, uint32_t((n + gx - 1) / gx), 1);
-        }
-      };
-      const vk::MemoryBarrier written{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                                      .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 1));
-      dispatch_over((queue_rays + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE, [](uint64_t) {});
-      stamp(2);
-      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr, nullptr);
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.pipeline(panel, queue, 2));
-      dispatch_over(pixels, [&](uint64_t first_pixel) {
-        cb.pushConstants<int32_t>(*m.pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                  {int32_t(pixels), int32_t(first_pixel), 0, 0});
-      });
-      stamp(3);
-      if (*m.timestamps) {
-        if (!m.queue_head.mapped) m.queue_head = m.make_buffer(16, vk::BufferUsageFlagBits::eTransferDst, true);
-        cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {},
-                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead},
-                           nullptr, nullptr);
-        cb.copyBuffer(*m.shadow_queue.buffer, *m.queue_head.buffer, vk::BufferCopy{0, 0, 16});
-      }
-    }
-    submit_and_wait("the frame");
-    stats.trace_seconds = seconds_since(t0);
     if (*m.timestamps) {
-      const uint32_t n = queue ? 4 : 2;
-      const auto got = m.timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
-                                                         vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
-      const vk::Result result = got.first;
-      const std::vector<uint64_t>& t = got.second;  // not a structured binding: a lambda below reads it (clang 14)
-      auto ms = [&](uint32_t a, uint32_t b) { return double(t[b] - t[a]) * m.timestamp_ns * 1e-6; };
-      const uint64_t made = queue ? static_cast<const uint32_t*>(m.queue_head.mapped)[0] : 0;
-      const uint64_t queued = std::min(made, queue_rays), past = made - queued;
-      if (result == vk::Result::eSuccess)
-        std::fprintf(stderr, "holoray gpu: pixel kernel %.3f ms, shadow pass %.3f ms, resolve %.3f ms; shadow queue of %llu rays: %llu queued, %llu traced where made\n",
-                     ms(0, 1), queue ? ms(1, 2) : 0.0, queue ? ms(2, 3) : 0.0, (unsigned long long)queue_rays,
-                     (unsigned long long)queued, (unsigned long long)past);
+      cb.resetQueryPool(*m.timestamps, 0, 4);
+      cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *m.timestamps, 0);
     }
+    const auto t0 = std::chrono::steady_clock::now();
+    m.record_pixel_passes(plan, first_sample);
+    if (*m.timestamps) cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *m.timestamps, 1);
+    if (plan.queue) m.record_shadow_passes(plan);
+    m.submit_and_wait("the frame");
+    stats.trace_seconds = seconds_since(t0);
+    if (*m.timestamps) m.print_pass_times(plan);
     // HOLORAY_GPU_FAULT=device-lost or out-of-memory (for the tests, where no
     // device fails on demand): the frame ends as that fault would end it.
     if (const char* fault = std::getenv("HOLORAY_GPU_FAULT")) {
       if (std::string_view(fault) == "device-lost") throw vk::DeviceLostError("vkQueueSubmit");
       if (std::string_view(fault) == "out-of-memory") throw vk::OutOfDeviceMemoryError("vkAllocateMemory");
     }
-    const uint32_t* c = static_cast<const uint32_t*>(m.counts.mapped);
-    for (int b = 0; b < bands * HR_COUNT_SLOTS; ++b, c += 8) {
-      stats.nodes_visited += c[0], stats.primitives_tested += c[1];
-      stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
-    }
+    m.sum_counts(plan, stats);
     if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
-    m.traced_aovs = want_aovs;
+    m.traced_aovs = plan.want_aovs;
   } catch (const vk::SystemError& e) {
     rethrow_vulkan(e, m.info.name);
   }

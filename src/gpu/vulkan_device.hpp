@@ -187,6 +187,38 @@ struct GpuRenderer::Impl {
     return dst;
   }
 
+  // One frame's work as trace() dispatches it: each camera's rows in bands
+  // of about band_invocations pixels (2^20), each its own dispatch (well
+  // inside a desktop watchdog's seconds), all in one submission; each band
+  // its own 32-bit counters, summed on the host in 64 bits.
+  struct Band {
+    int32_t row0, rows, frame;
+    uint32_t width;
+  };
+  struct FramePlan {
+    std::vector<Band> bands;
+    uint64_t pixels = 0;
+    uint64_t queue_rays = 0;  // the shadow queue's capacity; 0: no queue
+    bool want_aovs = false, panel = false, queue = false, path = false;
+    int passes = 1;  // the path integrator's samples a pixel, one a pass
+  };
+  // The frame's bands and buffers' sizes, refused (GpuError naming the
+  // limit) where the device cannot hold them: gpu_renderer.cpp.
+  FramePlan plan_frame(const std::vector<GpuFrame>& frames, int W, int H) const;
+  // The frame's buffers grown to the plan, its cameras and cleared counters
+  // written, and the shadow queue's reset recorded into `commands`.
+  void prepare_frame(const std::vector<GpuFrame>& frames, const FramePlan& plan);
+  // Records the pixel kernel's passes from `first_sample` (submitted and
+  // waited on every few passes), then the shadow queue's two passes.
+  void record_pixel_passes(const FramePlan& plan, int first_sample);
+  void record_shadow_passes(const FramePlan& plan);
+  // Ends `commands`, submits it and waits under the timeout (wait()).
+  void submit_and_wait(const char* what);
+  // With timestamps (HOLORAY_GPU_STATS=1): each pass's time on the device.
+  void print_pass_times(const FramePlan& plan);
+  // The bands' counters summed into `stats`.
+  void sum_counts(const FramePlan& plan, GpuFrameStats& stats) const;
+
   // The kernel specialised (shaders/trace.comp): workgroup size, whether
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:
   // they do; for tuning), whether it renders the panels, the materials'

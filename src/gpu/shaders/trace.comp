@@ -1020,235 +1020,274 @@ void shadow_resolve() {
 void add_counts(uvec4 rays);
 #include "path.glsl"
 
-void main() {
-  if (kPath) {
-    path_main();
-    return;
-  }
-  if (kShadowPass == 1) {
-    shadow_pass();
-    return;
-  }
-  if (kShadowPass == 2) {
-    shadow_resolve();
-    return;
-  }
-  int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
-  int W = F.size.x;
-  if (i >= W || int(gl_GlobalInvocationID.y) >= band.rows) return;
-  log_pixel = ivec2(i, j);
-  float eps = F.extent.w;
-  int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
-  uint eye_rays = 0u, shadow_rays = 0u, reflected_rays = 0u, refracted_rays = 0u;
-  uint last_run = 0x0fffffffu;  // the pixel's last run of queued shadow rays (none: past any capacity)
-  vec3 sum = vec3(0.0);
-  bool first_hit = false;
-  for (int k = 0; k < spp; ++k) {
-    vec2 uv = sample_offset(F.tile.x + i, F.tile.y + j, k);  // the image's pixel: a quilt's, not its view's
-    EyeRay e = eye_ray(i, j, uv);
-    vec3 ld = e.line_dir;
-    vec3 c = F.background.xyz;
-    if (e.empty_aimed) ++eye_rays;  // an empty scene: the CPU counts the ray it traces through nothing
-    if (e.traced) {
-      Pending stack[HR_MAX_DEPTH + 2];
-      int sp = 0;
-      stack[sp++] = Pending(e.o, e.d, vec3(1.0), 1);
-      float t_sign = e.t_sign, optic0 = e.optic0, tmin0 = e.tmin, tmax0 = e.tmax;
-      c = vec3(0.0);
-      ++eye_rays;
-      while (sp > 0) {
-        Pending r = stack[--sp];
-        log_kind = uint(r.depth);
-        bool primary = r.depth == 1;
-        Hit h;
-        if (!trace_ray(r.o, r.d, primary ? tmin0 : 0.0, primary ? tmax0 : kInf, false, h)) {
-          c += r.weight * F.background.xyz;
-          continue;
+// The rays of a pixel's ray tree still to trace, depth first (no recursion
+// in GLSL): an invocation's own, shared by the functions that push them.
+Pending ray_stack[HR_MAX_DEPTH + 2];
+int ray_sp = 0;
+
+// What one Whitted hit shows: its surface turned to the side the ray came
+// from (nff-notes §10.2), its material with the mesh's maps applied.
+struct Shaded {
+  Surface s;
+  GpuMaterial m;
+  vec3 colour, emission, view, ng, ns, above;
+  vec4 pbr;
+  float highlight, eps;  // eps: the scene's offset for secondary rays
+  bool front;
+};
+
+// A Tachyon surface hit by `r` (tachyon_model.cpp, TachyonModel::shade):
+// its light seen through fog, its mirror and straight-through rays pushed
+// (past the depth limit they see the background), and each light's term
+// behind Tachyon's filtered shadow. Returns what it adds to the sample.
+vec3 shade_tachyon(Pending r, Hit h, Shaded a, float optic, int max_depth, inout uint shadow_rays, inout uint reflected_rays,
+                   inout uint refracted_rays) {
+  GpuMaterial m = a.m;
+  float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
+  vec3 tex = tachyon_colour(m, h, a.s.p, a.colour, optic);
+  vec3 c = vec3(0.0);
+  if (m.tachyon.w != 0.0) {  // a light's sphere: its colour, unshaded
+    c = r.weight * tex;
+  } else {
+    // Fog takes its share of everything this hit shows, secondary rays included.
+    float keep = fog_keep(optic);
+    c = r.weight * ((1.0 - keep) * F.fog.xyz);
+    vec3 w = r.weight * keep;
+    float T = m.ks_shine_t_ior.z;
+    if (ks > kMinContrib) {  // past the depth limit a secondary ray sees the background
+      ++reflected_rays;
+      if (r.depth < max_depth) ray_stack[ray_sp++] = Pending(a.above, normalize(reflect_about(r.d, a.ns)), w * ks, r.depth + 1);
+      else c += w * ks * F.background.xyz;
+    }
+    if (T > kMinContrib) {  // straight through
+      ++refracted_rays;
+      if (r.depth < max_depth) ray_stack[ray_sp++] = Pending(a.s.p - a.ng * a.eps, r.d, w * T, r.depth + 1);
+      else c += w * T * F.background.xyz;
+    }
+    c += w * tex * m.tachyon.x;
+    if (kd > kMinContrib || m.tachyon.y > kMinContrib) {
+      for (int l = 0; l < F.counts.x; ++l) {
+        GpuLight L = lights[l];
+        float dist;
+        vec4 to_light = tachyon_light(L, a.s.p, a.ns, dist);
+        if (!(to_light.w > kMinContrib)) continue;
+        float seen = tachyon_shadow(a.above, to_light.xyz, dist - a.eps, shadow_rays);
+        if (seen == 0.0) continue;
+        vec3 term = tex * (kd * to_light.w * seen) * L.intensity_unit.xyz;
+        if (m.tachyon.y > kMinContrib) {  // Blinn's half vector, unnormalised until the dot
+          vec3 hv = to_light.xyz - r.d;
+          float spec = dot(a.ns, hv);
+          if (spec > kMinContrib)
+            term += (m.tachyon.z != 0.0 ? tex : L.intensity_unit.xyz) * (pow(spec / length(hv), shine) * m.tachyon.y);
         }
-        Surface s = surface_of(r.o, r.d, h);
-        GpuMaterial m = materials[s.material];
-        MappedMaterial mm = mapped_material(m, h, h.t + (primary ? optic0 : 0.0), s);
-        vec3 colour = mm.colour, emission = mm.emission;
-        vec4 pbr = mm.pbr;
-        float highlight = mm.highlight;
-        // Both normals turned to the side the ray came from (nff-notes §10.2).
-        vec3 view = -r.d;
-        bool front = dot(s.ng, view) >= 0.0;
-        vec3 ng = front ? s.ng : -s.ng, ns = front ? s.ns : -s.ns;
-        vec3 above = s.p + ng * eps;
-        // The first sample's first hit: its AOVs written now, so that none
-        // of them stays live (in registers) across the traversals below.
-        if (primary && k == 0) {
-          first_hit = true;
-          if (aovs != 0) write_hit_aovs(i, j, ld, s, m, mm, t_sign * h.t);
-        }
-        float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
-        if (kTachyon && int(m.emission_model.w) == HR_MODEL_TACHYON) {  // tachyon_model.cpp, TachyonModel::shade
-          vec3 tex = tachyon_colour(m, h, s.p, colour, h.t + (primary ? optic0 : 0.0));
-          if (m.tachyon.w != 0.0) {  // a light's sphere: its colour, unshaded
-            c += r.weight * tex;
-            continue;
-          }
-          // Fog takes its share of everything this hit shows, secondary rays included.
-          float keep = fog_keep(h.t + (primary ? optic0 : 0.0));
-          c += r.weight * ((1.0 - keep) * F.fog.xyz);
-          vec3 w = r.weight * keep;
-          float T = m.ks_shine_t_ior.z;
-          if (ks > kMinContrib) {  // past the depth limit a secondary ray sees the background
-            ++reflected_rays;
-            if (r.depth < max_depth) stack[sp++] = Pending(above, normalize(reflect_about(r.d, ns)), w * ks, r.depth + 1);
-            else c += w * ks * F.background.xyz;
-          }
-          if (T > kMinContrib) {  // straight through
-            ++refracted_rays;
-            if (r.depth < max_depth) stack[sp++] = Pending(s.p - ng * eps, r.d, w * T, r.depth + 1);
-            else c += w * T * F.background.xyz;
-          }
-          c += w * tex * m.tachyon.x;
-          if (kd > kMinContrib || m.tachyon.y > kMinContrib) {
-            for (int l = 0; l < F.counts.x; ++l) {
-              GpuLight L = lights[l];
-              float dist;
-              vec4 to_light = tachyon_light(L, s.p, ns, dist);
-              if (!(to_light.w > kMinContrib)) continue;
-              float seen = tachyon_shadow(above, to_light.xyz, dist - eps, shadow_rays);
-              if (seen == 0.0) continue;
-              vec3 term = tex * (kd * to_light.w * seen) * L.intensity_unit.xyz;
-              if (m.tachyon.y > kMinContrib) {  // Blinn's half vector, unnormalised until the dot
-                vec3 hv = to_light.xyz - r.d;
-                float spec = dot(ns, hv);
-                if (spec > kMinContrib)
-                  term += (m.tachyon.z != 0.0 ? tex : L.intensity_unit.xyz) * (pow(spec / length(hv), shine) * m.tachyon.y);
-              }
-              c += w * term;
-            }
-          }
-          continue;
-        }
-        // The mirror and transmitted rays wait on the stack (pushed before
-        // the shadow rays, so that what they need is not kept across them).
-        bool gltf = kGltf && int(m.emission_model.w) == HR_MODEL_GLTF;
-        if (r.depth < max_depth && gltf) {  // GltfModel::secondary_rays
-          float T = m.ks_shine_t_ior.z, n_dot_v = dot(ns, view);
-          if (pbr.y < kMirrorRoughness) {  // the Fresnel mix at N.V
-            vec3 rd = reflect_about(r.d, ns);
-            if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
-            vec3 mirror = hr_gltf_mirror_weight(colour, pbr.x, pbr.w, n_dot_v);
-            stack[sp++] = Pending(above, normalize(rd), r.weight * mirror * (1.0 - T), r.depth + 1);
-            ++reflected_rays;
-          }
-          // BLEND's uncovered share and the transmission's share of the covered
-          // part both go straight through (thin-walled): one ray.
-          if (T > 0.0 || pbr.z > 0.0) {
-            vec3 through = hr_gltf_transmit_weight(colour, pbr.x, pbr.w, pbr.z, n_dot_v);
-            stack[sp++] = Pending(s.p - ng * eps, r.d, r.weight * (vec3(T) + through * (1.0 - T)), r.depth + 1);
-            ++refracted_rays;
-          }
-        } else if (r.depth < max_depth) {
-          float T = m.ks_shine_t_ior.z, ior = m.ks_shine_t_ior.w;
-          if (ks > 0.0) {  // the true normal where the shading one sends it in
-            vec3 rd = reflect_about(r.d, ns);
-            if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
-            stack[sp++] = Pending(above, normalize(rd), r.weight * ks, r.depth + 1);
-            ++reflected_rays;
-          }
-          if (T > 0.0) {
-            float eta = front ? 1.0 / ior : ior;
-            float cos_i = dot(view, ns);
-            float kk = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-            vec3 o2, d2;
-            if (kk < 0.0) {  // total internal reflection
-              vec3 rd = reflect_about(r.d, ns);
-              if (dot(rd, ng) <= 0.0) rd = reflect_about(r.d, ng);
-              o2 = above, d2 = normalize(rd);
-              ++reflected_rays;
-            } else {
-              d2 = normalize(r.d * eta + ns * (eta * cos_i - sqrt(kk)));
-              if (dot(d2, ng) >= 0.0) d2 = r.d;
-              o2 = s.p - ng * eps;
-              ++refracted_rays;
-            }
-            stack[sp++] = Pending(o2, d2, r.weight * T, r.depth + 1);
-          }
-        }
-        c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * colour * kd) + emission);  // glTF: no ambient
-        // The seen lights, kLightChunk at a time: each light's weighted term
-        // computed before its shadow ray, so that only the ray and the term
-        // cross the traversal (shading.cpp, shadow_ray and the models' terms).
-        for (int l0 = 0; l0 < F.counts.x; l0 += kLightChunk) {
-          vec3 contrib[kLightChunk];
-          vec4 ray_to[kLightChunk];  // direction, and how far
-          int n = 0;
-          for (int l = l0; l < min(l0 + kLightChunk, F.counts.x); ++l) {
-            GpuLight L = lights[l];
-            int kind = int(L.position_kind.w);
-            vec3 to_light;
-            float dist = kInf, falloff = 1.0;
-            bool casts;
-            if (kind == HR_LIGHT_DIRECTIONAL) {
-              to_light = -L.direction.xyz;
-              casts = dot(ns, to_light) > 0.0;
-            } else {
-              to_light = L.position_kind.xyz - s.p;
-              dist = length(to_light);
-              to_light /= dist;
-              casts = dist > eps && dot(ns, to_light) > 0.0;
-              if (casts && L.intensity_unit.w == 0.0) {
-                falloff = hr_light_falloff(falloff_params(L), to_light, dist);
-                casts = falloff > 0.0;
-              }
-              dist -= eps;
-            }
-            if (casts) {
-              vec3 term;
-              if (gltf) {  // the BRDF times the part of the surface that is there
-                term = (1.0 - m.ks_shine_t_ior.z) * hr_gltf_direct(colour, pbr.x, pbr.y, pbr.w, pbr.z, ns, view, to_light);
-              } else {
-                term = colour * (kd * dot(ns, to_light));
-                if (ks > 0.0) {
-                  float r_dot_v = dot(reflect_about(-to_light, ns), view);
-                  if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
-                }
-                if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
-                  float n_dot_h = dot(ns, normalize(to_light + view));
-                  if (n_dot_h > 0.0) term += m.specular.xyz * (highlight * pow(n_dot_h, shine));
-                }
-              }
-              contrib[n] = r.weight * (L.intensity_unit.xyz * falloff * term);
-              ray_to[n] = vec4(to_light, dist);
-              ++n;
-            }
-          }
-          // Queued: one atomic for the lanes here together, each lane's rays
-          // a run of their own, linked to the pixel's run before; a run past
-          // the queue's capacity is traced here.
-          uint first = 0u;
-          bool queued = false;
-          if (kShadowQueue) {
-            uint total = subgroupAdd(uint(n)), before = subgroupExclusiveAdd(uint(n)), base = 0u;
-            if (subgroupElect() && total > 0u) base = atomicAdd(shadow_head.x, total);
-            first = subgroupBroadcastFirst(base) + before;
-            queued = n > 0 && first + uint(n) <= shadow_head.z;
-          }
-          for (int q = 0; q < n; ++q) {
-            ++shadow_rays;
-            if (queued) {
-              uint at = first + uint(q);
-              shadow_queue[at] = GpuShadowRay(vec4(above, ray_to[q].w), vec4(ray_to[q].xyz, 0.0));
-              shadow_terms[at] = vec4(contrib[q] / float(spp), uintBitsToFloat(q == 0 ? last_run << 4 | uint(n) : 0u));
-              continue;
-            }
-            Hit sh;
-            if (!trace_ray(above, ray_to[q].xyz, 0.0, ray_to[q].w, true, sh)) c += contrib[q];
-          }
-          if (queued) last_run = first;
-        }
+        c += w * term;
       }
     }
-    sum += c;
   }
-  vec3 colour = sum / float(spp);
-  if (kPanel && F.panel_kind.x == 3) {  // one channel of the pixel (display_renderer.cpp, pack_subpixels)
+  return c;
+}
+
+// The mirror and transmitted rays of a hit of `r` pushed, for glTF's model
+// (GltfModel::secondary_rays) or NFF's and Blinn-Phong's (shading.cpp,
+// add_secondary), before the shadow rays so that what they need is not kept
+// across them.
+void push_secondary_rays(Pending r, Shaded a, bool gltf, inout uint reflected_rays, inout uint refracted_rays) {
+  GpuMaterial m = a.m;
+  float eps = a.eps;
+  if (gltf) {
+    float T = m.ks_shine_t_ior.z, n_dot_v = dot(a.ns, a.view);
+    if (a.pbr.y < kMirrorRoughness) {  // the Fresnel mix at N.V
+      vec3 rd = reflect_about(r.d, a.ns);
+      if (dot(rd, a.ng) <= 0.0) rd = reflect_about(r.d, a.ng);
+      vec3 mirror = hr_gltf_mirror_weight(a.colour, a.pbr.x, a.pbr.w, n_dot_v);
+      ray_stack[ray_sp++] = Pending(a.above, normalize(rd), r.weight * mirror * (1.0 - T), r.depth + 1);
+      ++reflected_rays;
+    }
+    // BLEND's uncovered share and the transmission's share of the covered
+    // part both go straight through (thin-walled): one ray.
+    if (T > 0.0 || a.pbr.z > 0.0) {
+      vec3 through = hr_gltf_transmit_weight(a.colour, a.pbr.x, a.pbr.w, a.pbr.z, n_dot_v);
+      ray_stack[ray_sp++] = Pending(a.s.p - a.ng * eps, r.d, r.weight * (vec3(T) + through * (1.0 - T)), r.depth + 1);
+      ++refracted_rays;
+    }
+  } else {
+    float ks = m.ks_shine_t_ior.x, T = m.ks_shine_t_ior.z, ior = m.ks_shine_t_ior.w;
+    if (ks > 0.0) {  // the true normal where the shading one sends it in
+      vec3 rd = reflect_about(r.d, a.ns);
+      if (dot(rd, a.ng) <= 0.0) rd = reflect_about(r.d, a.ng);
+      ray_stack[ray_sp++] = Pending(a.above, normalize(rd), r.weight * ks, r.depth + 1);
+      ++reflected_rays;
+    }
+    if (T > 0.0) {
+      float eta = a.front ? 1.0 / ior : ior;
+      float cos_i = dot(a.view, a.ns);
+      float kk = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+      vec3 o2, d2;
+      if (kk < 0.0) {  // total internal reflection
+        vec3 rd = reflect_about(r.d, a.ns);
+        if (dot(rd, a.ng) <= 0.0) rd = reflect_about(r.d, a.ng);
+        o2 = a.above, d2 = normalize(rd);
+        ++reflected_rays;
+      } else {
+        d2 = normalize(r.d * eta + a.ns * (eta * cos_i - sqrt(kk)));
+        if (dot(d2, a.ng) >= 0.0) d2 = r.d;
+        o2 = a.s.p - a.ng * eps;
+        ++refracted_rays;
+      }
+      ray_stack[ray_sp++] = Pending(o2, d2, r.weight * T, r.depth + 1);
+    }
+  }
+}
+
+// The BRDF's term (glTF's, times the part of the surface that is there) or
+// NFF's and Blinn-Phong's, toward a light along `to_light`.
+vec3 surface_term(Shaded a, bool gltf, vec3 to_light) {
+  GpuMaterial m = a.m;
+  float kd = m.colour_kd.w, ks = m.ks_shine_t_ior.x, shine = m.ks_shine_t_ior.y;
+  vec3 term;
+  if (gltf) {
+    term = (1.0 - m.ks_shine_t_ior.z) * hr_gltf_direct(a.colour, a.pbr.x, a.pbr.y, a.pbr.w, a.pbr.z, a.ns, a.view, to_light);
+  } else {
+    term = a.colour * (kd * dot(a.ns, to_light));
+    if (ks > 0.0) {
+      float r_dot_v = dot(reflect_about(-to_light, a.ns), a.view);
+      if (r_dot_v > 0.0) term += vec3(ks * pow(r_dot_v, shine));
+    }
+    if (int(m.emission_model.w) == HR_MODEL_BLINN_PHONG) {
+      float n_dot_h = dot(a.ns, normalize(to_light + a.view));
+      if (n_dot_h > 0.0) term += m.specular.xyz * (a.highlight * pow(n_dot_h, shine));
+    }
+  }
+  return term;
+}
+
+// The lights seen from a hit of `r`, kLightChunk at a time: each light's
+// weighted term computed before its shadow ray, so that only the ray and
+// the term cross the traversal. With the shadow queue the rays are queued
+// (one atomic for the lanes here together, each lane's rays a run of their
+// own, linked to the pixel's run before; a run past the queue's capacity is
+// traced here). Returns the unblocked terms traced here.
+vec3 shade_lights(Pending r, Shaded a, bool gltf, int spp, inout uint shadow_rays, inout uint last_run) {
+  vec3 c = vec3(0.0);
+  for (int l0 = 0; l0 < F.counts.x; l0 += kLightChunk) {
+    vec3 contrib[kLightChunk];
+    vec4 ray_to[kLightChunk];  // direction, and how far
+    int n = 0;
+    for (int l = l0; l < min(l0 + kLightChunk, F.counts.x); ++l) {  // shading.cpp, shadow_ray and the models' terms
+      GpuLight L = lights[l];
+      int kind = int(L.position_kind.w);
+      vec3 to_light;
+      float dist = kInf, falloff = 1.0;
+      bool casts;
+      if (kind == HR_LIGHT_DIRECTIONAL) {
+        to_light = -L.direction.xyz;
+        casts = dot(a.ns, to_light) > 0.0;
+      } else {
+        to_light = L.position_kind.xyz - a.s.p;
+        dist = length(to_light);
+        to_light /= dist;
+        casts = dist > a.eps && dot(a.ns, to_light) > 0.0;
+        if (casts && L.intensity_unit.w == 0.0) {
+          falloff = hr_light_falloff(falloff_params(L), to_light, dist);
+          casts = falloff > 0.0;
+        }
+        dist -= a.eps;
+      }
+      if (casts) {
+        contrib[n] = r.weight * (L.intensity_unit.xyz * falloff * surface_term(a, gltf, to_light));
+        ray_to[n] = vec4(to_light, dist);
+        ++n;
+      }
+    }
+    uint first = 0u;
+    bool queued = false;
+    if (kShadowQueue) {
+      uint total = subgroupAdd(uint(n)), before = subgroupExclusiveAdd(uint(n)), base = 0u;
+      if (subgroupElect() && total > 0u) base = atomicAdd(shadow_head.x, total);
+      first = subgroupBroadcastFirst(base) + before;
+      queued = n > 0 && first + uint(n) <= shadow_head.z;
+    }
+    for (int q = 0; q < n; ++q) {
+      ++shadow_rays;
+      if (queued) {
+        uint at = first + uint(q);
+        shadow_queue[at] = GpuShadowRay(vec4(a.above, ray_to[q].w), vec4(ray_to[q].xyz, 0.0));
+        shadow_terms[at] = vec4(contrib[q] / float(spp), uintBitsToFloat(q == 0 ? last_run << 4 | uint(n) : 0u));
+        continue;
+      }
+      Hit sh;
+      if (!trace_ray(a.above, ray_to[q].xyz, 0.0, ray_to[q].w, true, sh)) c += contrib[q];
+    }
+    if (queued) last_run = first;
+  }
+  return c;
+}
+
+// The hit `h` of `r` resolved: its surface, material and maps (read at the
+// footprint `optic` away), normals turned toward the ray.
+Shaded shaded_hit(Pending r, Hit h, float optic, float eps) {
+  Shaded a;
+  a.eps = eps;
+  a.s = surface_of(r.o, r.d, h);
+  a.m = materials[a.s.material];
+  MappedMaterial mm = mapped_material(a.m, h, optic, a.s);
+  a.colour = mm.colour, a.emission = mm.emission, a.pbr = mm.pbr, a.highlight = mm.highlight;
+  a.view = -r.d;
+  a.front = dot(a.s.ng, a.view) >= 0.0;
+  a.ng = a.front ? a.s.ng : -a.s.ng, a.ns = a.front ? a.s.ns : -a.s.ns;
+  a.above = a.s.p + a.ng * eps;
+  return a;
+}
+
+// Sample k of pixel (i, j) with Whitted's light: its ray tree walked depth
+// first. Sets `first_hit` where the first sample's eye ray met something
+// (whose AOVs it writes there, so that none stays live across the
+// traversals after).
+vec3 whitted_sample(int i, int j, int k, float eps, int spp, int max_depth, int aovs, inout bool first_hit, inout uvec4 rays,
+                    inout uint last_run) {
+  uint eye_rays = rays.x, shadow_rays = rays.y, reflected_rays = rays.z, refracted_rays = rays.w;
+  vec2 uv = sample_offset(F.tile.x + i, F.tile.y + j, k);  // the image's pixel: a quilt's, not its view's
+  EyeRay e = eye_ray(i, j, uv);
+  vec3 c = F.background.xyz;
+  if (e.empty_aimed) ++eye_rays;  // an empty scene: the CPU counts the ray it traces through nothing
+  if (e.traced) {
+    ray_sp = 0;
+    ray_stack[ray_sp++] = Pending(e.o, e.d, vec3(1.0), 1);
+    c = vec3(0.0);
+    ++eye_rays;
+    while (ray_sp > 0) {
+      Pending r = ray_stack[--ray_sp];
+      log_kind = uint(r.depth);
+      bool primary = r.depth == 1;
+      Hit h;
+      if (!trace_ray(r.o, r.d, primary ? e.tmin : 0.0, primary ? e.tmax : kInf, false, h)) {
+        c += r.weight * F.background.xyz;
+        continue;
+      }
+      float optic = h.t + (primary ? e.optic0 : 0.0);
+      Shaded a = shaded_hit(r, h, optic, eps);
+      if (primary && k == 0) {
+        first_hit = true;
+        if (aovs != 0) write_hit_aovs(i, j, e.line_dir, a.s, a.m, MappedMaterial(a.colour, a.emission, a.pbr, a.highlight), e.t_sign * h.t);
+      }
+      if (kTachyon && int(a.m.emission_model.w) == HR_MODEL_TACHYON) {
+        c += shade_tachyon(r, h, a, optic, max_depth, shadow_rays, reflected_rays, refracted_rays);
+        continue;
+      }
+      bool gltf = kGltf && int(a.m.emission_model.w) == HR_MODEL_GLTF;
+      if (r.depth < max_depth) push_secondary_rays(r, a, gltf, reflected_rays, refracted_rays);
+      c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * a.colour * a.m.colour_kd.w) + a.emission);  // glTF: no ambient
+      c += shade_lights(r, a, gltf, spp, shadow_rays, last_run);
+    }
+  }
+  rays = uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays);
+  return c;
+}
+
+// A pixel's colour written: one channel of a panel's packed pixel
+// (display_renderer.cpp, pack_subpixels), else its three.
+void write_colour(int i, int j, vec3 colour) {
+  if (kPanel && F.panel_kind.x == 3) {
     int k = i % 3, ch = F.panel_kind.y != 0 ? k : 2 - k;
     colour_out[out_pixel(i / 3, j) * 3u + uint(ch)] = colour[ch];
   } else {
@@ -1257,9 +1296,32 @@ void main() {
     colour_out[pixel * 3u + 1u] = colour.y;
     colour_out[pixel * 3u + 2u] = colour.z;
   }
-  if (kShadowQueue) shadow_last[out_pixel(i, j)] = last_run;
-  if (aovs != 0 && !first_hit) write_miss_aovs(i, j);  // background (a hit's were written where it was met)
-  add_counts(uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays));
+}
+
+void main() {
+  if (kPath) {
+    path_main();
+  } else if (kShadowPass == 1) {
+    shadow_pass();
+  } else if (kShadowPass == 2) {
+    shadow_resolve();
+  } else {
+    int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
+    if (i < F.size.x && int(gl_GlobalInvocationID.y) < band.rows) {
+      log_pixel = ivec2(i, j);
+      uvec4 rays = uvec4(0u);  // eye, shadow, reflected, refracted
+      uint last_run = 0x0fffffffu;  // the pixel's last run of queued shadow rays (none: past any capacity)
+      float eps = F.extent.w;
+      int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
+      vec3 sum = vec3(0.0);
+      bool first_hit = false;
+      for (int k = 0; k < spp; ++k) sum += whitted_sample(i, j, k, eps, spp, max_depth, aovs, first_hit, rays, last_run);
+      write_colour(i, j, sum / float(spp));
+      if (kShadowQueue) shadow_last[out_pixel(i, j)] = last_run;
+      if (aovs != 0 && !first_hit) write_miss_aovs(i, j);  // background (a hit's were written where it was met)
+      add_counts(rays);
+    }
+  }
 }
 
 // This invocation's work added to its band's counters: nodes visited and
