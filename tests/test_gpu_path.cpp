@@ -430,14 +430,14 @@ TEST(GpuPath, PinholeOrthographicClippedAndMirroredViewsMatchTheCpuPath) {
     const FrameBuffers cpu = render_view(context, camera, cpu_options, cpu_stats);
     const int w = camera.width();
     FrameBuffers out = allocate_frame(w, 64, aovs);
-    gpu::GpuFrameStats g;
+    holoray::RenderStats g;
     gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, 64), aovs, out, g);
     EXPECT_GE(compare_images(cpu.colour, out.colour).psnr_all(), 50.0) << what;
     size_t same = 0;
     for (int j = 0; j < 64; ++j)
       for (int i = 0; i < w; ++i) same += *cpu.id.at(i, j) == *out.id.at(i, j);
     EXPECT_GE(same, size_t(w * 64 * 0.999)) << what;
-    EXPECT_EQ(g.eye_rays, cpu_stats.rays.eye) << what;
+    EXPECT_EQ(g.rays.eye, cpu_stats.rays.eye) << what;
   }
   // Corner samples in an even width put the centre column's rays exactly in
   // the plane x = 0, where boxes end: a traversal that took 0 * inf for a
@@ -451,7 +451,7 @@ TEST(GpuPath, PinholeOrthographicClippedAndMirroredViewsMatchTheCpuPath) {
   holoray::RenderStats cpu_stats;
   const FrameBuffers cpu = render_view(context, camera, cpu_options, cpu_stats);
   FrameBuffers out = allocate_frame(96, 64, aovs);
-  gpu::GpuFrameStats g;
+  holoray::RenderStats g;
   gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, 64), aovs, out, g);
   for (int j = 0; j < 64; ++j)
     EXPECT_EQ(*cpu.id.at(47, j) < 0, *out.id.at(47, j) < 0) << "row " << j;
@@ -481,7 +481,7 @@ TEST(GpuPath, ALoadCompilesTheKernelsItsScenesFramesBindAndNoOther) {
   const RenderContext context(scene);
   const PinholeCamera camera(view_of(*read_nff_file(source_dir() + "/examples/primitives.nff").viewpoint, 96, 64));
   FrameBuffers out = allocate_frame(96, 64, {});
-  gpu::GpuFrameStats g;
+  holoray::RenderStats g;
   gpu.render(gpu::frame_constants(context, camera, {}, 1, 0, 64), {}, out, g);
   EXPECT_EQ(gpu.pipelines_compiled(), 3u);
 }

@@ -231,7 +231,7 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
   if (camera.get<QuiltCamera>() && (y0 != 0 || y1 != camera.height()))
     throw std::invalid_argument("`device` gpu: a quilt renders whole on the GPU, not in bands of rows");
   FrameBuffers fb = allocate_frame(camera.width(), y1 - y0, aovs);
-  gpu::GpuFrameStats g;
+  holoray::RenderStats g;
   impl_->healthy = false;
   try {
     stats.build_seconds = impl_->follow(context);
@@ -244,7 +244,7 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
   stats.readback_seconds = g.readback_seconds;
   stats.nodes_visited = g.nodes_visited;
   stats.primitives_tested = g.primitives_tested;
-  stats.rays = {g.eye_rays, g.shadow_rays, g.reflected_rays, g.refracted_rays, 0, 0};
+  stats.rays = to_api(g.rays);
   return fb;
 }
 

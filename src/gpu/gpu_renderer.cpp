@@ -466,12 +466,12 @@ void GpuRenderer::release() {
   m.traced_aovs = false;
 }
 
-void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
+void GpuRenderer::render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, RenderStats& stats) {
   render(std::vector<GpuFrame>{frame}, frame.tile.z, frame.rows.y - frame.rows.x, aovs, out, stats);
 }
 
 void GpuRenderer::render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
-                         GpuFrameStats& stats) {
+                         RenderStats& stats) {
   trace(frames, W, H, stats);
   readback(aovs, out, stats);
 }
@@ -666,15 +666,15 @@ void GpuRenderer::Impl::print_pass_times(const FramePlan& plan) {
                  (unsigned long long)queued, (unsigned long long)past);
 }
 
-void GpuRenderer::Impl::sum_counts(const FramePlan& plan, GpuFrameStats& stats) const {
+void GpuRenderer::Impl::sum_counts(const FramePlan& plan, RenderStats& stats) const {
   const uint32_t* c = static_cast<const uint32_t*>(counts.mapped);
   for (size_t b = 0; b < plan.bands.size() * HR_COUNT_SLOTS; ++b, c += 8) {
     stats.nodes_visited += c[0], stats.primitives_tested += c[1];
-    stats.eye_rays += c[4], stats.shadow_rays += c[5], stats.reflected_rays += c[6], stats.refracted_rays += c[7];
+    stats.rays.eye += c[4], stats.rays.shadow += c[5], stats.rays.reflected += c[6], stats.rays.refracted += c[7];
   }
 }
 
-void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats, int first_sample) {
+void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, RenderStats& stats, int first_sample) {
   Impl& m = *impl_;
   m.check_responding();
   if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
@@ -684,7 +684,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
     throw std::logic_error("GpuRenderer::trace: a first sample past the samples per pixel, or without the path integrator");
   try {
     m.prepare_frame(frames, plan);
-    stats = GpuFrameStats{};
+    stats = RenderStats{};
     vk::raii::CommandBuffer& cb = m.commands;
     if (*m.timestamps) {
       cb.resetQueryPool(*m.timestamps, 0, 4);
@@ -712,7 +712,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFr
   }
 }
 
-void GpuRenderer::readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats) {
+void GpuRenderer::readback(const AovSet& aovs, FrameBuffers& out, RenderStats& stats) {
   Impl& m = *impl_;
   m.check_responding();
   const int W = m.traced[0], H = m.traced[1];

@@ -44,12 +44,6 @@ std::vector<DeviceInfo> list_devices();
 
 /// What one frame cost and did: seconds of the dispatches alone (ray
 /// generation, traversal, shading), of the readback, and the work counts.
-struct GpuFrameStats {
-  double trace_seconds = 0, readback_seconds = 0;
-  uint64_t eye_rays = 0, shadow_rays = 0, reflected_rays = 0, refracted_rays = 0;
-  uint64_t nodes_visited = 0, primitives_tested = 0;  ///< with count_work, else 0
-};
-
 class GpuRenderer {
  public:
   /// `device`: -1 takes the first device that is a GPU, else the first
@@ -59,7 +53,7 @@ class GpuRenderer {
   /// glfwGetRequiredInstanceExtensions), for a Presenter on this device;
   /// the device then also gets VK_KHR_swapchain (GpuError without it).
   /// `count_work`: the frames count BVH nodes visited and primitives
-  /// tested (GpuFrameStats; 0 when not), in a pipeline of their own
+  /// tested (RenderStats; 0 when not), in a pipeline of their own
   /// (RenderOptions::count_work says what it costs).
   explicit GpuRenderer(int device = -1, const std::vector<std::string>& instance_extensions = {}, bool count_work = false);
   ~GpuRenderer();
@@ -98,21 +92,21 @@ class GpuRenderer {
   /// `aovs` names). Throws GpuError on a lost device or failed allocation,
   /// and before tracing when the image's colours or AOVs pass the device's
   /// max_storage_buffer_range.
-  void render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats);
+  void render(const GpuFrame& frame, const AovSet& aovs, FrameBuffers& out, RenderStats& stats);
   /// Several cameras into one W x H image, each into its tile
   /// (GpuFrame::tile: a quilt's views), in one submission.
   void render(const std::vector<GpuFrame>& frames, int W, int H, const AovSet& aovs, FrameBuffers& out,
-              GpuFrameStats& stats);
+              RenderStats& stats);
   /// render() in two: the frames traced into the device's buffers, where
   /// they stay (a Presenter shows them from there)... Under the path
   /// integrator, `first_sample` > 0 adds samples first_sample to spp - 1
   /// (GpuFrame::mode.w) to the image the last trace left, the mean of its
   /// first_sample samples: a still view refined (live's progressive samples).
-  void trace(const std::vector<GpuFrame>& frames, int W, int H, GpuFrameStats& stats, int first_sample = 0);
+  void trace(const std::vector<GpuFrame>& frames, int W, int H, RenderStats& stats, int first_sample = 0);
   /// ...and the last frame traced copied into `out` (W x H; the AOVs that
   /// `aovs` names, which that frame must have traced). Sets
   /// stats.readback_seconds.
-  void readback(const AovSet& aovs, FrameBuffers& out, GpuFrameStats& stats);
+  void readback(const AovSet& aovs, FrameBuffers& out, RenderStats& stats);
 
  private:
   friend class Presenter;

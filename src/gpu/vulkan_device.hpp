@@ -217,7 +217,7 @@ struct GpuRenderer::Impl {
   // With timestamps (HOLORAY_GPU_STATS=1): each pass's time on the device.
   void print_pass_times(const FramePlan& plan);
   // The bands' counters summed into `stats`.
-  void sum_counts(const FramePlan& plan, GpuFrameStats& stats) const;
+  void sum_counts(const FramePlan& plan, RenderStats& stats) const;
 
   // The kernel specialised (shaders/trace.comp): workgroup size, whether
   // shadow rays visit children nearest first (HOLORAY_GPU_SORT_SHADOW=1:

@@ -271,7 +271,7 @@ class Session {
   // path-traced view that did not `change` adds samples to the last.
   bool show(bool changed) {
     const auto t0 = Clock::now();
-    gpu::GpuFrameStats stats;
+    holoray::RenderStats stats;
     try {
       follow();
       camera_.emplace(place());
@@ -328,7 +328,7 @@ class Session {
       throw std::runtime_error(e.what());
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    const uint64_t rays = stats.eye_rays + stats.shadow_rays + stats.reflected_rays + stats.refracted_rays;
+    const uint64_t rays = stats.rays.total();
     window_->set_title(fmt::format("holoray live: {:.1f} ms a frame, {:.1f} Mrays/s on {}{}{}{}", seconds * 1e3,
                                    stats.trace_seconds > 0 ? rays / stats.trace_seconds / 1e6 : 0.0, gpu_->describe(),
                                    source_.frames > 1 ? fmt::format(", frame {} of {}{}", shot_frame_, source_.frames,
@@ -345,7 +345,7 @@ class Session {
       write_image(path, simulated_, holoray::Encoding::linear);
     } else if (lower_extension(path) == ".exr") {
       FrameBuffers fb = allocate_frame(camera_->width(), camera_->height(), {});
-      gpu::GpuFrameStats stats;
+      holoray::RenderStats stats;
       try {
         gpu_->readback({}, fb, stats);  // the colour of the last frame traced (an AOV shown traced it too)
       } catch (const gpu::GpuError& e) {

@@ -87,9 +87,15 @@ struct FrameBuffers {
   std::vector<PrimaryHit> primary;  ///< row-major, W*H; empty unless RenderOptions::primary_hits
 };
 
+/// What a render did, from either executor (the CPU path's functions here,
+/// gpu::GpuRenderer): the rays by kind and the seconds spent tracing; on the
+/// GPU also the readback, and with its count_work the BVH nodes visited and
+/// primitives tested over all rays (0 otherwise, and on the CPU).
 struct RenderStats {
   RayCounts rays;
   double trace_seconds = 0;
+  double readback_seconds = 0;
+  uint64_t nodes_visited = 0, primitives_tested = 0;
 };
 
 /// Renders one pixel: the colour averaged over `spp` samples (sample 0 at
