@@ -10,6 +10,7 @@
 #include "bindings.hpp"
 #include "result.hpp"
 #include "holoray/render.hpp"
+#include "holoray/world.hpp"
 #include "worker.hpp"
 
 namespace holoray::python {
@@ -183,7 +184,47 @@ void bind_cameras(py::module_& m) {
            py::arg("path"), py::arg("views") = 48, py::kw_only(), py::arg("focus_distance") = py::none());
 }
 
+// The light options of render() and World(): a RenderOptions with them set.
+api::RenderOptions light_options(const std::string& integrator, const py::object& environment, double environment_strength,
+                                 double environment_rotation, bool blender_principled, std::optional<int> max_depth) {
+  api::RenderOptions o;
+  if (integrator == "path") o.integrator = api::Integrator::path;
+  else if (integrator != "whitted") throw py::value_error("integrator: expected 'whitted' or 'path', got '" + integrator + "'");
+  // A file name, or a colour (r, g, b).
+  if (py::isinstance<py::str>(environment)) {
+    o.environment.file = environment.cast<std::string>();
+  } else if (!environment.is_none()) {
+    const auto c = environment.cast<std::vector<double>>();
+    if (c.size() != 3) throw py::value_error("environment: expected a file name or a colour (r, g, b)");
+    o.environment.colour = std::array<double, 3>{c[0], c[1], c[2]};
+  }
+  o.environment.strength = environment_strength;
+  o.environment.rotation_deg = environment_rotation;
+  o.blender_principled = blender_principled;
+  if (max_depth && *max_depth < 1) throw py::value_error("max_depth: expected at least 1");
+  o.max_depth = max_depth.value_or(0);
+  return o;
+}
+
 void bind_render(py::module_& m) {
+  py::class_<api::World>(m, "World",
+                         "A scene built once for many cameras and either device (OSPRay's World): render(world, camera) "
+                         "takes it in place of a scene. Its light options are fixed here; render()'s, left at their "
+                         "defaults, take them.")
+      .def(py::init([](const api::Scene& scene, std::optional<int> max_depth, const std::string& integrator,
+                       const py::object& environment, double environment_strength, double environment_rotation,
+                       bool blender_principled) {
+             const api::RenderOptions o = light_options(integrator, environment, environment_strength, environment_rotation,
+                                                        blender_principled, max_depth);
+             const api::Scene snapshot = scene;
+             py::gil_scoped_release nogil;
+             return api::World(snapshot, o);
+           }),
+           py::arg("scene"), py::kw_only(), py::arg("max_depth") = py::none(), py::arg("integrator") = "whitted",
+           py::arg("environment") = py::none(), py::arg("environment_strength") = 1.0, py::arg("environment_rotation") = 0.0,
+           py::arg("blender_principled") = false)
+      .def_property_readonly("build_seconds", &api::World::build_seconds)
+      .def_property_readonly("skipped_polygons", &api::World::skipped_polygons);
   py::class_<PyResult>(m, "Result", "One rendered image: colour, AOVs, statistics.")
       .def_readonly("colour", &PyResult::colour, "float32 (H, W, 3), linear RGB")
       .def_readonly("aovs", &PyResult::aovs, "'albedo' (H, W, 3), 'depth' (H, W), 'normal' (H, W, 3), 'id' int32 (H, W)")
@@ -195,32 +236,24 @@ void bind_render(py::module_& m) {
       });
   m.def(
       "render",
-      [](const api::Scene& scene, const py::handle& camera, std::optional<int> threads, int spp, std::optional<int> max_depth,
-         const std::vector<std::string>& aovs, const py::object& progress, const std::string& device,
-         const std::string& integrator, const py::object& environment, double environment_strength,
-         double environment_rotation, bool blender_principled) {
-        api::RenderOptions o;
+      [](const py::object& scene_or_world, const py::handle& camera, std::optional<int> threads, int spp,
+         std::optional<int> max_depth, const std::vector<std::string>& aovs, const py::object& progress,
+         const std::string& device, const std::string& integrator, const py::object& environment,
+         double environment_strength, double environment_rotation, bool blender_principled) {
+        api::RenderOptions o =
+            light_options(integrator, environment, environment_strength, environment_rotation, blender_principled, max_depth);
         o.device = device;
-        if (integrator == "path") o.integrator = api::Integrator::path;
-        else if (integrator != "whitted") throw py::value_error("integrator: expected 'whitted' or 'path', got '" + integrator + "'");
-        // A file name, or a colour (r, g, b).
-        if (py::isinstance<py::str>(environment)) {
-          o.environment.file = environment.cast<std::string>();
-        } else if (!environment.is_none()) {
-          const auto c = environment.cast<std::vector<double>>();
-          if (c.size() != 3) throw py::value_error("environment: expected a file name or a colour (r, g, b)");
-          o.environment.colour = std::array<double, 3>{c[0], c[1], c[2]};
-        }
-        o.environment.strength = environment_strength;
-        o.environment.rotation_deg = environment_rotation;
-        o.blender_principled = blender_principled;
         const api::Camera cam = camera_of(camera, "camera");
         if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
-        if (max_depth && *max_depth < 1) throw py::value_error("max_depth: expected at least 1");
         if (spp < 1) throw py::value_error("spp: expected at least 1 sample per pixel");
         o.threads = threads.value_or(0);
         o.spp = spp;
-        o.max_depth = max_depth.value_or(0);
+        // A World, or a Scene built for this render alone.
+        std::optional<api::World> world;
+        std::optional<api::Scene> scene;
+        if (py::isinstance<api::World>(scene_or_world)) world = scene_or_world.cast<api::World>();
+        else if (py::isinstance<api::Scene>(scene_or_world)) scene = scene_or_world.cast<api::Scene>();
+        else throw py::type_error("scene: expected a holoray.Scene or a holoray.World");
         for (const std::string& a : aovs) {
           if (a == "albedo") o.aovs.albedo = true;
           else if (a == "depth") o.aovs.depth = true;
@@ -240,8 +273,8 @@ void bind_render(py::module_& m) {
             }
             waker.wake();
           };
-        // Its own handle on the scene: another Python thread changing it meanwhile changes a copy.
-        const api::Scene snapshot = scene;
+        // Its own handle on the scene (the cast above copied it): another
+        // Python thread changing it meanwhile changes the original.
         double shown = 0;
         auto tick = [&] {
           const double f = fraction.load();
@@ -251,7 +284,7 @@ void bind_render(py::module_& m) {
             [&](std::stop_token stop) {
               api::RenderOptions ro = o;
               ro.stop = stop;
-              const api::Renderer r(snapshot, cam, ro);
+              const api::Renderer r = world ? api::Renderer(*world, cam, ro) : api::Renderer(*scene, cam, ro);
               const std::string name = r.device_name();
               return Rendered{r.render(), r.describe(), name.empty() ? "cpu" : name};
             },
@@ -267,14 +300,15 @@ void bind_render(py::module_& m) {
         res.stats["device"] = out.device;
         res.description = out.description;
         res.camera = py::reinterpret_borrow<py::object>(camera);
-        res.encoding = api::default_encoding(scene.source());
+        res.encoding = api::default_encoding(scene ? scene->source() : world->source());
         return res;
       },
       py::arg("scene"), py::arg("camera"), py::kw_only(), py::arg("threads") = py::none(), py::arg("spp") = 1,
       py::arg("max_depth") = py::none(), py::arg("aovs") = std::vector<std::string>{}, py::arg("progress") = py::none(),
       py::arg("device") = "cpu", py::arg("integrator") = "whitted", py::arg("environment") = py::none(),
       py::arg("environment_strength") = 1.0, py::arg("environment_rotation") = 0.0, py::arg("blender_principled") = false,
-      "Renders scene through camera: Result. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
+      "Renders scene (a Scene, or a World built once for many renders) through camera: Result. With a World, the light "
+      "options left at their defaults take the world's. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
       "progress(fraction) is called on the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else lavapipe) "
       "or 'gpu:N'; stats['device'] names it. integrator: 'whitted' or 'path' (docs/lights.md); with 'path', "
       "environment: an equirectangular .hdr/.exr file or a colour (r, g, b), times environment_strength, turned by "

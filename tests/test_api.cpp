@@ -9,7 +9,10 @@
 #include <cmath>
 #include <cstring>
 #include <stop_token>
+#include <thread>
+#include <vector>
 
+#include "api/renderer_state.hpp"
 #include "holoray/holoray.hpp"
 #include "test_util.hpp"
 
@@ -85,6 +88,80 @@ TEST(Api, AMeshBuiltInCodeRendersAsTheSameMeshReadFromAnObjFile) {
   int hits = 0;
   for (size_t k = 0; k < a.depth.size(); ++k) hits += std::isfinite(a.depth.data()[k]);
   EXPECT_GT(hits, 0);
+}
+
+// A World is built once and rendered by many cameras: each renders what a
+// Renderer that built the scene for itself renders, bit for bit, and all
+// of them read the one build.
+TEST(World, EachCameraOnAWorldRendersWhatItsOwnBuildRenders) {
+  const api::Scene scene = api::Scene::load(primitives());
+  const api::World world(scene);
+  api::Pinhole view;
+  view.width = 64, view.height = 48;
+  const std::vector<api::Camera> cameras = {small_array(), small_array(8, 6), view};
+  for (size_t k = 0; k < cameras.size(); ++k) {
+    api::RenderOptions o;
+    o.aovs.depth = o.aovs.id = true;
+    const api::Result shared = api::Renderer(world, cameras[k], o).render(), own = api::render(scene, cameras[k], o);
+    EXPECT_TRUE(same_samples(shared.colour, own.colour)) << "camera " << k;
+    EXPECT_TRUE(same_samples(shared.depth, own.depth)) << "camera " << k;
+    EXPECT_TRUE(same_samples(shared.id, own.id)) << "camera " << k;
+  }
+  // Two renderers on one world hold the same built scene.
+  const api::Renderer a(world, small_array()), b(world, view);
+  EXPECT_EQ(api::detail::RendererAccess::state(a).world->render_scene.get(),
+            api::detail::RendererAccess::state(b).world->render_scene.get());
+}
+
+// Renderers on one world render at once, each on threads of its own (the
+// first to trace builds the CPU's hierarchy; the other waits for it), and
+// give what they give one after the other.
+TEST(World, RenderersOnOneWorldRenderAtOnce) {
+  const api::World world(api::Scene::load(primitives()));
+  const std::vector<api::Camera> cameras = {small_array(16, 4), small_array(12, 6), small_array(8, 8), small_array(6, 10)};
+  std::vector<api::Result> together(cameras.size());
+  {
+    std::vector<std::jthread> threads;
+    for (size_t k = 0; k < cameras.size(); ++k)
+      threads.emplace_back([&, k] {
+        api::RenderOptions o;
+        o.threads = 2;
+        together[k] = api::Renderer(world, cameras[k], o).render();
+      });
+  }
+  for (size_t k = 0; k < cameras.size(); ++k)
+    EXPECT_TRUE(same_samples(together[k].colour, api::Renderer(world, cameras[k]).render().colour)) << "camera " << k;
+}
+
+// A world's light options are fixed when it is built: a render's, left at
+// their defaults, take them; one given otherwise is refused, naming it.
+TEST(World, ARenderTakesTheWorldsLightAndRefusesOther) {
+  const api::Scene scene = api::Scene::load(primitives());
+  api::RenderOptions path;
+  path.integrator = api::Integrator::path;
+  path.environment.colour = std::array<double, 3>{0.2, 0.3, 0.4};
+  path.max_depth = 3;
+  path.spp = 4;
+  const api::World world(scene, path);
+  api::RenderOptions plain;
+  plain.spp = 4;
+  const api::Image on_world = api::Renderer(world, small_array(), plain).render().colour;
+  EXPECT_TRUE(same_samples(on_world, api::render(scene, small_array(), path).colour));
+  EXPECT_FALSE(same_samples(on_world, api::render(scene, small_array(), plain).colour));  // Whitted's light differs
+  api::RenderOptions deeper = plain;
+  deeper.max_depth = 5;
+  try {
+    api::Renderer(world, small_array(), deeper);
+    ADD_FAILURE() << "a depth other than the world's was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "max_depth: the world was built with other light options: build a World with these, or leave it at "
+                           "its default to take the world's");
+  }
+  api::RenderOptions other_sky = plain;
+  other_sky.environment.strength = 2;
+  EXPECT_THROW(api::Renderer(world, small_array(), other_sky), std::invalid_argument);
+  // The same values as the world's are the world's.
+  EXPECT_NO_THROW(api::Renderer(world, small_array(), path));
 }
 
 TEST(Api, ABandOfRowsHoldsExactlyThoseRowsOfTheWholeImage) {

@@ -18,7 +18,7 @@
 #include <map>
 #include <string>
 
-#include "api/renderer_state.hpp"
+#include "api/world_state.hpp"
 #include "gpu/gpu_renderer.hpp"
 #include "image/metrics.hpp"
 #include "render/view_renderer.hpp"
@@ -855,20 +855,41 @@ TEST(GpuPath, ARendererKeptBetweenRendersGivesWhatANewOneGives) {
   }
 }
 
-// One scene, one hierarchy per device (issue 71): a GPU render lays out
-// and builds its own, and never has Embree build the CPU path's; a CPU
-// render has it built before its threads start.
-TEST(GpuPath, AGpuRenderBuildsNoEmbreeHierarchy) {
-  const Scene scene = Scene::load(source_dir() + "/examples/primitives.nff");
-  for (const char* device : {"gpu", "cpu"}) {
-    RenderOptions o;
-    o.device = device;
-    const api::Renderer renderer(scene, array_of(api::Grid::square), o);
-    const AccelScene& accel = api::detail::RendererAccess::state(renderer).render_scene->accel();
-    const Result r = renderer.render();
-    EXPECT_GT(*std::max_element(r.colour.data(), r.colour.data() + r.colour.size()), 0.1f) << device;
-    EXPECT_EQ(accel.built(), std::string(device) == "cpu") << device;
+// One scene, one hierarchy per device (issue 71): a World rendered on the
+// GPU lays out and builds the GPU's own hierarchy and never has Embree
+// build the CPU path's; the same World then rendered on the CPU has it
+// built, and the two images agree as the GPU path's images do.
+TEST(GpuPath, AWorldOnTheGpuBuildsNoEmbreeHierarchyAndTheCpuBuildsItOnce) {
+  const api::World world(Scene::load(source_dir() + "/examples/primitives.nff"));
+  const AccelScene& accel = api::detail::WorldAccess::state(world)->render_scene->accel();
+  RenderOptions gpu;
+  gpu.device = "gpu";
+  const Result on_gpu = api::Renderer(world, array_of(api::Grid::square), gpu).render();
+  EXPECT_GT(*std::max_element(on_gpu.colour.data(), on_gpu.colour.data() + on_gpu.colour.size()), 0.1f);
+  EXPECT_FALSE(accel.built());
+  const Result on_cpu = api::Renderer(world, array_of(api::Grid::square)).render();
+  EXPECT_TRUE(accel.built());
+  EXPECT_GE(api::psnr(on_cpu.colour, on_gpu.colour), 50.0);
+}
+
+// GPU renderers on one World take the layout the first made (gpu::lay_out,
+// kept in the world) and render what renderers that built the scene
+// themselves render, bit for bit.
+TEST(GpuPath, GpuRenderersOnOneWorldShareItsLayout) {
+  const Scene scene = Scene::load(source_dir() + "/tests/data/blender/textured_box.gltf");
+  const api::World world(scene);
+  RenderOptions gpu;
+  gpu.device = "gpu";
+  gpu.aovs = Aovs{true, true, true, true};
+  const std::vector<api::Camera> cameras = {array_of(api::Grid::square), array_of(api::Grid::hex, api::Mode::pseudoscopic),
+                                            api::Pinhole{96, 64}};
+  for (size_t k = 0; k < cameras.size(); ++k) {
+    const Result shared = api::Renderer(world, cameras[k], gpu).render();
+    const Result own = api::render(scene, cameras[k], gpu);
+    EXPECT_EQ(std::memcmp(shared.colour.data(), own.colour.data(), own.colour.size() * sizeof(float)), 0) << "camera " << k;
+    EXPECT_EQ(std::memcmp(shared.depth.data(), own.depth.data(), own.depth.size() * sizeof(float)), 0) << "camera " << k;
   }
+  EXPECT_EQ(api::detail::WorldAccess::state(world)->gpu_layouts->size(), 1u);
 }
 
 // A host application hands the GPU back between renders: the kept device

@@ -1,5 +1,5 @@
 // A sweep over pixels per lens with holoray's C++ API: one scene, read and
-// kept; for each P an EIA of the same array width, its centre sub-aperture
+// built once (a World); for each P an EIA of the same array width, its centre sub-aperture
 // view's share of scene pixels, and the time. Writes eia_P.png.
 //
 //   sweep_pitch SCENE.nff [OUT_DIR]
@@ -18,14 +18,15 @@ int main(int argc, char** argv) {
   }
   const std::string out = argc > 2 ? argv[2] : ".";
   try {
-    const api::Scene scene = api::Scene::load(argv[1]);
+    const api::World world(api::Scene::load(argv[1]));
+    std::printf("built in %.3f s\n", world.build_seconds());
     for (int p : {4, 6, 8}) {
       api::LensArray array;
       array.lenses_x = array.lenses_y = 96 / p;  // the same image width in pixels
       array.pixels_per_lens = p;
       api::RenderOptions options;
       options.aovs.depth = true;
-      const api::Result r = api::render(scene, array, options);
+      const api::Result r = api::Renderer(world, array, options).render();
       // Pixels of the centre sub-aperture view that see the scene.
       int seen = 0, views = 0;
       for (int y = p / 2; y < r.depth.height(); y += p)

@@ -3,6 +3,7 @@
 //   scene.hpp    Scene: load(path), or add_mesh / add_sphere / add_light / set_viewpoint
 //   camera.hpp   LensArray, Pinhole, Quilt, Display, LookingGlass: plain data
 //   render.hpp   Renderer (placed and built once), render(), RenderOptions, Result
+//   world.hpp    World: a scene built once for many cameras and either device
 //   animate.hpp  Animation: a shot frame by frame, with keyframe reuse
 //   image.hpp    Image (float, linear), read_image, write_image, ImageWriter, compare_images
 //   preview.hpp  sub-aperture views, view grids and sweeps, simulate_view, interlace_quilt
@@ -28,6 +29,7 @@
 #include "holoray/scene.hpp"
 #include "holoray/stopwatch.hpp"
 #include "holoray/video.hpp"
+#include "holoray/world.hpp"
 #include "holoray/web.hpp"
 
 namespace holoray::api {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -153,11 +154,12 @@ struct Result {
 };
 
 struct RendererState;  // internal
+class World;           // world.hpp
 namespace detail {
 struct RendererAccess;  // internal
 }
 
-/// A scene built for one camera: validated, placed and built once, then
+/// A scene through one camera: validated, placed and built once, then
 /// rendered any number of times (whole, or in bands of rows). The camera is
 /// placed and the image's buffers checked against 80 % of this machine's
 /// memory (std::length_error naming both sizes) before the scene is built.
@@ -166,7 +168,15 @@ struct RendererAccess;  // internal
 /// display or calibration file.
 class HOLORAY_API Renderer {
  public:
+  /// Builds `scene` for this renderer alone: Renderer(World(scene, options), camera, options).
   Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options = {});
+  /// Renders a World built before, which it keeps alive; many renderers may
+  /// share one (world.hpp). The options' light fields (`integrator`,
+  /// `environment`, `blender_principled`, `max_depth`) are the world's:
+  /// each left at its default takes the world's, one given otherwise is
+  /// refused (std::invalid_argument naming it). build_stats() then counts
+  /// this renderer's set-up, not the world's build.
+  Renderer(const World& world, const Camera& camera, const RenderOptions& options = {});
   ~Renderer();
   Renderer(Renderer&&) noexcept;
   Renderer& operator=(Renderer&&) noexcept;
@@ -193,6 +203,10 @@ class HOLORAY_API Renderer {
 
  private:
   friend struct detail::RendererAccess;
+  // What follows the camera's placement: the renderer's settings on the
+  // world, its shadow cache, its executor. `shared`: the world was built
+  // before, for any number of renderers (its GPU layout is kept for them).
+  void set_up(const World& world, const RenderOptions& options, std::chrono::steady_clock::time_point t_build, bool shared);
   std::unique_ptr<RendererState> state_;
 };
 

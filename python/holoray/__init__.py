@@ -23,6 +23,7 @@ from ._holoray import (  # noqa: F401
     Result,
     Scene,
     SceneError,
+    World,
     __version__,
     gpu_devices,
     psnr,
@@ -33,7 +34,7 @@ from ._holoray import (  # noqa: F401
 from . import _holoray
 
 __all__ = [
-    "Display", "LensArray", "LookingGlass", "Pinhole", "Quilt", "Result", "Scene", "SceneError",
+    "Display", "LensArray", "LookingGlass", "Pinhole", "Quilt", "Result", "Scene", "SceneError", "World",
     "animate", "gpu_devices", "interlace_quilt", "light_field", "load_scene", "psnr", "read_image",
     "release_gpu_devices", "render", "simulate_view",
     "subaperture_view", "write_image", "write_web",

@@ -122,7 +122,21 @@ class Result:
     camera: LensArray | Pinhole | Quilt | Display | LookingGlass
     """The camera it was rendered through."""
 
-def render(scene: Scene, camera: Camera, *, threads: int | None = None, spp: int = 1,
+class World:
+    """A scene built once for many cameras and either device (OSPRay's World):
+    render(world, camera) takes it in place of the scene and gives, bit for
+    bit, what render(scene, camera) gives. Its light options are fixed here;
+    render()'s, left at their defaults, take them, and one given otherwise
+    raises ValueError naming it."""
+    def __init__(self, scene: Scene, *, max_depth: int | None = None, integrator: str = "whitted",
+                 environment: str | Sequence[float] | None = None, environment_strength: float = 1.0,
+                 environment_rotation: float = 0.0, blender_principled: bool = False) -> None: ...
+    @property
+    def build_seconds(self) -> float: ...
+    @property
+    def skipped_polygons(self) -> int: ...
+
+def render(scene: Scene | World, camera: Camera, *, threads: int | None = None, spp: int = 1,
            max_depth: int | None = None, aovs: Sequence[str] = (),
            progress: Callable[[float], object] | None = None, device: str = "cpu",
            integrator: str = "whitted", environment: str | Sequence[float] | None = None,

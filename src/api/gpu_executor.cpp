@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 
@@ -147,8 +148,20 @@ int release_gpu_devices() noexcept {
   }
 }
 
+struct GpuLayouts::Impl {
+  std::mutex lock;
+  std::map<int, std::shared_ptr<const gpu::SceneArrays>> by_width;
+};
+GpuLayouts::GpuLayouts() : impl(std::make_unique<Impl>()) {}
+GpuLayouts::~GpuLayouts() = default;
+size_t GpuLayouts::size() const {
+  const std::lock_guard lock(impl->lock);
+  return impl->by_width.size();
+}
+
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
+  GpuLayouts* layouts = nullptr;  // the world's, or null
   std::optional<gpu::ScenePose> uploaded;
   bool uploaded_path = false;       // laid out with the path integrator's lights
   bool uploaded_emitters = false;   // ...and emitters (RenderSettings::emitters)
@@ -186,8 +199,16 @@ struct GpuExecutor::Impl {
     // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
     // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
     // against 5.8 and 1.8; docs/design/gpu.md).
-    compile_seconds =
-        renderer->load(gpu::lay_out(context, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
+    if (layouts && !uploaded) {  // a World's scene as it was built: its layout, made once for all its renderers
+      GpuLayouts::Impl& kept = *layouts->impl;
+      const std::lock_guard lock(kept.lock);
+      std::shared_ptr<const gpu::SceneArrays>& arrays = kept.by_width[renderer->bvh_width()];
+      if (!arrays) arrays = std::make_shared<const gpu::SceneArrays>(gpu::lay_out(context, BvhQuality::high, renderer->bvh_width()));
+      compile_seconds = renderer->load(*arrays, image_bytes, panel);
+    } else {
+      compile_seconds =
+          renderer->load(gpu::lay_out(context, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
+    }
     uploaded = std::move(now);
     uploaded_path = path, uploaded_emitters = emitters;
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -195,8 +216,9 @@ struct GpuExecutor::Impl {
 };
 
 GpuExecutor::GpuExecutor(const DeviceChoice& device, const RenderContext& context, const FrameCamera& camera,
-                         const RenderOptions& options)
+                         const RenderOptions& options, GpuLayouts* layouts)
     : impl_(std::make_unique<Impl>()) {
+  impl_->layouts = layouts;
   if (options.cache.enabled)
     throw std::invalid_argument("`cache`: the shadow cache is the CPU path's; the GPU path traces every shadow ray");
   try {
@@ -263,8 +285,13 @@ std::string device_of_local_rank(const std::string& device, int) {
   return device;
 }
 
+struct GpuLayouts::Impl {};
+GpuLayouts::GpuLayouts() = default;
+GpuLayouts::~GpuLayouts() = default;
+size_t GpuLayouts::size() const { return 0; }
+
 struct GpuExecutor::Impl {};
-GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderContext&, const FrameCamera&, const RenderOptions&) {
+GpuExecutor::GpuExecutor(const DeviceChoice&, const RenderContext&, const FrameCamera&, const RenderOptions&, GpuLayouts*) {
   throw std::runtime_error(kNoGpu);
 }
 GpuExecutor::~GpuExecutor() = default;

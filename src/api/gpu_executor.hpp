@@ -29,6 +29,22 @@ DeviceChoice parse_device(const std::string& device);
 /// -1 when none is a GPU.
 int gpu_of_local_rank(const std::vector<bool>& is_gpu, int local_rank);
 
+/// The GPU path's layouts of one World's scene (gpu::lay_out: its records
+/// and hierarchy, in host memory), one per hierarchy width, made by the
+/// world's first GPU renderer of that width and kept for the next: a
+/// World's scene does not move, so its layout stands. Thread-safe; a
+/// second renderer asking while the first lays out waits for it. Empty in
+/// a build without the GPU path.
+class GpuLayouts {
+ public:
+  GpuLayouts();
+  ~GpuLayouts();
+  /// How many layouts it holds.
+  size_t size() const;
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+
 class GpuExecutor {
  public:
   /// Chooses the device and uploads `context`'s scene, with the path
@@ -37,7 +53,10 @@ class GpuExecutor {
   /// std::invalid_argument for the shadow cache (the CPU path's), and
   /// std::runtime_error when the GPU cannot run (no loader, no device, not
   /// enough memory: the message says what to do).
-  GpuExecutor(const DeviceChoice& device, const RenderContext& context, const FrameCamera& camera, const RenderOptions& options);
+  /// `layouts`: the world's, whose layout of the scene it takes where one
+  /// stands (null: it lays the scene out itself).
+  GpuExecutor(const DeviceChoice& device, const RenderContext& context, const FrameCamera& camera, const RenderOptions& options,
+              GpuLayouts* layouts = nullptr);
   ~GpuExecutor();
   /// "NVIDIA H100 80GB HBM3 (Vulkan 1.3)".
   std::string name() const;

@@ -12,6 +12,7 @@
 #include "api/internal.hpp"
 #include "api/light_options.hpp"
 #include "api/renderer_state.hpp"
+#include "api/world_state.hpp"
 #include "holoray/errors.hpp"
 #include "holoray/render.hpp"
 #include "render/render_context.hpp"
@@ -120,19 +121,16 @@ std::string describe_camera(const FrameCameraDesc& choice, const FrameCamera& ca
 RendererState& detail::RendererAccess::state(const Renderer& r) { return *r.state_; }
 
 
-Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options)
-    : state_(std::make_unique<RendererState>()) {
-  RendererState& s = *state_;
-  const auto t_build = Clock::now();
-  check_options(options);
-  s.options = options;
-  s.scene = scene.data();
+namespace {
+
+// The camera placed on `desc`'s viewpoint and checked against the options
+// and this machine's memory: what a Renderer does before anything is built.
+void place_camera(RendererState& s, const SceneDesc& desc, const Camera& camera, const RenderOptions& options) {
   s.public_camera = camera;
   s.choice = frame_camera_desc(camera);
   const auto* pinhole = s.choice.get<FrameCameraDesc::Pinhole>();
   if (pinhole && pinhole->tachyon_samples && options.spp != 1)
     throw std::invalid_argument("tachyon samples: go with the pinhole camera and one sample per pixel");
-  const SceneDesc& desc = s.scene->desc;
   if (desc.source.empty() && !desc.viewpoint && !s.choice.placed_explicitly())
     throw std::invalid_argument("camera: the scene has no viewpoint to place it by: call set_viewpoint(), or place the lens array explicitly");
   s.placed = make_frame_camera(s.choice, desc.viewpoint, desc.source.empty() ? "the scene" : desc.source);
@@ -160,46 +158,83 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions
                                         width, height, need / 1073741824.0,
                                         share.where,
                                         have / 1073741824.0));
+}
 
-  // A scene built in code without lights is lit as a mesh file is: by a
-  // headlight at its viewpoint.
-  if (desc.lights.empty() && desc.viewpoint && desc.source.empty()) {
-    auto lit = std::make_shared<SceneData>(*s.scene);
-    Light headlight;
-    headlight.position = desc.viewpoint->from;
-    headlight.headlight = true;
-    lit->desc.lights.push_back(headlight);
-    s.scene = std::move(lit);
-  }
-  const DeviceChoice device = parse_device(options.device);
-  s.render_scene = std::make_unique<RenderScene>(s.scene->desc);
-  // Embree's hierarchy is the CPU path's: a GPU render builds only its own.
-  if (!device.gpu) s.render_scene->accel().build();
-  s.settings = file_settings(*s.render_scene);
-  if (options.max_depth != 0) s.settings.max_depth = options.max_depth;
-  if (options.integrator == Integrator::path) {
-    s.environment = environment_of(options.environment, s.scene->desc);
-    s.settings.integrator = holoray::Integrator::path;
-    s.settings.environment = s.environment.get();
-    s.settings.principled = options.blender_principled;
-    s.emitters = std::make_unique<EmissiveTriangles>(*s.render_scene);
-    if (!s.emitters->empty()) s.settings.emitters = s.emitters.get();
-    // The readers' stand-in headlight lights a scene without light; an
-    // environment of the render's own, or emissive surfaces, are light.
-    s.settings.skip_headlights = options.environment.given() || !s.emitters->empty();
-  }
+bool same_environment(const Environment& a, const Environment& b) {
+  return a.file == b.file && a.colour == b.colour && a.strength == b.strength && a.rotation_deg == b.rotation_deg;
+}
+
+// A render's options on a World: its light options are the world's. Each
+// left at its default takes the world's; one given otherwise is refused.
+RenderOptions on_world(const WorldState& w, RenderOptions o) {
+  const RenderOptions defaults;
+  auto take = [](auto& field, const auto& world_value, const auto& default_value, bool same, const char* name) {
+    if (!same && !(field == default_value))
+      throw std::invalid_argument(fmt::format("{}: the world was built with other light options: build a World with these, "
+                                              "or leave it at its default to take the world's", name));
+    field = world_value;
+  };
+  take(o.integrator, w.integrator, defaults.integrator, o.integrator == w.integrator, "integrator");
+  if (!same_environment(o.environment, w.environment_options) && !same_environment(o.environment, defaults.environment))
+    throw std::invalid_argument("environment: the world was built with other light options: build a World with these, "
+                                "or leave it at its default to take the world's");
+  o.environment = w.environment_options;
+  take(o.blender_principled, w.blender_principled, defaults.blender_principled, o.blender_principled == w.blender_principled,
+       "blender_principled");
+  take(o.max_depth, w.max_depth, defaults.max_depth, o.max_depth == w.max_depth, "max_depth");
+  return o;
+}
+
+}  // namespace
+
+void check_camera(const World& world, const Camera& camera, const RenderOptions& options) {
+  const WorldState& w = *detail::WorldAccess::state(world);
+  const RenderOptions o = on_world(w, options);
+  check_options(o);
+  RendererState scratch;
+  place_camera(scratch, w.scene->desc, camera, o);
+}
+
+Renderer::Renderer(const Scene& scene, const Camera& camera, const RenderOptions& options)
+    : state_(std::make_unique<RendererState>()) {
+  const auto t_build = Clock::now();
+  check_options(options);
+  place_camera(*state_, scene.data()->desc, camera, options);
+  set_up(World(scene, options), options, t_build, false);
+}
+
+Renderer::Renderer(const World& world, const Camera& camera, const RenderOptions& options)
+    : state_(std::make_unique<RendererState>()) {
+  const auto t_build = Clock::now();
+  const RenderOptions o = on_world(*detail::WorldAccess::state(world), options);
+  check_options(o);
+  place_camera(*state_, detail::WorldAccess::state(world)->scene->desc, camera, o);
+  set_up(world, o, t_build, true);
+}
+
+void Renderer::set_up(const World& world, const RenderOptions& options, Clock::time_point t_build, bool shared) {
+  RendererState& s = *state_;
+  s.options = options;
+  s.world = detail::WorldAccess::state(world);
+  const RenderScene& scene = *s.world->render_scene;
+  s.settings = s.world->settings;
+  const FrameCamera& frame_camera = s.camera();
   // Mesh textures take the MIP level of what one pixel sees.
   if (const auto angle = frame_camera.pixel_angle()) s.settings.footprint = {0, *angle};
   if (options.cache.enabled) {
     holoray::ShadowCacheOptions co;
-    co.cell_size = options.cache.cell * array_camera->desc().pitch;
+    co.cell_size = options.cache.cell * frame_camera.lens_array()->desc().pitch;
     co.memory_limit_bytes = static_cast<uint64_t>(options.cache.memory_mib * 1048576.0);
-    s.cache = std::make_unique<ShadowCache>(*s.render_scene, co);
+    s.cache = std::make_unique<ShadowCache>(scene, co);
     s.settings.shadow_cache = s.cache.get();
   }
   s.style = trace_style(options.style, frame_camera);
-  if (device.gpu)
-    s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(*s.render_scene, s.settings), frame_camera, options);
+  // Embree's hierarchy is the CPU path's: a GPU render builds only its own.
+  if (const DeviceChoice device = parse_device(options.device); device.gpu)
+    s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(scene, s.settings), frame_camera, options,
+                                          shared ? s.world->gpu_layouts.get() : nullptr);
+  else
+    scene.accel().build();
   s.build.build_seconds = seconds_since(t_build);
   s.build.gpu_setup_seconds = s.gpu ? s.gpu->setup_seconds() : 0;
 }
@@ -214,11 +249,11 @@ int Renderer::band_rows() const {
   const holoray::LensArray* array = state_->camera().lens_array();
   return array ? array->desc().pixels_per_lens : 32;
 }
-size_t Renderer::skipped_polygons() const { return state_->render_scene->skipped_polygons(); }
+size_t Renderer::skipped_polygons() const { return state_->world->render_scene->skipped_polygons(); }
 const RenderStats& Renderer::build_stats() const { return state_->build; }
 
 std::string Renderer::describe() const {
-  return describe_viewpoint(state_->choice, state_->scene->desc.viewpoint) +
+  return describe_viewpoint(state_->choice, state_->world->scene->desc.viewpoint) +
          describe_camera(state_->choice, state_->camera(), state_->public_camera);
 }
 
@@ -246,7 +281,7 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
     };
   holoray::RenderStats st;
   RenderStats on_gpu;
-  const RenderContext context(*s.render_scene, s.settings);
+  const RenderContext context(*s.world->render_scene, s.settings);
   FrameBuffers fb = s.gpu ? s.gpu->render(context, s.camera(), ro.aovs, ro.spp, rows, on_gpu)
                           : render_through(context, s.camera(), ro, st);
   Result out;

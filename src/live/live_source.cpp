@@ -10,9 +10,8 @@
 namespace holoray::api {
 
 
-// A still: the Renderer checks everything `render` checks and builds the
-// scene once; its own executor stays the CPU's (never used): the GPU path
-// is made on the window's instance.
+// A still: its World, built once, after the checks a Renderer on it makes
+// (check_camera); the GPU path is made on the window's instance.
 LiveSource still_source(const Scene& scene, const Camera& camera, const RenderOptions& options) {
   if (std::holds_alternative<Quilt>(camera))
     throw std::invalid_argument("`Quilt`: a quilt is not shown live; show a Looking Glass's own panel image (`LookingGlass`)");
@@ -24,13 +23,14 @@ LiveSource still_source(const Scene& scene, const Camera& camera, const RenderOp
   RenderOptions built = options;
   built.device = "cpu";
   built.aovs = {};
-  s.renderer = std::make_unique<Renderer>(scene, camera, built);
-  RendererState& state = detail::RendererAccess::state(*s.renderer);
-  s.scene = state.render_scene.get();
-  s.settings = state.settings;
-  s.choice = state.choice;
+  s.world = std::make_unique<World>(scene, built);
+  check_camera(*s.world, camera, built);  // as a Renderer on it checks it
+  const WorldState& w = *detail::WorldAccess::state(*s.world);
+  s.scene = w.render_scene.get();
+  s.settings = w.settings;
+  s.choice = frame_camera_desc(camera);
   s.name = s.encoding_path = scene.source();
-  const Viewpoint vp = *state.scene->desc.viewpoint;
+  const Viewpoint vp = *w.scene->desc.viewpoint;
   s.viewpoint = [vp](int) { return vp; };
   return s;
 }

@@ -1,5 +1,5 @@
-// holoray/live: what `holoray live` shows, built once: a still scene (by a
-// Renderer, with every check `render` makes) or an animated shot (by
+// holoray/live: what `holoray live` shows, built once: a still scene (its
+// World, with every check `render` makes) or an animated shot (by
 // ShotFrames), the camera, and the viewpoint at each of its frames.
 #pragma once
 
@@ -11,6 +11,7 @@
 #include "holoray/camera.hpp"
 #include "holoray/render.hpp"
 #include "holoray/scene.hpp"
+#include "holoray/world.hpp"
 #include "render/frame_camera.hpp"
 #include "render/render_context.hpp"
 #include "shot/shot_frames.hpp"
@@ -29,7 +30,7 @@ struct LiveSource {
   double fps = 24;
   std::function<Viewpoint(int frame)> viewpoint;
   std::function<void(int frame)> seek;  // a shot: the scene moved to the frame
-  std::unique_ptr<Renderer> renderer;   // a still's, which built it
+  std::unique_ptr<World> world;         // a still's, which built it
   std::unique_ptr<ShotFrames> shot;
 };
 
