@@ -184,56 +184,103 @@ TEST(IntersectPackets, RefinedHitsEqualSingleRaysBitForBit) {
 // child box holding what is under it (the fast build, without spatial
 // splits: each primitive's whole box, and in exactly one leaf), no slot
 // past the width used, and no deeper than the GPU's stack allows.
-TEST(BvhBuilder, EveryPrimitiveSitsUnderBoxesThatHoldIt) {
+// Every child box holds its node's children's boxes, and every primitive
+// sits in at least one leaf (exactly one without spatial splits); with
+// `whole`, each leaf's box holds its primitives' whole boxes (no split
+// clipped them: a fast build, or a refit).
+void expect_boxes_hold_their_primitives(const Bvh& bvh, const std::vector<PrimitiveBox>& boxes, bool whole, bool once) {
+  const int width = bvh.width;
+  EXPECT_LE((width - 1) * (bvh.depth - 1) + 1, 64);  // HR_STACK
+  std::vector<int> seen(boxes.size(), 0);
+  // Depth first from the root, each child checked against its parent's slot.
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const BvhNode& n = bvh.nodes[size_t(stack.back())];
+    stack.pop_back();
+    for (int c = 0; c < kBvhMaxWidth; ++c) {
+      if (c >= width) EXPECT_EQ(n.count[c], -1);
+      if (n.count[c] < 0) continue;
+      if (n.count[c] == 0) {
+        const BvhNode& child = bvh.nodes[size_t(n.index[c])];
+        for (int g = 0; g < kBvhMaxWidth; ++g)
+          for (int a = 0; a < 3 && child.count[g] >= 0; ++a) {
+            EXPECT_GE(child.lo[a][g], n.lo[a][c]);
+            EXPECT_LE(child.hi[a][g], n.hi[a][c]);
+          }
+        stack.push_back(n.index[c]);
+        continue;
+      }
+      ASSERT_LE(n.count[c], 4);
+      for (int r = 0; r < n.count[c]; ++r) {
+        const uint32_t p = bvh.order[size_t(n.index[c] + r)];
+        ++seen[p];
+        if (whole)
+          for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(boxes[p].lo[a], n.lo[a][c]);
+            EXPECT_LE(boxes[p].hi[a], n.hi[a][c]);
+          }
+      }
+    }
+  }
+  for (size_t p = 0; p < boxes.size(); ++p) {
+    ASSERT_GE(seen[p], 1) << "primitive " << p;
+    if (once) ASSERT_EQ(seen[p], 1) << "primitive " << p;
+  }
+}
+
+std::vector<PrimitiveBox> scattered_boxes(uint32_t seed) {
   std::vector<PrimitiveBox> boxes;
-  uint32_t seed = 7;
   auto next = [&] { return (seed = seed * 1664525u + 1013904223u) / 4294967296.0f; };
   for (int k = 0; k < 5000; ++k) {
     const float x = 100 * next(), y = 100 * next(), z = 10 * next(), w = 0.1f + 3 * next();
     boxes.push_back({{x, y, z}, {x + w, y + w * next(), z + w}});
   }
+  return boxes;
+}
+
+TEST(BvhBuilder, EveryPrimitiveSitsUnderBoxesThatHoldIt) {
+  const std::vector<PrimitiveBox> boxes = scattered_boxes(7);
   for (const int width : {4, 8})
-  for (const BvhQuality q : {BvhQuality::high, BvhQuality::fast}) {
-    SCOPED_TRACE(width);
-    const Bvh bvh = build_bvh(boxes, 4, q, width);
-    EXPECT_EQ(bvh.width, width);
-    EXPECT_LE((width - 1) * (bvh.depth - 1) + 1, 64);  // HR_STACK
-    std::vector<int> seen(boxes.size(), 0);
-    // Depth first from the root, each child checked against its parent's slot.
-    std::vector<int> stack{0};
-    while (!stack.empty()) {
-      const BvhNode& n = bvh.nodes[size_t(stack.back())];
-      stack.pop_back();
-      for (int c = 0; c < kBvhMaxWidth; ++c) {
-        if (c >= width) EXPECT_EQ(n.count[c], -1);
-        if (n.count[c] < 0) continue;
-        if (n.count[c] == 0) {
-          const BvhNode& child = bvh.nodes[size_t(n.index[c])];
-          for (int g = 0; g < kBvhMaxWidth; ++g)
-            for (int a = 0; a < 3 && child.count[g] >= 0; ++a) {
-              EXPECT_GE(child.lo[a][g], n.lo[a][c]);
-              EXPECT_LE(child.hi[a][g], n.hi[a][c]);
-            }
-          stack.push_back(n.index[c]);
-          continue;
-        }
-        ASSERT_LE(n.count[c], 4);
-        for (int r = 0; r < n.count[c]; ++r) {
-          const uint32_t p = bvh.order[size_t(n.index[c] + r)];
-          ++seen[p];
-          if (q == BvhQuality::fast)
-            for (int a = 0; a < 3; ++a) {
-              EXPECT_GE(boxes[p].lo[a], n.lo[a][c]);
-              EXPECT_LE(boxes[p].hi[a], n.hi[a][c]);
-            }
-        }
+    for (const BvhQuality q : {BvhQuality::high, BvhQuality::fast}) {
+      SCOPED_TRACE(width);
+      const Bvh bvh = build_bvh(boxes, 4, q, width);
+      EXPECT_EQ(bvh.width, width);
+      expect_boxes_hold_their_primitives(bvh, boxes, q == BvhQuality::fast, q == BvhQuality::fast);
+    }
+}
+
+// A refit keeps the tree and recomputes its boxes: over the boxes it was
+// built on, a fast build's nodes come back bit for bit; over moved boxes
+// every leaf holds its primitives' whole boxes again (split leaves too);
+// and the node cost grows as primitives part.
+TEST(BvhBuilder, ARefitHoldsTheMovedPrimitivesAndItsCostGrowsAsTheyPart) {
+  const std::vector<PrimitiveBox> boxes = scattered_boxes(11);
+  for (const int width : {4, 8})
+    for (const BvhQuality q : {BvhQuality::high, BvhQuality::fast}) {
+      SCOPED_TRACE(testing::Message() << width << (q == BvhQuality::fast ? " fast" : " high"));
+      const Bvh built = build_bvh(boxes, 4, q, width);
+      if (q == BvhQuality::fast) {
+        Bvh same = built;
+        refit_bvh(same, boxes);
+        ASSERT_EQ(same.nodes.size(), built.nodes.size());
+        EXPECT_EQ(std::memcmp(same.nodes.data(), built.nodes.data(), built.nodes.size() * sizeof(BvhNode)), 0);
       }
+      // A small drift, then half the primitives carried 1000 units away.
+      std::vector<PrimitiveBox> drift = boxes, parted = boxes;
+      for (size_t p = 0; p < boxes.size(); ++p)
+        for (int a = 0; a < 3; ++a) {
+          const float d = 0.3f * float((p * 7 + size_t(a) * 3) % 5) - 0.6f;
+          drift[p].lo[a] += d, drift[p].hi[a] += d;
+          if (p % 2) parted[p].lo[a] += 1000, parted[p].hi[a] += 1000;
+        }
+      Bvh drifted = built, apart = built;
+      refit_bvh(drifted, drift);
+      refit_bvh(apart, parted);
+      expect_boxes_hold_their_primitives(drifted, drift, true, q == BvhQuality::fast);
+      expect_boxes_hold_their_primitives(apart, parted, true, q == BvhQuality::fast);
+      EXPECT_LT(bvh_cost(drifted, drift), 1.2 * bvh_cost(built, boxes));
+      EXPECT_GT(bvh_cost(apart, parted), 3 * bvh_cost(build_bvh(parted, 4, q, width), parted));
     }
-    for (size_t p = 0; p < boxes.size(); ++p) {
-      ASSERT_GE(seen[p], 1) << "primitive " << p;
-      if (q == BvhQuality::fast) ASSERT_EQ(seen[p], 1) << "primitive " << p;
-    }
-  }
 }
 
 }  // namespace

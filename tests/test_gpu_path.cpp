@@ -18,6 +18,7 @@
 #include <map>
 #include <string>
 
+#include "api/internal.hpp"
 #include "api/world_state.hpp"
 #include "gpu/gpu_renderer.hpp"
 #include "image/metrics.hpp"
@@ -348,6 +349,49 @@ TEST(GpuPath, AnimatedFramesMatchTheCpuPathAsObjectsMove) {
 
 // The guide's example shot, from the command line: its last frame (the
 // object moved furthest from where frame 0 laid it out) as the CPU traces it.
+// A moving object's hierarchy is built once and then refitted frame by
+// frame (gpu::KeptBvh) while the refit tree's node cost stays within
+// kRefitGrowth of its build's, and built again when the objects part; a
+// refitted frame renders what the CPU renders.
+TEST(GpuPath, AMovingSceneIsRefittedUntilItsObjectsPart) {
+  TempDir dir;
+  // A red ball and a small box hovering over primitives.nff's floor.
+  write_text(dir.file("moving.nff"), "f 0.9 0.2 0.2 0.8 0.2 20 0 1\ns 1.5 -2 1.5 0.6\n"
+                                     "p 4\n-2 -2 2.2\n-1.4 -2 2.2\n-1.4 -1.4 2.2\n-2 -1.4 2.2\n");
+  const SceneDesc still = read_nff_file(source_dir() + "/examples/primitives.nff");
+  const SceneDesc moving = read_nff_file(dir.file("moving.nff"));
+  RenderScene scene(std::vector<ScenePart>{{&still, false, false}, {&moving, true, false}});
+  gpu::KeptBvh kept;
+  const std::vector<std::pair<Affine, const char*>> frames = {
+      {Affine::translate(Vec3{0.05, 0, 0}), "built"},
+      {Affine::translate(Vec3{0.1, 0.02, 0}), "refitted"},
+      {Affine::translate(Vec3{0.15, 0.04, 0}) * Affine::rotate_axis(2, 5), "refitted"},
+      {Affine::translate(Vec3{400, 0, 0}), "built"}};
+  int builds = 0, refits = 0;
+  for (const auto& [move, what] : frames) {
+    scene.set_transforms({Affine{}, move});
+    const RenderContext context(scene);
+    const gpu::SceneArrays arrays = gpu::lay_out(context, BvhQuality::fast, 4, &kept);
+    std::string(what) == "built" ? ++builds : ++refits;
+    EXPECT_EQ(kept.builds, builds) << what;
+    EXPECT_EQ(kept.refits, refits) << what;
+    if (std::string(what) != "refitted") continue;
+    // The refitted frame against the CPU path, through a pinhole view.
+    const PinholeCamera camera(view_of(*still.viewpoint, 96, 64));
+    gpu::GpuRenderer gpu;
+    gpu.load(arrays, gpu::GpuRenderer::frame_bytes(96, 64, true), false);
+    const AovSet aovs{false, false, false, true};
+    holoray::RenderOptions ro;
+    ro.aovs = aovs;
+    holoray::RenderStats cpu_stats;
+    const FrameBuffers cpu = render_view(context, camera, ro, cpu_stats);
+    FrameBuffers out = allocate_frame(96, 64, aovs);
+    holoray::RenderStats g;
+    gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, 64), aovs, out, g);
+    EXPECT_GE(compare_images(cpu.colour, out.colour).psnr_all(), 50.0) << what;
+  }
+}
+
 TEST(GpuPath, TheExampleShotAnimatesOnTheGpu) {
   TempDir dir;
   const std::string shot = source_dir() + "/examples/shots/sliding_primitives.toml";
@@ -589,6 +633,43 @@ TEST(GpuPath, NoRayPassesBetweenTheTrianglesOfAClosedMesh) {
     rays += size_t(r.id.width()) * r.id.height();
   }
   EXPECT_EQ(missed, 0u) << "of " << rays << " rays from inside the mesh";
+}
+
+// The traversal's stack is sized by the build's depth bound: a node stacks
+// at most width - 1 more children than it pops, so a hierarchy of depth d
+// needs (width - 1) (d - 1) + 1 of its 64 entries, and Embree's builder
+// (maxDepth 20 at 4 wide, 18 at 8: the 8-wide build is checked) makes
+// leaves rather than go deeper. At the bound the check passes; one level
+// past it, the layout is refused, naming both.
+TEST(GpuPath, TheStacksBoundIsTheBuildsDepthBound) {
+  EXPECT_NO_THROW(gpu::check_stack(20, 4));  // 3 x 19 + 1 = 58 entries
+  EXPECT_NO_THROW(gpu::check_stack(10, 8));  // 7 x 9 + 1 = 64
+  try {
+    gpu::check_stack(23, 4);  // 67 entries
+    ADD_FAILURE() << "a 23-level hierarchy was let through";
+  } catch (const std::length_error& e) {
+    EXPECT_STREQ(e.what(), "the scene's hierarchy is 23 levels deep, more than the GPU path's stack holds (22)");
+  }
+  EXPECT_THROW(gpu::check_stack(11, 8), std::length_error);
+}
+
+// A chain of spheres each half the size of the one before, converging on
+// the origin, makes the builder split a few off at each level until it
+// stops weighing costs (within 8 levels of its maxDepth, where it makes
+// leaves by count): the deepest hierarchy its surface area heuristic builds
+// for few primitives. The GPU renders it as the CPU does.
+TEST(GpuPath, TheDeepestHierarchyOfAChainRendersAsTheCpuPath) {
+  Scene scene;
+  for (int k = 0; k < 120; ++k) {
+    const double s = std::pow(0.5, k);
+    scene.add_sphere({s, 0, 0}, 0.25 * s, {0.3 + 0.005 * k, 0.5, 0.8 - 0.006 * k});
+  }
+  scene.add_light({0.5, -4, 4});
+  scene.set_viewpoint({0.5, -1.5, 0.8}, {0.45, 0, 0}, {0, 0, 1}, 50);
+  const gpu::SceneArrays laid = gpu::lay_out(RenderScene(scene.data()->desc));
+  EXPECT_GE(laid.bvh_depth, 14);  // balanced, its 30 leaves of 4 would take 3 levels
+  expect_agreement(both_ways(scene, array_of(api::Grid::square)), "a deep hierarchy, EIA");
+  expect_agreement(both_ways(scene, api::Pinhole{160, 120}), "a deep hierarchy, pinhole");
 }
 
 // Every buffer the kernel binds must fit the device's maxStorageBufferRange

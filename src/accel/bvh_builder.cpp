@@ -178,4 +178,59 @@ Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf, BvhQuality q
   return out;
 }
 
+namespace {
+
+// Child k's box of `n` recomputed, and the node's whole box returned (its
+// children's union), depth first.
+PrimitiveBox refit_node(Bvh& bvh, int at, const std::vector<PrimitiveBox>& boxes) {
+  PrimitiveBox whole{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+  for (int k = 0; k < kBvhMaxWidth; ++k) {
+    const int32_t count = bvh.nodes[static_cast<size_t>(at)].count[k];
+    if (count < 0) continue;
+    PrimitiveBox box{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    const int32_t index = bvh.nodes[static_cast<size_t>(at)].index[k];
+    if (count == 0) {
+      box = refit_node(bvh, index, boxes);
+    } else {
+      for (int32_t q = index; q < index + count; ++q) {
+        const uint32_t prim = bvh.order[static_cast<size_t>(q)];
+        if (prim >= boxes.size())
+          throw std::invalid_argument(fmt::format("refit: the hierarchy names primitive {} of {}", prim, boxes.size()));
+        for (int a = 0; a < 3; ++a)
+          box.lo[a] = std::min(box.lo[a], boxes[prim].lo[a]), box.hi[a] = std::max(box.hi[a], boxes[prim].hi[a]);
+      }
+    }
+    BvhNode& n = bvh.nodes[static_cast<size_t>(at)];  // the recursion above does not reallocate, but read it again
+    for (int a = 0; a < 3; ++a) {
+      n.lo[a][k] = box.lo[a], n.hi[a][k] = box.hi[a];
+      whole.lo[a] = std::min(whole.lo[a], box.lo[a]), whole.hi[a] = std::max(whole.hi[a], box.hi[a]);
+    }
+  }
+  return whole;
+}
+
+double area(const float lo[3], const float hi[3]) {
+  const double d[3] = {std::max(0.0, double(hi[0]) - lo[0]), std::max(0.0, double(hi[1]) - lo[1]),
+                       std::max(0.0, double(hi[2]) - lo[2])};
+  return 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+}
+
+}  // namespace
+
+void refit_bvh(Bvh& bvh, const std::vector<PrimitiveBox>& boxes) {
+  if (!bvh.nodes.empty()) refit_node(bvh, 0, boxes);
+}
+
+double bvh_cost(const Bvh& bvh, const std::vector<PrimitiveBox>& boxes) {
+  double nodes = 0, prims = 0;
+  for (const BvhNode& n : bvh.nodes)
+    for (int k = 0; k < kBvhMaxWidth; ++k) {
+      if (n.count[k] < 0) continue;
+      const float lo[3] = {n.lo[0][k], n.lo[1][k], n.lo[2][k]}, hi[3] = {n.hi[0][k], n.hi[1][k], n.hi[2][k]};
+      nodes += area(lo, hi);
+    }
+  for (const PrimitiveBox& b : boxes) prims += area(b.lo, b.hi);
+  return prims > 0 ? nodes / prims : nodes;
+}
+
 }  // namespace holoray

@@ -53,4 +53,20 @@ enum class BvhQuality { high, fast };
 Bvh build_bvh(const std::vector<PrimitiveBox>& boxes, int max_leaf = 4, BvhQuality quality = BvhQuality::high,
               int width = 4);
 
+/// The same tree over primitives that moved: every child's box recomputed
+/// bottom up from `boxes` (numbered as the build's), the nodes, leaves and
+/// order kept. A primitive the build split across leaves takes its whole
+/// box in each (looser, never missing it). Throws std::invalid_argument when
+/// `order` names a primitive past `boxes`.
+void refit_bvh(Bvh& bvh, const std::vector<PrimitiveBox>& boxes);
+
+/// How loose `bvh`'s boxes are around `boxes` (numbered as the build's):
+/// the summed surface areas of every child's box over those of the
+/// primitives' own boxes (the surface area heuristic's node cost, measured
+/// against the primitives rather than the root, so that it does not change
+/// when the whole scene moves rigidly). A refit tree whose primitives parted
+/// grows it, where its boxes now span the gap; the caller rebuilds past a
+/// bound (gpu_scene.cpp).
+double bvh_cost(const Bvh& bvh, const std::vector<PrimitiveBox>& boxes);
+
 }  // namespace holoray

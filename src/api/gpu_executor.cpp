@@ -162,6 +162,7 @@ size_t GpuLayouts::size() const {
 struct GpuExecutor::Impl {
   std::unique_ptr<gpu::GpuRenderer> renderer;
   GpuLayouts* layouts = nullptr;  // the world's, or null
+  gpu::KeptBvh kept;  // an animation's hierarchy, refitted as its objects move
   std::optional<gpu::ScenePose> uploaded;
   bool uploaded_path = false;       // laid out with the path integrator's lights
   bool uploaded_emitters = false;   // ...and emitters (RenderSettings::emitters)
@@ -195,19 +196,20 @@ struct GpuExecutor::Impl {
     gpu::ScenePose now(scene.accel());
     if (uploaded && *uploaded == now && uploaded_path == path && uploaded_emitters == emitters) return 0;
     const auto start = std::chrono::steady_clock::now();
-    // A scene that moves is rebuilt every frame: without spatial splits the
-    // build took a fifth of the time (gears_s4: 19 ms a frame against 95,
-    // 2 cores) for the same work per ray (5.9 nodes and 1.8 primitives
-    // against 5.8 and 1.8; docs/design/gpu.md).
+    // A scene that moves is built again without spatial splits (a fifth of
+    // the time: gears_s4 19 ms a frame against 95, 2 cores, for the same
+    // work per ray) and then refitted frame by frame while the refit tree
+    // stays within kRefitGrowth of its cost (docs/design/gpu.md).
     if (layouts && !uploaded) {  // a World's scene as it was built: its layout, made once for all its renderers
       GpuLayouts::Impl& kept = *layouts->impl;
       const std::lock_guard lock(kept.lock);
       std::shared_ptr<const gpu::SceneArrays>& arrays = kept.by_width[renderer->bvh_width()];
       if (!arrays) arrays = std::make_shared<const gpu::SceneArrays>(gpu::lay_out(context, BvhQuality::high, renderer->bvh_width()));
       compile_seconds = renderer->load(*arrays, image_bytes, panel);
-    } else {
-      compile_seconds =
-          renderer->load(gpu::lay_out(context, uploaded ? BvhQuality::fast : BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
+    } else if (!uploaded) {
+      compile_seconds = renderer->load(gpu::lay_out(context, BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
+    } else {  // a frame whose objects moved: the hierarchy of the frames before, refitted (gpu::KeptBvh)
+      compile_seconds = renderer->load(gpu::lay_out(context, BvhQuality::fast, renderer->bvh_width(), &kept), image_bytes, panel);
     }
     uploaded = std::move(now);
     uploaded_path = path, uploaded_emitters = emitters;

@@ -112,7 +112,40 @@ uint64_t SceneArrays::bytes() const {
          area_lights.size() * sizeof(GpuAreaLight) + environment.size() * sizeof(GpuEnvTexel) + emitters.size() * sizeof(GpuEmitter);
 }
 
-SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width) {
+void check_stack(int depth, int width) {
+  // A node pushes at most width - 1 more children than it pops: the
+  // traversal's stack (HR_STACK entries) must hold (width - 1) (depth - 1) + 1.
+  if ((width - 1) * (depth - 1) + 1 > HR_STACK)
+    throw std::length_error(fmt::format("the scene's hierarchy is {} levels deep, more than the GPU path's stack holds ({})",
+                                        depth, (HR_STACK - 1) / (width - 1) + 1));
+}
+
+namespace {
+
+// The hierarchy over `boxes`: `kept`'s refitted while its cost stays within
+// kRefitGrowth of its build's, else built at `quality` (and kept).
+Bvh hierarchy(const std::vector<PrimitiveBox>& boxes, BvhQuality quality, int bvh_width, KeptBvh* kept) {
+  if (kept && kept->bvh.width == bvh_width && kept->primitives == boxes.size() && !kept->bvh.nodes.empty()) {
+    Bvh refitted = kept->bvh;
+    refit_bvh(refitted, boxes);
+    if (bvh_cost(refitted, boxes) <= kRefitGrowth * kept->built_cost) {
+      ++kept->refits;
+      return refitted;
+    }
+  }
+  Bvh built = build_bvh(boxes, 4, quality, bvh_width);
+  if (kept) {
+    kept->bvh = built;
+    kept->primitives = boxes.size();
+    kept->built_cost = bvh_cost(built, boxes);
+    ++kept->builds;
+  }
+  return built;
+}
+
+}  // namespace
+
+SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width, KeptBvh* kept) {
   const AccelScene& accel = scene.accel();
   SceneArrays out;
   std::vector<PrimitiveBox> boxes;
@@ -202,13 +235,9 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width)
   // in its order.
   // Leaves of up to 4 primitives: 2 and 8 measured the same (within 0.5 %
   // on balls_s4 and gears_s4, 3840x2160, H200).
-  const Bvh bvh = build_bvh(boxes, 4, quality, bvh_width);
+  const Bvh bvh = hierarchy(boxes, quality, bvh_width, kept);
   out.bvh_depth = bvh.depth;
-  // A node pushes at most width - 1 more children than it pops: the
-  // traversal's stack (HR_STACK entries) must hold (width - 1) (depth - 1) + 1.
-  if ((bvh.width - 1) * (bvh.depth - 1) + 1 > HR_STACK)
-    throw std::length_error(fmt::format("the scene's hierarchy is {} levels deep, more than the GPU path's stack holds ({})",
-                                        bvh.depth, (HR_STACK - 1) / (bvh.width - 1) + 1));
+  check_stack(bvh.depth, bvh.width);
   if (bvh.width == 8) out.features |= HR_FEATURE_WIDE_BVH;
   std::vector<uint32_t> refs;
   refs.reserve(bvh.order.size());
@@ -261,8 +290,8 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width)
   return out;
 }
 
-SceneArrays lay_out(const RenderContext& context, BvhQuality quality, int bvh_width) {
-  SceneArrays out = lay_out(context.scene(), quality, bvh_width);
+SceneArrays lay_out(const RenderContext& context, BvhQuality quality, int bvh_width, KeptBvh* kept) {
+  SceneArrays out = lay_out(context.scene(), quality, bvh_width, kept);
   if (context.settings().integrator == Integrator::path) lay_out_path(context, out);
   return out;
 }

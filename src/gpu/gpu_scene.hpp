@@ -68,11 +68,33 @@ struct ScenePose {
   bool operator==(const ScenePose&) const = default;
 };
 
+/// Throws std::length_error naming both depths when a hierarchy `depth`
+/// levels deep with nodes `width` wide could need more of the traversal's
+/// stack than it holds (HR_STACK entries; a depth-first walk needs
+/// (width - 1) (depth - 1) + 1): the build's depth bound (bvh_builder.hpp)
+/// keeps every hierarchy within it, and lay_out checks each.
+void check_stack(int depth, int width);
+
+/// An animation's hierarchy, kept from frame to frame by the one who lays
+/// its frames out (GpuExecutor, live): the tree built at some frame, and
+/// its cost then (bvh_cost). A frame whose groups moved refits it while its
+/// cost stays within kRefitGrowth of the built one, and builds it again
+/// past that (objects that parted make a refit tree's boxes overlap).
+struct KeptBvh {
+  Bvh bvh;
+  size_t primitives = 0;  // the boxes it was built over
+  double built_cost = 0;
+  int builds = 0, refits = 0;
+};
+inline constexpr double kRefitGrowth = 1.5;
+
 /// The scene laid out for the device, its hierarchy built at `quality` with
-/// nodes `bvh_width` (4 or 8) wide. Throws std::length_error when a count
-/// passes the 2^30 a reference holds (or the texels 2^31),
-/// std::runtime_error when Embree's builder fails.
-SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high, int bvh_width = 4);
+/// nodes `bvh_width` (4 or 8) wide, or `kept`'s refitted (KeptBvh; null:
+/// built, not kept). Throws std::length_error when a count passes the 2^30
+/// a reference holds (or the texels 2^31), std::runtime_error when Embree's
+/// builder fails.
+SceneArrays lay_out(const RenderScene& scene, BvhQuality quality = BvhQuality::high, int bvh_width = 4,
+                    KeptBvh* kept = nullptr);
 
 /// The path integrator's light added to `arrays` (laid out from the same
 /// scene): the area lights, the environment image and its alias table
@@ -83,7 +105,7 @@ void lay_out_path(const RenderContext& context, SceneArrays& arrays);
 
 /// lay_out of `context`'s scene, with lay_out_path where its settings ask
 /// for the path integrator: what a render uploads.
-SceneArrays lay_out(const RenderContext& context, BvhQuality quality, int bvh_width);
+SceneArrays lay_out(const RenderContext& context, BvhQuality quality, int bvh_width, KeptBvh* kept = nullptr);
 
 /// One frame's constants: the lens array (any grid, either recording
 /// mode), the scene's box grown by its epsilon, depth limit, background,

@@ -252,13 +252,15 @@ class Session {
   }
 
   // A shot's scene moved to the frame shown, laid out again on the device
-  // where its objects moved (the fast build: gpu_executor.cpp says why).
+  // where its objects moved: the fast build, then refitted frame by frame
+  // (gpu_executor.cpp says why).
   void follow() {
     if (source_.seek && seeked_ != shot_frame_) source_.seek(shot_frame_), seeked_ = shot_frame_;
     gpu::ScenePose now(source_.scene->accel());
     if (uploaded_ && *uploaded_ == now) return;
-    gpu_->load(gpu::lay_out(RenderContext(*source_.scene, source_.settings), uploaded_ ? BvhQuality::fast : BvhQuality::high,
-                            gpu_->bvh_width()),
+    const RenderContext context(*source_.scene, source_.settings);
+    gpu_->load(uploaded_ ? gpu::lay_out(context, BvhQuality::fast, gpu_->bvh_width(), &kept_)
+                         : gpu::lay_out(context, BvhQuality::high, gpu_->bvh_width()),
                image_bytes_, panel_);
     uploaded_ = std::move(now);
   }
@@ -386,6 +388,7 @@ class Session {
   std::unique_ptr<gpu::Presenter> presenter_;
   uint64_t image_bytes_ = 0;
   std::optional<gpu::ScenePose> uploaded_;
+  gpu::KeptBvh kept_;  // a shot's hierarchy, refitted as its objects move
   std::optional<FrameCamera> camera_;  // as last placed
   gpu::PackParams shown_;
   Showing showing_;
