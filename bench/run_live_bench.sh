@@ -15,8 +15,12 @@
 # rays that meet nothing, the pack and the present).
 # QUICK=1: both panels a quarter as wide and tall (960x540, 384x512, the same
 # lenses), for a CPU device (lavapipe) where the full sizes take minutes a frame.
+# OFFSCREEN=1: live runs with --offscreen instead of in a window under Xvfb
+# (each frame packed and copied on the device to an image of the window's
+# size as a shown one is, not presented, no vsync): for the GPU machines,
+# which have no display and whose driver presents to no Xvfb.
 # Prints a markdown table.
-# Usage: bash bench/run_live_bench.sh  (DEVICE=gpu FRAMES=60 QUICK=1 HOLORAY_SHARED=../shared)
+# Usage: bash bench/run_live_bench.sh  (DEVICE=gpu FRAMES=60 QUICK=1 OFFSCREEN=1 HOLORAY_SHARED=../shared)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 shared=$(cd "${HOLORAY_SHARED:-../shared}" && pwd)
@@ -43,8 +47,13 @@ shot() {
 }
 # holoray live's "frames N shown in S s (F fps)": F, frames after the first per second.
 live_fps() {
-  xvfb-run -a -s "-screen 0 1280x1024x24" build/holoray live --shot "$1" $2 --play --device "$device" --windowed \
-    --exit-after $((frames + 1)) > "$tmp/live.log" 2>&1 || { cat "$tmp/live.log" >&2; exit 1; }
+  if [[ -n ${OFFSCREEN:-} ]]; then
+    build/holoray live --shot "$1" $2 --play --device "$device" --offscreen \
+      --exit-after $((frames + 1)) > "$tmp/live.log" 2>&1 || { cat "$tmp/live.log" >&2; exit 1; }
+  else
+    xvfb-run -a -s "-screen 0 1280x1024x24" build/holoray live --shot "$1" $2 --play --device "$device" --windowed \
+      --exit-after $((frames + 1)) > "$tmp/live.log" 2>&1 || { cat "$tmp/live.log" >&2; exit 1; }
+  fi
   sed -n 's/.*(\([0-9.]*\) fps).*/\1/p' "$tmp/live.log"
 }
 animate_s() {
@@ -55,7 +64,7 @@ animate_s() {
   end=$(date +%s.%N)
   awk "BEGIN { printf \"%.4f\", ($end - $start) / ($frames + 1) }"
 }
-echo "Command: DEVICE=$device FRAMES=$frames${QUICK:+ QUICK=1} bash bench/run_live_bench.sh"
+echo "Command: DEVICE=$device FRAMES=$frames${QUICK:+ QUICK=1}${OFFSCREEN:+ OFFSCREEN=1} bash bench/run_live_bench.sh"
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 echo "Device: $(build/holoray devices | head -n 1)"
 echo

@@ -1064,7 +1064,9 @@ TEST(GpuPath, ADeviceThatStopsRespondingEndsTheRenderWithTheMessageAndNoFile) {
   const std::string device = name.substr(0, name.rfind(" ("));
   const std::string expected = "holoray: error: the GPU (" + device + ") stopped responding: ";
   const std::string waited = " did not finish in 1e-06 s (HOLORAY_GPU_TIMEOUT sets the wait); nothing was written\n";
-  const std::string stopping = "ASAN_OPTIONS=detect_leaks=0 HOLORAY_GPU_TIMEOUT=0.000001 ";
+  // The fault injection makes the wait end as a timeout would, whether
+  // or not the frame finished in the microsecond (a small frame can).
+  const std::string stopping = "ASAN_OPTIONS=detect_leaks=0 HOLORAY_GPU_TIMEOUT=0.000001 HOLORAY_GPU_FAULT=timeout ";
   const CommandResult whitted = run_shell(stopping + HOLORAY_CLI + " render " + scene +
                                           " --lenses 8 --pixels-per-lens 4 --device gpu -q -o " + dir.file("eia.png"));
   EXPECT_EQ(whitted.status, 1);

@@ -178,6 +178,40 @@ TEST(Live, EventScriptErrorsSayWhereAndWhat) {
   EXPECT_EQ(ok[0].event.key, "S");
 }
 
+// ---- offscreen: no display at all ----
+
+// Offscreen (the GPU machines have no display): no window, each frame
+// traced, packed and copied on the device as a shown one is. With neither
+// DISPLAY nor WAYLAND_DISPLAY set, the frame shown is the GPU render, byte
+// for byte, for a lens array and a display panel; replayed input moves the
+// view as it does in a window (the same screenshot as under Xvfb, below);
+// without --exit-after it is refused, there being no window to close.
+TEST(Live, OffscreenTheFrameShownIsTheGpuRenderByteForByte) {
+  TempDir dir;
+  write_text(dir.file("d.toml"), "[panel]\nresolution = [120, 80]\npixel_pitch_mm = 0.1\nsubpixels = \"bgr\"\n"
+                                 "[lens]\ngrid = \"lenticular\"\npitch_mm = 0.4317\nslant_deg = 9.46\nfocal_length_mm = 1.2\n");
+  const std::string headless = "env -u DISPLAY -u WAYLAND_DISPLAY ";
+  for (const std::string& camera : {kArray, " --display " + dir.file("d.toml")}) {
+    const CommandResult live = run_shell(headless + std::string(HOLORAY_CLI) + " live " + kScene + camera +
+                                         " --offscreen --exit-after 3 --screenshot " + dir.file("shown.png"));
+    ASSERT_EQ(live.status, 0) << camera << "\n" << live.output;
+    EXPECT_NE(live.output.find("frames     3 shown"), std::string::npos) << live.output;
+    EXPECT_NE(live.output.find(" fps)"), std::string::npos) << live.output;
+    const CommandResult render = run_cli("render " + kScene + camera + " --device gpu -q -o " + dir.file("render.png"));
+    ASSERT_EQ(render.status, 0) << render.output;
+    EXPECT_TRUE(read_bytes(dir.file("shown.png")) == read_bytes(dir.file("render.png"))) << camera;
+  }
+  const CommandResult forever = run_shell(headless + std::string(HOLORAY_CLI) + " live " + kScene + " --offscreen");
+  EXPECT_EQ(forever.status, 2) << forever.output;  // a usage error
+  EXPECT_NE(forever.output.find("--offscreen requires --exit-after"), std::string::npos) << forever.output;
+  if (!have_xvfb()) return;
+  write_text(dir.file("events.txt"), "1 orbit 36 0\n1 orbit 0 -10\n2 wheel 1\n2 key Up\n3 key Right\n");
+  const std::string moved = "live " + kScene + kArray + " --exit-after 4 --events " + dir.file("events.txt") + " --screenshot ";
+  ASSERT_EQ(run_shell(headless + std::string(HOLORAY_CLI) + " " + moved + dir.file("offscreen.png") + " --offscreen").status, 0);
+  ASSERT_EQ(on_xvfb(moved + dir.file("window.png") + " --windowed").status, 0);
+  EXPECT_TRUE(read_bytes(dir.file("offscreen.png")) == read_bytes(dir.file("window.png")));
+}
+
 // ---- the window, under Xvfb ----
 
 TEST(Live, TheFrameShownIsTheGpuRenderByteForByte) {
@@ -357,7 +391,7 @@ TEST(Live, FaultsEndWithTheirMessages) {
   EXPECT_EQ(no_display.status, 1);
   EXPECT_EQ(no_display.output,
             "holoray: error: holoray live needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set: run it on a "
-            "desktop, or under xvfb-run\n");
+            "desktop, under xvfb-run, or offscreen (--offscreen)\n");
   const CommandResult no_device = on_xvfb("live " + kScene, "VK_ICD_FILENAMES=/nonexistent.json");
   EXPECT_EQ(no_device.status, 1);
   EXPECT_EQ(no_device.output.rfind("holoray: error: the Vulkan loader found no driver", 0), 0u) << no_device.output;

@@ -26,6 +26,11 @@ struct LiveOptions {
   /// monitors), anything else in a window the image's size.
   std::optional<bool> fullscreen;
   int exit_after = 0;      ///< frames shown, then return; 0: until the window is closed
+  /// No window: each frame traced, packed and copied on the device to an
+  /// image of the window's size as it would be shown, and not presented
+  /// (no vsync), input only from `events`; for a machine without a display
+  /// and to measure live's frame rate there (LiveResult). Needs exit_after.
+  bool offscreen = false;
   /// Written when the window closes: the last frame shown, .png as shown
   /// (8-bit, `encoding`), .exr its rendered colour in float.
   std::string screenshot;

@@ -49,7 +49,11 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
   cmd->add_option("--monitor", o.monitor, "The monitor to open on, by index (0, 1, ...) or name; a display's panel is one of them (default: the primary)");
   CLI::Option* full = cmd->add_flag("--fullscreen", o.fullscreen, "Full screen on the monitor, at its mode (the default for a display or Looking Glass)");
   cmd->add_flag("--windowed", o.windowed, "In a window the image's size (the default for a lens array or a pinhole view)")->excludes(full);
-  cmd->add_option("--exit-after", o.exit_after, "Close after N frames shown (0: when the window is closed)")->check(in_range(0))->capture_default_str();
+  CLI::Option* exit_after =
+      cmd->add_option("--exit-after", o.exit_after, "Close after N frames shown (0: when the window is closed)")->check(in_range(0))->capture_default_str();
+  cmd->add_flag("--offscreen", o.offscreen, "No window: each frame traced, packed and copied on the device as it would be shown, and not presented (no vsync); input from --events; for a machine without a display, and to measure the frame rate there (docs/guide/live.md)")
+      ->needs(exit_after)
+      ->excludes(full);
   cmd->add_option("--screenshot", o.screenshot, "When the window closes, write the last frame shown: .png as shown (8-bit), .exr its colour in float")
       ->check(output_image());
   cmd->add_option("--events", o.events, "Replay input from FILE: lines 'FRAME orbit|pan DX DY', 'FRAME pointer X Y', 'FRAME wheel CLICKS', 'FRAME key NAME' (docs/guide/live.md)")
@@ -58,7 +62,7 @@ CLI::App* add_live_command(CLI::App& app, LiveCommandOptions& o) {
   cmd->add_flag("-q,--quiet", r.quiet, "Print nothing but errors");
   lay_out_help(*cmd,
                {{"Scene", {"--shot", "--play", "--camera-name", "--texture-path"}},
-                {"Window", {"--simulate", "--monitor", "--fullscreen", "--windowed", "--exit-after", "--screenshot", "--events", "--record",
+                {"Window", {"--simulate", "--monitor", "--fullscreen", "--windowed", "--offscreen", "--exit-after", "--screenshot", "--events", "--record",
                             "--encoding", "--quiet"}},
                 {"Camera", {"--camera", "--resolution", "--display", "--looking-glass", "--views", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
@@ -101,6 +105,7 @@ int run_live(const LiveCommandOptions& o) {
     if (o.fullscreen) live.fullscreen = true;
     if (o.windowed) live.fullscreen = false;
     live.exit_after = o.exit_after;
+    live.offscreen = o.offscreen;
     live.screenshot = o.screenshot;
     live.events = o.events;
     live.record = o.record;

@@ -18,6 +18,7 @@ struct LiveCommandOptions {
   bool fullscreen = false;  ///< --fullscreen
   bool windowed = false;    ///< --windowed
   int exit_after = 0;       ///< --exit-after N frames
+  bool offscreen = false;   ///< --offscreen (no window)
   std::string screenshot;   ///< --screenshot FILE
   std::string events;       ///< --events FILE
   std::string record;       ///< --record DIR

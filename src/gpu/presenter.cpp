@@ -53,8 +53,40 @@ struct Presenter::Impl {
   vk::raii::Fence fence = nullptr;
   vk::raii::Semaphore acquired = nullptr;
   std::vector<vk::raii::Semaphore> presentable;  // one per swapchain image
+  // Offscreen (no surface): the image each frame is copied to in place of
+  // the swapchain's, the window's size.
+  bool offscreen = false;
+  vk::raii::Image target = nullptr;
+  vk::raii::DeviceMemory target_memory = nullptr;
 
   explicit Impl(GpuRenderer::Impl& renderer) : r(renderer) {}
+
+  // A device-local image of `size` pixels in the packed format, the copy's
+  // destination and source.
+  std::pair<vk::raii::Image, vk::raii::DeviceMemory> make_image(std::array<int32_t, 2> size) {
+    vk::raii::Image image(r.device, vk::ImageCreateInfo{.imageType = vk::ImageType::e2D, .format = kPacked,
+                                                        .extent = {uint32_t(size[0]), uint32_t(size[1]), 1}, .mipLevels = 1,
+                                                        .arrayLayers = 1, .samples = vk::SampleCountFlagBits::e1,
+                                                        .tiling = vk::ImageTiling::eOptimal,
+                                                        .usage = vk::ImageUsageFlagBits::eTransferDst | vk::ImageUsageFlagBits::eTransferSrc,
+                                                        .sharingMode = vk::SharingMode::eExclusive,
+                                                        .initialLayout = vk::ImageLayout::eUndefined});
+    const vk::MemoryRequirements req = image.getMemoryRequirements();
+    vk::raii::DeviceMemory memory(r.device, vk::MemoryAllocateInfo{.allocationSize = req.size,
+                                                                   .memoryTypeIndex = r.memory_type(req.memoryTypeBits,
+                                                                                                    vk::MemoryPropertyFlagBits::eDeviceLocal)});
+    image.bindMemory(*memory, 0);
+    return {std::move(image), std::move(memory)};
+  }
+
+  // The offscreen target for a `size` window.
+  void make_target(std::array<int, 2> size) {
+    r.device.waitIdle();
+    auto [image, memory] = make_image({size[0], size[1]});
+    target = std::move(image), target_memory = std::move(memory);
+    extent = vk::Extent2D{uint32_t(size[0]), uint32_t(size[1])};
+    window = size;
+  }
 
   // The swapchain for a `size` framebuffer; extent 0 x 0 when there is
   // nothing to show (minimised).
@@ -107,18 +139,8 @@ struct Presenter::Impl {
     if (packed.size < bytes)
       packed = r.make_buffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc, false);
     if (frame_size == size) return;
-    frame = vk::raii::Image(r.device, vk::ImageCreateInfo{.imageType = vk::ImageType::e2D, .format = kPacked,
-                                                          .extent = {uint32_t(size[0]), uint32_t(size[1]), 1}, .mipLevels = 1,
-                                                          .arrayLayers = 1, .samples = vk::SampleCountFlagBits::e1,
-                                                          .tiling = vk::ImageTiling::eOptimal,
-                                                          .usage = vk::ImageUsageFlagBits::eTransferDst | vk::ImageUsageFlagBits::eTransferSrc,
-                                                          .sharingMode = vk::SharingMode::eExclusive,
-                                                          .initialLayout = vk::ImageLayout::eUndefined});
-    const vk::MemoryRequirements req = frame.getMemoryRequirements();
-    frame_memory = vk::raii::DeviceMemory(
-        r.device, vk::MemoryAllocateInfo{.allocationSize = req.size,
-                                         .memoryTypeIndex = r.memory_type(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal)});
-    frame.bindMemory(*frame_memory, 0);
+    auto [image, memory] = make_image(size);
+    frame = std::move(image), frame_memory = std::move(memory);
     frame_size = size;
   }
 
@@ -129,7 +151,10 @@ struct Presenter::Impl {
                                   nullptr);
   }
 
-  void record(const PackParams& p, vk::Image target) {
+  // The pack, its copy to the frame image and the letterboxed blit into
+  // `target`, left in `final_layout` (the swapchain's present layout, or
+  // the offscreen target's transfer source).
+  void record(const PackParams& p, vk::Image target, vk::ImageLayout final_layout) {
     vk::raii::CommandBuffer& cb = commands;
     cb.reset();
     cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
@@ -169,7 +194,7 @@ struct Presenter::Impl {
                              .dstSubresource = layers, .dstOffsets = std::array<vk::Offset3D, 2>{vk::Offset3D{x0, y0, 0}, vk::Offset3D{x0 + w, y0 + h, 1}}};
     cb.blitImage(*frame, vk::ImageLayout::eTransferSrcOptimal, target, vk::ImageLayout::eTransferDstOptimal, blit, vk::Filter::eNearest);
     cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eBottomOfPipe, {}, nullptr, nullptr,
-                       layout_change(target, vk::ImageLayout::eTransferDstOptimal, vk::ImageLayout::ePresentSrcKHR,
+                       layout_change(target, vk::ImageLayout::eTransferDstOptimal, final_layout,
                                      vk::AccessFlagBits::eTransferWrite, {}));
     cb.end();
   }
@@ -180,12 +205,15 @@ Presenter::Presenter(GpuRenderer& renderer, const std::function<uint64_t(void* i
     : impl_(std::make_unique<Impl>(*renderer.impl_)) {
   Impl& m = *impl_;
   GpuRenderer::Impl& r = m.r;
-  if (!r.window) throw std::logic_error("Presenter: the renderer was made without a window system's extensions");
+  m.offscreen = !make_surface;
+  if (!m.offscreen && !r.window) throw std::logic_error("Presenter: the renderer was made without a window system's extensions");
   try {
-    const uint64_t raw = make_surface(static_cast<void*>(static_cast<VkInstance>(*r.instance)));
-    m.surface = vk::raii::SurfaceKHR(r.instance, reinterpret_cast<VkSurfaceKHR>(raw));
-    if (!r.physical.getSurfaceSupportKHR(r.family, *m.surface))
-      throw GpuError(fmt::format("the device {} cannot present to this window: choose another device (`device` gpu:N)", r.info.name));
+    if (!m.offscreen) {
+      const uint64_t raw = make_surface(static_cast<void*>(static_cast<VkInstance>(*r.instance)));
+      m.surface = vk::raii::SurfaceKHR(r.instance, reinterpret_cast<VkSurfaceKHR>(raw));
+      if (!r.physical.getSurfaceSupportKHR(r.family, *m.surface))
+        throw GpuError(fmt::format("the device {} cannot present to this window: choose another device (`device` gpu:N)", r.info.name));
+    }
     vk::DescriptorSetLayoutBinding bindings[4];
     for (uint32_t b = 0; b < 4; ++b) bindings[b] = {b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute};
     m.set_layout = vk::raii::DescriptorSetLayout(r.device, vk::DescriptorSetLayoutCreateInfo{.bindingCount = 4, .pBindings = bindings});
@@ -255,6 +283,18 @@ bool Presenter::present(const PackParams& p, std::array<int, 2> window, const Bu
   Impl& m = *impl_;
   GpuRenderer::Impl& r = m.r;
   try {
+    if (m.offscreen) {  // the same work as a shown frame's, but the present
+      if (window != m.window) m.make_target(window);
+      m.make_frame(p.shown);
+      m.bind(0, source), m.bind(1, r.aov), m.bind(2, m.thresholds), m.bind(3, m.packed);
+      m.record(p, *m.target, vk::ImageLayout::eTransferSrcOptimal);
+      vk::CommandBuffer raw = *m.commands;
+      r.queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *m.fence);
+      r.wait(m.fence, "a frame's copy to the offscreen window");
+      r.device.resetFences({*m.fence});
+      m.shown = p.shown;
+      return true;
+    }
     for (int attempt = 0; attempt < 2; ++attempt) {
       if (window != m.window || !*m.swapchain) m.make_swapchain(window);
       if (m.extent.width == 0 || m.extent.height == 0) return false;
@@ -268,7 +308,7 @@ bool Presenter::present(const PackParams& p, std::array<int, 2> window, const Bu
       }
       m.make_frame(p.shown);
       m.bind(0, source), m.bind(1, r.aov), m.bind(2, m.thresholds), m.bind(3, m.packed);
-      m.record(p, m.images[index]);
+      m.record(p, m.images[index], vk::ImageLayout::ePresentSrcKHR);
       const vk::PipelineStageFlags wait_stage = vk::PipelineStageFlagBits::eTransfer;
       vk::CommandBuffer raw = *m.commands;
       vk::Semaphore acquired = *m.acquired, presentable = *m.presentable[index];

@@ -39,7 +39,10 @@ class Presenter {
   /// VkInstance (GLFW's glfwCreateWindowSurface), owned by the Presenter
   /// from then on. `renderer` must have been made with the window system's
   /// instance extensions and outlive the Presenter. Throws GpuError when
-  /// the device cannot present to that window.
+  /// the device cannot present to that window. An empty `make_surface`:
+  /// offscreen, each frame packed and copied as shown into an image of the
+  /// window's size on the device, and not presented (no window system).
+  /// Offscreen, the copy is waited on as a shown frame's is, without vsync.
   Presenter(GpuRenderer& renderer, const std::function<uint64_t(void* instance)>& make_surface, const CodeThresholds& codes);
   ~Presenter();
   Presenter(const Presenter&) = delete;

@@ -8,10 +8,12 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 // The loader is opened with dlopen (gpu_renderer.cpp), not linked, so that a
@@ -123,9 +125,12 @@ struct GpuRenderer::Impl {
   }
 
   // Waits for `f`; past timeout_s, the device counts as stopped: GpuError.
+  // HOLORAY_GPU_FAULT=timeout (for the tests: no device hangs on demand,
+  // and a tiny timeout alone races a small frame) makes every wait end so.
   void wait(const vk::raii::Fence& f, const char* what) {
     const uint64_t ns = timeout_s > 0 ? uint64_t(timeout_s * 1e9) : UINT64_MAX;
-    const vk::Result r = device.waitForFences({*f}, VK_TRUE, ns);
+    vk::Result r = device.waitForFences({*f}, VK_TRUE, ns);
+    if (const char* fault = std::getenv("HOLORAY_GPU_FAULT"); fault && std::string_view(fault) == "timeout") r = vk::Result::eTimeout;
     if (r == vk::Result::eTimeout) {
       stopped = true;
       throw GpuError(fmt::format("the GPU ({}) stopped responding: {} did not finish in {:g} s (HOLORAY_GPU_TIMEOUT sets "

@@ -21,6 +21,7 @@
 #include "image/image_io.hpp"
 #include "live/event_script.hpp"
 #include "live/live_source.hpp"
+#include "live/offscreen_window.hpp"
 #include "live/shown_codes.hpp"
 #include "live/view_controls.hpp"
 #include "live/window_module.hpp"
@@ -71,9 +72,11 @@ class Session {
     if (!live.screenshot.empty() && !is_supported_output(live.screenshot))
       throw std::invalid_argument(fmt::format("screenshot: expected a .png or .exr file, got '{}'", live.screenshot));
     if (!live.events.empty()) script_ = live::read_event_script(live.events);
-    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+    if (live.offscreen && live.exit_after < 1)
+      throw std::invalid_argument("`offscreen`: goes with exit after N frames (there is no window to close)");
+    if (!live.offscreen && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
       throw std::runtime_error("holoray live needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set: "
-                               "run it on a desktop, or under xvfb-run");
+                               "run it on a desktop, under xvfb-run, or offscreen (--offscreen)");
     if (!live.record.empty()) std::filesystem::create_directories(live.record);
     encoding_ = live.encoding ? (*live.encoding == Encoding::srgb ? holoray::Encoding::srgb : holoray::Encoding::linear)
                               : holoray::default_encoding(source_.encoding_path);
@@ -93,13 +96,15 @@ class Session {
     request.title = "holoray live";
     request.monitor = live.monitor;
     request.fullscreen = live.fullscreen.value_or(panel_ && !live.simulate);
-    window_ = live::open_window(request);
+    window_ = live.offscreen ? live::offscreen_window(request) : live::open_window(request);
     try {
       gpu_ = std::make_unique<gpu::GpuRenderer>(device.index, window_->instance_extensions());
       image_bytes_ = gpu::GpuRenderer::frame_bytes(placed.width(), placed.height(), !panel_);
       follow();
-      presenter_ = std::make_unique<gpu::Presenter>(*gpu_, [&](void* instance) { return window_->create_surface(instance); },
-                                                    thresholds_);
+      using MakeSurface = std::function<uint64_t(void*)>;
+      presenter_ = std::make_unique<gpu::Presenter>(
+          *gpu_, live.offscreen ? MakeSurface{} : MakeSurface{[&](void* instance) { return window_->create_surface(instance); }},
+          thresholds_);
     } catch (const gpu::GpuError& e) {
       throw std::runtime_error(e.what());
     }
