@@ -219,6 +219,11 @@ void Renderer::set_up(const World& world, const RenderOptions& options, Clock::t
   const RenderScene& scene = *s.world->render_scene;
   s.settings = s.world->settings;
   const FrameCamera& frame_camera = s.camera();
+  const DeviceChoice device = parse_device(options.device);
+  // Embree's hierarchy is the CPU path's (built once for all the world's
+  // renderers, here so that build_seconds counts it): a GPU render builds
+  // only its own.
+  if (!device.gpu) scene.accel().build();
   // Mesh textures take the MIP level of what one pixel sees.
   if (const auto angle = frame_camera.pixel_angle()) s.settings.footprint = {0, *angle};
   if (options.cache.enabled) {
@@ -229,12 +234,9 @@ void Renderer::set_up(const World& world, const RenderOptions& options, Clock::t
     s.settings.shadow_cache = s.cache.get();
   }
   s.style = trace_style(options.style, frame_camera);
-  // Embree's hierarchy is the CPU path's: a GPU render builds only its own.
-  if (const DeviceChoice device = parse_device(options.device); device.gpu)
+  if (device.gpu)
     s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(scene, s.settings), frame_camera, options,
                                           shared ? s.world->gpu_layouts.get() : nullptr);
-  else
-    scene.accel().build();
   s.build.build_seconds = seconds_since(t_build);
   s.build.gpu_setup_seconds = s.gpu ? s.gpu->setup_seconds() : 0;
 }
