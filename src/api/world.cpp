@@ -24,7 +24,7 @@ World::World(const Scene& scene, const RenderOptions& light) {
   // A scene built in code without lights is lit as a mesh file is: by a
   // headlight at its viewpoint.
   if (desc.lights.empty() && desc.viewpoint && desc.source.empty()) {
-    auto lit = std::make_shared<SceneData>(desc);
+    auto lit = std::make_shared<SceneData>(*s->scene);
     Light headlight;
     headlight.position = desc.viewpoint->from;
     headlight.headlight = true;
