@@ -349,6 +349,21 @@ TEST(GpuPath, AnimatedFramesMatchTheCpuPathAsObjectsMove) {
 
 // The guide's example shot, from the command line: its last frame (the
 // object moved furthest from where frame 0 laid it out) as the CPU traces it.
+// A pinhole view traced by the CPU path's own renderer (render_view) and by
+// `gpu`, loaded with the same scene: the CPU's frame and the GPU's, `aovs`
+// in each.
+std::pair<FrameBuffers, FrameBuffers> view_both_ways(const RenderContext& context, const PinholeCamera& camera,
+                                                     gpu::GpuRenderer& gpu, const AovSet& aovs) {
+  holoray::RenderOptions cpu_options;
+  cpu_options.aovs = aovs;
+  holoray::RenderStats cpu_stats;
+  FrameBuffers cpu = render_view(context, camera, cpu_options, cpu_stats);
+  FrameBuffers out = allocate_frame(camera.width(), camera.height(), aovs);
+  holoray::RenderStats g;
+  gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, camera.height()), aovs, out, g);
+  return {std::move(cpu), std::move(out)};
+}
+
 // A moving object's hierarchy is built once and then refitted frame by
 // frame (gpu::KeptBvh) while the refit tree's node cost stays within
 // kRefitGrowth of its build's, and built again when the objects part; a
@@ -380,14 +395,7 @@ TEST(GpuPath, AMovingSceneIsRefittedUntilItsObjectsPart) {
     const PinholeCamera camera(view_of(*still.viewpoint, 96, 64));
     gpu::GpuRenderer gpu;
     gpu.load(arrays, gpu::GpuRenderer::frame_bytes(96, 64, true), false);
-    const AovSet aovs{false, false, false, true};
-    holoray::RenderOptions ro;
-    ro.aovs = aovs;
-    holoray::RenderStats cpu_stats;
-    const FrameBuffers cpu = render_view(context, camera, ro, cpu_stats);
-    FrameBuffers out = allocate_frame(96, 64, aovs);
-    holoray::RenderStats g;
-    gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, 64), aovs, out, g);
+    const auto [cpu, out] = view_both_ways(context, camera, gpu, AovSet{false, false, false, true});
     EXPECT_GE(compare_images(cpu.colour, out.colour).psnr_all(), 50.0) << what;
   }
 }
@@ -490,13 +498,7 @@ TEST(GpuPath, PinholeOrthographicClippedAndMirroredViewsMatchTheCpuPath) {
   PinholeDesc centred = base;
   centred.sample_u = 1, centred.sample_v = 0;
   const PinholeCamera camera(centred);
-  holoray::RenderOptions cpu_options;
-  cpu_options.aovs = aovs;
-  holoray::RenderStats cpu_stats;
-  const FrameBuffers cpu = render_view(context, camera, cpu_options, cpu_stats);
-  FrameBuffers out = allocate_frame(96, 64, aovs);
-  holoray::RenderStats g;
-  gpu.render(gpu::frame_constants(context, camera, aovs, 1, 0, 64), aovs, out, g);
+  const auto [cpu, out] = view_both_ways(context, camera, gpu, aovs);
   for (int j = 0; j < 64; ++j)
     EXPECT_EQ(*cpu.id.at(47, j) < 0, *out.id.at(47, j) < 0) << "row " << j;
 }
