@@ -5,7 +5,9 @@
 // traversal and shading; the scene's upload and the image's readback
 // apart), rays per second, BVH nodes visited and primitives tested per ray
 // (counted in one more frame by a Renderer built to count them: counting
-// slows the kernel, RenderOptions::count_work),
+// slows the kernel, RenderOptions::count_work), and under the path
+// integrator's wavefront (HOLORAY_GPU_WAVEFRONT=1) its traversals' lanes'
+// use (nodes visited over their lanes' steps: 1 when no lane waits),
 // and with --cpu the PSNR of the last frame against the CPU path's image,
 // with the depth and id AOVs' agreement where both hit. With --integrator
 // path, the path integrator at --spp samples per pixel, lit by the scene's
@@ -94,11 +96,12 @@ int main(int argc, char** argv) {
     const RenderStats st = Renderer(scene, array, counting).render().stats;
     const double rays = double(st.rays.total()), ms = median(trace) * 1e3;
     std::printf("scene=%s device=\"%s\" size=%dx%d spp=%d frames=%d setup_s=%.3f ms_median=%.3f ms_min=%.3f ms_max=%.3f "
-                "fps=%.1f readback_ms=%.3f rays=%.0f mrays_s=%.1f nodes_per_ray=%.2f prims_per_ray=%.2f",
+                "fps=%.1f readback_ms=%.3f rays=%.0f mrays_s=%.1f nodes_per_ray=%.2f prims_per_ray=%.2f lanes_use=%s",
                 scene_path.c_str(), renderer.device_name().empty() ? "cpu" : renderer.device_name().c_str(),
                 renderer.width(), renderer.height(), spp, frames, setup, ms, *std::min_element(trace.begin(), trace.end()) * 1e3,
                 *std::max_element(trace.begin(), trace.end()) * 1e3, 1e3 / ms, median(readback) * 1e3, rays,
-                rays / (ms * 1e-3) / 1e6, double(st.nodes_visited) / rays, double(st.primitives_tested) / rays);
+                rays / (ms * 1e-3) / 1e6, double(st.nodes_visited) / rays, double(st.primitives_tested) / rays,
+                st.lane_steps ? std::to_string(double(st.nodes_visited) / double(st.lane_steps)).substr(0, 5).c_str() : "-");
     if (cpu) {
       RenderOptions on_cpu = options;
       on_cpu.device = "cpu";

@@ -44,15 +44,22 @@ done
 spp=${SPP:-1}
 environment=${ENVIRONMENT:-/usr/share/blender/datafiles/studiolights/world/courtyard.exr}
 echo
-echo "The path integrator, $spp sample(s) per pixel, 5 bounces at most:"
+echo "The path integrator, $spp sample(s) per pixel, 5 bounces at most: the megakernel, then the"
+echo "wavefront (HOLORAY_GPU_WAVEFRONT=1, src/gpu/wavefront.cpp) in the same run; speed is the"
+echo "megakernel's time over the wavefront's; lanes' use is the wavefront traversals' (nodes"
+echo "visited over their lanes' steps):"
 echo
-echo "| scene | ms/frame median (min-max) | fps | Mrays/s | nodes/ray | prims/ray |"
-echo "|---|---:|---:|---:|---:|---:|"
+echo "| scene | megakernel ms/frame median (min-max) | fps | wavefront ms/frame median (min-max) | fps | speed | lanes' use | Mrays/s | nodes/ray |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 path_row() {
-  local name=$1 line
-  line=$(run "${@:2}" --integrator path --spp "$spp")
-  f() { echo "$line" | field "$1"; }
-  echo "| $name | $(f ms_median) ($(f ms_min)-$(f ms_max)) | $(f fps) | $(f mrays_s) | $(f nodes_per_ray) | $(f prims_per_ray) |"
+  local name=$1 mega wave
+  mega=$(run "${@:2}" --integrator path --spp "$spp")
+  wave=$(HOLORAY_GPU_WAVEFRONT=1 run "${@:2}" --integrator path --spp "$spp")
+  m() { echo "$mega" | field "$1"; }
+  w() { echo "$wave" | field "$1"; }
+  echo "| $name | $(m ms_median) ($(m ms_min)-$(m ms_max)) | $(m fps) | $(w ms_median) ($(w ms_min)-$(w ms_max)) | $(w fps)" \
+       "| $(awk -v a="$(m ms_median)" -v b="$(w ms_median)" 'BEGIN { printf "%.2fx", a / b }') | $(w lanes_use)" \
+       "| $(m mrays_s) | $(m nodes_per_ray) |"
 }
 for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do path_row "$scene" "$shared/scenes/nff/$scene.nff"; done
 path_row "cornell_box (area light)" examples/lights/cornell_box.nff --lights examples/lights/cornell_box.toml

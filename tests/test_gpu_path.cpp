@@ -879,20 +879,6 @@ TEST(GpuPath, DevicesCommandListsWhatGpuNCounts) {
             "--device cpu\n");
 }
 
-// An environment variable set for one test and restored after it.
-struct ScopedEnv {
-  std::string name;
-  std::optional<std::string> old;
-  ScopedEnv(const char* n, const char* value) : name(n) {
-    if (const char* v = std::getenv(n)) old = v;
-    ::setenv(n, value, 1);
-  }
-  ~ScopedEnv() {
-    if (old) ::setenv(name.c_str(), old->c_str(), 1);
-    else ::unsetenv(name.c_str());
-  }
-};
-
 // The process keeps a released renderer between api::render calls
 // (src/api/gpu_executor.cpp): one taken from there, after a scene of other
 // materials, other AOVs and another image size, renders what a new one

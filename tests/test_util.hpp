@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -95,6 +96,23 @@ inline FrameBuffers trace_full(const RenderScene& scene, const LensArrayDesc& de
 }
 
 /// A fresh empty folder under the system temp dir, removed by the destructor.
+// An environment variable set for a scope (the GPU path's measuring knobs,
+// HOLORAY_GPU_*, read as a renderer is made), restored after.
+struct ScopedEnv {
+  std::string name;
+  std::optional<std::string> old;
+  ScopedEnv(const char* n, const char* value) : name(n) {
+    if (const char* v = std::getenv(n)) old = v;
+    ::setenv(n, value, 1);
+  }
+  ~ScopedEnv() {
+    if (old) ::setenv(name.c_str(), old->c_str(), 1);
+    else ::unsetenv(name.c_str());
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+};
+
 struct TempDir {
   std::filesystem::path path;
   TempDir() {

@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <string_view>
 
 #include <unistd.h>  // environ
 
@@ -82,7 +83,10 @@ RendererPool& renderer_pool();
 // after another. An executor holds its renderer alone, so renderers are
 // never shared between threads; one that failed is not kept. The measuring
 // knobs (HOLORAY_GPU_*, HOLORAY_VULKAN_LOADER) are read as a renderer is
-// made, so while any is set nothing is kept or reused. The kept ones are
+// made, so while any is set nothing is kept or reused, but for
+// HOLORAY_GPU_WAVEFRONT, whose renderers are kept apart (the tests run the
+// path integrator's suite under it, and lavapipe compiles a pipeline in
+// seconds). The kept ones are
 // destroyed at exit by a handler registered after the driver was loaded,
 // so it runs while the driver's own state still stands (handlers run in
 // reverse order, the shared libraries' destructors last).
@@ -92,7 +96,7 @@ class RendererPool {
     if (knobs_set()) return nullptr;
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = idle_.begin(); it != idle_.end(); ++it)
-      if (it->device == device && it->count_work == count_work) {
+      if (it->device == device && it->count_work == count_work && it->wavefront == wavefront()) {
         std::unique_ptr<gpu::GpuRenderer> r = std::move(it->renderer);
         idle_.erase(it);
         return r;
@@ -103,7 +107,7 @@ class RendererPool {
     if (knobs_set()) return;
     std::lock_guard<std::mutex> lock(mutex_);
     if (!exit_handler_) exit_handler_ = std::atexit([] { renderer_pool().clear(); }) == 0;
-    if (exit_handler_) idle_.push_back({device, count_work, std::move(r)});
+    if (exit_handler_) idle_.push_back({device, count_work, wavefront(), std::move(r)});
   }
   // How many were freed. Destroyed outside the lock: a device's teardown
   // waits on the driver.
@@ -119,12 +123,19 @@ class RendererPool {
  private:
   static bool knobs_set() {
     for (char** e = environ; *e; ++e)
-      if (std::strncmp(*e, "HOLORAY_GPU_", 12) == 0 || std::strncmp(*e, "HOLORAY_VULKAN_LOADER=", 22) == 0) return true;
+      if ((std::strncmp(*e, "HOLORAY_GPU_", 12) == 0 && std::strncmp(*e, "HOLORAY_GPU_WAVEFRONT=", 22) != 0) ||
+          std::strncmp(*e, "HOLORAY_VULKAN_LOADER=", 22) == 0)
+        return true;
     return false;
+  }
+  static bool wavefront() {
+    const char* w = std::getenv("HOLORAY_GPU_WAVEFRONT");
+    return w && std::string_view(w) == "1";
   }
   struct Idle {
     int device;
     bool count_work;
+    bool wavefront;
     std::unique_ptr<gpu::GpuRenderer> renderer;
   };
   std::mutex mutex_;
@@ -268,6 +279,7 @@ FrameBuffers GpuExecutor::render(const RenderContext& context, const FrameCamera
   stats.readback_seconds = g.readback_seconds;
   stats.nodes_visited = g.nodes_visited;
   stats.primitives_tested = g.primitives_tested;
+  stats.lane_steps = g.lane_steps;
   stats.rays = to_api(g.rays);
   return fb;
 }

@@ -224,23 +224,25 @@ void write_ray_log(const Buffer& log, const std::string& path, const uint32_t wo
 
 }  // namespace
 
-vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shadow_pass) {
-  const uint32_t key = features << 5 | uint32_t(shadow_pass) << 3 | (queue ? 4u : 0u) | (count_work ? 2u : 0u) | (panel ? 1u : 0u);
+vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shadow_pass, int wave_stage) {
+  const uint32_t key = features << 8 | uint32_t(wave_stage) << 5 | uint32_t(shadow_pass) << 3 | (queue ? 4u : 0u) |
+                       (count_work ? 2u : 0u) | (panel ? 1u : 0u);
   auto p = pipelines.find(key);
-  if (p == pipelines.end()) p = pipelines.emplace(key, make_pipeline(panel, queue && shadow_pass == 0, shadow_pass)).first;
+  if (p == pipelines.end()) p = pipelines.emplace(key, make_pipeline(panel, queue && shadow_pass == 0, shadow_pass, wave_stage)).first;
   return p->second;
 }
 
-vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass) {
+vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass, int wave_stage) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  constexpr uint32_t kConstants = 14;
+  constexpr uint32_t kConstants = 15;
   const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
                                             panel ? 1u : 0u, (features & HR_FEATURE_TACHYON) ? 1u : 0u,
                                             (features & HR_FEATURE_GLTF) ? 1u : 0u,
                                             (features & HR_FEATURE_MESH_TEXTURES) ? 1u : 0u,
                                             (features & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count_work ? 1u : 0u,
                                             count_work && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass),
-                                            (features & HR_FEATURE_WIDE_BVH) ? 1u : 0u, (features & HR_FEATURE_PATH) ? 1u : 0u};
+                                            (features & HR_FEATURE_WIDE_BVH) ? 1u : 0u, (features & HR_FEATURE_PATH) ? 1u : 0u,
+                                            uint32_t(wave_stage)};
   vk::SpecializationMapEntry entries[kConstants];
   for (uint32_t k = 0; k < kConstants; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
   const vk::SpecializationInfo spec{.mapEntryCount = kConstants, .pMapEntries = entries, .dataSize = sizeof spec_values,
@@ -297,6 +299,9 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
+  // HOLORAY_GPU_WAVEFRONT=1 (measuring): the path integrator as a wavefront.
+  if (const char* wave_env = std::getenv("HOLORAY_GPU_WAVEFRONT"); wave_env && std::string_view(wave_env) == "1")
+    m.wavefront_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
   m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
   if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
@@ -337,7 +342,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     bindings.push_back({b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute});
   m.set_layout = vk::raii::DescriptorSetLayout(m.device, vk::DescriptorSetLayoutCreateInfo{
                                                              .bindingCount = uint32_t(bindings.size()), .pBindings = bindings.data()});
-  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 24};
+  vk::PushConstantRange push{vk::ShaderStageFlagBits::eCompute, 0, 32};
   vk::DescriptorSetLayout raw_layout = *m.set_layout;
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
@@ -359,7 +364,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   // bench/ray_schedule_model.py (measuring; it counts the work to log it).
   if (const char* log = std::getenv("HOLORAY_GPU_RAY_LOG"); log && *log) m.ray_log_path = log, count_work = true;
   m.count_work = count_work;
-  if (!m.ray_log_path.empty()) m.shadow_queue_on = false;  // the log models the kernel's own schedule
+  if (!m.ray_log_path.empty()) m.shadow_queue_on = m.wavefront_on = false;  // the log models the kernel's own schedule
   vk::raii::CommandBuffers cbs(m.device, vk::CommandBufferAllocateInfo{.commandPool = *m.pool, .commandBufferCount = 1});
   m.commands = std::move(cbs[0]);
   m.fence = vk::raii::Fence(m.device, vk::FenceCreateInfo{});
@@ -437,6 +442,11 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     m.bind(20, m.shadow_last);
     m.shadow_terms = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer, false);
     m.bind(21, m.shadow_terms);
+    for (auto [binding, buffer] : {std::pair{25, &m.wave_paths}, {26, &m.wave_hits}, {27, &m.wave_queues},
+                                   {28, &m.wave_shadows}, {29, &m.wave_shadow_queue}}) {
+      *buffer = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+      m.bind(binding, *buffer);
+    }
     m.scene_bytes = s.bytes();
     m.features = s.features;
     // The pipelines this scene's frames bind, compiled now (kept from one
@@ -445,7 +455,11 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     // (about 1.3 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
-    for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
+    if (m.wavefront_on && (s.features & HR_FEATURE_PATH)) {
+      for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW}) m.pipeline(panel, false, 0, stage);
+    } else {
+      for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
+    }
     return seconds_since(t0);
   } catch (const vk::SystemError& e) {
     rethrow_vulkan(e, m.info.name);
@@ -459,7 +473,7 @@ void GpuRenderer::release() {
   if (m.stopped) return;  // its buffers may still be in use: kept (the destructor says why)
   for (Buffer& b : m.scene) b = Buffer{};
   for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
-                    &m.shadow_terms})
+                    &m.shadow_terms, &m.wave_paths, &m.wave_hits, &m.wave_queues, &m.wave_shadows, &m.wave_shadow_queue})
     *b = Buffer{};
   m.scene_bytes = 0;
   m.traced = {0, 0};
@@ -499,14 +513,30 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
                                "holds (maxStorageBufferRange): render fewer pixels at a time, or on the CPU (`device` cpu)",
                                plan.want_aovs ? "AOVs" : "colours", image / 1048576.0, W, H, max_storage_range / 1048576.0,
                                info.name));
-  for (size_t f = 0; f < frames.size(); ++f) {
-    const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
-    const int band_rows = std::max(8, int(band_invocations / uint64_t(std::max(1, w))) / 8 * 8);
-    for (int row0 = y0; row0 < y1; row0 += band_rows)
-      plan.bands.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
-  }
   plan.panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
   plan.path = (features & HR_FEATURE_PATH) != 0;
+  // The wavefront holds a band's paths at once, each with room for the
+  // shadow rays of one vertex: its bands are as many pixels as the device's
+  // largest binding (and a quarter of the memory left) take.
+  uint64_t band_pixels = band_invocations;
+  if (plan.path && wavefront_on) {
+    const GpuFrame& f = frames[0];
+    plan.wave_shadows = uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0));
+    const uint64_t per_path = sizeof(GpuWavePath) + 32 + 8 + plan.wave_shadows * (sizeof(GpuWaveShadow) + 4);
+    const uint64_t by_range = std::min(max_storage_range / sizeof(GpuWavePath),
+                                       max_storage_range / std::max<uint64_t>(1, plan.wave_shadows * sizeof(GpuWaveShadow)));
+    const uint64_t by_memory = spare >= per_path ? spare / per_path : band_pixels;
+    band_pixels = std::max<uint64_t>(1, std::min({band_pixels, by_range, by_memory}));
+  }
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
+    const int fit = int(std::min<uint64_t>(band_pixels / uint64_t(std::max(1, w)), 1 << 20));
+    const int band_rows = plan.path && wavefront_on ? std::max(1, fit >= 8 ? fit / 8 * 8 : fit) : std::max(8, fit / 8 * 8);
+    for (int row0 = y0; row0 < y1; row0 += band_rows) {
+      plan.bands.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
+      if (plan.path && wavefront_on) plan.wave_paths = std::max(plan.wave_paths, uint64_t(w) * uint64_t(plan.bands.back().rows));
+    }
+  }
   plan.queue = queue_rays > 0 && !plan.panel && !plan.path;  // a path traces its own
   plan.queue_rays = plan.queue ? queue_rays : 0;
   plan.passes = plan.path ? std::max(1, frames[0].mode.w) : 1;
@@ -540,6 +570,7 @@ void GpuRenderer::Impl::prepare_frame(const std::vector<GpuFrame>& frames, const
   vk::raii::CommandBuffer& cb = commands;
   cb.reset();
   cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  if (plan.wave_paths > 0) prepare_wavefront(plan);
   if (!plan.queue) return;
   const uint64_t queue_rays = plan.queue_rays;
   if (shadow_queue.size < 16 + queue_rays * sizeof(GpuShadowRay)) {
@@ -573,6 +604,7 @@ void GpuRenderer::Impl::submit_and_wait(const char* what) {
 }
 
 void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sample) {
+  if (plan.wave_paths > 0) return record_wavefront_passes(plan, first_sample);
   vk::raii::CommandBuffer& cb = commands;
   auto bind_kernel = [&] {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, plan.queue, 0));
@@ -669,7 +701,7 @@ void GpuRenderer::Impl::print_pass_times(const FramePlan& plan) {
 void GpuRenderer::Impl::sum_counts(const FramePlan& plan, RenderStats& stats) const {
   const uint32_t* c = static_cast<const uint32_t*>(counts.mapped);
   for (size_t b = 0; b < plan.bands.size() * HR_COUNT_SLOTS; ++b, c += 8) {
-    stats.nodes_visited += c[0], stats.primitives_tested += c[1];
+    stats.nodes_visited += c[0], stats.primitives_tested += c[1], stats.lane_steps += c[2];
     stats.rays.eye += c[4], stats.rays.shadow += c[5], stats.rays.reflected += c[6], stats.rays.refracted += c[7];
   }
 }

@@ -36,7 +36,7 @@ vk::raii::Instance make_instance(const vk::raii::Context& context, const std::ve
 [[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device);
 
 /// trace.comp's descriptor bindings.
-constexpr int kBindings = 25;
+constexpr int kBindings = 30;
 
 // A buffer and its memory; `mapped` when host-visible.
 struct Buffer {
@@ -92,6 +92,13 @@ struct GpuRenderer::Impl {
   double timestamp_ns = 0;
   Buffer queue_head;  // the shadow queue's head, copied back for the same print
   Buffer shadow_queue, shadow_last, shadow_terms;  // bindings 19, 20 and 21
+  // The path integrator as a wavefront (wavefront.cpp, shaders/wavefront.glsl),
+  // for measuring: on with HOLORAY_GPU_WAVEFRONT=1 where the device has
+  // subgroup ballots and votes and the ray log is off. Its buffers, bindings
+  // 25 to 29: the paths' states, their hits, the queues and their heads, the
+  // shadow rays and their queue.
+  bool wavefront_on = false;
+  Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue;
   uint64_t max_storage_range = 0;  // bytes (VkPhysicalDeviceLimits)
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
@@ -206,6 +213,10 @@ struct GpuRenderer::Impl {
     uint64_t queue_rays = 0;  // the shadow queue's capacity; 0: no queue
     bool want_aovs = false, panel = false, queue = false, path = false;
     int passes = 1;  // the path integrator's samples a pixel, one a pass
+    // The path integrator's wavefront: its bands' most paths and the most
+    // shadow rays a path makes at a vertex; 0 paths: the megakernel.
+    uint64_t wave_paths = 0;
+    uint32_t wave_shadows = 0;
   };
   // The frame's bands and buffers' sizes, refused (GpuError naming the
   // limit) where the device cannot hold them: gpu_renderer.cpp.
@@ -217,6 +228,15 @@ struct GpuRenderer::Impl {
   // waited on every few passes), then the shadow queue's two passes.
   void record_pixel_passes(const FramePlan& plan, int first_sample);
   void record_shadow_passes(const FramePlan& plan);
+  // The wavefront's buffers grown to the plan (wavefront.cpp), and its
+  // stages recorded in place of the pixel kernel's passes.
+  void prepare_wavefront(const FramePlan& plan);
+  void record_wavefront_passes(const FramePlan& plan, int first_sample);
+  // A memory barrier between two dispatches (or a transfer and a dispatch).
+  void barrier(vk::PipelineStageFlags from = vk::PipelineStageFlagBits::eComputeShader);
+  // `invocations` of the bound pipeline in dispatches of band_invocations
+  // at most, for a kernel whose lanes fetch their work (no offset needed).
+  void dispatch_fetching(uint64_t invocations);
   // Ends `commands`, submits it and waits under the timeout (wait()).
   void submit_and_wait(const char* what);
   // With timestamps (HOLORAY_GPU_STATS=1): each pass's time on the device.
@@ -230,12 +250,13 @@ struct GpuRenderer::Impl {
   // features (HR_FEATURE_*), and whether it counts nodes and primitives.
   // With the shadow queue, the pixel kernel queues shadow rays (`queue`), or
   // the pipeline is the shadow pass (`shadow_pass` 1) or its resolve (2).
-  vk::raii::Pipeline make_pipeline(bool panel, bool queue, int shadow_pass);  // gpu_renderer.cpp
+  // `wave_stage`: a stage of the path integrator's wavefront (HR_WAVE_*).
+  vk::raii::Pipeline make_pipeline(bool panel, bool queue, int shadow_pass, int wave_stage);  // gpu_renderer.cpp
 
   // The pipeline for the loaded scene's features and for count_work, made on
   // first use and kept (`pipelines`). `queue`: the frame has a shadow queue,
   // whose pixel kernel (shadow_pass 0) queues its shadow rays.
-  vk::raii::Pipeline& pipeline(bool panel, bool queue, int shadow_pass);  // gpu_renderer.cpp
+  vk::raii::Pipeline& pipeline(bool panel, bool queue, int shadow_pass, int wave_stage = 0);  // gpu_renderer.cpp
 
   void bind(int binding, const Buffer& b) {
     vk::DescriptorBufferInfo bi{*b.buffer, 0, VK_WHOLE_SIZE};

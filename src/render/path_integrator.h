@@ -20,7 +20,10 @@
 //   bool hr_path_trace(d, o, dir, tmin, tmax, depth, out h)   the closest
 //                         hit on o + t dir over (tmin, tmax), its surface
 //                         (the first's, depth 1, recorded for the AOVs)
-//   bool hr_path_occluded(d, from, dir, tmax)   anything on (0, tmax)
+//   hr_vec3 hr_path_unblocked(d, from, dir, tmax, term)   `term` where
+//                         nothing lies on the shadow ray's (0, tmax), else
+//                         0 (a wavefront returns 0 and adds `term` once its
+//                         own pass finds the ray unblocked)
 //   void hr_path_count(d, HR_PATH_RAY_*)        one ray more of that kind
 //   hr_real hr_path_epsilon(d), int hr_path_max_depth(d)
 //   bool hr_path_light_sphere(d, h, out colour)  h is a light's own sphere
@@ -83,10 +86,8 @@ HR_PATH_FN hr_vec3 hr_path_light_sample(HR_INOUT(HrPathDevice) d, HR_PATH_IN(HrP
   if (!hr_path_positive(f)) return hr_vec3(0.0, 0.0, 0.0);
   hr_path_count(d, HR_PATH_RAY_SHADOW);
   hr_vec3 from = behind ? v.below : v.above;
-  if (hr_path_occluded(d, from, dir, isinf(dist) ? HR_PATH_INF : dist - 2.0 * hr_path_epsilon(d)))
-    return hr_vec3(0.0, 0.0, 0.0);
   hr_real w = pdf > 0.0 ? hr_real(hr_power_heuristic(float(pdf), hr_bsdf_pdf(v.bsdf, v.wo, wi))) : hr_real(1.0);
-  return hr_mul3(hr_d3(f), le) * w;
+  return hr_path_unblocked(d, from, dir, isinf(dist) ? HR_PATH_INF : dist - 2.0 * hr_path_epsilon(d), hr_mul3(hr_d3(f), le) * w);
 }
 
 /// Next-event estimation at `v`: every point, spot and directional light
@@ -212,73 +213,96 @@ HR_PATH_FN HrPathVertex hr_path_vertex(HR_INOUT(HrPathDevice) d, HR_PATH_IN(HrPa
   return v;
 }
 
+/// A path starting along the eye ray o + t dir, t in (tmin, tmax) (world).
+HR_PATH_FN HrPathState hr_path_start(hr_vec3 o, hr_vec3 dir, hr_real tmin, hr_real tmax) {
+  HrPathState s;
+  s.o = o;
+  s.dir = dir;
+  s.tmin = tmin;
+  s.tmax = tmax;
+  s.radiance = hr_vec3(0.0, 0.0, 0.0);
+  s.throughput = hr_vec3(1.0, 1.0, 1.0);
+  s.specular = true;  // no bounce yet: no MIS on what the eye ray meets
+  s.last_pdf = 0.0f;
+  s.depth = 1;
+  return s;
+}
+
+/// One vertex of the path `s`: its ray traced (hr_path_trace, into `h`),
+/// the light met on the way and at the vertex added, next-event estimation
+/// at it (through hr_path_unblocked), and the next ray drawn from its BSDF
+/// with Russian roulette. False: the path has ended (`s.radiance` is then
+/// its light, but for what hr_path_unblocked deferred).
+HR_PATH_FN bool hr_path_step(HR_INOUT(HrPathDevice) d, HR_INOUT(HrPathState) s, HR_INOUT(HrPathHit) h, HR_INOUT(HrSampler) rng) {
+  // max_depth counts the eye ray as 1 (pbrt's maxDepth; Cycles' bounces
+  // plus 1): a vertex past it only shows its emission, which completes the
+  // MIS of the vertex before.
+  int max_depth = hr_path_max_depth(d);
+  int depth = s.depth;
+  bool found = hr_path_trace(d, s.o, s.dir, s.tmin, s.tmax, depth, h);
+  if (depth > 1)
+    s.radiance += hr_mul3(s.throughput, hr_path_area_lights_met(d, s.o, s.dir, found ? hr_path_hit_t(h) : HR_PATH_INF, s.specular, s.last_pdf));
+  if (!found) {
+    hr_real w = 1.0;
+    if (!s.specular && hr_path_env_lights(d)) w = hr_real(hr_power_heuristic(s.last_pdf, hr_path_env_pdf(d, s.dir)));
+    s.radiance += hr_mul3(s.throughput, hr_path_escape(d, s.dir)) * w;
+    return false;
+  }
+  hr_vec3 sphere;
+  if (hr_path_light_sphere(d, h, sphere)) {
+    s.radiance += hr_mul3(s.throughput, sphere);
+    return false;
+  }
+  s.radiance += hr_mul3(s.throughput, hr_path_emission(d, h, s.dir, s.specular, s.last_pdf));
+  if (depth > max_depth) return false;
+
+  HrPathVertex v = hr_path_vertex(d, h, s.dir);
+  if (hr_path_positive(v.bsdf.diffuse) || v.bsdf.alpha > 0.0f) s.radiance += hr_mul3(s.throughput, hr_path_direct_light(d, v, rng));
+
+  // The next direction, from the BSDF.
+  vec2 u_lobe = hr_next2(rng);
+  vec2 u_dir = hr_next2(rng);
+  vec3 wi;
+  vec3 weight;
+  float pdf;
+  bool delta;
+  bool through;
+  if (!hr_bsdf_sample(v.bsdf, v.wo, u_lobe.x, u_dir, wi, weight, pdf, delta, through)) return false;
+  hr_vec3 next = normalize(hr_d3(hr_to_world(wi, v.t, v.b, v.n)));
+  // A reflected direction below the geometric surface (the shading
+  // normal's tilt) would leave from inside: the path ends there; so does
+  // rough transmission back above it, mirrored.
+  if (!through && dot(next, v.ng) <= 0.0) return false;
+  if (through && !delta && dot(next, v.ng) >= 0.0) return false;
+  s.throughput = hr_mul3(s.throughput, hr_d3(weight));
+  s.specular = delta;
+  s.last_pdf = pdf;
+  hr_path_count(d, through ? HR_PATH_RAY_REFRACTED : HR_PATH_RAY_REFLECTED);
+  s.o = through ? v.below : v.above;
+  s.dir = next;
+  s.tmin = 0.0;
+  s.tmax = HR_PATH_INF;
+  s.depth = depth + 1;
+  // Russian roulette (pbrt-v4's): a path whose throughput has fallen
+  // below 1 goes on with that probability, weighted up to stay unbiased.
+  hr_real keep = max(s.throughput.x, max(s.throughput.y, s.throughput.z));
+  if (depth >= HR_PATH_ROULETTE_DEPTH && keep < 1.0) {
+    if (!(u_lobe.y < keep)) return false;
+    s.throughput = s.throughput * (hr_real(1.0) / keep);
+  }
+  return true;
+}
+
 /// Radiance (linear RGB) arriving along the eye ray o + t dir, t in
 /// (tmin, tmax) (world; one sample of a pixel), its random numbers from
 /// `sampler`, whose first pair placed the sample in its pixel.
 HR_PATH_FN hr_vec3 hr_path_radiance(HR_INOUT(HrPathDevice) d, hr_vec3 o, hr_vec3 dir, hr_real tmin, hr_real tmax,
                                HR_INOUT(HrSampler) rng) {
-  bool env_lights = hr_path_env_lights(d);
-  int max_depth = hr_path_max_depth(d);
-  hr_vec3 radiance = hr_vec3(0.0, 0.0, 0.0);
-  hr_vec3 throughput = hr_vec3(1.0, 1.0, 1.0);
-  bool specular = true;  // the last bounce was a delta lobe (or there was none): no MIS on what it meets
-  float last_pdf = 0.0f;
+  HrPathState s = hr_path_start(o, dir, tmin, tmax);
   HrPathHit h;  // one for the path: on the CPU it holds the hit's surface, not built anew each bounce
-  // max_depth counts the eye ray as 1 (pbrt's maxDepth; Cycles' bounces
-  // plus 1): a vertex past it only shows its emission, which completes the
-  // MIS of the vertex before.
-  for (int depth = 1; depth <= max_depth + 1; ++depth) {
-    bool found = hr_path_trace(d, o, dir, tmin, tmax, depth, h);
-    if (depth > 1) radiance += hr_mul3(throughput, hr_path_area_lights_met(d, o, dir, found ? hr_path_hit_t(h) : HR_PATH_INF, specular, last_pdf));
-    if (!found) {
-      hr_real w = 1.0;
-      if (!specular && env_lights) w = hr_real(hr_power_heuristic(last_pdf, hr_path_env_pdf(d, dir)));
-      radiance += hr_mul3(throughput, hr_path_escape(d, dir)) * w;
-      break;
-    }
-    hr_vec3 sphere;
-    if (hr_path_light_sphere(d, h, sphere)) {
-      radiance += hr_mul3(throughput, sphere);
-      break;
-    }
-    radiance += hr_mul3(throughput, hr_path_emission(d, h, dir, specular, last_pdf));
-    if (depth > max_depth) break;
-
-    HrPathVertex v = hr_path_vertex(d, h, dir);
-    if (hr_path_positive(v.bsdf.diffuse) || v.bsdf.alpha > 0.0f) radiance += hr_mul3(throughput, hr_path_direct_light(d, v, rng));
-
-    // The next direction, from the BSDF.
-    vec2 u_lobe = hr_next2(rng);
-    vec2 u_dir = hr_next2(rng);
-    vec3 wi;
-    vec3 weight;
-    float pdf;
-    bool delta;
-    bool through;
-    if (!hr_bsdf_sample(v.bsdf, v.wo, u_lobe.x, u_dir, wi, weight, pdf, delta, through)) break;
-    hr_vec3 next = normalize(hr_d3(hr_to_world(wi, v.t, v.b, v.n)));
-    // A reflected direction below the geometric surface (the shading
-    // normal's tilt) would leave from inside: the path ends there; so does
-    // rough transmission back above it, mirrored.
-    if (!through && dot(next, v.ng) <= 0.0) break;
-    if (through && !delta && dot(next, v.ng) >= 0.0) break;
-    throughput = hr_mul3(throughput, hr_d3(weight));
-    specular = delta;
-    last_pdf = pdf;
-    hr_path_count(d, through ? HR_PATH_RAY_REFRACTED : HR_PATH_RAY_REFLECTED);
-    o = through ? v.below : v.above;
-    dir = next;
-    tmin = 0.0;
-    tmax = HR_PATH_INF;
-    // Russian roulette (pbrt-v4's): a path whose throughput has fallen
-    // below 1 goes on with that probability, weighted up to stay unbiased.
-    hr_real keep = max(throughput.x, max(throughput.y, throughput.z));
-    if (depth >= HR_PATH_ROULETTE_DEPTH && keep < 1.0) {
-      if (!(u_lobe.y < keep)) break;
-      throughput = throughput * (hr_real(1.0) / keep);
-    }
-  }
-  return radiance;
+  bool more = true;
+  while (more) more = hr_path_step(d, s, h, rng);  // the loop's one exit in its condition (design/gpu.md: lavapipe and loops)
+  return s.radiance;
 }
 
 HR_END

@@ -70,6 +70,22 @@ struct HrPathVertex {
   HrBsdf bsdf;
 };
 
+/// A path between its vertices (hr_path_start, hr_path_step): the ray it
+/// traces next (world; t over (tmin, tmax)), the light it has gathered, the
+/// fraction of what it meets next that reaches the eye (`throughput`), and
+/// how it got here: whether its last bounce was a delta lobe (`specular`:
+/// no MIS on what it meets), that bounce's density (`last_pdf`) and the
+/// vertex it meets next (`depth`, the eye ray's 1). Plain data: a wavefront
+/// keeps it in device memory between its stages (gpu/shaders/wavefront.glsl).
+struct HrPathState {
+  hr_vec3 o, dir;
+  hr_real tmin, tmax;
+  hr_vec3 radiance, throughput;
+  bool specular;
+  float last_pdf;
+  int depth;
+};
+
 HR_END
 
 #endif

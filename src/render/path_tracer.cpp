@@ -65,8 +65,8 @@ static inline bool hr_path_trace(HrPathDevice& d, const Vec3& o, const Vec3& dir
   return true;
 }
 
-static inline bool hr_path_occluded(HrPathDevice& d, const Vec3& from, const Vec3& dir, double tmax) {
-  return d.scene.accel().occluded(Ray{from, dir, 0, tmax});
+static inline Vec3 hr_path_unblocked(HrPathDevice& d, const Vec3& from, const Vec3& dir, double tmax, const Vec3& term) {
+  return d.scene.accel().occluded(Ray{from, dir, 0, tmax}) ? Vec3{0, 0, 0} : term;
 }
 
 static inline void hr_path_count(HrPathDevice& d, int kind) {

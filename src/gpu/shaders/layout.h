@@ -11,6 +11,7 @@
 namespace holoray::gpu {
 struct vec4 { float x = 0, y = 0, z = 0, w = 0; };
 struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
+struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_STRUCT struct alignas(16)
 #else
 #define HR_STRUCT struct
@@ -94,6 +95,25 @@ struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 // (their subgroup's share; gpu_renderer.cpp sizes the dispatch by it), few
 // enough that lavapipe's 65535 loop iterations hold them.
 #define HR_SHADOW_RAYS_PER_LANE 8
+
+// The path integrator's wavefront (trace.comp's kWaveStage,
+// wavefront.glsl): its kernels, each a pipeline of the same SPIR-V. The
+// shading kernel runs three stages, told apart by the vertex it is given
+// (push constant `depth`: HR_WAVE_START_DEPTH, a vertex 1 to max_depth + 1,
+// HR_WAVE_FINISH_DEPTH), so that a renderer compiles three pipelines, not
+// five (lavapipe takes seconds for each).
+#define HR_WAVE_OFF 0
+#define HR_WAVE_SHADING 1  // start (eye rays: each pixel's path begun, queued), shade (each hit: light added,
+                           // shadow rays written, the next ray queued) and finish (the last shadow terms, the sample)
+#define HR_WAVE_EXTEND 2   // the queued paths' rays to their nearest hits (lanes fetch rays)
+#define HR_WAVE_SHADOW 3   // the shadow rays traced, any hit (lanes fetch rays); blocked terms zeroed
+#define HR_WAVE_START_DEPTH 0
+#define HR_WAVE_FINISH_DEPTH (-1)
+// The wavefront's queue heads: the paths' for each vertex (1 to
+// HR_MAX_DEPTH + 1, and the one after, never filled), then the shadow
+// rays' made at each (wavefront.glsl).
+#define HR_WAVE_VERTICES (HR_MAX_DEPTH + 3)
+#define HR_WAVE_HEADS (2 * HR_WAVE_VERTICES)
 
 /// One 4-wide BVH node, or half of an 8-wide one (HR_FEATURE_WIDE_BVH:
 /// children 0 to 3, then 4 to 7 in the next record), from
@@ -218,6 +238,27 @@ HR_STRUCT GpuEmitter {
 /// pixel's run before << 4 | this run's length (trace.comp, shadow_resolve).
 HR_STRUCT GpuShadowRay {
   vec4 origin_tmax, dir_lit;
+};
+
+/// A path of the wavefront between its stages (HrPathState, with what the
+/// device keeps beside it): the ray it traces next (world), the light it
+/// has gathered and the last bounce's density, its throughput and next
+/// vertex (w: int bits), the throughput its shadow rays in flight take and
+/// its flags (w, uint bits: 1 the last bounce was a delta lobe, 2 the eye
+/// ray met something, its shadow rays in flight << 8), its sampler (`rng`: seed,
+/// sample, dimension; w the eye ray's optical offset, float bits), and the
+/// eye ray's line and depth sign (its AOVs).
+HR_STRUCT GpuWavePath {
+  vec4 o_tmin, dir_tmax, radiance_pdf, throughput_depth, shadow_flags;
+  uvec4 rng;
+  vec4 line_sign;
+};
+
+/// A path's shadow ray (wavefront.glsl): origin (world) and how far it
+/// runs, unit direction, and the light's term it brings where nothing
+/// blocks it (zeroed by the shadow stage when something does).
+HR_STRUCT GpuWaveShadow {
+  vec4 origin_tmax, dir, term;
 };
 
 /// What one frame's dispatches share: the lens array (camera-model.md),

@@ -73,6 +73,10 @@ struct HrPathDevice {
   float t_sign;
   bool first_hit;
   uvec4 rays;
+  // The wavefront's (wavefront.glsl): the path's place in its band, its
+  // shadow rays written at this vertex.
+  uint wave_path;
+  int wave_shadows;
 };
 
 // What a ray met: the hit, its surface after normal mapping, the
@@ -87,9 +91,14 @@ struct HrPathHit {
   bool sphere;
 };
 
+bool wave_hit(uint p, out Hit h);
+// The wavefront's shade stage (wavefront.glsl), where a hook does not trace.
+bool wave_shading() { return kWaveStage == HR_WAVE_SHADING && band.depth > 0; }
 bool hr_path_trace(inout HrPathDevice d, vec3 o, vec3 dir, float tmin, float tmax, int depth, out HrPathHit h) {
   log_kind = uint(depth);
-  if (!trace_ray(o, dir, tmin, tmax, false, h.hit)) return false;
+  // The wavefront's shading stage reads what its traversal stage found.
+  bool found = wave_shading() ? wave_hit(d.wave_path, h.hit) : trace_ray(o, dir, tmin, tmax, false, h.hit);
+  if (!found) return false;
   bool primary = depth == 1;
   float optic = h.hit.t + (primary ? d.optic0 : 0.0);  // along the eye's way, as the CPU measures it
   h.s = surface_of(o, dir, h.hit);
@@ -114,10 +123,12 @@ vec3 hr_path_hit_p(HrPathHit h) { return h.s.p; }
 vec3 hr_path_hit_ng(HrPathHit h) { return h.s.ng; }
 vec3 hr_path_hit_ns(HrPathHit h) { return h.s.ns; }
 
-bool hr_path_occluded(inout HrPathDevice d, vec3 from, vec3 dir, float tmax) {
+vec3 wave_shadow(inout HrPathDevice d, vec3 from, vec3 dir, float tmax, vec3 term);
+vec3 hr_path_unblocked(inout HrPathDevice d, vec3 from, vec3 dir, float tmax, vec3 term) {
+  if (wave_shading()) return wave_shadow(d, from, dir, tmax, term);  // traced by the next stage
   log_kind = 0x80u;
   Hit blocker;
-  return trace_ray(from, dir, 0.0, tmax, true, blocker);
+  return trace_ray(from, dir, 0.0, tmax, true, blocker) ? vec3(0.0) : term;
 }
 
 void hr_path_count(inout HrPathDevice d, int kind) {
@@ -245,6 +256,24 @@ bool hr_path_emitter_sample(inout HrPathDevice d, vec2 u_pick, vec2 u_emit, vec3
 
 #include "render/path_integrator.h"
 
+// Sample band.sample_index of pixel (i, j), `c`, added to the colour the
+// passes before left; the last pass leaves the mean.
+void add_sample(int i, int j, vec3 c) {
+  int spp = F.mode.w, k = band.sample_index;
+  // The sum so far: none before sample 0; the mean of first_sample
+  // samples a trace before scaled back to their sum at its first pass.
+  float before = k == 0 ? 0.0 : k == band.first_sample ? float(k) : 1.0;
+  float last = k == spp - 1 ? 1.0 / float(spp) : 1.0;
+  if (kPanel && F.panel_kind.x == 3) {  // one channel of the pixel (display_renderer.cpp, pack_subpixels)
+    int q = i % 3, ch = F.panel_kind.y != 0 ? q : 2 - q;
+    uint at = out_pixel(i / 3, j) * 3u + uint(ch);
+    colour_sum[at] = ((before == 0.0 ? 0.0 : colour_sum[at] * before) + c[ch]) * last;
+  } else {
+    uint at = out_pixel(i, j) * 3u;
+    for (uint ch = 0u; ch < 3u; ++ch) colour_sum[at + ch] = ((before == 0.0 ? 0.0 : colour_sum[at + ch] * before) + c[ch]) * last;
+  }
+}
+
 // One pass: sample band.sample_index of pixel (i, j), placed by the
 // pixel's sampler (path_pixel_sum: sample 0 at the centre), added to the
 // colour the passes before left; the last pass leaves the mean. A trace
@@ -268,6 +297,8 @@ void path_main() {
   d.t_sign = e.t_sign;
   d.first_hit = false;
   d.rays = uvec4(0u);
+  d.wave_path = 0u;
+  d.wave_shadows = 0;
   vec3 c;
   if (e.traced) {
     ++d.rays.x;
@@ -277,17 +308,8 @@ void path_main() {
     c = path_escape(e.d);
   }
   if (aovs_now && !d.first_hit) write_miss_aovs(i, j);
-  // The sum so far: none before sample 0; the mean of first_sample
-  // samples a trace before scaled back to their sum at its first pass.
-  float before = k == 0 ? 0.0 : k == band.first_sample ? float(k) : 1.0;
-  float last = k == spp - 1 ? 1.0 / float(spp) : 1.0;
-  if (kPanel && F.panel_kind.x == 3) {  // one channel of the pixel (display_renderer.cpp, pack_subpixels)
-    int q = i % 3, ch = F.panel_kind.y != 0 ? q : 2 - q;
-    uint at = out_pixel(i / 3, j) * 3u + uint(ch);
-    colour_sum[at] = ((before == 0.0 ? 0.0 : colour_sum[at] * before) + c[ch]) * last;
-  } else {
-    uint at = out_pixel(i, j) * 3u;
-    for (uint ch = 0u; ch < 3u; ++ch) colour_sum[at + ch] = ((before == 0.0 ? 0.0 : colour_sum[at + ch] * before) + c[ch]) * last;
-  }
+  add_sample(i, j, c);
   add_counts(d.rays);
 }
+
+#include "wavefront.glsl"

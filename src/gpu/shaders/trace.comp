@@ -73,6 +73,9 @@ layout(constant_id = 12) const bool kWideBvh = false;
 // The path integrator (HR_FEATURE_PATH, path.glsl): one sample of each
 // pixel a pass, added to what the passes before wrote.
 layout(constant_id = 13) const bool kPath = false;
+// The path integrator as a wavefront (HOLORAY_GPU_WAVEFRONT, wavefront.glsl):
+// HR_WAVE_* the stage this pipeline runs, HR_WAVE_OFF the megakernel.
+layout(constant_id = 14) const int kWaveStage = HR_WAVE_OFF;
 const int kNodeRecords = kWideBvh ? 2 : 1;
 const int kNodeWidth = kWideBvh ? 8 : 4;
 
@@ -118,10 +121,34 @@ layout(std430, binding = 18) buffer RayLogBlock { uvec4 ray_log_head; uvec4 ray_
 layout(std430, binding = 19) buffer ShadowQueueBlock { uvec4 shadow_head; GpuShadowRay shadow_queue[]; };
 layout(std430, binding = 20) buffer ShadowLastBlock { uint shadow_last[]; };
 layout(std430, binding = 21) buffer ShadowTermBlock { vec4 shadow_terms[]; };
+// The path integrator's wavefront (kWaveStage, wavefront.glsl), for one band
+// of at most band.capacity paths (p: a pixel's place in its band): each
+// path's state; its ray's nearest hit (two records: t, the primitive, u, v;
+// the geometric normal); the queues' heads (x the entries queued, y those
+// fetched: a queue of the paths that go on to each vertex, then one of the
+// shadow rays made at each) and the path queues, two of band.capacity
+// entries taken in turn; each path's shadow rays (at p * the most a vertex
+// makes, in the order made) and the queue of those made at a vertex.
+layout(std430, binding = 25) buffer WavePathBlock { GpuWavePath wave_paths[]; };
+layout(std430, binding = 26) buffer WaveHitBlock { vec4 wave_hits[]; };
+layout(std430, binding = 27) buffer WaveQueueBlock { uvec4 wave_heads[HR_WAVE_HEADS]; uint wave_queue[]; };
+layout(std430, binding = 28) buffer WaveShadowBlock { GpuWaveShadow wave_shadows[]; };
+layout(std430, binding = 29) buffer WaveShadowQueueBlock { uint wave_shadow_queue[]; };
 
 // `sample_index`: the path integrator's pass (kPath); `first_sample`: its
 // first this trace (> 0: the colours hold the mean of that many already).
-layout(push_constant) uniform Band { int row0; int rows; int index; int frame; int sample_index; int first_sample; } band;
+// The wavefront's stages also take the vertex they work on (`depth`) and
+// the paths a band holds at most (`capacity`).
+layout(push_constant) uniform Band {
+  int row0;
+  int rows;
+  int index;
+  int frame;
+  int sample_index;
+  int first_sample;
+  int depth;
+  int capacity;
+} band;
 
 const float kInf = 1.0 / 0.0;
 
@@ -133,6 +160,9 @@ struct Hit {
 };
 
 uint visited = 0u, tested = 0u;
+// Node steps a lane of a fetching traversal took, busy or not (their
+// subgroup's loop's turns: kCountWork): lanes' use is `visited` over them.
+uint lane_steps = 0u;
 // What the ray log says of the ray traced now (kRayLog).
 ivec2 log_pixel = ivec2(0);
 uint log_kind = 0u;
@@ -407,7 +437,7 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
 // the records or a function: the 4-wide kernel then folds to the code it
 // was before 8-wide nodes (a loop of one pass, and a function's arrays
 // copied in and out, stayed in spirv-opt's output).
-#define HR_MEET_CHILDREN(n)                                                                               \
+#define HR_MEET_CHILDREN(n, ON_ANY_HIT)                                                                   \
   {                                                                                                       \
     vec4 t0, t1;                                                                                          \
     child_spans(n, o, inv, tmin, h.t, t0, t1);                                                            \
@@ -417,7 +447,7 @@ bool trace_ray(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
         for (int r = 0; r < n.count[c]; ++r)                                                              \
           if (hit_ref(refs[n.index[c] + r], o, d, sr, tmin, any, h)) {                                    \
             found = true;                                                                                 \
-            if (any) return true;                                                                         \
+            if (any) ON_ANY_HIT;                                                                          \
           }                                                                                               \
         continue;                                                                                         \
       }                                                                                                   \
@@ -446,10 +476,10 @@ bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
     float near_t[kNodeWidth];
     int m = 0;
     GpuNode n = nodes[next * kNodeRecords];
-    HR_MEET_CHILDREN(n)
+    HR_MEET_CHILDREN(n, return true)
     if (kWideBvh) {
       n = nodes[next * kNodeRecords + 1];
-      HR_MEET_CHILDREN(n)
+      HR_MEET_CHILDREN(n, return true)
     }
     // The nearest child next, the others kept; none met: the last one kept.
     for (int c = 0; c + 1 < m && sp < HR_STACK; ++c) stack[sp++] = order[c];
@@ -457,7 +487,6 @@ bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
   }
   return found;
 }
-#undef HR_MEET_CHILDREN
 
 // ---- the cameras: their lines are camera/pixel_lines.h, the CPU's text ----
 
@@ -928,8 +957,12 @@ struct Pending {
 // a lane, and the dispatch holds enough invocations for the queue's
 // capacity; those that find it drained leave at once. The loop's one exit
 // is in its condition (design/gpu.md: lavapipe and loops).
+void add_fetch_work();
+// The wavefront's shadow queue of the vertex at band.depth (wavefront.glsl).
+uint wave_shadow_head() { return uint(HR_WAVE_VERTICES + band.depth); }
 void shadow_pass() {
-  uint queued = min(shadow_head.x, shadow_head.z);
+  bool wave = kWaveStage == HR_WAVE_SHADOW;  // the wavefront's shadow rays, else the shadow queue's
+  uint queued = wave ? wave_heads[wave_shadow_head()].x : min(shadow_head.x, shadow_head.z);
   uint budget = uint(HR_SHADOW_RAYS_PER_LANE) * gl_SubgroupSize, taken = 0u;
   bool live = false, drained = false;
   vec3 o = vec3(0.0), d = vec3(0.0), inv = vec3(0.0);
@@ -944,15 +977,21 @@ void shadow_pass() {
     uint k = min(subgroupBallotBitCount(want), budget - taken);
     if (k > 0u && !drained) {
       uint base = 0u;
-      if (subgroupElect()) base = atomicAdd(shadow_head.y, k);
+      if (subgroupElect()) base = wave ? atomicAdd(wave_heads[wave_shadow_head()].y, k) : atomicAdd(shadow_head.y, k);
       base = subgroupBroadcastFirst(base);
       taken += k;
       drained = base + k >= queued;
       uint rank = subgroupBallotExclusiveBitCount(want);
       if (!live && rank < k && base + rank < queued) {
         at = base + rank;
-        GpuShadowRay r = shadow_queue[at];
-        o = r.origin_tmax.xyz, tmax = r.origin_tmax.w, d = r.dir_lit.xyz, inv = safe_inverse(d), sr = sheared(d);
+        vec4 origin_tmax, dir;
+        if (wave) {
+          at = wave_shadow_queue[at];
+          origin_tmax = wave_shadows[at].origin_tmax, dir = wave_shadows[at].dir;
+        } else {
+          origin_tmax = shadow_queue[at].origin_tmax, dir = shadow_queue[at].dir_lit;
+        }
+        o = origin_tmax.xyz, tmax = origin_tmax.w, d = dir.xyz, inv = safe_inverse(d), sr = sheared(d);
         live = true, sp = 0, next = 0;
       }
     }
@@ -981,19 +1020,27 @@ void shadow_pass() {
       }
       next = first >= 0 ? first : sp > 0 ? stack[--sp] : -1;
       if (blocked || next < 0) {
-        if (!blocked) shadow_queue[at].dir_lit.w = 1.0;
+        if (wave && blocked) wave_shadows[at].term = vec4(0.0);
+        if (!wave && !blocked) shadow_queue[at].dir_lit.w = 1.0;
         live = false;
       }
     }
+    if (kCountWork) ++lane_steps;
     more = subgroupAny(live) || (!drained && taken < budget);
   }
-  if (kCountWork) {
-    uvec2 work = subgroupAdd(uvec2(visited, tested));
-    if (subgroupElect()) {
-      int slot = 2 * int(gl_WorkGroupID.x % uint(HR_COUNT_SLOTS));
-      atomicAdd(band_counts[slot].x, work.x);
-      atomicAdd(band_counts[slot].y, work.y);
-    }
+  add_fetch_work();
+}
+
+// A fetching traversal's work added to the counters of band.index (the
+// shadow queue's: band 0): nodes, primitives and its lanes' steps (z).
+void add_fetch_work() {
+  if (!kCountWork) return;
+  uvec3 work = subgroupAdd(uvec3(visited, tested, lane_steps));
+  if (subgroupElect()) {
+    int slot = 2 * (band.index * HR_COUNT_SLOTS + int(gl_WorkGroupID.x % uint(HR_COUNT_SLOTS)));
+    atomicAdd(band_counts[slot].x, work.x);
+    atomicAdd(band_counts[slot].y, work.y);
+    atomicAdd(band_counts[slot].z, work.z);
   }
 }
 
@@ -1299,7 +1346,9 @@ void write_colour(int i, int j, vec3 colour) {
 }
 
 void main() {
-  if (kPath) {
+  if (kWaveStage != HR_WAVE_OFF) {
+    wave_main();
+  } else if (kPath) {
     path_main();
   } else if (kShadowPass == 1) {
     shadow_pass();

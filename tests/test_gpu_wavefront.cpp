@@ -1,0 +1,132 @@
+// The path integrator as a wavefront on the GPU (src/gpu/wavefront.cpp,
+// shaders/wavefront.glsl; HOLORAY_GPU_WAVEFRONT=1) against the megakernel
+// (shaders/path.glsl's path_main), on lavapipe where there is no GPU. Both
+// run the shared integrator's steps (render/path_integrator.h) in the same
+// order on the same numbers; the wavefront only moves the paths through
+// queues between its traversals and adds each vertex's shadow terms in the
+// order they were made, so the two images agree to float rounding (each
+// stage a kernel of its own, compiled apart), ray for ray. Its agreement
+// with the CPU is GpuPathIntegrator's suite, run again under the wavefront
+// (tests/CMakeLists.txt, GpuPathIntegrator.UnderTheWavefront).
+#include <holoray/holoray.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "test_util.hpp"
+
+namespace holoray::test {
+namespace {
+
+using api::Camera;
+using api::RenderOptions;
+using api::Result;
+using api::Scene;
+
+Result path_traced(const Scene& scene, const Camera& camera, RenderOptions o, bool wavefront, const char* band = nullptr) {
+  o.integrator = api::Integrator::path;
+  o.device = "gpu";
+  ScopedEnv wave("HOLORAY_GPU_WAVEFRONT", wavefront ? "1" : "0");
+  std::optional<ScopedEnv> banded;
+  if (band) banded.emplace("HOLORAY_GPU_BAND", band);
+  return api::render(scene, camera, o);
+}
+
+// The largest difference between two images' samples, relative to 1 or
+// the sample's size.
+float worst_difference(const api::Image& a, const api::Image& b) {
+  EXPECT_EQ(a.size(), b.size());
+  float worst = 0;
+  for (size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    const float x = a.data()[k], y = b.data()[k];
+    if (std::isnan(x) && std::isnan(y)) continue;
+    worst = std::fmax(worst, std::fabs(x - y) / std::fmax(1.0f, std::fabs(x)));
+  }
+  return worst;
+}
+
+bool same_bits(const api::Image& a, const api::Image& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+void expect_the_megakernels_image(const Scene& scene, const Camera& camera, const RenderOptions& o, const char* what) {
+  const Result mega = path_traced(scene, camera, o, false), wave = path_traced(scene, camera, o, true);
+  EXPECT_LE(worst_difference(wave.colour, mega.colour), 1e-4f) << what;
+  EXPECT_EQ(wave.stats.rays.eye, mega.stats.rays.eye) << what;
+  EXPECT_EQ(wave.stats.rays.shadow, mega.stats.rays.shadow) << what;
+  EXPECT_EQ(wave.stats.rays.reflected, mega.stats.rays.reflected) << what;
+  EXPECT_EQ(wave.stats.rays.refracted, mega.stats.rays.refracted) << what;
+  EXPECT_GT(mega.stats.rays.reflected, 0u) << what << ": no path went past its first vertex";
+  for (const auto& [w, m] : {std::pair{&wave.albedo, &mega.albedo}, {&wave.depth, &mega.depth}, {&wave.normal, &mega.normal},
+                             {&wave.id, &mega.id}})
+    EXPECT_LE(worst_difference(*w, *m), 1e-4f) << what << ": an AOV";
+}
+
+api::Pinhole view(int w, int h) {
+  api::Pinhole p;
+  p.width = w, p.height = h;
+  return p;
+}
+
+// Area lights in a closed room (many bounces, a shadow ray a vertex), an
+// environment image (its importance sampling's shadow rays, escapes seen
+// at every depth), and a lens array of the paper's kind: the wavefront's
+// image is the megakernel's, its rays counted alike, its AOVs alike.
+TEST(GpuWavefront, RendersWhatTheMegakernelRenders) {
+  RenderOptions o;
+  o.spp = 4;
+  o.aovs = api::Aovs{true, true, true, true};
+  Scene room = Scene::load(source_dir() + "/examples/lights/cornell_box.nff");
+  room.add_lights(source_dir() + "/examples/lights/cornell_box.toml");
+  expect_the_megakernels_image(room, view(40, 40), o, "an area light in a closed room");
+  TempDir dir;
+  write_image_of(dir.file("sky.exr"), 32, 16, [](int x, int y, int c) {
+    return x >= 20 && x < 22 && y >= 4 && y < 6 ? 100.0f : 0.2f + 0.1f * float(c);
+  });
+  const Scene primitives = Scene::load(source_dir() + "/examples/primitives.nff");
+  RenderOptions lit = o;
+  lit.environment.file = dir.file("sky.exr");
+  expect_the_megakernels_image(primitives, view(40, 30), lit, "an environment image");
+  api::LensArray a;
+  a.lenses_x = a.lenses_y = 12;
+  a.pixels_per_lens = 6;
+  expect_the_megakernels_image(primitives, a, o, "a lens array");
+}
+
+// A path's shadow terms land in its own places and are summed in the order
+// made, whatever order the lanes traced them in: the image is the same bit
+// for bit from run to run and whatever the bands (HOLORAY_GPU_BAND: a band
+// of 500 paths at a time, so each vertex's queues fill and drain 9 times).
+TEST(GpuWavefront, TheImageIsTheSameRunToRunAndBandToBand) {
+  Scene room = Scene::load(source_dir() + "/examples/lights/cornell_box.nff");
+  room.add_lights(source_dir() + "/examples/lights/cornell_box.toml");
+  RenderOptions o;
+  o.spp = 2;
+  const Result first = path_traced(room, view(64, 64), o, true), again = path_traced(room, view(64, 64), o, true);
+  const Result banded = path_traced(room, view(64, 64), o, true, "500");
+  EXPECT_TRUE(same_bits(first.colour, again.colour));
+  EXPECT_TRUE(same_bits(first.colour, banded.colour));
+  EXPECT_EQ(banded.stats.rays.total(), first.stats.rays.total());
+}
+
+// Counted, the wavefront's traversals report their lanes' steps: each node
+// visited is one busy lane's step, so there are at least as many steps,
+// and the counting changes nothing in the image.
+TEST(GpuWavefront, CountsItsLanesStepsWithoutChangingTheImage) {
+  const Scene primitives = Scene::load(source_dir() + "/examples/primitives.nff");
+  RenderOptions o;
+  o.spp = 2;
+  const Result plain = path_traced(primitives, view(48, 32), o, true);
+  o.count_work = true;
+  const Result counted = path_traced(primitives, view(48, 32), o, true);
+  EXPECT_TRUE(same_bits(plain.colour, counted.colour));
+  EXPECT_GT(counted.stats.nodes_visited, 0u);
+  EXPECT_GE(counted.stats.lane_steps, counted.stats.nodes_visited);
+  EXPECT_EQ(plain.stats.lane_steps, 0u);
+  const Result mega = path_traced(primitives, view(48, 32), o, false);
+  EXPECT_EQ(mega.stats.lane_steps, 0u) << "the megakernel's lanes fetch nothing";
+}
+
+}  // namespace
+}  // namespace holoray::test
