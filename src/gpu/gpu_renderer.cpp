@@ -27,6 +27,10 @@ namespace {
 const uint32_t kTraceSpirv[] = {
 #include "trace.spv.inc"
 };
+// The same with the wavefront's two traversal kernels alone (HR_TRAVERSAL_KERNELS).
+const uint32_t kTraversalSpirv[] = {
+#include "trace_traversal.spv.inc"
+};
 
 constexpr const char* kFix =
     "install mesa-vulkan-drivers (lavapipe, Vulkan on the CPU) or the GPU's own driver, or render with `device` cpu";
@@ -249,7 +253,9 @@ vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int 
                                     .pData = spec_values};
   vk::ComputePipelineCreateInfo pi{
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
-      .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec},
+      .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
+                .module = wave_stage == HR_WAVE_EXTEND || wave_stage == HR_WAVE_SHADOW ? *traversal_module : *module,
+                .pName = "main", .pSpecializationInfo = &spec},
       .layout = *pipeline_layout};
   vk::raii::Pipeline p(device, nullptr, pi);
   if (capture_stats) print_statistics(device, p);
@@ -348,6 +354,8 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
                                              .pPushConstantRanges = &push});
   m.module = vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
+  m.traversal_module =
+      vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraversalSpirv), .pCode = kTraversalSpirv});
   // Specialization (shaders/trace.comp): the workgroup's size, 32x2 unless
   // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning).
   if (const char* wg = std::getenv("HOLORAY_GPU_WORKGROUP")) {

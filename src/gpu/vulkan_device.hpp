@@ -62,6 +62,7 @@ struct GpuRenderer::Impl {
   vk::raii::DescriptorSetLayout set_layout = nullptr;
   vk::raii::PipelineLayout pipeline_layout = nullptr;
   vk::raii::ShaderModule module = nullptr;
+  vk::raii::ShaderModule traversal_module = nullptr;  // the wavefront's traversals alone (trace.comp)
   // The kernel's pipelines, made when first needed: by whether it renders
   // panels (display panels, Looking Glass native panels), by what the
   // loaded scene needs (SceneArrays::features: its materials, its

@@ -1346,6 +1346,14 @@ void write_colour(int i, int j, vec3 colour) {
 }
 
 void main() {
+#ifdef HR_TRAVERSAL_KERNELS
+  // The wavefront's two traversals alone, a SPIR-V of their own
+  // (CMakeLists.txt): lavapipe inlines a module's whole call graph before it
+  // folds the stage's branches away, about 5 s a pipeline whatever the
+  // stage, and this module holds nothing else.
+  if (kWaveStage == HR_WAVE_EXTEND) wave_extend();
+  else shadow_pass();
+#else
   if (kWaveStage != HR_WAVE_OFF) {
     wave_main();
   } else if (kPath) {
@@ -1371,6 +1379,7 @@ void main() {
       add_counts(rays);
     }
   }
+#endif
 }
 
 // This invocation's work added to its band's counters: nodes visited and
