@@ -254,7 +254,7 @@ vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int 
   vk::ComputePipelineCreateInfo pi{
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
       .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
-                .module = wave_stage == HR_WAVE_EXTEND || wave_stage == HR_WAVE_SHADOW ? *traversal_module : *module,
+                .module = wave_stage >= HR_WAVE_EXTEND ? *traversal_module : *module,
                 .pName = "main", .pSpecializationInfo = &spec},
       .layout = *pipeline_layout};
   vk::raii::Pipeline p(device, nullptr, pi);
@@ -464,7 +464,7 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
     if (m.wavefront_on && (s.features & HR_FEATURE_PATH)) {
-      for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW}) m.pipeline(panel, false, 0, stage);
+      for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS}) m.pipeline(panel, false, 0, stage);
     } else {
       for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
     }
@@ -737,6 +737,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, Rende
     m.submit_and_wait("the frame");
     stats.trace_seconds = seconds_since(t0);
     if (*m.timestamps) m.print_pass_times(plan);
+    if (plan.wave_paths > 0) m.print_wave_times();
     // HOLORAY_GPU_FAULT=device-lost or out-of-memory (for the tests, where no
     // device fails on demand): the frame ends as that fault would end it.
     if (const char* fault = std::getenv("HOLORAY_GPU_FAULT")) {

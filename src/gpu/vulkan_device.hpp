@@ -100,6 +100,15 @@ struct GpuRenderer::Impl {
   // shadow rays and their queue.
   bool wavefront_on = false;
   Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue;
+  // With HOLORAY_GPU_STATS, a timestamp after each of the wavefront's
+  // dispatches (the first kWaveStamps of a frame), and the stage each ends
+  // (WaveStage), summed by stage and printed (print_wave_times).
+  static constexpr uint32_t kWaveStamps = 4096;
+  enum WaveStage { kStart, kExtend, kShade, kShadow, kFinish, kWaveStages };
+  vk::raii::QueryPool wave_timestamps = nullptr;
+  std::vector<WaveStage> wave_stamped;
+  void stamp(WaveStage stage);
+  void print_wave_times();
   uint64_t max_storage_range = 0;  // bytes (VkPhysicalDeviceLimits)
   vk::raii::DescriptorPool descriptor_pool = nullptr;
   vk::raii::DescriptorSet set = nullptr;
@@ -235,9 +244,8 @@ struct GpuRenderer::Impl {
   void record_wavefront_passes(const FramePlan& plan, int first_sample);
   // A memory barrier between two dispatches (or a transfer and a dispatch).
   void barrier(vk::PipelineStageFlags from = vk::PipelineStageFlagBits::eComputeShader);
-  // `invocations` of the bound pipeline in dispatches of band_invocations
-  // at most, for a kernel whose lanes fetch their work (no offset needed).
-  void dispatch_fetching(uint64_t invocations);
+  // A barrier before an indirect dispatch that reads sizes a kernel wrote.
+  void indirect_barrier();
   // Ends `commands`, submits it and waits under the timeout (wait()).
   void submit_and_wait(const char* what);
   // With timestamps (HOLORAY_GPU_STATS=1): each pass's time on the device.

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "gpu/vulkan_device.hpp"
 
@@ -19,20 +20,38 @@ void GpuRenderer::Impl::barrier(vk::PipelineStageFlags from) {
       nullptr, nullptr);
 }
 
-void GpuRenderer::Impl::dispatch_fetching(uint64_t invocations) {
-  const uint64_t group = workgroup[0] * workgroup[1];
-  const uint64_t groups = std::max<uint64_t>(1, (invocations + group - 1) / group);
-  const uint64_t band_groups = std::max<uint64_t>(1, band_invocations / group);
-  for (uint64_t first = 0; first < groups; first += band_groups) {
-    const uint64_t n = std::min(band_groups, groups - first);
-    const uint32_t gx = uint32_t(std::min<uint64_t>(n, 65535));
-    commands.dispatch(gx, uint32_t((n + gx - 1) / gx), 1);
-  }
+void GpuRenderer::Impl::indirect_barrier() {
+  commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                           vk::PipelineStageFlagBits::eDrawIndirect | vk::PipelineStageFlagBits::eComputeShader, {},
+                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                             .dstAccessMask = vk::AccessFlagBits::eIndirectCommandRead |
+                                                              vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},
+                           nullptr, nullptr);
+}
+
+void GpuRenderer::Impl::stamp(WaveStage stage) {
+  if (!*wave_timestamps || wave_stamped.size() + 1 >= kWaveStamps) return;
+  wave_stamped.push_back(stage);
+  commands.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *wave_timestamps, uint32_t(wave_stamped.size()));
+}
+
+void GpuRenderer::Impl::print_wave_times() {
+  if (!*wave_timestamps || wave_stamped.empty()) return;
+  const uint32_t n = uint32_t(wave_stamped.size()) + 1;
+  const auto got = wave_timestamps.getResults<uint64_t>(0, n, n * sizeof(uint64_t), sizeof(uint64_t),
+                                                        vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+  if (got.first != vk::Result::eSuccess) return;
+  double ms[kWaveStages] = {};
+  for (uint32_t k = 1; k < n; ++k) ms[wave_stamped[k - 1]] += double(got.second[k] - got.second[k - 1]) * timestamp_ns * 1e-6;
+  std::fprintf(stderr, "holoray gpu: wavefront: start %.3f ms, extend %.3f ms, shade %.3f ms, shadow %.3f ms, finish %.3f ms "
+               "(%u dispatches timed)\n", ms[kStart], ms[kExtend], ms[kShade], ms[kShadow], ms[kFinish], n - 1);
 }
 
 void GpuRenderer::Impl::prepare_wavefront(const FramePlan& plan) {
   const uint64_t paths = plan.wave_paths, shadows = paths * plan.wave_shadows;
-  const vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst;
+  // The queues' buffer also holds the stages' dispatch sizes (wave_args).
+  const vk::BufferUsageFlags usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst |
+                                     vk::BufferUsageFlagBits::eIndirectBuffer;
   auto grow = [&](int binding, Buffer& b, uint64_t bytes, const char* what) {
     if (bytes > max_storage_range)
       throw GpuError(fmt::format("the wavefront's {} take {:.1f} MiB, more than the {:.1f} MiB one buffer of {} holds "
@@ -44,7 +63,7 @@ void GpuRenderer::Impl::prepare_wavefront(const FramePlan& plan) {
   };
   grow(25, wave_paths, paths * sizeof(GpuWavePath), "paths");
   grow(26, wave_hits, paths * 32, "hits");
-  grow(27, wave_queues, HR_WAVE_HEADS * 16 + 2 * paths * 4, "path queues");
+  grow(27, wave_queues, HR_WAVE_HEADS * 16 + 3 * 16 + 2 * paths * 4, "path queues");
   grow(28, wave_shadows, shadows * sizeof(GpuWaveShadow), "shadow rays");
   grow(29, wave_shadow_queue, shadows * 4, "shadow queue");
 }
@@ -60,6 +79,13 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
   const int passes_per_submission = int(std::max<uint64_t>(1, 4 * band_invocations / std::max<uint64_t>(1, plan.pixels)));
   stage(HR_WAVE_SHADING);
   cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_layout, 0, {*set}, nullptr);
+  wave_stamped.clear();
+  if (*timestamps) {
+    if (!*wave_timestamps)
+      wave_timestamps = vk::raii::QueryPool(device, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = kWaveStamps});
+    cb.resetQueryPool(*wave_timestamps, 0, kWaveStamps);
+    cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *wave_timestamps, 0);
+  }
   for (int pass = first_sample; pass < plan.passes; ++pass) {
     if (pass > first_sample && (pass - first_sample) % passes_per_submission == 0) {
       submit_and_wait("a pass of the path integrator");
@@ -70,7 +96,6 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
     }
     for (size_t b = 0; b < plan.bands.size(); ++b) {
       const Band& band = plan.bands[b];
-      const uint64_t pixels = uint64_t(band.width) * uint64_t(band.rows);
       auto push = [&](int depth) {
         cb.pushConstants<int32_t>(*pipeline_layout, vk::ShaderStageFlagBits::eCompute, 0,
                                   {band.row0, band.rows, int32_t(b), band.frame, pass, first_sample, depth,
@@ -85,23 +110,37 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
       stage(HR_WAVE_SHADING);
       push(HR_WAVE_START_DEPTH);
       over_band();
+      stamp(kStart);
+      // Each stage of a vertex sized by its queue (wave_dispatch_sizes),
+      // read by an indirect dispatch: the deep vertices hold few paths.
+      const vk::DeviceSize args = HR_WAVE_HEADS * 16;
+      auto size_dispatches = [&] {
+        barrier();
+        stage(HR_WAVE_ARGS);
+        cb.dispatch(1, 1, 1);
+        indirect_barrier();
+      };
       for (int depth = 1; depth <= vertices; ++depth) {
         push(depth);
-        barrier();
+        size_dispatches();
         stage(HR_WAVE_EXTEND);
-        dispatch_fetching((pixels + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE);
+        cb.dispatchIndirect(*wave_queues.buffer, args);
+        stamp(kExtend);
         barrier();
         stage(HR_WAVE_SHADING);
-        over_band();
+        cb.dispatchIndirect(*wave_queues.buffer, args + 16);
+        stamp(kShade);
         if (plan.wave_shadows == 0) continue;
-        barrier();
+        size_dispatches();
         stage(HR_WAVE_SHADOW);
-        dispatch_fetching((pixels * plan.wave_shadows + HR_SHADOW_RAYS_PER_LANE - 1) / HR_SHADOW_RAYS_PER_LANE);
+        cb.dispatchIndirect(*wave_queues.buffer, args + 32);
+        stamp(kShadow);
       }
       barrier();
       stage(HR_WAVE_SHADING);
       push(HR_WAVE_FINISH_DEPTH);
       over_band();
+      stamp(kFinish);
     }
   }
 }

@@ -107,6 +107,7 @@ struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
                            // shadow rays written, the next ray queued) and finish (the last shadow terms, the sample)
 #define HR_WAVE_EXTEND 2   // the queued paths' rays to their nearest hits (lanes fetch rays)
 #define HR_WAVE_SHADOW 3   // the shadow rays traced, any hit (lanes fetch rays); blocked terms zeroed
+#define HR_WAVE_ARGS 4     // one invocation: the next dispatches' sizes from the queues' counts
 #define HR_WAVE_START_DEPTH 0
 #define HR_WAVE_FINISH_DEPTH (-1)
 // The wavefront's queue heads: the paths' for each vertex (1 to

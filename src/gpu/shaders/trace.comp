@@ -131,7 +131,10 @@ layout(std430, binding = 21) buffer ShadowTermBlock { vec4 shadow_terms[]; };
 // makes, in the order made) and the queue of those made at a vertex.
 layout(std430, binding = 25) buffer WavePathBlock { GpuWavePath wave_paths[]; };
 layout(std430, binding = 26) buffer WaveHitBlock { vec4 wave_hits[]; };
-layout(std430, binding = 27) buffer WaveQueueBlock { uvec4 wave_heads[HR_WAVE_HEADS]; uint wave_queue[]; };
+// wave_args: the workgroups of the extend, shade and shadow dispatches
+// (x, y, 1: VkDispatchIndirectCommand) of the vertex at hand, from its
+// queues' counts (HR_WAVE_ARGS).
+layout(std430, binding = 27) buffer WaveQueueBlock { uvec4 wave_heads[HR_WAVE_HEADS]; uvec4 wave_args[3]; uint wave_queue[]; };
 layout(std430, binding = 28) buffer WaveShadowBlock { GpuWaveShadow wave_shadows[]; };
 layout(std430, binding = 29) buffer WaveShadowQueueBlock { uint wave_shadow_queue[]; };
 
@@ -1352,6 +1355,7 @@ void main() {
   // folds the stage's branches away, about 5 s a pipeline whatever the
   // stage, and this module holds nothing else.
   if (kWaveStage == HR_WAVE_EXTEND) wave_extend();
+  else if (kWaveStage == HR_WAVE_ARGS) wave_dispatch_sizes();
   else shadow_pass();
 #else
   if (kWaveStage != HR_WAVE_OFF) {

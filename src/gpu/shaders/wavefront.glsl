@@ -157,6 +157,32 @@ void wave_start() {
   if (queued) wave_queue[wave_queue_base(1) + at] = p;
 }
 
+// The workgroups a dispatch of `invocations` takes, as (x, y, 1) with x
+// within Vulkan's guaranteed 65535.
+uvec4 wave_groups(uint invocations) {
+  uint groups = max(1u, (invocations + gl_WorkGroupSize.x * gl_WorkGroupSize.y - 1u) / (gl_WorkGroupSize.x * gl_WorkGroupSize.y));
+  uint x = min(groups, 65535u);
+  return uvec4(x, (groups + x - 1u) / x, 1u, 0u);
+}
+
+// The sizes of the vertex's dispatches (one invocation, HR_WAVE_ARGS): the
+// extend and shade stages' from its paths queued, the shadow stage's from
+// its shadow rays (0 before its shading: run again after it). A dispatch
+// the size of its queue, not of the band: the deep vertices hold few paths.
+void wave_dispatch_sizes() {
+  if (gl_GlobalInvocationID.x != 0u || gl_GlobalInvocationID.y != 0u) return;
+  uint paths = wave_heads[wave_path_head(band.depth)].x, shadows = wave_heads[wave_shadow_head()].x;
+  uint per_lane = uint(HR_SHADOW_RAYS_PER_LANE);
+  wave_args[0] = wave_groups((paths + per_lane - 1u) / per_lane);
+  wave_args[1] = wave_groups(paths);
+  wave_args[2] = wave_groups((shadows + per_lane - 1u) / per_lane);
+}
+
+// A dispatch's invocation, numbered across its workgroups (any grid).
+uint wave_flat_invocation() {
+  return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+}
+
 // Stage extend: the paths queued for vertex band.depth each to its ray's
 // nearest hit, written for the shade stage. Each lane walks one ray a node
 // a step (walk_bvh's order, so the same hit), and lanes whose ray is done
@@ -224,8 +250,8 @@ void wave_extend() {
 // vertex before added (their stage is done), then one step of the shared
 // integrator at its hit; a path that goes on is queued for the next vertex.
 void wave_shade() {
-  uint q = wave_invocation();
-  bool queued = int(gl_GlobalInvocationID.x) < F.size.x && q < wave_heads[wave_path_head(band.depth)].x;
+  uint q = wave_flat_invocation();
+  bool queued = q < wave_heads[wave_path_head(band.depth)].x;
   bool more = false;
   uint p = 0u;
   if (queued) {
