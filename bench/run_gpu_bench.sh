@@ -44,16 +44,16 @@ done
 spp=${SPP:-1}
 environment=${ENVIRONMENT:-/usr/share/blender/datafiles/studiolights/world/courtyard.exr}
 echo
-echo "The path integrator, $spp sample(s) per pixel, 5 bounces at most: the megakernel, then the"
-echo "wavefront (HOLORAY_GPU_WAVEFRONT=1, src/gpu/wavefront.cpp) in the same run; speed is the"
-echo "megakernel's time over the wavefront's; lanes' use is the wavefront traversals' (nodes"
-echo "visited over their lanes' steps):"
+echo "The path integrator, $spp sample(s) per pixel, 5 bounces at most: the megakernel"
+echo "(HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1, src/gpu/wavefront.cpp) in the same run;"
+echo "speed is the megakernel's time over the wavefront's; lanes' use is the wavefront traversals'"
+echo "(nodes visited over their lanes' steps):"
 echo
 echo "| scene | megakernel ms/frame median (min-max) | fps | wavefront ms/frame median (min-max) | fps | speed | lanes' use | Mrays/s | nodes/ray |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 path_row() {
   local name=$1 mega wave
-  mega=$(run "${@:2}" --integrator path --spp "$spp")
+  mega=$(HOLORAY_GPU_WAVEFRONT=0 run "${@:2}" --integrator path --spp "$spp")
   wave=$(HOLORAY_GPU_WAVEFRONT=1 run "${@:2}" --integrator path --spp "$spp")
   m() { echo "$mega" | field "$1"; }
   w() { echo "$wave" | field "$1"; }

@@ -5,12 +5,15 @@
 // order on the same numbers; the wavefront only moves the paths through
 // queues between its traversals and adds each vertex's shadow terms in the
 // order they were made, so the two images agree to float rounding (each
-// stage a kernel of its own, compiled apart), ray for ray. Its agreement
-// with the CPU is GpuPathIntegrator's suite, run again under the wavefront
-// (tests/CMakeLists.txt, GpuPathIntegrator.UnderTheWavefront).
+// stage a kernel of its own, compiled apart), ray for ray. A frame takes
+// the wavefront unless the frame before traced short paths; the
+// GpuPathIntegrator suite's renders, each a first frame, hold it to the
+// CPU, and that suite runs again under the megakernel
+// (tests/CMakeLists.txt, GpuPathIntegrator.UnderTheMegakernel).
 #include <holoray/holoray.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -126,6 +129,35 @@ TEST(GpuWavefront, CountsItsLanesStepsWithoutChangingTheImage) {
   EXPECT_EQ(plain.stats.lane_steps, 0u);
   const Result mega = path_traced(primitives, view(48, 32), o, false);
   EXPECT_EQ(mega.stats.lane_steps, 0u) << "the megakernel's lanes fetch nothing";
+}
+
+// The rule (gpu/wavefront.cpp, wavefront_pays): a renderer's first frame
+// takes the wavefront; one after a frame of fewer than 3.5 rays a
+// pixel-sample (a small sphere against the sky) takes the megakernel, and
+// renders the same image; one after long paths (a scene of many lights,
+// a shadow ray each a vertex) keeps the wavefront.
+TEST(GpuWavefront, AFrameAfterShortPathsTakesTheMegakernel) {
+  if (std::getenv("HOLORAY_GPU_WAVEFRONT")) GTEST_SKIP() << "HOLORAY_GPU_WAVEFRONT chooses the schedule";
+  TempDir dir;
+  write_text(dir.file("far.nff"), "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 48 48\n"
+                                  "b 0.2 0.3 0.4\nl 5 5 5\nf 0.8 0.8 0.8 1 0 0 0 0\ns 0 0 0 1\n");
+  RenderOptions o;
+  o.device = "gpu";
+  o.integrator = api::Integrator::path;
+  o.count_work = true;
+  const auto rays_a_pixel = [](const Result& r) { return double(r.stats.rays.total()) / (double(r.colour.width()) * r.colour.height()); };
+  api::Renderer far(Scene::load(dir.file("far.nff")), view(48, 48), o);
+  const Result first = far.render(), second = far.render();
+  ASSERT_LT(rays_a_pixel(first), 3.5);
+  ASSERT_GT(first.stats.rays.reflected, 0u) << "the sphere is in view";
+  EXPECT_GT(first.stats.lane_steps, 0u) << "a first frame takes the wavefront";
+  EXPECT_EQ(second.stats.lane_steps, 0u) << "after short paths, the megakernel";
+  EXPECT_LE(worst_difference(second.colour, first.colour), 1e-4f);
+  api::Renderer lit(Scene::load(source_dir() + "/examples/primitives.nff"), view(48, 32), o);
+  const Result one = lit.render(), two = lit.render();
+  ASSERT_GE(rays_a_pixel(one), 3.5);
+  EXPECT_GT(one.stats.lane_steps, 0u);
+  EXPECT_GT(two.stats.lane_steps, 0u) << "after long paths, the wavefront still";
 }
 
 }  // namespace

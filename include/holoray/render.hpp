@@ -141,9 +141,10 @@ struct RenderStats {
   /// On the GPU with RenderOptions::count_work: BVH nodes visited and
   /// primitives tested, over all rays; 0 otherwise.
   uint64_t nodes_visited = 0, primitives_tested = 0;
-  /// With count_work and the GPU wavefront (HOLORAY_GPU_WAVEFRONT=1, for
-  /// measuring): the node steps its traversals' lanes took, busy or waiting
-  /// for their subgroup; nodes_visited over it is their lanes' use.
+  /// With count_work, where the GPU's path integrator ran as a wavefront
+  /// (docs/design/gpu.md): the node steps its traversals' lanes took, busy
+  /// or waiting for their subgroup; nodes_visited over it is their lanes'
+  /// use. 0 otherwise.
   uint64_t lane_steps = 0;
 };
 

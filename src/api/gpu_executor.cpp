@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 #include <unistd.h>  // environ
@@ -84,9 +85,9 @@ RendererPool& renderer_pool();
 // never shared between threads; one that failed is not kept. The measuring
 // knobs (HOLORAY_GPU_*, HOLORAY_VULKAN_LOADER) are read as a renderer is
 // made, so while any is set nothing is kept or reused, but for
-// HOLORAY_GPU_WAVEFRONT, whose renderers are kept apart (the tests run the
-// path integrator's suite under it, and lavapipe compiles a pipeline in
-// seconds). The kept ones are
+// HOLORAY_GPU_WAVEFRONT, whose renderers are kept apart by its value (the
+// tests run the path integrator's suite under it, and lavapipe compiles a
+// pipeline in seconds). The kept ones are
 // destroyed at exit by a handler registered after the driver was loaded,
 // so it runs while the driver's own state still stands (handlers run in
 // reverse order, the shared libraries' destructors last).
@@ -128,14 +129,14 @@ class RendererPool {
         return true;
     return false;
   }
-  static bool wavefront() {
+  static std::string wavefront() {
     const char* w = std::getenv("HOLORAY_GPU_WAVEFRONT");
-    return w && std::string_view(w) == "1";
+    return w ? w : "";
   }
   struct Idle {
     int device;
     bool count_work;
-    bool wavefront;
+    std::string wavefront;
     std::unique_ptr<gpu::GpuRenderer> renderer;
   };
   std::mutex mutex_;

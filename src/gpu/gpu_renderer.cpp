@@ -305,9 +305,11 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
-  // HOLORAY_GPU_WAVEFRONT=1 (measuring): the path integrator as a wavefront.
-  if (const char* wave_env = std::getenv("HOLORAY_GPU_WAVEFRONT"); wave_env && std::string_view(wave_env) == "1")
-    m.wavefront_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
+  // The path integrator as a wavefront where it pays (wavefront.cpp);
+  // HOLORAY_GPU_WAVEFRONT=1 always, =0 never (measuring).
+  const char* wave_env = std::getenv("HOLORAY_GPU_WAVEFRONT");
+  m.wavefront_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops && !(wave_env && std::string_view(wave_env) == "0");
+  m.wavefront_always = wave_env && std::string_view(wave_env) == "1";
   m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
   if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
@@ -463,6 +465,10 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     // (about 1.3 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
+    // A renderer's first path-traced frame takes the wavefront
+    // (wavefront_pays); a later frame that falls back compiles the kernel
+    // then. (A scene loaded again, an animation's moved frame, keeps the
+    // frames' measure; release() forgets it.)
     if (m.wavefront_on && (s.features & HR_FEATURE_PATH)) {
       for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS}) m.pipeline(panel, false, 0, stage);
     } else {
@@ -484,6 +490,7 @@ void GpuRenderer::release() {
                     &m.shadow_terms, &m.wave_paths, &m.wave_hits, &m.wave_queues, &m.wave_shadows, &m.wave_shadow_queue})
     *b = Buffer{};
   m.scene_bytes = 0;
+  m.last_rays_a_sample = -1;
   m.traced = {0, 0};
   m.traced_aovs = false;
 }
@@ -527,7 +534,8 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
   // shadow rays of one vertex: its bands are as many pixels as the device's
   // largest binding (and a quarter of the memory left) take.
   uint64_t band_pixels = band_invocations;
-  if (plan.path && wavefront_on) {
+  const bool wave = plan.path && wavefront_pays();
+  if (wave) {
     const GpuFrame& f = frames[0];
     plan.wave_shadows = uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0));
     const uint64_t per_path = sizeof(GpuWavePath) + 32 + 8 + plan.wave_shadows * (sizeof(GpuWaveShadow) + 4);
@@ -539,10 +547,10 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
   for (size_t f = 0; f < frames.size(); ++f) {
     const int w = frames[f].size.x, y0 = frames[f].rows.x, y1 = frames[f].rows.y;
     const int fit = int(std::min<uint64_t>(band_pixels / uint64_t(std::max(1, w)), 1 << 20));
-    const int band_rows = plan.path && wavefront_on ? std::max(1, fit >= 8 ? fit / 8 * 8 : fit) : std::max(8, fit / 8 * 8);
+    const int band_rows = wave ? std::max(1, fit >= 8 ? fit / 8 * 8 : fit) : std::max(8, fit / 8 * 8);
     for (int row0 = y0; row0 < y1; row0 += band_rows) {
       plan.bands.push_back({row0, std::min(band_rows, y1 - row0), int32_t(f), uint32_t(w)});
-      if (plan.path && wavefront_on) plan.wave_paths = std::max(plan.wave_paths, uint64_t(w) * uint64_t(plan.bands.back().rows));
+      if (wave) plan.wave_paths = std::max(plan.wave_paths, uint64_t(w) * uint64_t(plan.bands.back().rows));
     }
   }
   plan.queue = queue_rays > 0 && !plan.panel && !plan.path;  // a path traces its own
@@ -745,6 +753,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, Rende
       if (std::string_view(fault) == "out-of-memory") throw vk::OutOfDeviceMemoryError("vkAllocateMemory");
     }
     m.sum_counts(plan, stats);
+    if (plan.path) m.last_rays_a_sample = double(stats.rays.total()) / double(plan.pixels * uint64_t(plan.passes - first_sample));
     if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
     m.traced_aovs = plan.want_aovs;

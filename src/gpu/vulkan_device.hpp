@@ -93,12 +93,16 @@ struct GpuRenderer::Impl {
   double timestamp_ns = 0;
   Buffer queue_head;  // the shadow queue's head, copied back for the same print
   Buffer shadow_queue, shadow_last, shadow_terms;  // bindings 19, 20 and 21
-  // The path integrator as a wavefront (wavefront.cpp, shaders/wavefront.glsl),
-  // for measuring: on with HOLORAY_GPU_WAVEFRONT=1 where the device has
-  // subgroup ballots and votes and the ray log is off. Its buffers, bindings
-  // 25 to 29: the paths' states, their hits, the queues and their heads, the
-  // shadow rays and their queue.
-  bool wavefront_on = false;
+  // The path integrator as a wavefront (wavefront.cpp, shaders/wavefront.glsl)
+  // where the device has subgroup ballots and votes and the ray log is off,
+  // for a frame whose paths were long enough to pay for its queues:
+  // wavefront_pays() says. HOLORAY_GPU_WAVEFRONT=1 takes it always, =0 never
+  // (measuring). Its buffers, bindings 25 to 29: the paths' states, their
+  // hits, the queues and their heads, the shadow rays and their queue.
+  bool wavefront_on = false, wavefront_always = false;
+  // Rays a pixel took per sample in the last path-traced frame (-1 before any).
+  double last_rays_a_sample = -1;
+  bool wavefront_pays() const;
   Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue;
   // With HOLORAY_GPU_STATS, a timestamp after each of the wavefront's
   // dispatches (the first kWaveStamps of a frame), and the stage each ends

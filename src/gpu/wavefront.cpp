@@ -1,7 +1,7 @@
 // holoray/gpu: the path integrator as a wavefront (issue 71), the host's
 // half: the stages of shaders/wavefront.glsl recorded band by band, sample
-// by sample, in place of the path integrator's pixel kernel. For measuring
-// (HOLORAY_GPU_WAVEFRONT=1): a GPU is needed to say which is faster.
+// by sample, in place of the path integrator's pixel kernel where it pays
+// (wavefront_pays).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,6 +10,19 @@
 #include "gpu/vulkan_device.hpp"
 
 namespace holoray::gpu {
+
+// The wavefront against the megakernel on lavapipe (960x544 EIAs, 1
+// sample a pixel, design/gpu.md): 0.73x at 1.2 rays a pixel-sample
+// (swinging_box under an HDRI, most paths ending at the sky), 1.03x at 3.8
+// (the Cornell box), 1.11x to 1.76x from 4.4 to 12.6 (the SPD scenes): its
+// queues cost per ray, and the waits it saves grow with the paths. So a
+// frame takes the wavefront unless the frame before traced fewer than
+// kWavefrontRays rays a pixel-sample; a first frame takes it.
+constexpr double kWavefrontRays = 3.5;
+
+bool GpuRenderer::Impl::wavefront_pays() const {
+  return wavefront_on && (wavefront_always || last_rays_a_sample < 0 || last_rays_a_sample >= kWavefrontRays);
+}
 
 void GpuRenderer::Impl::barrier(vk::PipelineStageFlags from) {
   commands.pipelineBarrier(

@@ -96,8 +96,8 @@ struct RenderStats {
   double trace_seconds = 0;
   double readback_seconds = 0;
   uint64_t nodes_visited = 0, primitives_tested = 0;
-  /// With count_work, the GPU wavefront's traversals (HOLORAY_GPU_WAVEFRONT),
-  /// whose lanes fetch their rays: the node steps their lanes took, busy or
+  /// With count_work, the GPU path integrator's wavefront traversals, whose
+  /// lanes fetch their rays: the node steps their lanes took, busy or
   /// waiting; nodes_visited over it is their lanes' use (1: none waits).
   uint64_t lane_steps = 0;
 };
