@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -452,8 +453,9 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     m.bind(20, m.shadow_last);
     m.shadow_terms = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer, false);
     m.bind(21, m.shadow_terms);
-    for (auto [binding, buffer] : {std::pair{25, &m.wave_paths}, {26, &m.wave_hits}, {27, &m.wave_queues},
-                                   {28, &m.wave_shadows}, {29, &m.wave_shadow_queue}}) {
+    const std::pair<int, Buffer*> wave_buffers[] = {
+        {25, &m.wave_paths}, {26, &m.wave_hits}, {27, &m.wave_queues}, {28, &m.wave_shadows}, {29, &m.wave_shadow_queue}};
+    for (const auto& [binding, buffer] : wave_buffers) {
       *buffer = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
       m.bind(binding, *buffer);
     }
