@@ -136,17 +136,22 @@ TEST(GpuWavefront, CountsItsLanesStepsWithoutChangingTheImage) {
 // pixel-sample (a small sphere against the sky) takes the megakernel, and
 // renders the same image; one after long paths (a scene of many lights,
 // a shadow ray each a vertex) keeps the wavefront.
+// A sphere small against the sky: most paths end at their first ray.
+Scene short_paths(TempDir& dir) {
+  write_text(dir.file("far.nff"), "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 48 48\n"
+                                  "b 0.2 0.3 0.4\nl 5 5 5\nf 0.8 0.8 0.8 1 0 0 0 0\ns 0 0 0 1\n");
+  return Scene::load(dir.file("far.nff"));
+}
+
 TEST(GpuWavefront, AFrameAfterShortPathsTakesTheMegakernel) {
   if (std::getenv("HOLORAY_GPU_WAVEFRONT")) GTEST_SKIP() << "HOLORAY_GPU_WAVEFRONT chooses the schedule";
   TempDir dir;
-  write_text(dir.file("far.nff"), "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 48 48\n"
-                                  "b 0.2 0.3 0.4\nl 5 5 5\nf 0.8 0.8 0.8 1 0 0 0 0\ns 0 0 0 1\n");
   RenderOptions o;
   o.device = "gpu";
   o.integrator = api::Integrator::path;
   o.count_work = true;
   const auto rays_a_pixel = [](const Result& r) { return double(r.stats.rays.total()) / (double(r.colour.width()) * r.colour.height()); };
-  api::Renderer far(Scene::load(dir.file("far.nff")), view(48, 48), o);
+  api::Renderer far(short_paths(dir), view(48, 48), o);
   const Result first = far.render(), second = far.render();
   ASSERT_LT(rays_a_pixel(first), 3.5);
   ASSERT_GT(first.stats.rays.reflected, 0u) << "the sphere is in view";
@@ -158,6 +163,30 @@ TEST(GpuWavefront, AFrameAfterShortPathsTakesTheMegakernel) {
   ASSERT_GE(rays_a_pixel(one), 3.5);
   EXPECT_GT(one.stats.lane_steps, 0u);
   EXPECT_GT(two.stats.lane_steps, 0u) << "after long paths, the wavefront still";
+}
+
+// Within one trace too: a still of many samples hands the passes after
+// its first submission (here one pass: HOLORAY_GPU_BAND=1024 against a
+// 2304-pixel view) to the megakernel when they traced short paths. The
+// wavefront's lanes then stepped through sample 0 alone, as in a trace of
+// one sample, and the image is the megakernel's.
+TEST(GpuWavefront, AStillOfShortPathsHandsItsLaterSamplesToTheMegakernel) {
+  if (std::getenv("HOLORAY_GPU_WAVEFRONT")) GTEST_SKIP() << "HOLORAY_GPU_WAVEFRONT chooses the schedule";
+  TempDir dir;
+  const Scene far = short_paths(dir);
+  ScopedEnv band("HOLORAY_GPU_BAND", "1024");
+  RenderOptions o;
+  o.device = "gpu";
+  o.integrator = api::Integrator::path;
+  o.count_work = true;
+  o.spp = 1;
+  const Result one = api::render(far, view(48, 48), o);
+  o.spp = 4;
+  const Result four = api::render(far, view(48, 48), o);
+  EXPECT_GT(one.stats.lane_steps, 0u);
+  EXPECT_EQ(four.stats.lane_steps, one.stats.lane_steps);
+  ScopedEnv mega("HOLORAY_GPU_WAVEFRONT", "0");
+  EXPECT_LE(worst_difference(four.colour, api::render(far, view(48, 48), o).colour), 1e-4f);
 }
 
 }  // namespace

@@ -621,8 +621,9 @@ void GpuRenderer::Impl::submit_and_wait(const char* what) {
   device.resetFences({*fence});
 }
 
-void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sample) {
-  if (plan.wave_paths > 0) return record_wavefront_passes(plan, first_sample);
+void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sample, int from_pass) {
+  if (from_pass < 0 && plan.wave_paths > 0) return record_wavefront_passes(plan, first_sample);
+  const int from = from_pass < 0 ? first_sample : from_pass;
   vk::raii::CommandBuffer& cb = commands;
   auto bind_kernel = [&] {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, plan.queue, 0));
@@ -641,14 +642,14 @@ void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sam
   // render. (A submission a pass cost a 128x128 view 2.5 % of its trace
   // on lavapipe, in waits.)
   const int passes_per_submission = int(std::max<uint64_t>(1, 4 * band_invocations / std::max<uint64_t>(1, plan.pixels)));
-  for (int pass = first_sample; pass < plan.passes; ++pass) {
-    if (pass > first_sample && (pass - first_sample) % passes_per_submission == 0) {
+  for (int pass = from; pass < plan.passes; ++pass) {
+    if (pass > from && (pass - from) % passes_per_submission == 0) {
       submit_and_wait("a pass of the path integrator");
       cb.reset();
       cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
       bind_kernel();
     }
-    if (pass > first_sample)
+    if (pass > from)
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                          vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                            .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite},

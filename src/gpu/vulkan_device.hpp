@@ -240,12 +240,17 @@ struct GpuRenderer::Impl {
   void prepare_frame(const std::vector<GpuFrame>& frames, const FramePlan& plan);
   // Records the pixel kernel's passes from `first_sample` (submitted and
   // waited on every few passes), then the shadow queue's two passes.
-  void record_pixel_passes(const FramePlan& plan, int first_sample);
+  // `from_pass` > first_sample: the passes from there on (the wavefront's
+  // trace handing its later passes to the kernel, wavefront.cpp).
+  void record_pixel_passes(const FramePlan& plan, int first_sample, int from_pass = -1);
   void record_shadow_passes(const FramePlan& plan);
   // The wavefront's buffers grown to the plan (wavefront.cpp), and its
   // stages recorded in place of the pixel kernel's passes.
   void prepare_wavefront(const FramePlan& plan);
   void record_wavefront_passes(const FramePlan& plan, int first_sample);
+  // Rays a pixel-sample the passes before `pass` of this trace took (the
+  // counters are the device's, read between submissions).
+  double rays_a_sample_so_far(const FramePlan& plan, int first_sample, int pass) const;
   // A memory barrier between two dispatches (or a transfer and a dispatch).
   void barrier(vk::PipelineStageFlags from = vk::PipelineStageFlagBits::eComputeShader);
   // A barrier before an indirect dispatch that reads sizes a kernel wrote.

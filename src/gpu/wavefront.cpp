@@ -17,11 +17,19 @@ namespace holoray::gpu {
 // (the Cornell box), 1.11x to 1.76x from 4.4 to 12.6 (the SPD scenes): its
 // queues cost per ray, and the waits it saves grow with the paths. So a
 // frame takes the wavefront unless the frame before traced fewer than
-// kWavefrontRays rays a pixel-sample; a first frame takes it.
+// kWavefrontRays rays a pixel-sample; a first frame takes it, and hands
+// its later passes to the megakernel where its first submission's passes
+// traced fewer.
 constexpr double kWavefrontRays = 3.5;
 
 bool GpuRenderer::Impl::wavefront_pays() const {
   return wavefront_on && (wavefront_always || last_rays_a_sample < 0 || last_rays_a_sample >= kWavefrontRays);
+}
+
+double GpuRenderer::Impl::rays_a_sample_so_far(const FramePlan& plan, int first_sample, int pass) const {
+  RenderStats so_far;
+  sum_counts(plan, so_far);
+  return double(so_far.rays.total()) / double(plan.pixels * uint64_t(pass - first_sample));
 }
 
 void GpuRenderer::Impl::barrier(vk::PipelineStageFlags from) {
@@ -104,6 +112,10 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
       submit_and_wait("a pass of the path integrator");
       cb.reset();
       cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+      // The paths so far too short to pay for the queues: the rest of the
+      // samples in the megakernel (the same sums a sample, to rounding).
+      if (!wavefront_always && rays_a_sample_so_far(plan, first_sample, pass) < kWavefrontRays)
+        return record_pixel_passes(plan, first_sample, pass);
       stage(HR_WAVE_SHADING);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_layout, 0, {*set}, nullptr);
     }
