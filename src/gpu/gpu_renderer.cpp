@@ -641,12 +641,10 @@ void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sam
   // takes, so a fixed wait can tell a device that stopped from a long
   // render. (A submission a pass cost a 128x128 view 2.5 % of its trace
   // on lavapipe, in waits.)
-  const int passes_per_submission = int(std::max<uint64_t>(1, 4 * band_invocations / std::max<uint64_t>(1, plan.pixels)));
+  const int per_submission = passes_per_submission(plan);
   for (int pass = from; pass < plan.passes; ++pass) {
-    if (pass > from && (pass - from) % passes_per_submission == 0) {
-      submit_and_wait("a pass of the path integrator");
-      cb.reset();
-      cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    if (pass > from && (pass - from) % per_submission == 0) {
+      next_submission();
       bind_kernel();
     }
     if (pass > from)

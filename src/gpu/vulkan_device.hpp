@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
@@ -257,6 +258,17 @@ struct GpuRenderer::Impl {
   void indirect_barrier();
   // Ends `commands`, submits it and waits under the timeout (wait()).
   void submit_and_wait(const char* what);
+  // The path integrator's passes go in submissions of about 4 bands'
+  // pixel-samples (record_pixel_passes says why): how many passes each.
+  int passes_per_submission(const FramePlan& plan) const {
+    return int(std::max<uint64_t>(1, 4 * band_invocations / std::max<uint64_t>(1, plan.pixels)));
+  }
+  // One submission of passes waited on and `commands` begun again.
+  void next_submission() {
+    submit_and_wait("a pass of the path integrator");
+    commands.reset();
+    commands.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  }
   // With timestamps (HOLORAY_GPU_STATS=1): each pass's time on the device.
   void print_pass_times(const FramePlan& plan);
   // The bands' counters summed into `stats`.

@@ -96,8 +96,7 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
   // emission (render/path_integrator.h).
   const int vertices = std::min(frames[0].counts.z + 1, HR_MAX_DEPTH + 1);
   auto stage = [&](int s) { cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, false, 0, s)); };
-  // Submissions as the pixel kernel's passes go (record_pixel_passes says why).
-  const int passes_per_submission = int(std::max<uint64_t>(1, 4 * band_invocations / std::max<uint64_t>(1, plan.pixels)));
+  const int per_submission = passes_per_submission(plan);
   stage(HR_WAVE_SHADING);
   cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_layout, 0, {*set}, nullptr);
   wave_stamped.clear();
@@ -108,10 +107,8 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
     cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *wave_timestamps, 0);
   }
   for (int pass = first_sample; pass < plan.passes; ++pass) {
-    if (pass > first_sample && (pass - first_sample) % passes_per_submission == 0) {
-      submit_and_wait("a pass of the path integrator");
-      cb.reset();
-      cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    if (pass > first_sample && (pass - first_sample) % per_submission == 0) {
+      next_submission();
       // The paths so far too short to pay for the queues: the rest of the
       // samples in the megakernel (the same sums a sample, to rounding).
       if (!wavefront_always && rays_a_sample_so_far(plan, first_sample, pass) < kWavefrontRays)
