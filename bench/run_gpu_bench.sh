@@ -37,30 +37,43 @@ for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do
   f() { echo "$line" | field "$1"; }
   echo "| $scene | $(f ms_median) ($(f ms_min)-$(f ms_max)) | $(f fps) | $(f mrays_s) | $(f nodes_per_ray) | $(f prims_per_ray) | $(f readback_ms) | $(f setup_s) | $(f cpu_trace_s) | $(f psnr_db) | $(f depth_off_pct) | $(f id_equal_pct) |"
 done
+# Each integrator twice on the same EIAs: the megakernel
+# (HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1, src/gpu/wavefront.cpp)
+# in the same run; speed is the megakernel's time over the wavefront's, and
+# lanes' use the wavefront traversals' (nodes visited over their lanes'
+# steps). The rule the renderer follows (wavefront_pays) is set from these.
+schedule_header() {
+  echo
+  echo "$1: the megakernel (HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1) in the same run;"
+  echo "speed is the megakernel's time over the wavefront's; lanes' use is the wavefront traversals'"
+  echo "(nodes visited over their lanes' steps):"
+  echo
+  echo "| scene | rays/pixel | megakernel ms/frame median (min-max) | fps | wavefront ms/frame median (min-max) | fps | speed | lanes' use | Mrays/s | nodes/ray |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+}
+schedule_row() {
+  local name=$1 mega wave
+  mega=$(HOLORAY_GPU_WAVEFRONT=0 run "${@:2}")
+  wave=$(HOLORAY_GPU_WAVEFRONT=1 run "${@:2}")
+  m() { echo "$mega" | field "$1"; }
+  w() { echo "$wave" | field "$1"; }
+  local pixels
+  pixels=$(m size | awk -Fx '{ print $1 * $2 }')
+  echo "| $name | $(awk -v r="$(m rays)" -v p="$pixels" 'BEGIN { printf "%.1f", r / p }')" \
+       "| $(m ms_median) ($(m ms_min)-$(m ms_max)) | $(m fps) | $(w ms_median) ($(w ms_min)-$(w ms_max)) | $(w fps)" \
+       "| $(awk -v a="$(m ms_median)" -v b="$(w ms_median)" 'BEGIN { printf "%.2fx", a / b }') | $(w lanes_use)" \
+       "| $(m mrays_s) | $(m nodes_per_ray) |"
+}
+schedule_header "Whitted's integrator"
+for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do schedule_row "$scene" "$shared/scenes/nff/$scene.nff"; done
 # The path integrator (issue 70) at SPP samples per pixel on the same EIAs:
 # the four SPD scenes under their point lights, and two scenes lit as the
 # path integrator lights them: the Cornell box's area light and a glTF under
 # Blender's courtyard HDRI (ENVIRONMENT, where Blender's data is at hand).
 spp=${SPP:-1}
 environment=${ENVIRONMENT:-/usr/share/blender/datafiles/studiolights/world/courtyard.exr}
-echo
-echo "The path integrator, $spp sample(s) per pixel, 5 bounces at most: the megakernel"
-echo "(HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1, src/gpu/wavefront.cpp) in the same run;"
-echo "speed is the megakernel's time over the wavefront's; lanes' use is the wavefront traversals'"
-echo "(nodes visited over their lanes' steps):"
-echo
-echo "| scene | megakernel ms/frame median (min-max) | fps | wavefront ms/frame median (min-max) | fps | speed | lanes' use | Mrays/s | nodes/ray |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
-path_row() {
-  local name=$1 mega wave
-  mega=$(HOLORAY_GPU_WAVEFRONT=0 run "${@:2}" --integrator path --spp "$spp")
-  wave=$(HOLORAY_GPU_WAVEFRONT=1 run "${@:2}" --integrator path --spp "$spp")
-  m() { echo "$mega" | field "$1"; }
-  w() { echo "$wave" | field "$1"; }
-  echo "| $name | $(m ms_median) ($(m ms_min)-$(m ms_max)) | $(m fps) | $(w ms_median) ($(w ms_min)-$(w ms_max)) | $(w fps)" \
-       "| $(awk -v a="$(m ms_median)" -v b="$(w ms_median)" 'BEGIN { printf "%.2fx", a / b }') | $(w lanes_use)" \
-       "| $(m mrays_s) | $(m nodes_per_ray) |"
-}
+schedule_header "The path integrator, $spp sample(s) per pixel, 5 bounces at most"
+path_row() { schedule_row "$1" "${@:2}" --integrator path --spp "$spp"; }
 for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do path_row "$scene" "$shared/scenes/nff/$scene.nff"; done
 path_row "cornell_box (area light)" examples/lights/cornell_box.nff --lights examples/lights/cornell_box.toml
 if [[ -f $environment ]]; then

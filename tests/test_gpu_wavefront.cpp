@@ -9,7 +9,9 @@
 // the wavefront unless the frame before traced short paths; the
 // GpuPathIntegrator suite's renders, each a first frame, hold it to the
 // CPU, and that suite runs again under the megakernel
-// (tests/CMakeLists.txt, GpuPathIntegrator.UnderTheMegakernel).
+// (tests/CMakeLists.txt, GpuPathIntegrator.UnderTheMegakernel). Whitted's
+// integrator on the same wavefront (shaders/whitted_wavefront.glsl) is held
+// to its megakernel the same way (GpuWavefront.Whitted*).
 #include <holoray/holoray.hpp>
 
 #include <cmath>
@@ -27,13 +29,19 @@ using api::RenderOptions;
 using api::Result;
 using api::Scene;
 
-Result path_traced(const Scene& scene, const Camera& camera, RenderOptions o, bool wavefront, const char* band = nullptr) {
-  o.integrator = api::Integrator::path;
+// A render on the GPU by the wavefront or the megakernel, with `o`'s
+// integrator (Whitted's unless set), in bands of `band` pixels if given.
+Result traced(const Scene& scene, const Camera& camera, RenderOptions o, bool wavefront, const char* band = nullptr) {
   o.device = "gpu";
   ScopedEnv wave("HOLORAY_GPU_WAVEFRONT", wavefront ? "1" : "0");
   std::optional<ScopedEnv> banded;
   if (band) banded.emplace("HOLORAY_GPU_BAND", band);
   return api::render(scene, camera, o);
+}
+
+Result path_traced(const Scene& scene, const Camera& camera, RenderOptions o, bool wavefront, const char* band = nullptr) {
+  o.integrator = api::Integrator::path;
+  return traced(scene, camera, o, wavefront, band);
 }
 
 // The largest difference between two images' samples, relative to 1 or
@@ -53,17 +61,20 @@ bool same_bits(const api::Image& a, const api::Image& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
-void expect_the_megakernels_image(const Scene& scene, const Camera& camera, const RenderOptions& o, const char* what) {
-  const Result mega = path_traced(scene, camera, o, false), wave = path_traced(scene, camera, o, true);
-  EXPECT_LE(worst_difference(wave.colour, mega.colour), 1e-4f) << what;
+// The wavefront's image is the megakernel's within `tolerance` (relative),
+// its rays of every kind as many, its AOVs alike.
+void expect_the_megakernels_image(const Scene& scene, const Camera& camera, const RenderOptions& o, const char* what,
+                                  float tolerance = 1e-4f) {
+  const Result mega = traced(scene, camera, o, false), wave = traced(scene, camera, o, true);
+  EXPECT_LE(worst_difference(wave.colour, mega.colour), tolerance) << what;
   EXPECT_EQ(wave.stats.rays.eye, mega.stats.rays.eye) << what;
   EXPECT_EQ(wave.stats.rays.shadow, mega.stats.rays.shadow) << what;
   EXPECT_EQ(wave.stats.rays.reflected, mega.stats.rays.reflected) << what;
   EXPECT_EQ(wave.stats.rays.refracted, mega.stats.rays.refracted) << what;
-  EXPECT_GT(mega.stats.rays.reflected, 0u) << what << ": no path went past its first vertex";
+  EXPECT_GT(mega.stats.rays.total(), mega.stats.rays.eye) << what << ": no ray past the eye rays";
   for (const auto& [w, m] : {std::pair{&wave.albedo, &mega.albedo}, {&wave.depth, &mega.depth}, {&wave.normal, &mega.normal},
                              {&wave.id, &mega.id}})
-    EXPECT_LE(worst_difference(*w, *m), 1e-4f) << what << ": an AOV";
+    EXPECT_LE(worst_difference(*w, *m), tolerance) << what << ": an AOV";
 }
 
 api::Pinhole view(int w, int h) {
@@ -78,6 +89,7 @@ api::Pinhole view(int w, int h) {
 // image is the megakernel's, its rays counted alike, its AOVs alike.
 TEST(GpuWavefront, RendersWhatTheMegakernelRenders) {
   RenderOptions o;
+  o.integrator = api::Integrator::path;
   o.spp = 4;
   o.aovs = api::Aovs{true, true, true, true};
   Scene room = Scene::load(source_dir() + "/examples/lights/cornell_box.nff");
@@ -187,6 +199,90 @@ TEST(GpuWavefront, AStillOfShortPathsHandsItsLaterSamplesToTheMegakernel) {
   EXPECT_EQ(four.stats.lane_steps, one.stats.lane_steps);
   ScopedEnv mega("HOLORAY_GPU_WAVEFRONT", "0");
   EXPECT_LE(worst_difference(four.colour, api::render(far, view(48, 48), o).colour), 1e-4f);
+}
+
+// ---- Whitted's integrator as a wavefront (shaders/whitted_wavefront.glsl) ----
+
+void expect_whitted(const Scene& scene, const Camera& camera, const RenderOptions& o, const char* what) {
+  expect_the_megakernels_image(scene, camera, o, what, 1e-5f);
+}
+
+// Glass spheres one inside the other around the eye: every hit sends a
+// mirror ray and a refracted one on, so a pixel's tree at max_depth 5 holds
+// up to 31 rays, walked one a step (more steps than the wavefront has queue
+// heads: they take turns).
+Scene nested_glass(TempDir& dir) {
+  write_text(dir.file("glass.nff"), "v\nfrom 0 0 0\nat 0 0 -1\nup 0 1 0\nangle 60\nhither 0.01\nresolution 32 32\n"
+                                    "b 0.1 0.2 0.3\nl 0.5 0.5 0.5\nf 0.9 0.7 0.5 0.5 0.4 20 0.5 1.3\ns 0 0 0 2\n"
+                                    "f 0.5 0.8 0.6 0.5 0.3 20 0.6 1.1\ns 0 0 0 4\ns 1 0.5 -1.2 0.4\n");
+  return Scene::load(dir.file("glass.nff"));
+}
+
+// Whitted's scenes and shading models, a lens array, AOVs and two samples
+// a pixel: the glass of a branching tree, a lens array over the SPD's
+// mirror balls, and a Tachyon scene (its own filtered shadows traced where
+// shaded). The wavefront's image
+// is the megakernel's (the same sums in the same order), its rays counted
+// alike, its AOVs alike.
+TEST(GpuWavefront, WhittedRendersWhatTheMegakernelRenders) {
+  RenderOptions o;
+  o.spp = 2;
+  o.aovs = api::Aovs{true, true, true, true};
+  TempDir dir;
+  expect_whitted(nested_glass(dir), view(32, 32), o, "glass in glass (trees that branch)");
+  if (!have_shared_scenes()) GTEST_SKIP() << "no SPD or Tachyon scenes at " << shared_dir();
+  api::LensArray a;
+  a.lenses_x = a.lenses_y = 12;
+  a.pixels_per_lens = 6;
+  expect_whitted(Scene::load(shared_dir() + "/scenes/nff/balls_s2.nff"), a, o, "mirror balls, a lens array");
+  expect_whitted(Scene::load(shared_dir() + "/scenes/tachyon/teapot.dat"), view(40, 30), o, "Tachyon");
+}
+
+// The glass's trees walked to their last ray, and the image the same bit
+// for bit from run to run and whatever the bands (HOLORAY_GPU_BAND: 300
+// pixels at a time); a tree that may hold more rays than the wavefront
+// takes steps for (max_depth 7: 127) is the megakernel's (no lane steps
+// counted), its image the same.
+TEST(GpuWavefront, WhittedTreesThatBranchAreWalkedToTheirLastRay) {
+  TempDir dir;
+  const Scene glass = nested_glass(dir);
+  RenderOptions o;
+  o.count_work = true;
+  const Result mega = traced(glass, view(32, 32), o, false), first = traced(glass, view(32, 32), o, true);
+  const Result again = traced(glass, view(32, 32), o, true), banded = traced(glass, view(32, 32), o, true, "300");
+  ASSERT_GT(double(mega.stats.rays.total()) / (32.0 * 32.0), 20.0) << "trees of more rays than the queues' heads";
+  EXPECT_EQ(first.stats.rays.total(), mega.stats.rays.total());
+  EXPECT_EQ(banded.stats.rays.total(), mega.stats.rays.total());
+  EXPECT_GT(first.stats.lane_steps, 0u);
+  EXPECT_EQ(mega.stats.lane_steps, 0u);
+  EXPECT_LE(worst_difference(first.colour, mega.colour), 1e-5f);
+  EXPECT_TRUE(same_bits(first.colour, again.colour));
+  EXPECT_TRUE(same_bits(first.colour, banded.colour));
+  o.max_depth = 7;
+  const Result deep = traced(glass, view(32, 32), o, true), deep_mega = traced(glass, view(32, 32), o, false);
+  EXPECT_EQ(deep.stats.lane_steps, 0u) << "127 steps a band: the megakernel";
+  EXPECT_TRUE(same_bits(deep.colour, deep_mega.colour));
+}
+
+// Whitted's rule (wavefront_pays): a renderer's first frame, a still,
+// takes the kernel; a frame after one of 5 rays a pixel or more (the glass,
+// over 20) takes the wavefront, and renders the same image; one after
+// fewer (a small sphere against the sky) keeps the kernel.
+TEST(GpuWavefront, AWhittedFrameAfterManyRaysTakesTheWavefront) {
+  if (std::getenv("HOLORAY_GPU_WAVEFRONT")) GTEST_SKIP() << "HOLORAY_GPU_WAVEFRONT chooses the schedule";
+  TempDir dir;
+  RenderOptions o;
+  o.device = "gpu";
+  o.count_work = true;
+  api::Renderer glass(nested_glass(dir), view(32, 32), o);
+  const Result first = glass.render(), second = glass.render();
+  EXPECT_EQ(first.stats.lane_steps, 0u) << "a still takes the kernel";
+  EXPECT_GT(second.stats.lane_steps, 0u) << "after many rays, the wavefront";
+  EXPECT_LE(worst_difference(second.colour, first.colour), 1e-5f);
+  api::Renderer far(short_paths(dir), view(48, 48), o);
+  const Result one = far.render(), two = far.render();
+  ASSERT_LT(double(one.stats.rays.total()) / (48.0 * 48.0), 5.0);
+  EXPECT_EQ(two.stats.lane_steps, 0u) << "after few rays, the kernel still";
 }
 
 }  // namespace

@@ -258,7 +258,11 @@ vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int 
                 .module = wave_stage >= HR_WAVE_EXTEND ? *traversal_module : *module,
                 .pName = "main", .pSpecializationInfo = &spec},
       .layout = *pipeline_layout};
+  const auto t0 = std::chrono::steady_clock::now();
   vk::raii::Pipeline p(device, nullptr, pi);
+  if (std::getenv("HOLORAY_GPU_STATS"))
+    std::fprintf(stderr, "holoray gpu: pipeline (wavefront stage %d, shadow pass %d) compiled in %.2f s\n", wave_stage, shadow_pass,
+                 seconds_since(t0));
   if (capture_stats) print_statistics(device, p);
   return p;
 }
@@ -306,7 +310,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
-  // The path integrator as a wavefront where it pays (wavefront.cpp);
+  // Both integrators as a wavefront where it pays (wavefront.cpp);
   // HOLORAY_GPU_WAVEFRONT=1 always, =0 never (measuring).
   const char* wave_env = std::getenv("HOLORAY_GPU_WAVEFRONT");
   m.wavefront_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops && !(wave_env && std::string_view(wave_env) == "0");
@@ -454,23 +458,26 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     m.shadow_terms = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer, false);
     m.bind(21, m.shadow_terms);
     const std::pair<int, Buffer*> wave_buffers[] = {
-        {25, &m.wave_paths}, {26, &m.wave_hits}, {27, &m.wave_queues}, {28, &m.wave_shadows}, {29, &m.wave_shadow_queue}};
+        {25, &m.wave_paths}, {26, &m.wave_hits}, {27, &m.wave_queues}, {28, &m.wave_shadows}, {29, &m.wave_shadow_queue},
+        {30, &m.wave_stack}};
     for (const auto& [binding, buffer] : wave_buffers) {
       *buffer = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
       m.bind(binding, *buffer);
     }
     m.scene_bytes = s.bytes();
     m.features = s.features;
+    m.whitted_branches = s.whitted_branches;
     // The pipelines this scene's frames bind, compiled now (kept from one
     // load to the next with the same features): a frame's time is then its
     // own, and a pipeline for features the scene lacks is never compiled
     // (about 1.3 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
-    // A renderer's first path-traced frame takes the wavefront
-    // (wavefront_pays); a later frame that falls back compiles the kernel
-    // then. (A scene loaded again, an animation's moved frame, keeps the
-    // frames' measure; release() forgets it.)
+    // A renderer's first path-traced frame takes the wavefront, its first
+    // Whitted frame the kernel (wavefront_pays); a later frame that changes
+    // schedule compiles the other then. (A scene loaded again, an
+    // animation's moved frame, keeps the frames' measure; release()
+    // forgets it.)
     if (m.wavefront_on && (s.features & HR_FEATURE_PATH)) {
       for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS}) m.pipeline(panel, false, 0, stage);
     } else {
@@ -489,7 +496,8 @@ void GpuRenderer::release() {
   if (m.stopped) return;  // its buffers may still be in use: kept (the destructor says why)
   for (Buffer& b : m.scene) b = Buffer{};
   for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
-                    &m.shadow_terms, &m.wave_paths, &m.wave_hits, &m.wave_queues, &m.wave_shadows, &m.wave_shadow_queue})
+                    &m.shadow_terms, &m.wave_paths, &m.wave_hits, &m.wave_queues, &m.wave_shadows, &m.wave_shadow_queue,
+                    &m.wave_stack})
     *b = Buffer{};
   m.scene_bytes = 0;
   m.last_rays_a_sample = -1;
@@ -533,16 +541,24 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
   plan.panel = frames[0].mode.y == HR_DISPLAY || frames[0].mode.y == HR_LOOKING_GLASS;
   plan.path = (features & HR_FEATURE_PATH) != 0;
   // The wavefront holds a band's paths at once, each with room for the
-  // shadow rays of one vertex: its bands are as many pixels as the device's
-  // largest binding (and a quarter of the memory left) take.
+  // shadow rays of one vertex (and Whitted's, its ray stack): its bands are
+  // as many pixels as the device's largest binding (and a quarter of the
+  // memory left) take.
   uint64_t band_pixels = band_invocations;
-  const bool wave = plan.path && wavefront_pays();
+  const GpuFrame& f = frames[0];
+  const int steps = plan.path ? std::min(f.counts.z + 1, HR_MAX_DEPTH + 1) : whitted_steps(f.counts.z, whitted_branches);
+  // (HOLORAY_GPU_SHADOW_QUEUE asks for the megakernel's own queue.)
+  const bool wave = steps > 0 && wavefront_pays(plan.path) && (plan.path || !shadow_queue_on);
   if (wave) {
-    const GpuFrame& f = frames[0];
-    plan.wave_shadows = uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0));
-    const uint64_t per_path = sizeof(GpuWavePath) + 32 + 8 + plan.wave_shadows * (sizeof(GpuWaveShadow) + 4);
-    const uint64_t by_range = std::min(max_storage_range / sizeof(GpuWavePath),
-                                       max_storage_range / std::max<uint64_t>(1, plan.wave_shadows * sizeof(GpuWaveShadow)));
+    plan.wave_steps = steps;
+    plan.wave_shadows = plan.path ? uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0))
+                                  : uint32_t(f.counts.x);
+    plan.wave_stack = plan.path ? 0 : uint32_t(std::max(1, f.counts.z + 1));
+    const uint64_t stack_bytes = uint64_t(plan.wave_stack) * 48;
+    const uint64_t per_path = sizeof(GpuWavePath) + 32 + 8 + plan.wave_shadows * (sizeof(GpuWaveShadow) + 4) + stack_bytes;
+    const uint64_t by_range = std::min({max_storage_range / sizeof(GpuWavePath),
+                                        max_storage_range / std::max<uint64_t>(1, plan.wave_shadows * sizeof(GpuWaveShadow)),
+                                        max_storage_range / std::max<uint64_t>(1, stack_bytes)});
     const uint64_t by_memory = spare >= per_path ? spare / per_path : band_pixels;
     band_pixels = std::max<uint64_t>(1, std::min({band_pixels, by_range, by_memory}));
   }
@@ -555,9 +571,9 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
       if (wave) plan.wave_paths = std::max(plan.wave_paths, uint64_t(w) * uint64_t(plan.bands.back().rows));
     }
   }
-  plan.queue = queue_rays > 0 && !plan.panel && !plan.path;  // a path traces its own
+  plan.queue = queue_rays > 0 && !plan.panel && !plan.path && !wave;  // a path traces its own, as the wavefront does
   plan.queue_rays = plan.queue ? queue_rays : 0;
-  plan.passes = plan.path ? std::max(1, frames[0].mode.w) : 1;
+  plan.passes = plan.path || wave ? std::max(1, frames[0].mode.w) : 1;
   return plan;
 }
 
@@ -754,7 +770,8 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, Rende
       if (std::string_view(fault) == "out-of-memory") throw vk::OutOfDeviceMemoryError("vkAllocateMemory");
     }
     m.sum_counts(plan, stats);
-    if (plan.path) m.last_rays_a_sample = double(stats.rays.total()) / double(plan.pixels * uint64_t(plan.passes - first_sample));
+    const int samples = plan.path || plan.wave_paths > 0 ? plan.passes - first_sample : std::max(1, frames[0].mode.w);
+    m.last_rays_a_sample = double(stats.rays.total()) / double(plan.pixels * uint64_t(std::max(1, samples)));
     if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
     m.traced_aovs = plan.want_aovs;

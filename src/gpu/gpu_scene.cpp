@@ -53,6 +53,24 @@ GpuMaterial material_of(const Material& m) {
   return g;
 }
 
+// Whether a hit on `m` may send both a mirror and a transmitted ray on
+// under Whitted's light (trace.comp: push_secondary_rays, shade_tachyon):
+// NFF's and Blinn-Phong's with Ks and T, Tachyon's with both over its
+// contribution floor, glTF's where it can be a mirror (roughness under
+// 0.1, or a roughness map) and lets light through.
+bool sends_two_rays(const Material& m) {
+  switch (m.model) {
+    case ShadingModel::tachyon: {
+      constexpr double kMinContrib = 0.5 / 255.0;
+      return m.ks > kMinContrib && m.transmittance > kMinContrib;
+    }
+    case ShadingModel::gltf:
+      return (m.roughness < kMirrorRoughness || m.metal_rough_texture >= 0) && (m.transmittance > 0 || m.transmission > 0);
+    default:
+      return m.ks > 0 && m.transmittance > 0;
+  }
+}
+
 // Tachyon's texfuncs, and their image maps' levels as uints of RGB8.
 void lay_out_textures(const RenderScene& scene, SceneArrays& out) {
   std::vector<int> first_level;  // per image map
@@ -267,6 +285,7 @@ SceneArrays lay_out(const RenderScene& scene, BvhQuality quality, int bvh_width,
                                             m.emission_texture >= 0 || m.specular_texture >= 0))
       out.features |= HR_FEATURE_MESH_TEXTURES;
     if (m.alpha_mask) out.features |= HR_FEATURE_ALPHA_MASKS;
+    out.whitted_branches = out.whitted_branches || sends_two_rays(m);
   }
   for (const PointLight& l : scene.lights()) out.lights.push_back(light_of(l));
   lay_out_textures(scene, out);

@@ -51,6 +51,11 @@ struct SceneArrays {
   /// What the materials need of the kernel (HR_FEATURE_* bits): its
   /// pipeline is specialised to them (shaders/trace.comp).
   uint32_t features = 0;
+  /// Some material's hit may send two rays on under Whitted's light (a
+  /// mirror and a transmitted ray), so a pixel's ray tree may hold up to
+  /// 2^max_depth - 1 rays, not max_depth (the wavefront's steps,
+  /// gpu/wavefront.cpp).
+  bool whitted_branches = false;
   /// Bytes the arrays take on the device.
   uint64_t bytes() const;
 };

@@ -36,8 +36,13 @@ vk::raii::Instance make_instance(const vk::raii::Context& context, const std::ve
 /// A Vulkan failure as a GpuError in the user's words, naming `device`.
 [[noreturn]] void rethrow_vulkan(const vk::SystemError& e, const std::string& device);
 
+/// The steps of Whitted's wavefront for a band (its largest ray tree's
+/// rays: max_depth, or 2^max_depth - 1 where a hit can send two rays on);
+/// 0 where that is too many to pay (wavefront.cpp).
+int whitted_steps(int max_depth, bool branches);
+
 /// trace.comp's descriptor bindings.
-constexpr int kBindings = 30;
+constexpr int kBindings = 31;
 
 // A buffer and its memory; `mapped` when host-visible.
 struct Buffer {
@@ -94,17 +99,19 @@ struct GpuRenderer::Impl {
   double timestamp_ns = 0;
   Buffer queue_head;  // the shadow queue's head, copied back for the same print
   Buffer shadow_queue, shadow_last, shadow_terms;  // bindings 19, 20 and 21
-  // The path integrator as a wavefront (wavefront.cpp, shaders/wavefront.glsl)
-  // where the device has subgroup ballots and votes and the ray log is off,
-  // for a frame whose paths were long enough to pay for its queues:
-  // wavefront_pays() says. HOLORAY_GPU_WAVEFRONT=1 takes it always, =0 never
-  // (measuring). Its buffers, bindings 25 to 29: the paths' states, their
-  // hits, the queues and their heads, the shadow rays and their queue.
+  // Both integrators as a wavefront (wavefront.cpp, shaders/wavefront.glsl
+  // and whitted_wavefront.glsl) where the device has subgroup ballots and
+  // votes and the ray log is off, for a frame whose rays were many enough
+  // to pay for its queues: wavefront_pays() says. HOLORAY_GPU_WAVEFRONT=1
+  // takes it always, =0 never (measuring). Its buffers, bindings 25 to 30:
+  // the paths' (pixels') states, their hits, the queues and their heads,
+  // the shadow rays and their queue, and Whitted's pixels' ray stacks.
   bool wavefront_on = false, wavefront_always = false;
-  // Rays a pixel took per sample in the last path-traced frame (-1 before any).
+  // Rays a pixel took per sample in the last frame (-1 before any).
   double last_rays_a_sample = -1;
-  bool wavefront_pays() const;
-  Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue;
+  bool wavefront_pays(bool path) const;  // for the path integrator, else Whitted's
+  Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue, wave_stack;
+  bool whitted_branches = false;  // the loaded scene's (SceneArrays)
   // With HOLORAY_GPU_STATS, a timestamp after each of the wavefront's
   // dispatches (the first kWaveStamps of a frame), and the stage each ends
   // (WaveStage), summed by stage and printed (print_wave_times).
@@ -227,11 +234,15 @@ struct GpuRenderer::Impl {
     uint64_t pixels = 0;
     uint64_t queue_rays = 0;  // the shadow queue's capacity; 0: no queue
     bool want_aovs = false, panel = false, queue = false, path = false;
-    int passes = 1;  // the path integrator's samples a pixel, one a pass
-    // The path integrator's wavefront: its bands' most paths and the most
-    // shadow rays a path makes at a vertex; 0 paths: the megakernel.
+    int passes = 1;  // the samples a pixel, one a pass (the path integrator's, or any wavefront's)
+    // The wavefront: its bands' most paths (pixels) and the most shadow
+    // rays a path makes at a vertex (a Whitted hit: one a light); 0 paths:
+    // the megakernel. Whitted's: the rays a pixel's stack holds, and the
+    // steps a band takes (its largest ray tree's rays: whitted_steps).
     uint64_t wave_paths = 0;
     uint32_t wave_shadows = 0;
+    uint32_t wave_stack = 0;
+    int wave_steps = 0;
   };
   // The frame's bands and buffers' sizes, refused (GpuError naming the
   // limit) where the device cannot hold them: gpu_renderer.cpp.

@@ -1,7 +1,7 @@
-// holoray/gpu: the path integrator as a wavefront (issue 71), the host's
-// half: the stages of shaders/wavefront.glsl recorded band by band, sample
-// by sample, in place of the path integrator's pixel kernel where it pays
-// (wavefront_pays).
+// holoray/gpu: both integrators as a wavefront (issue 71), the host's
+// half: the stages of shaders/wavefront.glsl (and whitted_wavefront.glsl)
+// recorded band by band, sample by sample, in place of the pixel kernel
+// where it pays (wavefront_pays).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -21,9 +21,30 @@ namespace holoray::gpu {
 // its later passes to the megakernel where its first submission's passes
 // traced fewer.
 constexpr double kWavefrontRays = 3.5;
+// Whitted's, measured the same way (design/gpu.md): 0.92x and 0.95x at
+// 4.0 rays a pixel (teapot_s6), 1.20x to 1.46x from 5.9 to 8.0 (tree_s11,
+// balls_s4, gears_s4). A Whitted still (a first frame) takes the kernel,
+// as it did: its pipeline is the one a load compiles, and most stills are
+// set-up more than trace (a pipeline takes seconds on lavapipe); an
+// animation's or live's frames after the first follow the rule.
+constexpr double kWhittedWavefrontRays = 5.0;
 
-bool GpuRenderer::Impl::wavefront_pays() const {
-  return wavefront_on && (wavefront_always || last_rays_a_sample < 0 || last_rays_a_sample >= kWavefrontRays);
+bool GpuRenderer::Impl::wavefront_pays(bool path) const {
+  if (!wavefront_on) return false;
+  if (wavefront_always) return true;
+  if (path) return last_rays_a_sample < 0 || last_rays_a_sample >= kWavefrontRays;
+  return last_rays_a_sample >= kWhittedWavefrontRays;
+}
+
+// A Whitted pixel's tree walked one ray a step: max_depth steps where no
+// hit sends two rays on, else up to 2^max_depth - 1; past kMaxWhittedSteps
+// the empty steps' dispatches would cost more than the waits saved, and
+// the megakernel traces the frame (0).
+int whitted_steps(int max_depth, bool branches) {
+  constexpr int kMaxWhittedSteps = 63;
+  const int depth = std::clamp(max_depth, 1, HR_MAX_DEPTH);
+  const int steps = branches ? (1 << depth) - 1 : depth;
+  return steps <= kMaxWhittedSteps ? steps : 0;
 }
 
 double GpuRenderer::Impl::rays_a_sample_so_far(const FramePlan& plan, int first_sample, int pass) const {
@@ -87,14 +108,15 @@ void GpuRenderer::Impl::prepare_wavefront(const FramePlan& plan) {
   grow(27, wave_queues, HR_WAVE_HEADS * 16 + 3 * 16 + 2 * paths * 4, "path queues");
   grow(28, wave_shadows, shadows * sizeof(GpuWaveShadow), "shadow rays");
   grow(29, wave_shadow_queue, shadows * 4, "shadow queue");
+  grow(30, wave_stack, paths * plan.wave_stack * 48, "ray stacks");
 }
 
 void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first_sample) {
   vk::raii::CommandBuffer& cb = commands;
-  const GpuFrame* frames = static_cast<const GpuFrame*>(scene[0].mapped);
-  // Vertices 1 to max_depth + 1: past max_depth a vertex only shows its
-  // emission (render/path_integrator.h).
-  const int vertices = std::min(frames[0].counts.z + 1, HR_MAX_DEPTH + 1);
+  // The path integrator's vertices 1 to max_depth + 1 (past max_depth a
+  // vertex only shows its emission: render/path_integrator.h), or
+  // Whitted's steps (whitted_steps).
+  const int vertices = plan.wave_steps;
   auto stage = [&](int s) { cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, false, 0, s)); };
   const int per_submission = passes_per_submission(plan);
   stage(HR_WAVE_SHADING);
@@ -111,7 +133,7 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
       next_submission();
       // The paths so far too short to pay for the queues: the rest of the
       // samples in the megakernel (the same sums a sample, to rounding).
-      if (!wavefront_always && rays_a_sample_so_far(plan, first_sample, pass) < kWavefrontRays)
+      if (plan.path && !wavefront_always && rays_a_sample_so_far(plan, first_sample, pass) < kWavefrontRays)
         return record_pixel_passes(plan, first_sample, pass);
       stage(HR_WAVE_SHADING);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_layout, 0, {*set}, nullptr);

@@ -96,12 +96,13 @@ struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 // enough that lavapipe's 65535 loop iterations hold them.
 #define HR_SHADOW_RAYS_PER_LANE 8
 
-// The path integrator's wavefront (trace.comp's kWaveStage,
-// wavefront.glsl): its kernels, each a pipeline of the same SPIR-V. The
-// shading kernel runs three stages, told apart by the vertex it is given
-// (push constant `depth`: HR_WAVE_START_DEPTH, a vertex 1 to max_depth + 1,
-// HR_WAVE_FINISH_DEPTH), so that a renderer compiles three pipelines, not
-// five (lavapipe takes seconds for each).
+// The wavefront of both integrators (trace.comp's kWaveStage,
+// wavefront.glsl, whitted_wavefront.glsl): its kernels, each a pipeline of
+// the same SPIR-V. The shading kernel runs three stages, told apart by the
+// vertex it is given (push constant `depth`: HR_WAVE_START_DEPTH, a vertex
+// 1 to max_depth + 1 or Whitted's step, HR_WAVE_FINISH_DEPTH), so that a
+// renderer compiles three pipelines, not five (lavapipe takes seconds for
+// each).
 #define HR_WAVE_OFF 0
 #define HR_WAVE_SHADING 1  // start (eye rays: each pixel's path begun, queued), shade (each hit: light added,
                            // shadow rays written, the next ray queued) and finish (the last shadow terms, the sample)
@@ -112,7 +113,8 @@ struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_WAVE_FINISH_DEPTH (-1)
 // The wavefront's queue heads: the paths' for each vertex (1 to
 // HR_MAX_DEPTH + 1, and the one after, never filled), then the shadow
-// rays' made at each (wavefront.glsl).
+// rays' made at each (wavefront.glsl); Whitted's steps, which may be more,
+// take them in turn.
 #define HR_WAVE_VERTICES (HR_MAX_DEPTH + 3)
 #define HR_WAVE_HEADS (2 * HR_WAVE_VERTICES)
 

@@ -137,6 +137,8 @@ layout(std430, binding = 26) buffer WaveHitBlock { vec4 wave_hits[]; };
 layout(std430, binding = 27) buffer WaveQueueBlock { uvec4 wave_heads[HR_WAVE_HEADS]; uvec4 wave_args[3]; uint wave_queue[]; };
 layout(std430, binding = 28) buffer WaveShadowBlock { GpuWaveShadow wave_shadows[]; };
 layout(std430, binding = 29) buffer WaveShadowQueueBlock { uint wave_shadow_queue[]; };
+// Whitted's wavefront: each pixel's rays still to trace (whitted_wavefront.glsl).
+layout(std430, binding = 30) buffer WaveStackBlock { vec4 wave_stack[]; };
 
 // `sample_index`: the path integrator's pass (kPath); `first_sample`: its
 // first this trace (> 0: the colours hold the mean of that many already).
@@ -962,7 +964,7 @@ struct Pending {
 // is in its condition (design/gpu.md: lavapipe and loops).
 void add_fetch_work();
 // The wavefront's shadow queue of the vertex at band.depth (wavefront.glsl).
-uint wave_shadow_head() { return uint(HR_WAVE_VERTICES + band.depth); }
+uint wave_shadow_head() { return uint(HR_WAVE_VERTICES + band.depth % HR_WAVE_VERTICES); }
 void shadow_pass() {
   bool wave = kWaveStage == HR_WAVE_SHADOW;  // the wavefront's shadow rays, else the shadow queue's
   uint queued = wave ? wave_heads[wave_shadow_head()].x : min(shadow_head.x, shadow_head.z);
@@ -1211,12 +1213,15 @@ vec3 surface_term(Shaded a, bool gltf, vec3 to_light) {
   return term;
 }
 
+void whitted_wave_shadow(vec3 from, vec4 ray_to, vec3 term);  // whitted_wavefront.glsl
+
 // The lights seen from a hit of `r`, kLightChunk at a time: each light's
 // weighted term computed before its shadow ray, so that only the ray and
 // the term cross the traversal. With the shadow queue the rays are queued
 // (one atomic for the lanes here together, each lane's rays a run of their
 // own, linked to the pixel's run before; a run past the queue's capacity is
-// traced here). Returns the unblocked terms traced here.
+// traced here; in Whitted's wavefront every ray is written for its shadow
+// stage). Returns the unblocked terms traced here.
 vec3 shade_lights(Pending r, Shaded a, bool gltf, int spp, inout uint shadow_rays, inout uint last_run) {
   vec3 c = vec3(0.0);
   for (int l0 = 0; l0 < F.counts.x; l0 += kLightChunk) {
@@ -1259,6 +1264,10 @@ vec3 shade_lights(Pending r, Shaded a, bool gltf, int spp, inout uint shadow_ray
     }
     for (int q = 0; q < n; ++q) {
       ++shadow_rays;
+      if (kWaveStage != HR_WAVE_OFF) {  // traced by the wavefront's shadow stage, its term added after
+        whitted_wave_shadow(a.above, ray_to[q], contrib[q]);
+        continue;
+      }
       if (queued) {
         uint at = first + uint(q);
         shadow_queue[at] = GpuShadowRay(vec4(a.above, ray_to[q].w), vec4(ray_to[q].xyz, 0.0));
@@ -1289,22 +1298,46 @@ Shaded shaded_hit(Pending r, Hit h, float optic, float eps) {
   return a;
 }
 
+// What a hit `h` of `r` shows with Whitted's light added to `c` (the
+// caller adds the background where `r` meets nothing): its surface shaded, its
+// secondary rays pushed on ray_stack, its shadow rays traced (in the
+// wavefront, written for the shadow stage: their terms added later). An
+// eye ray's hit in the first sample writes the pixel's AOVs and sets
+// `first_hit`.
+void whitted_hit(Pending r, Hit h, float optic, int i, int j, bool first_sample, vec4 line_sign, float eps, int spp,
+                 int max_depth, int aovs, inout bool first_hit, inout uvec4 rays, inout uint last_run, inout vec3 c) {
+  uint shadow_rays = rays.y, reflected_rays = rays.z, refracted_rays = rays.w;
+  Shaded a = shaded_hit(r, h, optic, eps);
+  if (r.depth == 1 && first_sample) {
+    first_hit = true;
+    if (aovs != 0) write_hit_aovs(i, j, line_sign.xyz, a.s, a.m, MappedMaterial(a.colour, a.emission, a.pbr, a.highlight), line_sign.w * h.t);
+  }
+  if (kTachyon && int(a.m.emission_model.w) == HR_MODEL_TACHYON) {
+    c += shade_tachyon(r, h, a, optic, max_depth, shadow_rays, reflected_rays, refracted_rays);
+  } else {
+    bool gltf = kGltf && int(a.m.emission_model.w) == HR_MODEL_GLTF;
+    if (r.depth < max_depth) push_secondary_rays(r, a, gltf, reflected_rays, refracted_rays);
+    c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * a.colour * a.m.colour_kd.w) + a.emission);  // glTF: no ambient
+    c += shade_lights(r, a, gltf, spp, shadow_rays, last_run);
+  }
+  rays.yzw = uvec3(shadow_rays, reflected_rays, refracted_rays);
+}
+
 // Sample k of pixel (i, j) with Whitted's light: its ray tree walked depth
 // first. Sets `first_hit` where the first sample's eye ray met something
 // (whose AOVs it writes there, so that none stays live across the
 // traversals after).
 vec3 whitted_sample(int i, int j, int k, float eps, int spp, int max_depth, int aovs, inout bool first_hit, inout uvec4 rays,
                     inout uint last_run) {
-  uint eye_rays = rays.x, shadow_rays = rays.y, reflected_rays = rays.z, refracted_rays = rays.w;
   vec2 uv = sample_offset(F.tile.x + i, F.tile.y + j, k);  // the image's pixel: a quilt's, not its view's
   EyeRay e = eye_ray(i, j, uv);
   vec3 c = F.background.xyz;
-  if (e.empty_aimed) ++eye_rays;  // an empty scene: the CPU counts the ray it traces through nothing
+  if (e.empty_aimed) ++rays.x;  // an empty scene: the CPU counts the ray it traces through nothing
   if (e.traced) {
     ray_sp = 0;
     ray_stack[ray_sp++] = Pending(e.o, e.d, vec3(1.0), 1);
     c = vec3(0.0);
-    ++eye_rays;
+    ++rays.x;
     while (ray_sp > 0) {
       Pending r = ray_stack[--ray_sp];
       log_kind = uint(r.depth);
@@ -1314,25 +1347,14 @@ vec3 whitted_sample(int i, int j, int k, float eps, int spp, int max_depth, int 
         c += r.weight * F.background.xyz;
         continue;
       }
-      float optic = h.t + (primary ? e.optic0 : 0.0);
-      Shaded a = shaded_hit(r, h, optic, eps);
-      if (primary && k == 0) {
-        first_hit = true;
-        if (aovs != 0) write_hit_aovs(i, j, e.line_dir, a.s, a.m, MappedMaterial(a.colour, a.emission, a.pbr, a.highlight), e.t_sign * h.t);
-      }
-      if (kTachyon && int(a.m.emission_model.w) == HR_MODEL_TACHYON) {
-        c += shade_tachyon(r, h, a, optic, max_depth, shadow_rays, reflected_rays, refracted_rays);
-        continue;
-      }
-      bool gltf = kGltf && int(a.m.emission_model.w) == HR_MODEL_GLTF;
-      if (r.depth < max_depth) push_secondary_rays(r, a, gltf, reflected_rays, refracted_rays);
-      c += r.weight * ((gltf ? vec3(0.0) : F.ambient.xyz * a.colour * a.m.colour_kd.w) + a.emission);  // glTF: no ambient
-      c += shade_lights(r, a, gltf, spp, shadow_rays, last_run);
+      whitted_hit(r, h, h.t + (primary ? e.optic0 : 0.0), i, j, k == 0, vec4(e.line_dir, e.t_sign), eps, spp, max_depth, aovs,
+                  first_hit, rays, last_run, c);
     }
   }
-  rays = uvec4(eye_rays, shadow_rays, reflected_rays, refracted_rays);
   return c;
 }
+
+#include "whitted_wavefront.glsl"
 
 // A pixel's colour written: one channel of a panel's packed pixel
 // (display_renderer.cpp, pack_subpixels), else its three.

@@ -27,16 +27,22 @@
 // with: the sums the megakernel makes, in its order, so the image is the
 // same run to run and the same as the megakernel's to float rounding. Only
 // the paths move through the queues; a path's state stays at its place in
-// the band (GpuWavePath). Included by path.glsl.
+// the band (GpuWavePath). Included by path.glsl. Whitted's integrator runs
+// on the same traversals and queues (whitted_wavefront.glsl).
 
 // The paths queued for vertex `depth` (its head), and where that queue's
-// entries lie: the queues of consecutive vertices take turns.
-uint wave_path_head(int depth) { return uint(depth); }
+// entries lie: the queues of consecutive vertices take turns. Whitted's
+// steps outnumber the heads where its trees branch: a head serves every
+// HR_WAVE_VERTICES-th step, zeroed two steps before its turn
+// (wave_dispatch_sizes).
+uint wave_path_head(int depth) { return uint(depth % HR_WAVE_VERTICES); }
 uint wave_queue_base(int depth) { return uint(depth & 1) * uint(band.capacity); }
 
 // The most shadow rays a vertex makes (hr_path_direct_light: one a light,
-// one an area light, one for the environment, one for the emitters).
+// one an area light, one for the environment, one for the emitters;
+// Whitted's: one a light).
 int wave_shadows_a_vertex() {
+  if (!kPath) return F.counts.x;
   return F.counts.x + F.path_counts.x + (F.path_flags.w != 0 ? 1 : 0) + (F.path_counts.y > 0 ? 1 : 0);
 }
 
@@ -171,6 +177,9 @@ uvec4 wave_groups(uint invocations) {
 // the size of its queue, not of the band: the deep vertices hold few paths.
 void wave_dispatch_sizes() {
   if (gl_GlobalInvocationID.x != 0u || gl_GlobalInvocationID.y != 0u) return;
+  // The heads the vertex after next fills, free since their last turn.
+  wave_heads[wave_path_head(band.depth + 2)] = uvec4(0u);
+  wave_heads[HR_WAVE_VERTICES + (band.depth + 1) % HR_WAVE_VERTICES] = uvec4(0u);
   uint paths = wave_heads[wave_path_head(band.depth)].x, shadows = wave_heads[wave_shadow_head()].x;
   uint per_lane = uint(HR_SHADOW_RAYS_PER_LANE);
   wave_args[0] = wave_groups((paths + per_lane - 1u) / per_lane);
@@ -246,36 +255,53 @@ void wave_extend() {
   add_fetch_work();
 }
 
+// A shade stage's entry: the path (pixel) this invocation takes from the
+// queue of vertex band.depth, if any is left for it.
+bool wave_shading(out uint p) {
+  uint q = wave_flat_invocation();
+  p = 0u;
+  if (q >= wave_heads[wave_path_head(band.depth)].x) return false;
+  p = wave_queue[wave_queue_base(band.depth) + q];
+  return true;
+}
+
+// A shade stage's exit: path p's `made` shadow rays (at its own places)
+// queued for the shadow stage, and the path queued for the next vertex if
+// it goes on (`more`). Every invocation of the dispatch calls it (the
+// queues' subgroup operations); `queued` false: one that shaded nothing.
+void wave_shaded(bool queued, uint p, uint made, bool more) {
+  if (queued) {
+    uint at = wave_append(wave_shadow_head(), made), first = p * uint(wave_shadows_a_vertex());
+    for (uint k = 0u; k < made; ++k) wave_shadow_queue[at + k] = first + k;
+  }
+  uint at = wave_append(wave_path_head(band.depth + 1), more ? 1u : 0u);
+  if (more) wave_queue[wave_queue_base(band.depth + 1) + at] = p;
+}
+
 // Stage shade: a path queued for vertex band.depth, its shadow rays of the
 // vertex before added (their stage is done), then one step of the shared
 // integrator at its hit; a path that goes on is queued for the next vertex.
 void wave_shade() {
-  uint q = wave_flat_invocation();
-  bool queued = q < wave_heads[wave_path_head(band.depth)].x;
-  bool more = false;
-  uint p = 0u;
+  uint p;
+  bool queued = wave_shading(p), more = false;
+  int made = 0;
   if (queued) {
-    p = wave_queue[wave_queue_base(band.depth) + q];
     WavePath w = wave_load(p);
     log_pixel = w.d.pixel;
     w.s.radiance += wave_shadow_light(p, w.shadows, w.shadow_throughput);
     w.shadow_throughput = w.s.throughput;  // what this vertex's shadow terms take (hr_path_step changes it after)
     HrPathHit h;
     more = hr_path_step(w.d, w.s, h, w.rng);
-    w.shadows = w.d.wave_shadows;
+    w.shadows = made = w.d.wave_shadows;
     wave_store(p, w);
-    uint made = uint(w.shadows), at = wave_append(wave_shadow_head(), made);
-    uint first = p * uint(wave_shadows_a_vertex());
-    for (uint k = 0u; k < made; ++k) wave_shadow_queue[at + k] = first + k;
     add_counts(w.d.rays);
   }
-  uint at = wave_append(wave_path_head(band.depth + 1), more ? 1u : 0u);
-  if (more) wave_queue[wave_queue_base(band.depth + 1) + at] = p;
+  wave_shaded(queued, p, uint(made), more);
 }
 
-// Stage finish: pixel (i, j)'s path, ended, its last shadow terms added;
-// its sample written as path_main writes it, and the miss AOVs where the
-// eye ray met nothing.
+// Stage finish: pixel (i, j)'s path (or Whitted's tree), ended, its last
+// shadow terms added; its sample written as path_main writes it, and the
+// miss AOVs where the eye ray met nothing.
 void wave_finish() {
   int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
   if (i >= F.size.x || int(gl_GlobalInvocationID.y) >= band.rows) return;
@@ -286,9 +312,14 @@ void wave_finish() {
   add_sample(i, j, c);
 }
 
+void whitted_wave_start();
+void whitted_wave_shade();
+
 void wave_main() {
   if (kWaveStage == HR_WAVE_EXTEND) wave_extend();
   else if (kWaveStage == HR_WAVE_SHADOW) shadow_pass();
+  else if (!kPath && band.depth == HR_WAVE_START_DEPTH) whitted_wave_start();  // whitted_wavefront.glsl
+  else if (!kPath && band.depth != HR_WAVE_FINISH_DEPTH) whitted_wave_shade();
   else if (band.depth == HR_WAVE_START_DEPTH) wave_start();
   else if (band.depth == HR_WAVE_FINISH_DEPTH) wave_finish();
   else wave_shade();
