@@ -211,6 +211,9 @@ void print_statistics(const vk::raii::Device& device, const vk::raii::Pipeline& 
 // head and 2^25 records of 16 bytes (512 MiB: a 1920x1088 EIA of gears_s4
 // traces 16.8 M rays).
 constexpr uint64_t kRayLogBytes = 16 + (uint64_t(1) << 25) * 16;
+// The counters' buffer: added to by the kernels, cleared and copied out by transfers.
+constexpr vk::BufferUsageFlags kCountUsage =
+    vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst | vk::BufferUsageFlagBits::eTransferSrc;
 
 // The frame's ray log (trace.comp, kRayLog) to `path`, written atomically
 // (write_text_file): "HRRAYLG1", then uint32 workgroup width and height,
@@ -445,10 +448,12 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     put(7, s.object_material), put(8, s.materials), put(9, s.lights);
     put(13, s.textures), put(14, s.levels), put(15, s.texels), put(16, s.colours), put(17, s.uvs);
     put(22, s.area_lights), put(23, s.environment), put(24, s.emitters);
-    m.scene[0] = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
+    m.scene[0] = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
     m.bind(0, m.scene[0]);
-    m.counts = m.make_buffer(32, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    m.frames_host = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eTransferSrc, true);
+    m.counts = m.make_buffer(32, kCountUsage, false);
     m.bind(12, m.counts);
+    m.counts_host = m.make_buffer(32, vk::BufferUsageFlagBits::eTransferDst, true);
     m.ray_log = m.make_buffer(m.ray_log_path.empty() ? 32 : kRayLogBytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
     m.bind(18, m.ray_log);
     m.shadow_queue = m.make_buffer(16 + sizeof(GpuShadowRay), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
@@ -495,7 +500,7 @@ void GpuRenderer::release() {
   Impl& m = *impl_;
   if (m.stopped) return;  // its buffers may still be in use: kept (the destructor says why)
   for (Buffer& b : m.scene) b = Buffer{};
-  for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
+  for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.counts_host, &m.frames_host, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
                     &m.shadow_terms, &m.wave_paths, &m.wave_hits, &m.wave_queues, &m.wave_shadows, &m.wave_shadow_queue,
                     &m.wave_stack})
     *b = Buffer{};
@@ -591,19 +596,24 @@ void GpuRenderer::Impl::prepare_frame(const std::vector<GpuFrame>& frames, const
   }
   const uint64_t count_bytes = uint64_t(plan.bands.size()) * HR_COUNT_SLOTS * 32;
   if (counts.size < count_bytes) {
-    counts = make_buffer(count_bytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    counts = make_buffer(count_bytes, kCountUsage, false);
     bind(12, counts);
+    counts_host = make_buffer(count_bytes, vk::BufferUsageFlagBits::eTransferDst, true);
   }
-  if (scene[0].size < frames.size() * sizeof(GpuFrame)) {
-    scene[0] = make_buffer(frames.size() * sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer, true);
+  const uint64_t constants = frames.size() * sizeof(GpuFrame);
+  if (scene[0].size < constants) {
+    scene[0] = make_buffer(constants, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
     bind(0, scene[0]);
+    frames_host = make_buffer(constants, vk::BufferUsageFlagBits::eTransferSrc, true);
   }
-  std::memcpy(scene[0].mapped, frames.data(), frames.size() * sizeof(GpuFrame));
-  std::memset(counts.mapped, 0, count_bytes);
+  std::memcpy(frames_host.mapped, frames.data(), constants);
   std::memset(ray_log.mapped, 0, 16);
   vk::raii::CommandBuffer& cb = commands;
   cb.reset();
   cb.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  cb.copyBuffer(*frames_host.buffer, *scene[0].buffer, vk::BufferCopy{0, 0, constants});
+  cb.fillBuffer(*counts.buffer, 0, count_bytes, 0);
+  barrier(vk::PipelineStageFlagBits::eTransfer);
   if (plan.wave_paths > 0) prepare_wavefront(plan);
   if (!plan.queue) return;
   const uint64_t queue_rays = plan.queue_rays;
@@ -630,6 +640,16 @@ void GpuRenderer::Impl::prepare_frame(const std::vector<GpuFrame>& frames, const
 }
 
 void GpuRenderer::Impl::submit_and_wait(const char* what) {
+  // The counters so far copied out for the host (sum_counts).
+  commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {},
+                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                             .dstAccessMask = vk::AccessFlagBits::eTransferRead},
+                           nullptr, nullptr);
+  commands.copyBuffer(*counts.buffer, *counts_host.buffer, vk::BufferCopy{0, 0, std::min(counts.size, counts_host.size)});
+  commands.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {},
+                           vk::MemoryBarrier{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                             .dstAccessMask = vk::AccessFlagBits::eHostRead},
+                           nullptr, nullptr);
   commands.end();
   vk::CommandBuffer raw = *commands;
   queue.submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
@@ -732,7 +752,7 @@ void GpuRenderer::Impl::print_pass_times(const FramePlan& plan) {
 }
 
 void GpuRenderer::Impl::sum_counts(const FramePlan& plan, RenderStats& stats) const {
-  const uint32_t* c = static_cast<const uint32_t*>(counts.mapped);
+  const uint32_t* c = static_cast<const uint32_t*>(counts_host.mapped);
   for (size_t b = 0; b < plan.bands.size() * HR_COUNT_SLOTS; ++b, c += 8) {
     stats.nodes_visited += c[0], stats.primitives_tested += c[1], stats.lane_steps += c[2];
     stats.rays.eye += c[4], stats.rays.shadow += c[5], stats.rays.reflected += c[6], stats.rays.refracted += c[7];
@@ -742,7 +762,7 @@ void GpuRenderer::Impl::sum_counts(const FramePlan& plan, RenderStats& stats) co
 void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, RenderStats& stats, int first_sample) {
   Impl& m = *impl_;
   m.check_responding();
-  if (!m.scene[0].mapped) throw std::logic_error("GpuRenderer::render before load");
+  if (!m.frames_host.mapped) throw std::logic_error("GpuRenderer::render before load");
   if (frames.empty()) throw std::logic_error("GpuRenderer::render without a frame");
   const Impl::FramePlan plan = m.plan_frame(frames, W, H);
   if (first_sample < 0 || (first_sample > 0 && (!plan.path || first_sample >= plan.passes)))

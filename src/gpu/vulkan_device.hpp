@@ -127,6 +127,12 @@ struct GpuRenderer::Impl {
   vk::PhysicalDeviceMemoryProperties memory_types;
   Buffer scene[kBindings];  // by binding: 0 (the frame) to 9, 13 to 17 and 22 to 24 (the others below)
   Buffer colour, aov, counts, staging;
+  // The frames' constants (binding 0, scene[0]) and the counters (binding
+  // 12, `counts`) live in device memory, which every invocation reads and
+  // adds to (the host's would be crossed over the bus on a GPU): the
+  // constants copied in from `frames_host` as a frame begins, the counters
+  // out to `counts_host` as each submission ends (submit_and_wait).
+  Buffer frames_host, counts_host;
   vk::raii::CommandBuffer commands = nullptr;
   vk::raii::Fence fence = nullptr;
   // The readback's own, kept from frame to frame (as `commands` and `fence`).
