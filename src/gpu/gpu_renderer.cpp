@@ -28,7 +28,11 @@ namespace {
 const uint32_t kTraceSpirv[] = {
 #include "trace.spv.inc"
 };
-// The same with the wavefront's two traversal kernels alone (HR_TRAVERSAL_KERNELS).
+// The same with the wavefront's shade stage alone (HR_SHADE_KERNEL), and
+// with its small kernels alone (HR_TRAVERSAL_KERNELS).
+const uint32_t kShadeSpirv[] = {
+#include "trace_shade.spv.inc"
+};
 const uint32_t kTraversalSpirv[] = {
 #include "trace_traversal.spv.inc"
 };
@@ -258,7 +262,9 @@ vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int 
   vk::ComputePipelineCreateInfo pi{
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
       .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
-                .module = wave_stage >= HR_WAVE_EXTEND ? *traversal_module : *module,
+                .module = wave_stage >= HR_WAVE_EXTEND ? *traversal_module
+                          : wave_stage == HR_WAVE_SHADING ? *shade_module
+                                                          : *module,
                 .pName = "main", .pSpecializationInfo = &spec},
       .layout = *pipeline_layout};
   const auto t0 = std::chrono::steady_clock::now();
@@ -313,11 +319,10 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
-  // Both integrators as a wavefront where it pays (wavefront.cpp);
-  // HOLORAY_GPU_WAVEFRONT=1 always, =0 never (measuring).
+  // Both integrators as a wavefront (wavefront.cpp); HOLORAY_GPU_WAVEFRONT=0
+  // never (measuring).
   const char* wave_env = std::getenv("HOLORAY_GPU_WAVEFRONT");
   m.wavefront_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops && !(wave_env && std::string_view(wave_env) == "0");
-  m.wavefront_always = wave_env && std::string_view(wave_env) == "1";
   m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
   if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
@@ -364,6 +369,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
                                              .pPushConstantRanges = &push});
   m.module = vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
+  m.shade_module = vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kShadeSpirv), .pCode = kShadeSpirv});
   m.traversal_module =
       vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraversalSpirv), .pCode = kTraversalSpirv});
   // Specialization (shaders/trace.comp): the workgroup's size, 32x2 unless
@@ -478,13 +484,10 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     // (about 1.3 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
-    // A renderer's first path-traced frame takes the wavefront, its first
-    // Whitted frame the kernel (wavefront_pays); a later frame that changes
-    // schedule compiles the other then. (A scene loaded again, an
-    // animation's moved frame, keeps the frames' measure; release()
-    // forgets it.)
-    if (m.wavefront_on && (s.features & HR_FEATURE_PATH)) {
-      for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS}) m.pipeline(panel, false, 0, stage);
+    // The wavefront's (a frame that cannot take it, the kernel's then).
+    if (m.wavefront_on && ((s.features & HR_FEATURE_PATH) || !m.shadow_queue_on)) {
+      for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS, HR_WAVE_START, HR_WAVE_FINISH})
+        m.pipeline(panel, false, 0, stage);
     } else {
       for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
     }
@@ -505,7 +508,6 @@ void GpuRenderer::release() {
                     &m.wave_stack})
     *b = Buffer{};
   m.scene_bytes = 0;
-  m.last_rays_a_sample = -1;
   m.traced = {0, 0};
   m.traced_aovs = false;
 }
@@ -553,7 +555,7 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
   const GpuFrame& f = frames[0];
   const int steps = plan.path ? std::min(f.counts.z + 1, HR_MAX_DEPTH + 1) : whitted_steps(f.counts.z, whitted_branches);
   // (HOLORAY_GPU_SHADOW_QUEUE asks for the megakernel's own queue.)
-  const bool wave = steps > 0 && wavefront_pays(plan.path) && (plan.path || !shadow_queue_on);
+  const bool wave = steps > 0 && wavefront_on && (plan.path || !shadow_queue_on);
   if (wave) {
     plan.wave_steps = steps;
     plan.wave_shadows = plan.path ? uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0))
@@ -657,9 +659,9 @@ void GpuRenderer::Impl::submit_and_wait(const char* what) {
   device.resetFences({*fence});
 }
 
-void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sample, int from_pass) {
-  if (from_pass < 0 && plan.wave_paths > 0) return record_wavefront_passes(plan, first_sample);
-  const int from = from_pass < 0 ? first_sample : from_pass;
+void GpuRenderer::Impl::record_pixel_passes(const FramePlan& plan, int first_sample) {
+  if (plan.wave_paths > 0) return record_wavefront_passes(plan, first_sample);
+  const int from = first_sample;
   vk::raii::CommandBuffer& cb = commands;
   auto bind_kernel = [&] {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline(plan.panel, plan.queue, 0));
@@ -790,8 +792,6 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, Rende
       if (std::string_view(fault) == "out-of-memory") throw vk::OutOfDeviceMemoryError("vkAllocateMemory");
     }
     m.sum_counts(plan, stats);
-    const int samples = plan.path || plan.wave_paths > 0 ? plan.passes - first_sample : std::max(1, frames[0].mode.w);
-    m.last_rays_a_sample = double(stats.rays.total()) / double(plan.pixels * uint64_t(std::max(1, samples)));
     if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
     m.traced_aovs = plan.want_aovs;

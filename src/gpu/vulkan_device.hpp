@@ -68,7 +68,8 @@ struct GpuRenderer::Impl {
   vk::raii::DescriptorSetLayout set_layout = nullptr;
   vk::raii::PipelineLayout pipeline_layout = nullptr;
   vk::raii::ShaderModule module = nullptr;
-  vk::raii::ShaderModule traversal_module = nullptr;  // the wavefront's traversals alone (trace.comp)
+  vk::raii::ShaderModule shade_module = nullptr;      // the wavefront's shade stage alone (trace.comp)
+  vk::raii::ShaderModule traversal_module = nullptr;  // the wavefront's small kernels alone (trace.comp)
   // The kernel's pipelines, made when first needed: by whether it renders
   // panels (display panels, Looking Glass native panels), by what the
   // loaded scene needs (SceneArrays::features: its materials, its
@@ -101,15 +102,11 @@ struct GpuRenderer::Impl {
   Buffer shadow_queue, shadow_last, shadow_terms;  // bindings 19, 20 and 21
   // Both integrators as a wavefront (wavefront.cpp, shaders/wavefront.glsl
   // and whitted_wavefront.glsl) where the device has subgroup ballots and
-  // votes and the ray log is off, for a frame whose rays were many enough
-  // to pay for its queues: wavefront_pays() says. HOLORAY_GPU_WAVEFRONT=1
-  // takes it always, =0 never (measuring). Its buffers, bindings 25 to 30:
-  // the paths' (pixels') states, their hits, the queues and their heads,
-  // the shadow rays and their queue, and Whitted's pixels' ray stacks.
-  bool wavefront_on = false, wavefront_always = false;
-  // Rays a pixel took per sample in the last frame (-1 before any).
-  double last_rays_a_sample = -1;
-  bool wavefront_pays(bool path) const;  // for the path integrator, else Whitted's
+  // votes and the ray log is off; HOLORAY_GPU_WAVEFRONT=0 never
+  // (measuring). Its buffers, bindings 25 to 30: the paths' (pixels')
+  // states, their hits, the queues and their heads, the shadow rays and
+  // their queue, and Whitted's pixels' ray stacks.
+  bool wavefront_on = false;
   Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue, wave_stack;
   bool whitted_branches = false;  // the loaded scene's (SceneArrays)
   // With HOLORAY_GPU_STATS, a timestamp after each of the wavefront's
@@ -257,18 +254,13 @@ struct GpuRenderer::Impl {
   // written, and the shadow queue's reset recorded into `commands`.
   void prepare_frame(const std::vector<GpuFrame>& frames, const FramePlan& plan);
   // Records the pixel kernel's passes from `first_sample` (submitted and
-  // waited on every few passes), then the shadow queue's two passes.
-  // `from_pass` > first_sample: the passes from there on (the wavefront's
-  // trace handing its later passes to the kernel, wavefront.cpp).
-  void record_pixel_passes(const FramePlan& plan, int first_sample, int from_pass = -1);
+  // waited on every few passes), or the wavefront's.
+  void record_pixel_passes(const FramePlan& plan, int first_sample);
   void record_shadow_passes(const FramePlan& plan);
   // The wavefront's buffers grown to the plan (wavefront.cpp), and its
   // stages recorded in place of the pixel kernel's passes.
   void prepare_wavefront(const FramePlan& plan);
   void record_wavefront_passes(const FramePlan& plan, int first_sample);
-  // Rays a pixel-sample the passes before `pass` of this trace took (the
-  // counters are the device's, read between submissions).
-  double rays_a_sample_so_far(const FramePlan& plan, int first_sample, int pass) const;
   // A memory barrier between two dispatches (or a transfer and a dispatch).
   void barrier(vk::PipelineStageFlags from = vk::PipelineStageFlagBits::eComputeShader);
   // A barrier before an indirect dispatch that reads sizes a kernel wrote.

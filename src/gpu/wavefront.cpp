@@ -1,7 +1,11 @@
 // holoray/gpu: both integrators as a wavefront (issue 71), the host's
 // half: the stages of shaders/wavefront.glsl (and whitted_wavefront.glsl)
-// recorded band by band, sample by sample, in place of the pixel kernel
-// where it pays (wavefront_pays).
+// recorded band by band, sample by sample, in place of the pixel kernel.
+// On lavapipe it rendered every scene measured faster than the kernel
+// (1.04x to 2.75x, design/gpu.md), so it is the default; the kernel stays
+// for devices without subgroup ballots and votes, the ray log, the shadow
+// queue, Whitted's trees of more than 63 rays, and HOLORAY_GPU_WAVEFRONT=0
+// (for measuring on a GPU).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,31 +14,6 @@
 #include "gpu/vulkan_device.hpp"
 
 namespace holoray::gpu {
-
-// The wavefront against the megakernel on lavapipe (960x544 EIAs, 1
-// sample a pixel, design/gpu.md): 0.73x at 1.2 rays a pixel-sample
-// (swinging_box under an HDRI, most paths ending at the sky), 1.03x at 3.8
-// (the Cornell box), 1.11x to 1.76x from 4.4 to 12.6 (the SPD scenes): its
-// queues cost per ray, and the waits it saves grow with the paths. So a
-// frame takes the wavefront unless the frame before traced fewer than
-// kWavefrontRays rays a pixel-sample; a first frame takes it, and hands
-// its later passes to the megakernel where its first submission's passes
-// traced fewer.
-constexpr double kWavefrontRays = 3.5;
-// Whitted's, measured the same way (design/gpu.md): 0.92x and 0.95x at
-// 4.0 rays a pixel (teapot_s6), 1.20x to 1.46x from 5.9 to 8.0 (tree_s11,
-// balls_s4, gears_s4). A Whitted still (a first frame) takes the kernel,
-// as it did: its pipeline is the one a load compiles, and most stills are
-// set-up more than trace (a pipeline takes seconds on lavapipe); an
-// animation's or live's frames after the first follow the rule.
-constexpr double kWhittedWavefrontRays = 5.0;
-
-bool GpuRenderer::Impl::wavefront_pays(bool path) const {
-  if (!wavefront_on) return false;
-  if (wavefront_always) return true;
-  if (path) return last_rays_a_sample < 0 || last_rays_a_sample >= kWavefrontRays;
-  return last_rays_a_sample >= kWhittedWavefrontRays;
-}
 
 // A Whitted pixel's tree walked one ray a step: max_depth steps where no
 // hit sends two rays on, else up to 2^max_depth - 1; past kMaxWhittedSteps
@@ -45,12 +24,6 @@ int whitted_steps(int max_depth, bool branches) {
   const int depth = std::clamp(max_depth, 1, HR_MAX_DEPTH);
   const int steps = branches ? (1 << depth) - 1 : depth;
   return steps <= kMaxWhittedSteps ? steps : 0;
-}
-
-double GpuRenderer::Impl::rays_a_sample_so_far(const FramePlan& plan, int first_sample, int pass) const {
-  RenderStats so_far;
-  sum_counts(plan, so_far);
-  return double(so_far.rays.total()) / double(plan.pixels * uint64_t(pass - first_sample));
 }
 
 void GpuRenderer::Impl::barrier(vk::PipelineStageFlags from) {
@@ -131,10 +104,6 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
   for (int pass = first_sample; pass < plan.passes; ++pass) {
     if (pass > first_sample && (pass - first_sample) % per_submission == 0) {
       next_submission();
-      // The paths so far too short to pay for the queues: the rest of the
-      // samples in the megakernel (the same sums a sample, to rounding).
-      if (plan.path && !wavefront_always && rays_a_sample_so_far(plan, first_sample, pass) < kWavefrontRays)
-        return record_pixel_passes(plan, first_sample, pass);
       stage(HR_WAVE_SHADING);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_layout, 0, {*set}, nullptr);
     }
@@ -151,7 +120,7 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
       barrier();  // the band before done with the heads
       cb.fillBuffer(*wave_queues.buffer, 0, HR_WAVE_HEADS * 16, 0);
       barrier(vk::PipelineStageFlagBits::eTransfer);
-      stage(HR_WAVE_SHADING);
+      stage(HR_WAVE_START);
       push(HR_WAVE_START_DEPTH);
       over_band();
       stamp(kStart);
@@ -181,7 +150,7 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
         stamp(kShadow);
       }
       barrier();
-      stage(HR_WAVE_SHADING);
+      stage(HR_WAVE_FINISH);
       push(HR_WAVE_FINISH_DEPTH);
       over_band();
       stamp(kFinish);

@@ -97,18 +97,17 @@ struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_SHADOW_RAYS_PER_LANE 8
 
 // The wavefront of both integrators (trace.comp's kWaveStage,
-// wavefront.glsl, whitted_wavefront.glsl): its kernels, each a pipeline of
-// the same SPIR-V. The shading kernel runs three stages, told apart by the
-// vertex it is given (push constant `depth`: HR_WAVE_START_DEPTH, a vertex
-// 1 to max_depth + 1 or Whitted's step, HR_WAVE_FINISH_DEPTH), so that a
-// renderer compiles three pipelines, not five (lavapipe takes seconds for
-// each).
+// wavefront.glsl, whitted_wavefront.glsl): its kernels, each a pipeline.
+// Shade is the whole module's, told the vertex it works on (push constant
+// `depth`: a vertex 1 to max_depth + 1, or Whitted's step); the others are
+// a small module's (HR_TRAVERSAL_KERNELS), quick to compile and to run.
 #define HR_WAVE_OFF 0
-#define HR_WAVE_SHADING 1  // start (eye rays: each pixel's path begun, queued), shade (each hit: light added,
-                           // shadow rays written, the next ray queued) and finish (the last shadow terms, the sample)
+#define HR_WAVE_SHADING 1  // shade (each hit: light added, shadow rays written, the next ray queued)
 #define HR_WAVE_EXTEND 2   // the queued paths' rays to their nearest hits (lanes fetch rays)
 #define HR_WAVE_SHADOW 3   // the shadow rays traced, any hit (lanes fetch rays); blocked terms zeroed
 #define HR_WAVE_ARGS 4     // one invocation: the next dispatches' sizes from the queues' counts
+#define HR_WAVE_START 5    // eye rays: each pixel's path (or ray tree) begun, queued
+#define HR_WAVE_FINISH 6   // the last shadow terms added, the sample written
 #define HR_WAVE_START_DEPTH 0
 #define HR_WAVE_FINISH_DEPTH (-1)
 // The wavefront's queue heads: the paths' for each vertex (1 to

@@ -1371,18 +1371,18 @@ void write_colour(int i, int j, vec3 colour) {
 }
 
 void main() {
-#ifdef HR_TRAVERSAL_KERNELS
-  // The wavefront's two traversals alone, a SPIR-V of their own
-  // (CMakeLists.txt): lavapipe inlines a module's whole call graph before it
-  // folds the stage's branches away, about 5 s a pipeline whatever the
-  // stage, and this module holds nothing else.
-  if (kWaveStage == HR_WAVE_EXTEND) wave_extend();
-  else if (kWaveStage == HR_WAVE_ARGS) wave_dispatch_sizes();
-  else shadow_pass();
+#if defined(HR_SHADE_KERNEL)
+  wave_main();  // the wavefront's shade stage alone, a SPIR-V of its own (as below)
+#elif defined(HR_TRAVERSAL_KERNELS)
+  // The wavefront's small kernels alone (its traversals, the dispatches'
+  // sizes, its start and finish), a SPIR-V of their own (CMakeLists.txt):
+  // lavapipe inlines a module's whole call graph before it folds the
+  // stage's branches away, about 8 s a pipeline whatever the stage, and a
+  // kernel of the whole module costs more to run (a band's start and finish
+  // took 0.33 s of a 0.57 s frame there, design/gpu.md).
+  wave_small_kernel();
 #else
-  if (kWaveStage != HR_WAVE_OFF) {
-    wave_main();
-  } else if (kPath) {
+  if (kPath) {
     path_main();
   } else if (kShadowPass == 1) {
     shadow_pass();

@@ -257,7 +257,7 @@ void wave_extend() {
 
 // A shade stage's entry: the path (pixel) this invocation takes from the
 // queue of vertex band.depth, if any is left for it.
-bool wave_shading(out uint p) {
+bool wave_to_shade(out uint p) {
   uint q = wave_flat_invocation();
   p = 0u;
   if (q >= wave_heads[wave_path_head(band.depth)].x) return false;
@@ -283,7 +283,7 @@ void wave_shaded(bool queued, uint p, uint made, bool more) {
 // integrator at its hit; a path that goes on is queued for the next vertex.
 void wave_shade() {
   uint p;
-  bool queued = wave_shading(p), more = false;
+  bool queued = wave_to_shade(p), more = false;
   int made = 0;
   if (queued) {
     WavePath w = wave_load(p);
@@ -315,12 +315,19 @@ void wave_finish() {
 void whitted_wave_start();
 void whitted_wave_shade();
 
-void wave_main() {
+// The kernels of the wavefront's small module (trace.comp's main under
+// HR_TRAVERSAL_KERNELS): each its own pipeline.
+void wave_small_kernel() {
   if (kWaveStage == HR_WAVE_EXTEND) wave_extend();
-  else if (kWaveStage == HR_WAVE_SHADOW) shadow_pass();
-  else if (!kPath && band.depth == HR_WAVE_START_DEPTH) whitted_wave_start();  // whitted_wavefront.glsl
-  else if (!kPath && band.depth != HR_WAVE_FINISH_DEPTH) whitted_wave_shade();
-  else if (band.depth == HR_WAVE_START_DEPTH) wave_start();
-  else if (band.depth == HR_WAVE_FINISH_DEPTH) wave_finish();
-  else wave_shade();
+  else if (kWaveStage == HR_WAVE_ARGS) wave_dispatch_sizes();
+  else if (kWaveStage == HR_WAVE_START && kPath) wave_start();
+  else if (kWaveStage == HR_WAVE_START) whitted_wave_start();  // whitted_wavefront.glsl
+  else if (kWaveStage == HR_WAVE_FINISH) wave_finish();
+  else shadow_pass();
+}
+
+// The shade stage, the whole module's one wavefront kernel.
+void wave_main() {
+  if (kPath) wave_shade();
+  else whitted_wave_shade();
 }

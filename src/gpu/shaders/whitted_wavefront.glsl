@@ -1,7 +1,7 @@
 // holoray/gpu: Whitted's integrator as a wavefront (issue 71), on the path
 // integrator's stages and queues (wavefront.glsl): the extend, shadow and
-// sizing kernels and the finish are the same; the shading kernel's start
-// and shade run Whitted's shading, whitted_hit, the megakernel's own.
+// sizing kernels and the finish are the same; its start is its own, and its
+// shade runs Whitted's shading, whitted_hit, the megakernel's own.
 //
 // A pixel's ray tree is walked depth first, as whitted_sample walks it:
 // one ray of the tree a pixel at each step (band.depth counts steps, not
@@ -84,7 +84,7 @@ void whitted_wave_start() {
 // hit pushed or else the top of its stack, queued for the next step.
 void whitted_wave_shade() {
   uint p;
-  bool queued = wave_shading(p), more = false;
+  bool queued = wave_to_shade(p), more = false;
   whitted_made = 0;
   if (queued) {
     GpuWavePath g = wave_paths[p];
