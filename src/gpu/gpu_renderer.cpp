@@ -560,7 +560,7 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
     plan.wave_steps = steps;
     plan.wave_shadows = plan.path ? uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0))
                                   : uint32_t(f.counts.x);
-    plan.wave_stack = plan.path ? 0 : uint32_t(std::max(1, f.counts.z + 1));
+    plan.wave_stack = plan.path ? 0 : uint32_t(HR_WAVE_STACK_RAYS(std::max(1, f.counts.z)));
     const uint64_t stack_bytes = uint64_t(plan.wave_stack) * 48;
     const uint64_t per_path = sizeof(GpuWavePath) + 32 + 8 + plan.wave_shadows * (sizeof(GpuWaveShadow) + 4) + stack_bytes;
     const uint64_t by_range = std::min({max_storage_range / sizeof(GpuWavePath),

@@ -121,7 +121,7 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
       cb.fillBuffer(*wave_queues.buffer, 0, HR_WAVE_HEADS * 16, 0);
       barrier(vk::PipelineStageFlagBits::eTransfer);
       stage(HR_WAVE_START);
-      push(HR_WAVE_START_DEPTH);
+      push(0);  // start and finish work on no vertex
       over_band();
       stamp(kStart);
       // Each stage of a vertex sized by its queue (wave_dispatch_sizes),
@@ -151,7 +151,7 @@ void GpuRenderer::Impl::record_wavefront_passes(const FramePlan& plan, int first
       }
       barrier();
       stage(HR_WAVE_FINISH);
-      push(HR_WAVE_FINISH_DEPTH);
+      push(0);
       over_band();
       stamp(kFinish);
     }

@@ -108,8 +108,10 @@ struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_WAVE_ARGS 4     // one invocation: the next dispatches' sizes from the queues' counts
 #define HR_WAVE_START 5    // eye rays: each pixel's path (or ray tree) begun, queued
 #define HR_WAVE_FINISH 6   // the last shadow terms added, the sample written
-#define HR_WAVE_START_DEPTH 0
-#define HR_WAVE_FINISH_DEPTH (-1)
+// The rays a Whitted pixel's stack holds in the wavefront
+// (whitted_wavefront.glsl): walked depth first, a tree never holds more
+// waiting than one sibling a depth and two at the deepest hit.
+#define HR_WAVE_STACK_RAYS(max_depth) ((max_depth) + 1)
 // The wavefront's queue heads: the paths' for each vertex (1 to
 // HR_MAX_DEPTH + 1, and the one after, never filled), then the shadow
 // rays' made at each (wavefront.glsl); Whitted's steps, which may be more,

@@ -93,7 +93,7 @@ struct HrPathHit {
 
 bool wave_hit(uint p, out Hit h);
 // The wavefront's shade stage (wavefront.glsl), where a hook does not trace.
-bool wave_shading() { return kWaveStage == HR_WAVE_SHADING && band.depth > 0; }
+bool wave_shading() { return kWaveStage == HR_WAVE_SHADING; }
 bool hr_path_trace(inout HrPathDevice d, vec3 o, vec3 dir, float tmin, float tmax, int depth, out HrPathHit h) {
   log_kind = uint(depth);
   // The wavefront's shading stage reads what its traversal stage found.

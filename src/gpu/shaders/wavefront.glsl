@@ -53,6 +53,14 @@ ivec2 wave_pixel(uint p) { return ivec2(int(p % uint(F.size.x)), band.row0 + int
 // entries): rows of the band's width, as the pixel passes are dispatched.
 uint wave_invocation() { return gl_GlobalInvocationID.y * uint(F.size.x) + gl_GlobalInvocationID.x; }
 
+// This invocation's pixel (i, j) in a stage over the band (start,
+// finish) and its place p; false past the band's pixels.
+bool wave_band_pixel(out int i, out int j, out uint p) {
+  i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
+  p = wave_invocation();
+  return i < F.size.x && int(gl_GlobalInvocationID.y) < band.rows;
+}
+
 // The hit that the extend stage found for path p (wavefront.glsl's
 // hr_path_trace): false where its ray met nothing.
 bool wave_hit(uint p, out Hit h) {
@@ -141,11 +149,10 @@ vec3 wave_shadow_light(uint p, int shadows, vec3 shadow_throughput) {
 // path_main draws it; a ray through the scene's box queued for vertex 1,
 // any other's sample its background.
 void wave_start() {
-  int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
-  bool inside = i < F.size.x && int(gl_GlobalInvocationID.y) < band.rows;
+  int i, j;
+  uint p;
   bool queued = false;
-  uint p = wave_invocation();
-  if (inside) {
+  if (wave_band_pixel(i, j, p)) {
     WavePath w;
     uint seed = hr_pixel_seed(uint(F.tile.x + i), uint(F.tile.y + j), floatBitsToUint(F.env_turn.z));
     w.rng = hr_sampler(seed, uint(band.sample_index));
@@ -303,9 +310,9 @@ void wave_shade() {
 // shadow terms added; its sample written as path_main writes it, and the
 // miss AOVs where the eye ray met nothing.
 void wave_finish() {
-  int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
-  if (i >= F.size.x || int(gl_GlobalInvocationID.y) >= band.rows) return;
-  uint p = wave_invocation();
+  int i, j;
+  uint p;
+  if (!wave_band_pixel(i, j, p)) return;
   WavePath w = wave_load(p);
   vec3 c = w.s.radiance + wave_shadow_light(p, w.shadows, w.shadow_throughput);
   if (w.d.aovs_now && !w.d.first_hit) write_miss_aovs(i, j);

@@ -32,10 +32,8 @@
 uint whitted_place = 0u;
 int whitted_made = 0;
 
-// A stack entry's place: its pixel's stack holds max_depth + 1 rays (a
-// walk depth first never holds more: one sibling a depth, and two at the
-// deepest hit before one is taken).
-uint whitted_stack_at(uint p, int k) { return 3u * (p * uint(F.counts.z + 1) + uint(k)); }
+// A stack entry's place: its pixel's stack holds HR_WAVE_STACK_RAYS.
+uint whitted_stack_at(uint p, int k) { return 3u * (p * uint(HR_WAVE_STACK_RAYS(F.counts.z)) + uint(k)); }
 
 void whitted_wave_shadow(vec3 from, vec4 ray_to, vec3 term) {
   uint at = whitted_place * uint(wave_shadows_a_vertex()) + uint(whitted_made++);
@@ -56,11 +54,10 @@ void whitted_next_ray(uint p, Pending r) {
 // whitted_sample draws it; a ray that meets the scene's box queued for the
 // first step, any other's colour the background.
 void whitted_wave_start() {
-  int i = int(gl_GlobalInvocationID.x), j = band.row0 + int(gl_GlobalInvocationID.y);
-  bool inside = i < F.size.x && int(gl_GlobalInvocationID.y) < band.rows;
+  int i, j;
+  uint p;
   bool queued = false;
-  uint p = wave_invocation();
-  if (inside) {
+  if (wave_band_pixel(i, j, p)) {
     vec2 uv = sample_offset(F.tile.x + i, F.tile.y + j, band.sample_index);
     EyeRay e = eye_ray(i, j, uv);
     queued = e.traced;
