@@ -2,6 +2,7 @@
 // preview.hpp, video.hpp, files.hpp), which the CLI and the Python module
 // call instead of the core: each checked for a property of its own, not
 // against the wrapper's internals.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -65,6 +66,62 @@ TEST(ImageWriter, LeavesNothingWhenNotFinished) {
     w.write_rows(ramp(8, 4, 3));
   }
   EXPECT_EQ(files_in(dir.path), 0u);
+}
+
+TEST(BackgroundWriter, WritesEveryImageGivenWithTheBytesOfWriteImage) {
+  TempDir dir;
+  api::BackgroundWriter writer(1);  // one waiting: the later submits block on the thread
+  for (int k = 0; k < 6; ++k) {
+    const api::Image img = ramp(31 + k, 17, 3);
+    const std::string ext = k % 2 ? "exr" : "png";
+    api::write_image(dir.file(fmt::format("direct{}.{}", k, ext)), img, api::Encoding::srgb);
+    writer.submit(dir.file(fmt::format("queued{}.{}", k, ext)), img, api::Encoding::srgb);
+  }
+  writer.finish();
+  for (int k = 0; k < 6; ++k) {
+    const std::string ext = k % 2 ? "exr" : "png";
+    EXPECT_EQ(file_bytes(dir.file(fmt::format("queued{}.{}", k, ext))), file_bytes(dir.file(fmt::format("direct{}.{}", k, ext))))
+        << k;
+  }
+  EXPECT_EQ(files_in(dir.path), 12u);  // no temporaries left
+  EXPECT_GT(writer.write_seconds(), 0.0);
+}
+
+TEST(BackgroundWriter, ImagesGivenBeforeTheWriterEndsAreWrittenWithoutFinish) {
+  TempDir dir;
+  {
+    api::BackgroundWriter writer(3);
+    for (int k = 0; k < 3; ++k) writer.submit(dir.file(fmt::format("f{}.png", k)), ramp(64, 64, 3));
+  }
+  EXPECT_EQ(files_in(dir.path), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(api::read_image(dir.file(fmt::format("f{}.png", k))).width(), 64);
+}
+
+TEST(BackgroundWriter, AFailedWriteIsThrownByTheNextCallAndNothingAfterItIsWritten) {
+  TempDir dir;
+  api::BackgroundWriter writer(4);
+  const std::string missing = dir.file("no/such/folder/a.png");
+  try {
+    // The failure may come back from the second submit or from finish().
+    writer.submit(missing, ramp(8, 8, 3));
+    writer.submit(dir.file("after.png"), ramp(8, 8, 3));
+    writer.finish();
+    FAIL() << "neither submit() nor finish() threw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(writer.submit(dir.file("later.png"), ramp(8, 8, 3)), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("after.png")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("later.png")));
+}
+
+TEST(BackgroundWriter, RefusesADepthBelowOne) {
+  try {
+    api::BackgroundWriter writer(0);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "BackgroundWriter: depth must be at least 1, got 0");
+  }
 }
 
 TEST(CompareImages, AnOffsetOfOneCodeIsAnMseOfOne) {

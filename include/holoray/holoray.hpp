@@ -5,7 +5,7 @@
 //   render.hpp   Renderer (placed and built once), render(), RenderOptions, Result
 //   world.hpp    World: a scene built once for many cameras and either device
 //   animate.hpp  Animation: a shot frame by frame, with keyframe reuse
-//   image.hpp    Image (float, linear), read_image, write_image, ImageWriter, compare_images
+//   image.hpp    Image (float, linear), read_image, write_image, ImageWriter, BackgroundWriter, compare_images
 //   preview.hpp  sub-aperture views, view grids and sweeps, simulate_view, interlace_quilt
 //   video.hpp    VideoWriter (FFV1, H.264)
 //   files.hpp    write_text_file (whole or not at all)

@@ -91,6 +91,33 @@ class HOLORAY_API ImageWriter {
   std::unique_ptr<Open> open_;
 };
 
+/// Image files written on a thread of its own, in the order given, each as
+/// write_image writes it (a temporary name, then renamed), so that the caller
+/// traces its next frame meanwhile (`holoray animate`). At most `depth` (>= 1)
+/// images wait: submit() blocks beyond that, so memory stays bounded. A
+/// failed write stops the thread (nothing after it is written) and its error
+/// is thrown again by the next submit() or by finish(). The destructor
+/// writes the images already given (an interrupted run keeps every frame it
+/// finished) and swallows errors: call finish() to see them.
+class HOLORAY_API BackgroundWriter {
+ public:
+  /// Throws std::invalid_argument for depth < 1.
+  explicit BackgroundWriter(int depth = 2);
+  ~BackgroundWriter();
+  BackgroundWriter(const BackgroundWriter&) = delete;
+  BackgroundWriter& operator=(const BackgroundWriter&) = delete;
+  /// Queues `image` (shared, not copied: leave its samples alone) for `path`.
+  void submit(std::string path, Image image, Encoding encoding = Encoding::linear, ExrCompression exr = ExrCompression::zip);
+  /// Waits until every image given is written; throws the first write's error.
+  void finish();
+  /// Seconds the thread has spent writing, encoding included.
+  double write_seconds() const;
+
+ private:
+  struct Queue;
+  std::unique_ptr<Queue> queue_;
+};
+
 /// `frames` (one size, RGB) as an animated GIF looping at `fps` frames per
 /// second, written as write_image. Throws std::runtime_error naming the path
 /// (not .gif, no frames, sizes that differ, folder missing, disk full).

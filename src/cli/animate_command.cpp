@@ -397,14 +397,16 @@ int run_animate(const AnimateCommandOptions& o, const cluster::World& world) {
     const auto run_start = Clock::now();
 
     std::vector<api::FrameRow> reports;
-    double write_seconds = 0;  // encoding and writing the frames (not in FrameRow::seconds)
+    // Each frame encoded and written on the writer's thread while the next
+    // traces; two wait at most. Its seconds are not in FrameRow::seconds.
+    api::BackgroundWriter writer(2);
     animation.run([&](int f, const api::Image& colour, const api::FrameRow& r) {
-      const auto t_write = Clock::now();
-      api::write_image(frame_path(o.output, f, frames, ext), colour, animation.encoding());
-      write_seconds += seconds_since(t_write);
+      writer.submit(frame_path(o.output, f, frames, ext), colour, animation.encoding());
       reports.push_back(r);
       if (!o.quiet) print_frame(rank_tag, f, r, o.verbose);
     });
+    writer.finish();
+    const double write_seconds = writer.write_seconds();
 
     const cluster::DealStats deal = dealer ? dealer->finish() : cluster::DealStats{};
     // On rank 0, for the totals and --report.
