@@ -55,11 +55,16 @@ TEST(SharedShading, EveryFunctionGivesTheSameValuesOnTheCpuAndTheGpu) {
         // Below roughness 0.1 GGX's D(h) turns ill-conditioned in float
         // (its peak's width, alpha^2, nears the rounding of h.z): the two
         // compilers' roundings of the same formula then part by percents.
+        // Above it the rounding's effect still grows as 1/alpha^2, as the
+        // pdf's peak does: the bound grows with the pdf past 100 (an H200,
+        // whose compiler fuses multiplies and adds, parted pdfs of 150 to
+        // 560 by 1.1e-3 to 3.6e-3; lavapipe stays within 1e-3).
         if (!drew || b.alpha < 0.01f) continue;
         const float pdf = shading::hr_bsdf_pdf(b, wo, wi_gpu);
         const shading::vec3 w = shading::hr_bsdf_eval(b, wo, wi_gpu) / pdf;
         const float cpu_at_gpu = k == 10 ? pdf : (k == 7 ? w.x : k == 8 ? w.y : w.z);
-        err = std::fabs(cpu_at_gpu - g[k]) / std::max(1.0, std::fabs(double(cpu_at_gpu))) / 1e-3;
+        const double conditioning = std::max(1.0, double(pdf) / 100);
+        err = std::fabs(cpu_at_gpu - g[k]) / std::max(1.0, std::fabs(double(cpu_at_gpu))) / (1e-3 * conditioning);
         kind = 2;
       } else if ((k >= 4 && k <= 6) || (k >= 14 && k <= 25)) {
         // Through sin, cos, asin, acos or atan, whose GLSL precision Vulkan

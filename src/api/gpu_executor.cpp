@@ -221,7 +221,8 @@ struct GpuExecutor::Impl {
     } else if (!uploaded) {
       compile_seconds = renderer->load(gpu::lay_out(context, BvhQuality::high, renderer->bvh_width()), image_bytes, panel);
     } else {  // a frame whose objects moved: the hierarchy of the frames before, refitted (gpu::KeptBvh)
-      compile_seconds = renderer->load(gpu::lay_out(context, BvhQuality::fast, renderer->bvh_width(), &kept), image_bytes, panel);
+      compile_seconds =
+          renderer->load(gpu::lay_out(context, BvhQuality::fast, renderer->bvh_width(), &kept), image_bytes, panel, true);
     }
     uploaded = std::move(now);
     uploaded_path = path, uploaded_emitters = emitters;

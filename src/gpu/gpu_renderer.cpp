@@ -246,7 +246,7 @@ vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shad
 
 vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass, int wave_stage) {
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
-  constexpr uint32_t kConstants = 15;
+  constexpr uint32_t kConstants = 16;
   const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
                                             panel ? 1u : 0u, (features & HR_FEATURE_TACHYON) ? 1u : 0u,
                                             (features & HR_FEATURE_GLTF) ? 1u : 0u,
@@ -254,7 +254,7 @@ vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int 
                                             (features & HR_FEATURE_ALPHA_MASKS) ? 1u : 0u, count_work ? 1u : 0u,
                                             count_work && !ray_log_path.empty() ? 1u : 0u, queue ? 1u : 0u, uint32_t(shadow_pass),
                                             (features & HR_FEATURE_WIDE_BVH) ? 1u : 0u, (features & HR_FEATURE_PATH) ? 1u : 0u,
-                                            uint32_t(wave_stage)};
+                                            uint32_t(wave_stage), rays_per_lane};
   vk::SpecializationMapEntry entries[kConstants];
   for (uint32_t k = 0; k < kConstants; ++k) entries[k] = vk::SpecializationMapEntry{k, 4 * k, 4};
   const vk::SpecializationInfo spec{.mapEntryCount = kConstants, .pMapEntries = entries, .dataSize = sizeof spec_values,
@@ -319,10 +319,20 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
     m.shadow_queue_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops;
     m.shadow_queue_rays = std::atoll(queue_env) > 1 ? uint64_t(std::atoll(queue_env)) : 0;
   }
-  // Both integrators as a wavefront (wavefront.cpp); HOLORAY_GPU_WAVEFRONT=0
-  // never (measuring).
+  // Both integrators as a wavefront on the frames where it was measured
+  // faster (wavefront.cpp, wave_rule); HOLORAY_GPU_WAVEFRONT=0 never, =1
+  // always (measuring).
   const char* wave_env = std::getenv("HOLORAY_GPU_WAVEFRONT");
   m.wavefront_on = (subgroups.supportedOperations & fetch_ops) == fetch_ops && !(wave_env && std::string_view(wave_env) == "0");
+  m.wavefront_always = wave_env && std::string_view(wave_env) == "1";
+  // Rays a lane of the wavefront's traversals, as measured (design/gpu.md,
+  // "Which schedule a frame takes"): on an H200 one, in queue order (the
+  // rays of a subgroup neighbours, their nodes shared: 1.21x to 1.47x the
+  // speed of lanes that fetch again, though fewer lanes are busy); on
+  // lavapipe, 8 (lanes that fetch again: its subgroups are a CPU's vectors).
+  m.rays_per_lane = m.info.is_gpu ? 1u : uint32_t(HR_SHADOW_RAYS_PER_LANE);
+  if (const char* lane = std::getenv("HOLORAY_GPU_RAYS_PER_LANE"); lane && std::atoi(lane) >= 1 && std::atoi(lane) <= 64)
+    m.rays_per_lane = uint32_t(std::atoi(lane));
   m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
   if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
@@ -424,7 +434,7 @@ uint64_t GpuRenderer::frame_bytes(int width, int height, bool aovs) {
   return uint64_t(width) * uint64_t(height) * (aovs ? 12 + 32 : 12);
 }
 
-double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel) {
+double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel, bool moved) {
   Impl& m = *impl_;
   m.check_responding();
   const uint64_t need = s.bytes() + image_bytes;
@@ -478,19 +488,22 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel)
     m.scene_bytes = s.bytes();
     m.features = s.features;
     m.whitted_branches = s.whitted_branches;
+    if (!moved) m.last_rays_a_sample = 0;  // a new scene: the schedule's rule starts again (wave_rule)
     // The pipelines this scene's frames bind, compiled now (kept from one
     // load to the next with the same features): a frame's time is then its
     // own, and a pipeline for features the scene lacks is never compiled
     // (about 1.3 s each on lavapipe).
     const bool queue = m.shadow_queue_on && !panel && !(s.features & HR_FEATURE_PATH);
     const auto t0 = std::chrono::steady_clock::now();
-    // The wavefront's (a frame that cannot take it, the kernel's then).
-    if (m.wavefront_on && ((s.features & HR_FEATURE_PATH) || !m.shadow_queue_on)) {
+    // The wavefront's, the kernel's, or both where frames may take either
+    // (wave_rule; a frame that cannot take the wavefront takes the kernel).
+    const bool path = (s.features & HR_FEATURE_PATH) != 0;
+    const Impl::WaveRule rule = m.wavefront_on && (path || !m.shadow_queue_on) ? m.wave_rule(path) : Impl::WaveRule::never;
+    if (rule != Impl::WaveRule::never)
       for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS, HR_WAVE_START, HR_WAVE_FINISH})
         m.pipeline(panel, false, 0, stage);
-    } else {
+    if (rule != Impl::WaveRule::always)
       for (int pass = 0; pass <= (queue ? 2 : 0); ++pass) m.pipeline(panel, queue, pass);
-    }
     return seconds_since(t0);
   } catch (const vk::SystemError& e) {
     rethrow_vulkan(e, m.info.name);
@@ -555,7 +568,9 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
   const GpuFrame& f = frames[0];
   const int steps = plan.path ? std::min(f.counts.z + 1, HR_MAX_DEPTH + 1) : whitted_steps(f.counts.z, whitted_branches);
   // (HOLORAY_GPU_SHADOW_QUEUE asks for the megakernel's own queue.)
-  const bool wave = steps > 0 && wavefront_on && (plan.path || !shadow_queue_on);
+  const bool wave = steps > 0 && wavefront_on && (plan.path || !shadow_queue_on) &&
+                    (wave_rule(plan.path) == WaveRule::always ||
+                     (wave_rule(plan.path) == WaveRule::long_paths && last_rays_a_sample >= kLongPaths));
   if (wave) {
     plan.wave_steps = steps;
     plan.wave_shadows = plan.path ? uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0))
@@ -792,6 +807,8 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, Rende
       if (std::string_view(fault) == "out-of-memory") throw vk::OutOfDeviceMemoryError("vkAllocateMemory");
     }
     m.sum_counts(plan, stats);
+    const double samples = double(W) * H * (plan.passes - first_sample);
+    m.last_rays_a_sample = samples > 0 ? double(stats.rays.eye + stats.rays.shadow + stats.rays.reflected + stats.rays.refracted) / samples : 0;
     if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
     m.traced_aovs = plan.want_aovs;

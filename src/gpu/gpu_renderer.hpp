@@ -75,8 +75,9 @@ class GpuRenderer {
   /// the two pass the device's memory, naming all three sizes, or when one
   /// array passes its max_storage_buffer_range, naming the array. Returns
   /// the seconds spent compiling (next to none where an earlier load compiled
-  /// the same).
-  double load(const SceneArrays& scene, uint64_t image_bytes, bool panel);
+  /// the same). `moved`: the scene before, its objects moved (a shot's next
+  /// frame), so the frames before still tell which schedule pays.
+  double load(const SceneArrays& scene, uint64_t image_bytes, bool panel, bool moved = false);
   /// The kernel's pipelines compiled so far: none as the renderer is made,
   /// then those load() compiles for each scene's materials and frames.
   size_t pipelines_compiled() const;

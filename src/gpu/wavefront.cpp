@@ -1,11 +1,10 @@
 // holoray/gpu: both integrators as a wavefront (issue 71), the host's
 // half: the stages of shaders/wavefront.glsl (and whitted_wavefront.glsl)
-// recorded band by band, sample by sample, in place of the pixel kernel.
-// On lavapipe it rendered every scene measured faster than the kernel
-// (1.04x to 2.75x, design/gpu.md), so it is the default; the kernel stays
-// for devices without subgroup ballots and votes, the ray log, the shadow
-// queue, Whitted's trees of more than 63 rays, and HOLORAY_GPU_WAVEFRONT=0
-// (for measuring on a GPU).
+// recorded band by band, sample by sample, in place of the pixel kernel, on
+// the frames wave_rule gives it (measured: the wavefront on lavapipe, the
+// megakernel on a GPU but for long paths). The kernel also traces for
+// devices without subgroup ballots and votes, the ray log, the shadow
+// queue, Whitted's trees of more than 63 rays, and HOLORAY_GPU_WAVEFRONT=0.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,6 +23,21 @@ int whitted_steps(int max_depth, bool branches) {
   const int depth = std::clamp(max_depth, 1, HR_MAX_DEPTH);
   const int steps = branches ? (1 << depth) - 1 : depth;
   return steps <= kMaxWhittedSteps ? steps : 0;
+}
+
+// As measured (design/gpu.md, "Which schedule a frame takes"), 3840x2160
+// EIAs of the SPD scenes and two path-traced scenes: on lavapipe (a CPU
+// device) the wavefront rendered every scene faster, both integrators
+// (1.04x to 2.75x); on an H200 the megakernel rendered Whitted's every SPD
+// scene faster (1.7x to 3.0x), and the path integrator's where paths are
+// short (teapot_s6, tree_s11, the Cornell box, swinging_box: 4.4 to 7.7
+// rays a pixel, 1.03x to 1.76x), the wavefront where they are long
+// (balls_s4 8.3, gears_s4 12.6: 1.75x and 1.47x). A first frame, with no
+// count before it, takes the megakernel there.
+GpuRenderer::Impl::WaveRule GpuRenderer::Impl::wave_rule(bool path) const {
+  if (!wavefront_on) return WaveRule::never;
+  if (wavefront_always || !info.is_gpu) return WaveRule::always;
+  return path ? WaveRule::long_paths : WaveRule::never;
 }
 
 void GpuRenderer::Impl::barrier(vk::PipelineStageFlags from) {

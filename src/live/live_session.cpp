@@ -266,7 +266,7 @@ class Session {
     const RenderContext context(*source_.scene, source_.settings);
     gpu_->load(uploaded_ ? gpu::lay_out(context, BvhQuality::fast, gpu_->bvh_width(), &kept_)
                          : gpu::lay_out(context, BvhQuality::high, gpu_->bvh_width()),
-               image_bytes_, panel_);
+               image_bytes_, panel_, uploaded_.has_value());
     uploaded_ = std::move(now);
   }
 

@@ -76,6 +76,11 @@ layout(constant_id = 13) const bool kPath = false;
 // The path integrator as a wavefront (HOLORAY_GPU_WAVEFRONT, wavefront.glsl):
 // HR_WAVE_* the stage this pipeline runs, HR_WAVE_OFF the megakernel.
 layout(constant_id = 14) const int kWaveStage = HR_WAVE_OFF;
+// The most rays a lane of the wavefront's traversals takes from its queue
+// (the host's choice by device; HOLORAY_GPU_RAYS_PER_LANE for measuring):
+// 1, one ray an invocation in queue order, as a plain wavefront; more,
+// lanes that finish fetch again (Aila and Laine 2009).
+layout(constant_id = 15) const int kRaysPerLane = HR_SHADOW_RAYS_PER_LANE;
 const int kNodeRecords = kWideBvh ? 2 : 1;
 const int kNodeWidth = kWideBvh ? 8 : 4;
 
@@ -968,7 +973,7 @@ uint wave_shadow_head() { return uint(HR_WAVE_VERTICES + band.depth % HR_WAVE_VE
 void shadow_pass() {
   bool wave = kWaveStage == HR_WAVE_SHADOW;  // the wavefront's shadow rays, else the shadow queue's
   uint queued = wave ? wave_heads[wave_shadow_head()].x : min(shadow_head.x, shadow_head.z);
-  uint budget = uint(HR_SHADOW_RAYS_PER_LANE) * gl_SubgroupSize, taken = 0u;
+  uint budget = uint(wave ? kRaysPerLane : HR_SHADOW_RAYS_PER_LANE) * gl_SubgroupSize, taken = 0u;
   bool live = false, drained = false;
   vec3 o = vec3(0.0), d = vec3(0.0), inv = vec3(0.0);
   ShearedRay sr = sheared(vec3(0.0, 0.0, 1.0));

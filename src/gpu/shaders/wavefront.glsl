@@ -188,7 +188,7 @@ void wave_dispatch_sizes() {
   wave_heads[wave_path_head(band.depth + 2)] = uvec4(0u);
   wave_heads[HR_WAVE_VERTICES + (band.depth + 1) % HR_WAVE_VERTICES] = uvec4(0u);
   uint paths = wave_heads[wave_path_head(band.depth)].x, shadows = wave_heads[wave_shadow_head()].x;
-  uint per_lane = uint(HR_SHADOW_RAYS_PER_LANE);
+  uint per_lane = uint(kRaysPerLane);
   wave_args[0] = wave_groups((paths + per_lane - 1u) / per_lane);
   wave_args[1] = wave_groups(paths);
   wave_args[2] = wave_groups((shadows + per_lane - 1u) / per_lane);
@@ -203,12 +203,12 @@ uint wave_flat_invocation() {
 // nearest hit, written for the shade stage. Each lane walks one ray a node
 // a step (walk_bvh's order, so the same hit), and lanes whose ray is done
 // take the queue's next together (one atomic a subgroup), at most
-// HR_SHADOW_RAYS_PER_LANE rays a lane (lavapipe's loop cap); the loop's one
+// kRaysPerLane rays a lane (lavapipe's loop cap); the loop's one
 // exit is in its condition (design/gpu.md: lavapipe and loops).
 void wave_extend() {
   uint head = wave_path_head(band.depth), base_at = wave_queue_base(band.depth);
   uint queued = wave_heads[head].x;
-  uint budget = uint(HR_SHADOW_RAYS_PER_LANE) * gl_SubgroupSize, taken = 0u;
+  uint budget = uint(kRaysPerLane) * gl_SubgroupSize, taken = 0u;
   bool live = false, drained = false, found = false, any = false;
   vec3 o = vec3(0.0), d = vec3(0.0), inv = vec3(0.0);
   ShearedRay sr = sheared(vec3(0.0, 0.0, 1.0));
