@@ -38,13 +38,14 @@ for scene in teapot_s6 balls_s4 gears_s4 tree_s11; do
   echo "| $scene | $(f ms_median) ($(f ms_min)-$(f ms_max)) | $(f fps) | $(f mrays_s) | $(f nodes_per_ray) | $(f prims_per_ray) | $(f readback_ms) | $(f setup_s) | $(f cpu_trace_s) | $(f psnr_db) | $(f depth_off_pct) | $(f id_equal_pct) |"
 done
 # Each integrator twice on the same EIAs: the megakernel
-# (HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1, the default, src/gpu/wavefront.cpp)
-# in the same run; speed is the megakernel's time over the wavefront's, and
-# lanes' use the wavefront traversals' (nodes visited over their lanes'
-# steps): whether the megakernel should be anyone's default again.
+# (HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1) in the same run; speed
+# is the megakernel's time over the wavefront's, and lanes' use the
+# wavefront traversals' (nodes visited over their lanes' steps): what the
+# measured rule that picks a frame's schedule (src/gpu/wavefront.cpp,
+# wave_rule) is checked against.
 schedule_header() {
   echo
-  echo "$1: the megakernel (HOLORAY_GPU_WAVEFRONT=0), then the wavefront (the default) in the same run;"
+  echo "$1: the megakernel (HOLORAY_GPU_WAVEFRONT=0), then the wavefront (=1) in the same run;"
   echo "speed is the megakernel's time over the wavefront's; lanes' use is the wavefront traversals'"
   echo "(nodes visited over their lanes' steps):"
   echo
