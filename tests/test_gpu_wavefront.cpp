@@ -261,8 +261,7 @@ TEST(GpuWavefront, FramesTakeTheScheduleMeasuredFasterOnTheirDevice) {
       const Scene scene = long_paths ? nested_glass(dir) : short_paths(dir);
       api::Renderer r(scene, view(32, 32), o);
       const Result first = r.render(), second = r.render();
-      const double rays = double(first.stats.rays.eye + first.stats.rays.shadow + first.stats.rays.reflected +
-                                 first.stats.rays.refracted) / (32 * 32);
+      const double rays = double(first.stats.rays.total()) / (32 * 32);
       const bool path = integrator == api::Integrator::path;
       EXPECT_EQ(long_paths, rays >= 8) << rays << " rays a pixel";
       const bool wave_first = !on_gpu, wave_second = !on_gpu || (path && long_paths);

@@ -331,8 +331,8 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   // speed of lanes that fetch again, though fewer lanes are busy); on
   // lavapipe, 8 (lanes that fetch again: 1.27x to 1.34x the speed of one).
   m.rays_per_lane = m.info.is_gpu ? 1u : uint32_t(HR_SHADOW_RAYS_PER_LANE);
-  if (const char* lane = std::getenv("HOLORAY_GPU_RAYS_PER_LANE"); lane && std::atoi(lane) >= 1 && std::atoi(lane) <= 64)
-    m.rays_per_lane = uint32_t(std::atoi(lane));
+  if (const char* lane = std::getenv("HOLORAY_GPU_RAYS_PER_LANE"))
+    if (const int n = std::atoi(lane); n >= 1 && n <= 64) m.rays_per_lane = uint32_t(n);
   m.timeout_s = m.info.is_gpu ? 120.0 : 0.0;
   if (const char* t = std::getenv("HOLORAY_GPU_TIMEOUT"); t && std::atof(t) > 0) m.timeout_s = std::atof(t);
   if (const char* band_env = std::getenv("HOLORAY_GPU_BAND"); band_env && std::atoll(band_env) > 0)
@@ -497,8 +497,7 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel,
     const auto t0 = std::chrono::steady_clock::now();
     // The wavefront's, the kernel's, or both where frames may take either
     // (wave_rule; a frame that cannot take the wavefront takes the kernel).
-    const bool path = (s.features & HR_FEATURE_PATH) != 0;
-    const Impl::WaveRule rule = m.wavefront_on && (path || !m.shadow_queue_on) ? m.wave_rule(path) : Impl::WaveRule::never;
+    const Impl::WaveRule rule = m.wave_rule((s.features & HR_FEATURE_PATH) != 0);
     if (rule != Impl::WaveRule::never)
       for (int stage : {HR_WAVE_SHADING, HR_WAVE_EXTEND, HR_WAVE_SHADOW, HR_WAVE_ARGS, HR_WAVE_START, HR_WAVE_FINISH})
         m.pipeline(panel, false, 0, stage);
@@ -567,10 +566,7 @@ GpuRenderer::Impl::FramePlan GpuRenderer::Impl::plan_frame(const std::vector<Gpu
   uint64_t band_pixels = band_invocations;
   const GpuFrame& f = frames[0];
   const int steps = plan.path ? std::min(f.counts.z + 1, HR_MAX_DEPTH + 1) : whitted_steps(f.counts.z, whitted_branches);
-  // (HOLORAY_GPU_SHADOW_QUEUE asks for the megakernel's own queue.)
-  const bool wave = steps > 0 && wavefront_on && (plan.path || !shadow_queue_on) &&
-                    (wave_rule(plan.path) == WaveRule::always ||
-                     (wave_rule(plan.path) == WaveRule::long_paths && last_rays_a_sample >= kLongPaths));
+  const bool wave = steps > 0 && takes_wavefront(plan.path);
   if (wave) {
     plan.wave_steps = steps;
     plan.wave_shadows = plan.path ? uint32_t(f.counts.x + f.path_counts.x + (f.path_flags.w != 0) + (f.path_counts.y > 0))
@@ -808,7 +804,7 @@ void GpuRenderer::trace(const std::vector<GpuFrame>& frames, int W, int H, Rende
     }
     m.sum_counts(plan, stats);
     const double samples = double(W) * H * (plan.passes - first_sample);
-    m.last_rays_a_sample = samples > 0 ? double(stats.rays.eye + stats.rays.shadow + stats.rays.reflected + stats.rays.refracted) / samples : 0;
+    m.last_rays_a_sample = samples > 0 ? double(stats.rays.total()) / samples : 0;
     if (!m.ray_log_path.empty()) write_ray_log(m.ray_log, m.ray_log_path, m.workgroup, W, H);
     m.traced = {W, H};
     m.traced_aovs = plan.want_aovs;

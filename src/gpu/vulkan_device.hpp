@@ -109,11 +109,13 @@ struct GpuRenderer::Impl {
   bool wavefront_on = false;
   bool wavefront_always = false;  // HOLORAY_GPU_WAVEFRONT=1
   uint32_t rays_per_lane = HR_SHADOW_RAYS_PER_LANE;  // kRaysPerLane: 1 on a GPU (HOLORAY_GPU_RAYS_PER_LANE)
-  // Which frames take the wavefront (wavefront.cpp): `long_paths`, those
-  // after a frame of at least kLongPaths rays a pixel a sample.
+  // Which frames of the loaded scene take the wavefront (wavefront.cpp):
+  // `long_paths`, those after a frame of at least kLongPaths rays a pixel a
+  // sample; takes_wavefront, whether the next frame does.
   enum class WaveRule { never, long_paths, always };
   static constexpr double kLongPaths = 8;
   WaveRule wave_rule(bool path) const;
+  bool takes_wavefront(bool path) const;
   double last_rays_a_sample = 0;  // the frame before's, for wave_rule
   Buffer wave_paths, wave_hits, wave_queues, wave_shadows, wave_shadow_queue, wave_stack;
   bool whitted_branches = false;  // the loaded scene's (SceneArrays)

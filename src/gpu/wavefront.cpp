@@ -34,10 +34,16 @@ int whitted_steps(int max_depth, bool branches) {
 // rays a pixel, 1.03x to 1.76x), the wavefront where they are long
 // (balls_s4 8.3, gears_s4 12.6: 1.75x and 1.47x). A first frame, with no
 // count before it, takes the megakernel there.
+// (HOLORAY_GPU_SHADOW_QUEUE asks for the megakernel's own queue.)
 GpuRenderer::Impl::WaveRule GpuRenderer::Impl::wave_rule(bool path) const {
-  if (!wavefront_on) return WaveRule::never;
+  if (!wavefront_on || (!path && shadow_queue_on)) return WaveRule::never;
   if (wavefront_always || !info.is_gpu) return WaveRule::always;
   return path ? WaveRule::long_paths : WaveRule::never;
+}
+
+bool GpuRenderer::Impl::takes_wavefront(bool path) const {
+  const WaveRule rule = wave_rule(path);
+  return rule == WaveRule::always || (rule == WaveRule::long_paths && last_rays_a_sample >= kLongPaths);
 }
 
 void GpuRenderer::Impl::barrier(vk::PipelineStageFlags from) {
