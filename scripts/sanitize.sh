@@ -25,6 +25,14 @@ TSAN_TESTS="^(Api|Render|ShadowCache|PathologicalScenes|Reprojection|ReverseRepr
 # leaves them out.
 usage_only=$(awk '/^\[\[case\]\]/ {id = ""} /^id = / {gsub(/"/, "", $3); id = $3} /^status = 2$/ && id {print id}' \
   tests/data/bad_inputs.toml | paste -sd'|')
+# The GPU tests that differ from the kept ones only in what the device runs
+# (the path integrator's megakernel, Whitted's, rays a lane, the SPD scenes'
+# shapes, the triangle test): their host code is what the kept GPU tests run
+# (the megakernel's dispatch among them: GpuWavefront.RendersWhatTheMegakernelRenders,
+# the ray log, the shadow queue), and their time is lavapipe's compile and
+# trace, which the sanitizer does not look into. The plain suite runs them.
+device_only="GpuPathIntegrator\.UnderTheMegakernel|GpuWavefront\.(TheImageIsTheSameWhateverTheRaysALane|WhittedRendersWhatTheMegakernelRenders)"
+device_only+="|GpuPath\.NoRayPassesBetweenTheTrianglesOfAClosedMesh|Spd/GpuSpdScenes\..*"
 for kind in "${kinds[@]}"; do
   case $kind in
     address)
@@ -32,7 +40,7 @@ for kind in "${kinds[@]}"; do
       flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
       std_threads=OFF
       filter=""
-      exclude="^Cases/BadInput\.ExitsWithItsStatusAndMessage/($usage_only)\$"
+      exclude="^(Cases/BadInput\.ExitsWithItsStatusAndMessage/($usage_only)|$device_only)\$"
       export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
       # lavapipe keeps a one-time table (built under pthread_once when the
       # devices are listed) in its own globals, and the Vulkan loader unloads

@@ -24,14 +24,21 @@ namespace holoray::gpu {
 
 namespace {
 
-// SPIR-V of shaders/trace.comp, made by glslc at build time.
-const uint32_t kTraceSpirv[] = {
-#include "trace.spv.inc"
+// SPIR-V of shaders/trace.comp, made by glslc at build time: the whole
+// kernel, and the wavefront's shade stage alone (HR_SHADE_KERNEL), each
+// once per integrator (HR_INTEGRATOR_WHITTED, _PATH); the wavefront's small
+// kernels alone (HR_TRAVERSAL_KERNELS), for both.
+const uint32_t kTraceWhittedSpirv[] = {
+#include "trace_whitted.spv.inc"
 };
-// The same with the wavefront's shade stage alone (HR_SHADE_KERNEL), and
-// with its small kernels alone (HR_TRAVERSAL_KERNELS).
-const uint32_t kShadeSpirv[] = {
-#include "trace_shade.spv.inc"
+const uint32_t kTracePathSpirv[] = {
+#include "trace_path.spv.inc"
+};
+const uint32_t kShadeWhittedSpirv[] = {
+#include "trace_shade_whitted.spv.inc"
+};
+const uint32_t kShadePathSpirv[] = {
+#include "trace_shade_path.spv.inc"
 };
 const uint32_t kTraversalSpirv[] = {
 #include "trace_traversal.spv.inc"
@@ -245,6 +252,7 @@ vk::raii::Pipeline& GpuRenderer::Impl::pipeline(bool panel, bool queue, int shad
 }
 
 vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int shadow_pass, int wave_stage) {
+  const int path = (features & HR_FEATURE_PATH) ? 1 : 0;
   const char* sort_env = std::getenv("HOLORAY_GPU_SORT_SHADOW");
   constexpr uint32_t kConstants = 16;
   const uint32_t spec_values[kConstants] = {workgroup[0], workgroup[1], sort_env && std::string(sort_env) == "1" ? 1u : 0u,
@@ -263,8 +271,8 @@ vk::raii::Pipeline GpuRenderer::Impl::make_pipeline(bool panel, bool queue, int 
       .flags = capture_stats ? vk::PipelineCreateFlagBits::eCaptureStatisticsKHR : vk::PipelineCreateFlags{},
       .stage = {.stage = vk::ShaderStageFlagBits::eCompute,
                 .module = wave_stage >= HR_WAVE_EXTEND ? *traversal_module
-                          : wave_stage == HR_WAVE_SHADING ? *shade_module
-                                                          : *module,
+                          : wave_stage == HR_WAVE_SHADING ? *shade_module[path]
+                                                          : *module[path],
                 .pName = "main", .pSpecializationInfo = &spec},
       .layout = *pipeline_layout};
   const auto t0 = std::chrono::steady_clock::now();
@@ -378,8 +386,13 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   m.pipeline_layout = vk::raii::PipelineLayout(
       m.device, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &raw_layout, .pushConstantRangeCount = 1,
                                              .pPushConstantRanges = &push});
-  m.module = vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraceSpirv), .pCode = kTraceSpirv});
-  m.shade_module = vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kShadeSpirv), .pCode = kShadeSpirv});
+  auto module_of = [&](const auto& spirv) {
+    return vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof spirv, .pCode = spirv});
+  };
+  m.module[0] = module_of(kTraceWhittedSpirv);
+  m.module[1] = module_of(kTracePathSpirv);
+  m.shade_module[0] = module_of(kShadeWhittedSpirv);
+  m.shade_module[1] = module_of(kShadePathSpirv);
   m.traversal_module =
       vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraversalSpirv), .pCode = kTraversalSpirv});
   // Specialization (shaders/trace.comp): the workgroup's size, 32x2 unless

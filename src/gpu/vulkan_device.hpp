@@ -67,8 +67,9 @@ struct GpuRenderer::Impl {
   vk::raii::CommandPool pool = nullptr;
   vk::raii::DescriptorSetLayout set_layout = nullptr;
   vk::raii::PipelineLayout pipeline_layout = nullptr;
-  vk::raii::ShaderModule module = nullptr;
-  vk::raii::ShaderModule shade_module = nullptr;      // the wavefront's shade stage alone (trace.comp)
+  // Indexed by integrator: [0] Whitted's, [1] the path integrator's (trace.comp's kPath).
+  vk::raii::ShaderModule module[2] = {nullptr, nullptr};
+  vk::raii::ShaderModule shade_module[2] = {nullptr, nullptr};  // the wavefront's shade stage alone (trace.comp)
   vk::raii::ShaderModule traversal_module = nullptr;  // the wavefront's small kernels alone (trace.comp)
   // The kernel's pipelines, made when first needed: by whether it renders
   // panels (display panels, Looking Glass native panels), by what the

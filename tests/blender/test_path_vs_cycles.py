@@ -40,11 +40,25 @@ CYCLES_SAMPLES = 2048
 HOLORAY_SPP = 1024
 
 
-def oracle(scene, out):
-    run = subprocess.run([BLENDER, "-b", "--factory-startup", "--python", os.path.join(HERE, "path_oracle.py"), "--", str(out),
-                          scene, str(CYCLES_SAMPLES), str(WIDTH), str(HEIGHT)], capture_output=True, text=True, timeout=600)
-    assert run.returncode == 0 and (out / "cycles.exr").exists(), run.stdout[-3000:] + run.stderr[-3000:]
-    return json.loads((out / "oracle.json").read_text())
+@pytest.fixture(scope="module")
+def oracle(tmp_path_factory):
+    """oracle(scene, out): the scene as Cycles renders it and as Blender
+    exports it (path_oracle.py), copied into `out`. Each scene is rendered
+    once a run (30 to 50 s on 2 cores), whichever tests compare with it."""
+    made = {}
+
+    def render(scene, out):
+        if scene not in made:
+            where = tmp_path_factory.mktemp(f"oracle_{scene}")
+            run = subprocess.run([BLENDER, "-b", "--factory-startup", "--python", os.path.join(HERE, "path_oracle.py"), "--",
+                                  str(where), scene, str(CYCLES_SAMPLES), str(WIDTH), str(HEIGHT)],
+                                 capture_output=True, text=True, timeout=600)
+            assert run.returncode == 0 and (where / "cycles.exr").exists(), run.stdout[-3000:] + run.stderr[-3000:]
+            made[scene] = where
+        shutil.copytree(made[scene], out, dirs_exist_ok=True)
+        return json.loads((out / "oracle.json").read_text())
+
+    return render
 
 
 def holoray_render(out, info, name, *extra, spp=HOLORAY_SPP):
@@ -73,7 +87,7 @@ def psnr(a, b):
 # own BRDF). Measured on Blender 3.4.1 (docs/guide/light.md, "Against Cycles").
 @pytest.mark.parametrize("scene,principled_floor,gltf_floor",
                          [("hdri", 35.0, 25.0), ("sky", 40.0, 27.0), ("room", 30.0, 20.0), ("sun", 30.0, 20.0)])
-def test_the_path_integrator_renders_the_blender_world_as_cycles(tmp_path, scene, principled_floor, gltf_floor):
+def test_the_path_integrator_renders_the_blender_world_as_cycles(oracle, tmp_path, scene, principled_floor, gltf_floor):
     info = oracle(scene, tmp_path)
     cycles = holoray.read_image(str(tmp_path / "cycles.exr"))[:, :, :3]
     principled = holoray_render(tmp_path, info, "principled.exr", "--blender-principled")
@@ -106,7 +120,7 @@ def addon_env():
 # the saved .blend with holoray as the engine (Integrator: Path tracing, the
 # default), its World and area light sent by the add-on.
 @pytest.mark.parametrize("scene", ["hdri", "room"])
-def test_the_addon_renders_the_blender_scene_as_cycles(tmp_path, scene):
+def test_the_addon_renders_the_blender_scene_as_cycles(oracle, tmp_path, scene):
     oracle(scene, tmp_path)
     cycles = holoray.read_image(str(tmp_path / "cycles.exr"))[:, :, :3]
     settings = ("import bpy; s = bpy.context.scene; h = s.holoray; s.render.engine = 'HOLORAY'; "

@@ -71,8 +71,18 @@ layout(constant_id = 11) const int kShadowPass = 0;
 // tested (design/gpu.md, "8-wide nodes").
 layout(constant_id = 12) const bool kWideBvh = false;
 // The path integrator (HR_FEATURE_PATH, path.glsl): one sample of each
-// pixel a pass, added to what the passes before wrote.
+// pixel a pass, added to what the passes before wrote. The modules that
+// shade (the megakernel, the shade stage) are built once per integrator
+// (HR_INTEGRATOR_PATH or _WHITTED, CMakeLists.txt), so that the other's code
+// is gone before the driver reads the module: lavapipe's compile time grows
+// with the module (a shade pipeline of both took 3.8 s, design/gpu.md).
+#if defined(HR_INTEGRATOR_PATH)
+const bool kPath = true;
+#elif defined(HR_INTEGRATOR_WHITTED)
+const bool kPath = false;
+#else
 layout(constant_id = 13) const bool kPath = false;
+#endif
 // The path integrator as a wavefront (HOLORAY_GPU_WAVEFRONT, wavefront.glsl):
 // HR_WAVE_* the stage this pipeline runs, HR_WAVE_OFF the megakernel.
 layout(constant_id = 14) const int kWaveStage = HR_WAVE_OFF;
