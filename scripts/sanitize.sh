@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Sanitizer runs (issue 5). `address`: the whole test suite built with
+# Sanitizer runs (issue 5). `address`: the test suite built with
 # AddressSanitizer + UndefinedBehaviorSanitizer (any report fails the test
-# that made it). `thread`: ThreadSanitizer on the tests that run work on
+# that made it), all but the tests scripts/test_sets.sh names. `thread`: ThreadSanitizer on the tests that run work on
 # several threads (rendering, reprojection, determinism, interrupted runs).
 # Each builds into its own folder (build-asan/, build-tsan/) with clang: the
 # library at -O1, the CLI's front end and the tests at -O0 (they parse and
@@ -25,14 +25,8 @@ TSAN_TESTS="^(Api|Render|ShadowCache|PathologicalScenes|Reprojection|ReverseRepr
 # leaves them out.
 usage_only=$(awk '/^\[\[case\]\]/ {id = ""} /^id = / {gsub(/"/, "", $3); id = $3} /^status = 2$/ && id {print id}' \
   tests/data/bad_inputs.toml | paste -sd'|')
-# The GPU tests that differ from the kept ones only in what the device runs
-# (the path integrator's megakernel, Whitted's, rays a lane, the SPD scenes'
-# shapes, the triangle test): their host code is what the kept GPU tests run
-# (the megakernel's dispatch among them: GpuWavefront.RendersWhatTheMegakernelRenders,
-# the ray log, the shadow queue), and their time is lavapipe's compile and
-# trace, which the sanitizer does not look into. The plain suite runs them.
-device_only="GpuPathIntegrator\.UnderTheMegakernel|GpuWavefront\.(TheImageIsTheSameWhateverTheRaysALane|WhittedRendersWhatTheMegakernelRenders)"
-device_only+="|GpuPath\.NoRayPassesBetweenTheTrianglesOfAClosedMesh|Spd/GpuSpdScenes\..*"
+# The tests the address run leaves out, and why: scripts/test_sets.sh.
+source scripts/test_sets.sh
 for kind in "${kinds[@]}"; do
   case $kind in
     address)
@@ -40,7 +34,8 @@ for kind in "${kinds[@]}"; do
       flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
       std_threads=OFF
       filter=""
-      exclude="^(Cases/BadInput\.ExitsWithItsStatusAndMessage/($usage_only)|$device_only)\$"
+      exclude="^Cases/BadInput\.ExitsWithItsStatusAndMessage/($usage_only)\$|$(test_regex "${ADDRESS_SKIPPED_TESTS[@]}")"
+      gpu=ON
       export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
       # lavapipe keeps a one-time table (built under pthread_once when the
       # devices are listed) in its own globals, and the Vulkan loader unloads
@@ -62,6 +57,9 @@ for kind in "${kinds[@]}"; do
       std_threads=ON
       filter="$TSAN_TESTS"
       exclude=""
+      # None of those tests uses the GPU path: the build leaves it and its
+      # shaders out (glslc alone is minutes of a 2-core machine).
+      gpu=OFF
       preload=""
       export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp" ;;
     *) echo "scripts/sanitize.sh: unknown kind '$kind' (address or thread)" >&2; exit 2 ;;
@@ -71,7 +69,7 @@ for kind in "${kinds[@]}"; do
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
     -DHOLORAY_FRONT_END_FLAGS=-O0 -DCMAKE_EXE_LINKER_FLAGS="$flags" -DHOLORAY_BENCH=OFF \
-    -DHOLORAY_STD_THREADS=$std_threads -DHOLORAY_MPI=OFF -DHOLORAY_PYTHON=OFF >/dev/null
+    -DHOLORAY_STD_THREADS=$std_threads -DHOLORAY_GPU=$gpu -DHOLORAY_MPI=OFF -DHOLORAY_PYTHON=OFF >/dev/null
   cmake --build "$dir"
   echo "== $kind sanitizer: tests${filter:+ matching $filter}"
   LD_PRELOAD=$preload ctest --test-dir "$dir" --output-on-failure -j"$jobs" ${filter:+-R "$filter"} ${exclude:+-E "$exclude"}
