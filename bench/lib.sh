@@ -35,11 +35,20 @@ build_baseline() {
   BASE_BIN=$tmp/base/build/holoray
   trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1; rm -rf "$tmp"' EXIT
 }
+# Builds the benchmark programs named ($2...) into build folder $1, turning
+# HOLORAY_BENCH on there (a plain build leaves bench/ out).
+bench_targets() {
+  local dir=$1
+  shift
+  cmake -S . -B "$dir" -DHOLORAY_BENCH=ON >/dev/null
+  cmake --build "$dir" --target "$@" >/dev/null
+}
 # The GPU benchmarks' settings (bench/run_gpu_bench.sh, run_gpu_knobs.sh),
 # from the environment: shared (the scenes' folder), frames_bin, device,
 # frames, warmup and lenses (240x135, the issue's 3840x2160 EIA; QUICK=1: a
-# check at 30x17 lenses, 2 frames after 1). Exits 1, naming the script $1,
-# when the scenes or the binary are missing.
+# check at 30x17 lenses, 2 frames after 1); build/bench/holoray_gpu_frames
+# built unless FRAMES_BIN names one. Exits 1, naming the script $1, when the
+# scenes or the binary are missing.
 gpu_bench_settings() {
   shared=${HOLORAY_SHARED:-../shared}
   frames_bin=${FRAMES_BIN:-build/bench/holoray_gpu_frames}
@@ -49,5 +58,6 @@ gpu_bench_settings() {
   lenses=240x135
   if [[ -n ${QUICK:-} ]]; then lenses=30x17 frames=2 warmup=1; fi
   [[ -d $shared/scenes/nff ]] || { echo "$1: needs $shared/scenes" >&2; exit 1; }
-  [[ -x $frames_bin ]] || { echo "$1: build $frames_bin first (cmake --build build)" >&2; exit 1; }
+  [[ -n ${FRAMES_BIN:-} ]] || bench_targets build holoray_gpu_frames
+  [[ -x $frames_bin ]] || { echo "$1: $frames_bin is missing" >&2; exit 1; }
 }

@@ -24,9 +24,11 @@ shared=${HOLORAY_SHARED:-../shared}
 for tool in tachyon povray; do
   command -v "$tool" >/dev/null || { echo "run_bench.sh: '$tool' is missing (bash scripts/setup.sh installs it)" >&2; exit 1; }
 done
+source bench/lib.sh
+bench_targets "$build" holoray_bench
 json=$(mktemp)
 work=$(mktemp -d)
-trap 'rm -rf "$json" "$work"' EXIT
+trap 'rm -rf "$json" "$work" "$tmp"' EXIT
 "$build/bench/holoray_bench" --benchmark_report_aggregates_only=true \
   --benchmark_out="$json" --benchmark_out_format=json >/dev/null
 python3 - "$json" "$build/holoray" "$shared" "$work" "${REPEATS:-3}" "${THREADS:-$(nproc)}" > "$work/results.md" <<'PY'

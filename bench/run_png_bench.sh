@@ -7,6 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/lib.sh
+bench_targets build holoray_png_encode
 reps=${REPETITIONS:-5}
 scenes=(teapot_s6 gears_s4 balls_s4 tree_s11)
 files=()
