@@ -71,6 +71,7 @@ for kind in "${kinds[@]}"; do
     -DHOLORAY_FRONT_END_FLAGS=-O0 -DCMAKE_EXE_LINKER_FLAGS="$flags" -DHOLORAY_BENCH=OFF \
     -DHOLORAY_STD_THREADS=$std_threads -DHOLORAY_GPU=$gpu -DHOLORAY_MPI=OFF -DHOLORAY_PYTHON=OFF >/dev/null
   cmake --build "$dir"
+  [ "$kind" != address ] || require_tests "$dir" "${ADDRESS_SKIPPED_TESTS[@]}"
   echo "== $kind sanitizer: tests${filter:+ matching $filter}"
   LD_PRELOAD=$preload ctest --test-dir "$dir" --output-on-failure -j"$jobs" ${filter:+-R "$filter"} ${exclude:+-E "$exclude"}
 done

@@ -49,3 +49,15 @@ ctest_ignore_file() {
   for name in "$@"; do printf ' "%s"' "${name//\"/\\\"}"; done
   printf ')\n'
 }
+
+# require_tests BUILD NAME...: fails, naming it, when a name given is not a
+# test of build folder BUILD, so that a renamed test is not silently run
+# again where a list above meant to leave it out.
+require_tests() {
+  local dir=$1 name listed
+  shift
+  listed=$(ctest --test-dir "$dir" -N | sed -n 's/^ *Test *#[0-9]*: //p')
+  for name in "$@"; do
+    grep -qxF -- "$name" <<< "$listed" || { echo "scripts/test_sets.sh: no test '$name' in $dir" >&2; return 1; }
+  done
+}

@@ -393,8 +393,7 @@ GpuRenderer::GpuRenderer(int device_index, const std::vector<std::string>& insta
   m.module[1] = module_of(kTracePathSpirv);
   m.shade_module[0] = module_of(kShadeWhittedSpirv);
   m.shade_module[1] = module_of(kShadePathSpirv);
-  m.traversal_module =
-      vk::raii::ShaderModule(m.device, vk::ShaderModuleCreateInfo{.codeSize = sizeof(kTraversalSpirv), .pCode = kTraversalSpirv});
+  m.traversal_module = module_of(kTraversalSpirv);
   // Specialization (shaders/trace.comp): the workgroup's size, 32x2 unless
   // HOLORAY_GPU_WORKGROUP=WxH says otherwise (for tuning).
   if (const char* wg = std::getenv("HOLORAY_GPU_WORKGROUP")) {
