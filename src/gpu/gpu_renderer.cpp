@@ -468,38 +468,19 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel,
   fits("texels", s.texels.size() * 4), fits("environment texels", s.environment.size() * sizeof(GpuEnvTexel));
   fits("emissive triangles", s.emitters.size() * sizeof(GpuEmitter));
   try {
-    auto put = [&](int binding, const auto& v) {
-      m.scene[binding] = m.upload(v.data(), v.size() * sizeof(v[0]));
-      m.bind(binding, m.scene[binding]);
-    };
+    std::vector<Impl::ArrayUpload> arrays;
+    auto put = [&](int binding, const auto& v) { arrays.push_back({binding, v.data(), v.size() * sizeof(v[0])}); };
     put(1, s.nodes), put(2, s.refs), put(3, s.triangles), put(4, s.patches), put(5, s.spheres), put(6, s.cones);
     put(7, s.object_material), put(8, s.materials), put(9, s.lights);
     put(13, s.textures), put(14, s.levels), put(15, s.texels), put(16, s.colours), put(17, s.uvs);
     put(22, s.area_lights), put(23, s.environment), put(24, s.emitters);
-    m.scene[0] = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
-    m.bind(0, m.scene[0]);
-    m.frames_host = m.make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eTransferSrc, true);
-    m.counts = m.make_buffer(32, kCountUsage, false);
-    m.bind(12, m.counts);
-    m.counts_host = m.make_buffer(32, vk::BufferUsageFlagBits::eTransferDst, true);
-    m.ray_log = m.make_buffer(m.ray_log_path.empty() ? 32 : kRayLogBytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
-    m.bind(18, m.ray_log);
-    m.shadow_queue = m.make_buffer(16 + sizeof(GpuShadowRay), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
-    m.bind(19, m.shadow_queue);
-    m.shadow_last = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
-    m.bind(20, m.shadow_last);
-    m.shadow_terms = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer, false);
-    m.bind(21, m.shadow_terms);
-    const std::pair<int, Buffer*> wave_buffers[] = {
-        {25, &m.wave_paths}, {26, &m.wave_hits}, {27, &m.wave_queues}, {28, &m.wave_shadows}, {29, &m.wave_shadow_queue},
-        {30, &m.wave_stack}};
-    for (const auto& [binding, buffer] : wave_buffers) {
-      *buffer = m.make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
-      m.bind(binding, *buffer);
-    }
+    m.upload_arrays(arrays, moved);
     m.scene_bytes = s.bytes();
     m.features = s.features;
     m.whitted_branches = s.whitted_branches;
+    // A shot's next frame keeps the frames' buffers as the frames before
+    // grew them (the same image again); a new scene starts them small.
+    if (!moved || !*m.ray_log.buffer) m.reset_frame_buffers();
     if (!moved) m.last_rays_a_sample = 0;  // a new scene: the schedule's rule starts again (wave_rule)
     // The pipelines this scene's frames bind, compiled now (kept from one
     // load to the next with the same features): a frame's time is then its
@@ -521,13 +502,58 @@ double GpuRenderer::load(const SceneArrays& s, uint64_t image_bytes, bool panel,
   }
 }
 
+void GpuRenderer::Impl::upload_arrays(const std::vector<ArrayUpload>& arrays, bool reuse) {
+  // Each array at a 16-byte-aligned offset of the staging buffer.
+  std::vector<vk::DeviceSize> at;
+  vk::DeviceSize total = 0;
+  for (const ArrayUpload& a : arrays) at.push_back(total), total += (vk::DeviceSize(a.bytes) + 15) / 16 * 16;
+  Buffer& staging = scene_staging;
+  if (staging.size < total) staging = make_buffer(total, vk::BufferUsageFlagBits::eTransferSrc, true);
+  for (size_t k = 0; k < arrays.size(); ++k) {
+    const ArrayUpload& a = arrays[k];
+    if (a.bytes) std::memcpy(static_cast<char*>(staging.mapped) + at[k], a.data, a.bytes);
+    Buffer& b = scene[a.binding];
+    if (reuse && b.size >= a.bytes) continue;
+    b = make_buffer(a.bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    bind(a.binding, b);
+  }
+  run_once([&](vk::raii::CommandBuffer& cb) {
+    for (size_t k = 0; k < arrays.size(); ++k)
+      if (arrays[k].bytes) cb.copyBuffer(*staging.buffer, *scene[arrays[k].binding].buffer, vk::BufferCopy{at[k], 0, arrays[k].bytes});
+  });
+}
+
+void GpuRenderer::Impl::reset_frame_buffers() {
+  scene[0] = make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+  bind(0, scene[0]);
+  frames_host = make_buffer(sizeof(GpuFrame), vk::BufferUsageFlagBits::eTransferSrc, true);
+  counts = make_buffer(32, kCountUsage, false);
+  bind(12, counts);
+  counts_host = make_buffer(32, vk::BufferUsageFlagBits::eTransferDst, true);
+  ray_log = make_buffer(ray_log_path.empty() ? 32 : kRayLogBytes, vk::BufferUsageFlagBits::eStorageBuffer, true);
+  bind(18, ray_log);
+  shadow_queue = make_buffer(16 + sizeof(GpuShadowRay), vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+  bind(19, shadow_queue);
+  shadow_last = make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+  bind(20, shadow_last);
+  shadow_terms = make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer, false);
+  bind(21, shadow_terms);
+  const std::pair<int, Buffer*> wave_buffers[] = {{25, &wave_paths}, {26, &wave_hits}, {27, &wave_queues},
+                                                  {28, &wave_shadows}, {29, &wave_shadow_queue}, {30, &wave_stack}};
+  for (const auto& [binding, buffer] : wave_buffers) {
+    *buffer = make_buffer(16, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst, false);
+    bind(binding, *buffer);
+  }
+}
+
 size_t GpuRenderer::pipelines_compiled() const { return impl_->pipelines.size(); }
+size_t GpuRenderer::buffers_made() const { return impl_->buffers_made; }
 
 void GpuRenderer::release() {
   Impl& m = *impl_;
   if (m.stopped) return;  // its buffers may still be in use: kept (the destructor says why)
   for (Buffer& b : m.scene) b = Buffer{};
-  for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.counts_host, &m.frames_host, &m.staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
+  for (Buffer* b : {&m.colour, &m.aov, &m.counts, &m.counts_host, &m.frames_host, &m.staging, &m.scene_staging, &m.ray_log, &m.queue_head, &m.shadow_queue, &m.shadow_last,
                     &m.shadow_terms, &m.wave_paths, &m.wave_hits, &m.wave_queues, &m.wave_shadows, &m.wave_shadow_queue,
                     &m.wave_stack})
     *b = Buffer{};

@@ -81,6 +81,10 @@ class GpuRenderer {
   /// The kernel's pipelines compiled so far: none as the renderer is made,
   /// then those load() compiles for each scene's materials and frames.
   size_t pipelines_compiled() const;
+  /// Device buffers made so far, each with memory of its own (for the
+  /// tests): a shot's next frame, loaded `moved` with arrays no larger than
+  /// the frame before's, makes none.
+  size_t buffers_made() const;
   /// Frees the scene and the frames' buffers, keeping the device and its
   /// compiled pipelines for the next load(): a renderer kept idle between
   /// renders holds no more device memory than its pipelines.

@@ -194,7 +194,9 @@ struct GpuRenderer::Impl {
     return *fallback;
   }
 
+  size_t buffers_made = 0;  // GpuRenderer::buffers_made
   Buffer make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, bool host) {
+    ++buffers_made;
     Buffer b;
     b.size = std::max<vk::DeviceSize>(size, 16);
     b.buffer = vk::raii::Buffer(device, vk::BufferCreateInfo{.size = b.size, .usage = usage});
@@ -234,6 +236,25 @@ struct GpuRenderer::Impl {
     run_once([&](vk::raii::CommandBuffer& cb) { cb.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy{0, 0, bytes}); });
     return dst;
   }
+
+  // One of the scene's arrays for upload_arrays: `bytes` from `data` into
+  // scene[binding].
+  struct ArrayUpload {
+    int binding;
+    const void* data;
+    size_t bytes;
+  };
+  // The scene's arrays copied into their device-local buffers through one
+  // staging buffer (scene_staging, kept until release()), in one
+  // submission, and bound. `reuse`: a shot's next frame (the same scene
+  // moved), whose arrays go into the buffers the frame before left where
+  // they fit: such a frame makes no buffer (gpu_renderer.cpp).
+  void upload_arrays(const std::vector<ArrayUpload>& arrays, bool reuse);
+  Buffer scene_staging;
+  // The frames' buffers (their constants, counters, ray log, shadow queue
+  // and wavefront) made anew at their smallest and bound, for a new scene:
+  // each frame grows them as it needs (prepare_frame, prepare_wavefront).
+  void reset_frame_buffers();
 
   // One frame's work as trace() dispatches it: each camera's rows in bands
   // of about band_invocations pixels (2^20), each its own dispatch (well
