@@ -1,6 +1,6 @@
 """Cycles as the oracle for holoray's path integrator.
 
-    blender -b --factory-startup --python tests/blender/path_oracle.py -- OUTDIR SCENE SAMPLES WIDTH HEIGHT
+    blender -b --factory-startup --python tests/blender/path_oracle.py -- OUTDIR SCENE SAMPLES WIDTH HEIGHT [RENDERED]
 
 SCENE is `hdri` (the world is Blender's bundled courtyard.exr), `sky` (a
 constant-colour world), `room` (a closed room with a red and a green wall,
@@ -12,7 +12,10 @@ bias-introducing shortcut switched off, and writes OUTDIR/cycles.exr
 glTF exporter, for holoray to load), OUTDIR/lights.toml (its lights, written
 by the add-on's own lighting.write_lights), OUTDIR/scene.blend (for the
 add-on's render) and OUTDIR/oracle.json (what was rendered and how long it
-took). Written for
+took). RENDERED: an EXR this script's Cycles render wrote before for the
+same scene, settings and Blender (test_path_vs_cycles.py's cache), copied
+as OUTDIR/cycles.exr instead of rendering again; the scene is still built,
+exported and saved here. Written for
 Blender 3.4 (Debian's); the Blender 4 input names are tried too, but that is
 untested.
 """
@@ -20,6 +23,7 @@ untested.
 import json
 import math
 import os
+import shutil
 import sys
 import time
 
@@ -214,11 +218,12 @@ def fair_settings(scene, samples, width, height):
 
 def main():
     args = sys.argv[sys.argv.index("--") + 1:]
-    if len(args) != 5 or args[1] not in ("hdri", "sky", "room", "sun"):
+    if len(args) not in (5, 6) or args[1] not in ("hdri", "sky", "room", "sun"):
         sys.exit("usage: blender -b --factory-startup --python path_oracle.py -- "
-                 "OUTDIR hdri|sky|room|sun SAMPLES WIDTH HEIGHT")
+                 "OUTDIR hdri|sky|room|sun SAMPLES WIDTH HEIGHT [RENDERED]")
     out, scene_name = os.path.abspath(args[0]), args[1]
-    samples, width, height = (int(a) for a in args[2:])
+    samples, width, height = (int(a) for a in args[2:5])
+    rendered = args[5] if len(args) == 6 else None
     os.makedirs(out, exist_ok=True)
 
     scene = build(scene_name)
@@ -226,7 +231,10 @@ def main():
 
     scene.render.filepath = os.path.join(out, "cycles.exr")
     start = time.monotonic()
-    bpy.ops.render.render(write_still=True)
+    if rendered:
+        shutil.copyfile(rendered, os.path.join(out, "cycles.exr"))
+    else:
+        bpy.ops.render.render(write_still=True)
     seconds = time.monotonic() - start
 
     # Blender's own exporter, so that holoray is tested on what a Blender
@@ -242,8 +250,9 @@ def main():
         json.dump({"scene": scene_name, "samples": samples, "width": width, "height": height,
                    "environment": ENVIRONMENT if scene_name == "hdri" else None,
                    "colour": list(SKY_COLOUR) if scene_name == "sky" else ([0, 0, 0] if scene_name in ("room", "sun") else None),
-                   "max_bounces": BOUNCES, "seconds": round(seconds, 3)}, f, indent=2)
-    print(f"path_oracle: {scene_name} {width}x{height} {samples} spp in {seconds:.2f} s -> {out}")
+                   "max_bounces": BOUNCES, "seconds": round(seconds, 3), "rendered_before": rendered}, f, indent=2)
+    how = f"copied from {rendered}" if rendered else f"in {seconds:.2f} s"
+    print(f"path_oracle: {scene_name} {width}x{height} {samples} spp {how} -> {out}")
 
 
 main()

@@ -7,8 +7,11 @@ and exports it with Blender's glTF exporter; holoray renders the glTF
 through the file's camera with the same world given on the command line
 (`--environment`, `--environment-colour`), at --max-depth 5 (4 bounces: the
 eye ray counts as 1). Compared as 8-bit sRGB, as a viewer sees them.
+Cycles' renders are kept in tests/data/cycles_oracle (ORACLE_CACHE below
+says under what key); the scenes are built and exported every run.
 Skipped where Blender is missing."""
 
+import hashlib
 import json
 import os
 import shutil
@@ -40,20 +43,43 @@ CYCLES_SAMPLES = 2048
 HOLORAY_SPP = 1024
 
 
+# Cycles' renders, kept (tests/data/cycles_oracle/SCENE-KEY.exr): Cycles is
+# not the code under test, and its render of a scene is fixed by what the key
+# hashes (path_oracle.py, which builds the scene and sets Cycles up; Blender's
+# version; the samples and size). A render whose key is not there is made
+# here (30 to 100 s a scene on 2 cores); HOLORAY_KEEP_ORACLE=1 keeps it there.
+ORACLE_CACHE = os.path.join(HERE, "..", "data", "cycles_oracle")
+
+
+def oracle_key(scene):
+    version = subprocess.run([BLENDER, "--version"], capture_output=True, text=True, timeout=120).stdout.splitlines()[0]
+    h = hashlib.sha256()
+    with open(os.path.join(HERE, "path_oracle.py"), "rb") as f:
+        h.update(f.read())
+    h.update(f"{version}|{scene}|{CYCLES_SAMPLES}|{WIDTH}x{HEIGHT}".encode())
+    return h.hexdigest()[:16]
+
+
 @pytest.fixture(scope="module")
 def oracle(tmp_path_factory):
-    """oracle(scene, out): the scene as Cycles renders it and as Blender
-    exports it (path_oracle.py), copied into `out`. Each scene is rendered
-    once a run (30 to 50 s on 2 cores), whichever tests compare with it."""
+    """oracle(scene, out): the scene as Cycles renders it (or rendered it
+    before: ORACLE_CACHE) and as Blender exports it (path_oracle.py),
+    copied into `out`. Each scene is made once a run, whichever tests
+    compare with it."""
     made = {}
 
     def render(scene, out):
         if scene not in made:
             where = tmp_path_factory.mktemp(f"oracle_{scene}")
+            kept = os.path.join(ORACLE_CACHE, f"{scene}-{oracle_key(scene)}.exr")
             run = subprocess.run([BLENDER, "-b", "--factory-startup", "--python", os.path.join(HERE, "path_oracle.py"), "--",
-                                  str(where), scene, str(CYCLES_SAMPLES), str(WIDTH), str(HEIGHT)],
+                                  str(where), scene, str(CYCLES_SAMPLES), str(WIDTH), str(HEIGHT),
+                                  *([kept] if os.path.exists(kept) else [])],
                                  capture_output=True, text=True, timeout=600)
             assert run.returncode == 0 and (where / "cycles.exr").exists(), run.stdout[-3000:] + run.stderr[-3000:]
+            if not os.path.exists(kept) and os.environ.get("HOLORAY_KEEP_ORACLE") == "1":
+                os.makedirs(ORACLE_CACHE, exist_ok=True)
+                shutil.copyfile(where / "cycles.exr", kept)
             made[scene] = where
         shutil.copytree(made[scene], out, dirs_exist_ok=True)
         return json.loads((out / "oracle.json").read_text())
