@@ -31,13 +31,13 @@ def blender_major():
     return int(out.split()[1].split(".")[0]) if out.startswith("Blender ") else 0
 
 
+pytestmark = pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
+BLENDER_MAJOR = min(blender_major(), 4) if BLENDER else 0
+# The model the add-on takes for this Blender (holoray_blender/job.py):
 # --blender-principled is Blender 3.x's Principled BSDF (Burley's diffuse
-# under the specular layer); Blender 4 rewrote it (Principled v2, Debian 13's
-# 4.3), which the floors below were not measured on.
-pytestmark = [pytest.mark.skipif(BLENDER is None, reason="Blender is not installed"),
-              pytest.mark.skipif(BLENDER is not None and blender_major() >= 4,
-                                 reason="the floors were measured against Blender 3.4's Principled BSDF; "
-                                        "Blender 4's Principled v2 is not modelled yet")]
+# under the specular layer); Blender 4's (Principled v2, Debian 13's 4.3)
+# layers energy-conservingly, nearer glTF's own BRDF.
+ADDON_MODEL = ["--blender-principled"] if BLENDER_MAJOR < 4 else []
 WIDTH, HEIGHT = 96, 72
 CYCLES_SAMPLES = 2048
 HOLORAY_SPP = 1024
@@ -109,11 +109,16 @@ def psnr(a, b):
     return float("inf") if mse == 0 else 10 * np.log10(255.0 ** 2 / mse)
 
 
-# (scene, floor in dB with Blender's Principled layering, floor with glTF's
-# own BRDF). Measured on Blender 3.4.1 (docs/guide/light.md, "Against Cycles").
-@pytest.mark.parametrize("scene,principled_floor,gltf_floor",
-                         [("hdri", 35.0, 25.0), ("sky", 40.0, 27.0), ("room", 30.0, 20.0), ("sun", 30.0, 20.0)])
-def test_the_path_integrator_renders_the_blender_world_as_cycles(oracle, tmp_path, scene, principled_floor, gltf_floor):
+# Floors in dB, with --blender-principled and with glTF's own BRDF, by
+# Blender's major version: measured on Blender 3.4.1 and 4.3.2
+# (docs/guide/light.md, "Against Cycles"), about 3 to 5 dB under.
+FLOORS = {3: {"hdri": (35.0, 25.0), "sky": (40.0, 27.0), "room": (30.0, 20.0), "sun": (30.0, 20.0)},
+          4: {"hdri": (27.0, 35.0), "sky": (27.0, 45.0), "room": (25.0, 20.0), "sun": (25.0, 38.0)}}
+
+
+@pytest.mark.parametrize("scene", ["hdri", "sky", "room", "sun"])
+def test_the_path_integrator_renders_the_blender_world_as_cycles(oracle, tmp_path, scene):
+    principled_floor, gltf_floor = FLOORS[BLENDER_MAJOR][scene]
     info = oracle(scene, tmp_path)
     cycles = holoray.read_image(str(tmp_path / "cycles.exr"))[:, :, :3]
     principled = holoray_render(tmp_path, info, "principled.exr", "--blender-principled")
@@ -122,17 +127,24 @@ def test_the_path_integrator_renders_the_blender_world_as_cycles(oracle, tmp_pat
     # holoray's own noise is below its difference from Cycles: a quarter of
     # the samples lies psnr(quarter, full) from the full render, and 4x the
     # samples take about 6 dB more off the noise (PathIntegrator.NoiseFalls...).
-    quarter = holoray_render(tmp_path, info, "quarter.exr", "--blender-principled", spp=HOLORAY_SPP // 4)
+    quarter = holoray_render(tmp_path, info, "quarter.exr", *ADDON_MODEL, spp=HOLORAY_SPP // 4)
+    full = principled if ADDON_MODEL else gltf
     with_principled, with_gltf = psnr(principled, cycles), psnr(gltf, cycles)
     print(f"{scene}: principled {with_principled:.1f} dB, glTF BRDF {with_gltf:.1f} dB, "
-          f"quarter samples to full {psnr(quarter, principled):.1f} dB")
+          f"quarter samples to full {psnr(quarter, full):.1f} dB")
     assert with_principled >= principled_floor
-    assert psnr(quarter, principled) + 6 > with_principled
-    # glTF's Appendix B takes the specular layer's Fresnel from the diffuse
-    # (about 6 % darker): the difference the guide names, and its size.
     assert with_gltf >= gltf_floor
-    assert with_principled > with_gltf
-    assert np.mean(gltf) < np.mean(principled)
+    assert psnr(quarter, full) + 6 > psnr(full, cycles)
+    if BLENDER_MAJOR < 4:
+        # glTF's Appendix B takes the specular layer's Fresnel from the
+        # diffuse (about 6 % darker): the difference the guide names.
+        assert with_principled > with_gltf
+        assert np.mean(gltf) < np.mean(principled)
+    elif scene != "room":
+        # Blender 4 is glTF's BRDF under open skies; its square area light
+        # lights the closed room 1.27x as brightly as 3.4's, which is not
+        # modelled (docs/guide/light.md, "Against Cycles").
+        assert with_gltf > with_principled
 
 
 def addon_env():
@@ -140,6 +152,10 @@ def addon_env():
     cli_dir = os.path.dirname(os.path.abspath(os.environ["HOLORAY_CLI"]))
     e["PATH"] = os.pathsep.join([cli_dir, e.get("PATH", "")])
     return e
+
+
+# The add-on's floors in dB (its model: ADDON_MODEL), measured as FLOORS.
+ADDON_FLOORS = {3: {"hdri": 30.0, "room": 30.0}, 4: {"hdri": 35.0, "room": 20.0}}
 
 
 # The same comparison through the add-on, as a Blender user renders: F12 on
@@ -161,4 +177,4 @@ def test_the_addon_renders_the_blender_scene_as_cycles(oracle, tmp_path, scene):
     assert addon.shape == cycles.shape
     value = psnr(addon, cycles)
     print(f"{scene} through the add-on: {value:.1f} dB")
-    assert value >= 30
+    assert value >= ADDON_FLOORS[BLENDER_MAJOR][scene]
