@@ -12,7 +12,9 @@
 # FRAMES + 1 frames of the same shot, seconds a frame (the scene built and
 # uploaded once, each frame traced, read back and written: what a user did
 # before live), and live showing an empty shot (the do-nothing baseline:
-# rays that meet nothing, the pack and the present).
+# rays that meet nothing, the pack and the present). Each live run's frame
+# split too, as live prints it: the moved scene laid out and uploaded, the
+# trace, the pack and show (ms, means).
 # QUICK=1: both panels a quarter as wide and tall (960x540, 384x512, the same
 # lenses), for a CPU device (lavapipe) where the full sizes take minutes a frame.
 # OFFSCREEN=1: live runs with --offscreen instead of in a window under Xvfb
@@ -56,6 +58,10 @@ live_fps() {
   fi
   sed -n 's/.*(\([0-9.]*\) fps).*/\1/p' "$tmp/live.log"
 }
+# The last live run's mean split of a frame, "layout / trace / show" in ms.
+live_split() {
+  sed -n 's/^a frame    layout \([0-9.]*\) ms, trace \([0-9.]*\) ms, show \([0-9.]*\) ms.*/\1 \/ \2 \/ \3/p' "$tmp/live.log"
+}
 animate_s() {
   local start end
   rm -rf "$tmp/frames"
@@ -68,16 +74,18 @@ echo "Command: DEVICE=$device FRAMES=$frames${QUICK:+ QUICK=1}${OFFSCREEN:+ OFFS
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 echo "Device: $(build/holoray devices | head -n 1)"
 echo
-echo "| image | scene | live, frames/s | live, ms a frame | animate --device $device, ms a frame | animate / live | live, empty shot, frames/s |"
-echo "|---|---|---:|---:|---:|---:|---:|"
+echo "| image | scene | live, frames/s | live, ms a frame | live, layout / trace / show ms | animate --device $device, ms a frame | animate / live | live, empty shot, frames/s | empty shot, layout / trace / show ms |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
 shot "$tmp/empty.nff" > "$tmp/empty.toml"
 for camera in panel portrait; do
   empty=$(live_fps "$tmp/empty.toml" "${cameras[$camera]}")
+  empty_split=$(live_split)
   for scene in balls_s4 gears_s4; do
     shot "$shared/scenes/nff/$scene.nff" > "$tmp/$scene.toml"
     fps=$(live_fps "$tmp/$scene.toml" "${cameras[$camera]}")
+    split=$(live_split)
     animate=$(animate_s "$tmp/$scene.toml" "${cameras[$camera]}")
-    awk -v c="$camera" -v s="$scene" -v f="$fps" -v a="$animate" -v e="$empty" \
-      'BEGIN { printf "| %s | %s | %.3g | %.0f | %.0f | %.2f | %.3g |\n", c, s, f, 1000 / f, 1000 * a, a * f, e }'
+    awk -v c="$camera" -v s="$scene" -v f="$fps" -v a="$animate" -v e="$empty" -v sp="$split" -v es="$empty_split" \
+      'BEGIN { printf "| %s | %s | %.3g | %.0f | %s | %.0f | %.2f | %.3g | %s |\n", c, s, f, 1000 / f, sp, 1000 * a, a * f, e, es }'
   done
 done

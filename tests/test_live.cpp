@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -335,8 +336,22 @@ TEST(Live, AShotSteppedToAFrameShowsAnimatesFrame) {
   EXPECT_TRUE(read_bytes(dir.file("shown.png")) == read_bytes(dir.file("frames/frame_0003.png")));
   // Playing from the start: frames advance with the clock (at least one
   // frame differs from the first), and it loops rather than ending.
+  const auto start = std::chrono::steady_clock::now();
   const CommandResult played = on_xvfb("live --shot " + dir.file("shot.toml") + " --play --exit-after 6 --record " + dir.file("played"));
+  const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(played.status, 0) << played.output;
+  // Where a frame's time went: each part timed once, so the six frames'
+  // parts add up to less than the whole run (the window, the device and the
+  // kernels' compile besides); a playing shot is laid out again as it moves.
+  std::smatch split;
+  ASSERT_TRUE(std::regex_search(played.output, split,
+                                std::regex("a frame    layout ([0-9.]+) ms, trace ([0-9.]+) ms, show ([0-9.]+) ms \\(means\\)\n")))
+      << played.output;
+  const double layout_ms = std::stod(split[1]), trace_ms = std::stod(split[2]), show_ms = std::stod(split[3]);
+  EXPECT_GE(layout_ms, 0) << played.output;
+  EXPECT_GT(trace_ms, 0) << played.output;
+  EXPECT_GT(show_ms, 0) << played.output;
+  EXPECT_LT(6 * (layout_ms + trace_ms + show_ms) / 1e3, run_seconds) << played.output;
   const auto frames = folder_bytes(dir.file("played"));
   ASSERT_EQ(frames.size(), 6u);
   bool moved = false;

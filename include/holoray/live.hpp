@@ -61,6 +61,11 @@ struct LiveOptions {
 struct LiveResult {
   int frames = 0;        ///< frames shown
   double seconds = 0;    ///< from the first frame shown to the last
+  /// Where the frames' time went, seconds summed over every frame shown:
+  /// the scene moved to the frame and laid out again on the device (a
+  /// shot's, where its objects moved), the trace, and the pack and show
+  /// (or copy, offscreen; a simulated eye's view included).
+  double layout_seconds = 0, trace_seconds = 0, show_seconds = 0;
   /// The view at the end, as `holoray live` prints it: "eye X,Y,Z at X,Y,Z
   /// up X,Y,Z fov F focus D [lens-fov L]" (17 digits: the same doubles).
   std::string view;

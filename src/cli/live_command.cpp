@@ -132,6 +132,11 @@ int run_live(const LiveCommandOptions& o) {
       if (o.simulate) fmt::print("simulate   eye {} mm, {} px wide\n", result.eye_mm, result.simulated_width);
       fmt::print("frames     {} shown in {:.3f} s{}\n", result.frames, result.seconds,
                  result.frames > 1 ? fmt::format(" ({:.3g} fps)", (result.frames - 1) / std::max(1e-9, result.seconds)) : "");
+      if (result.frames > 0) {
+        const double ms = 1e3 / result.frames;
+        fmt::print("a frame    layout {:.3f} ms, trace {:.3f} ms, show {:.3f} ms (means)\n", result.layout_seconds * ms,
+                   result.trace_seconds * ms, result.show_seconds * ms);
+      }
     }
     return interrupt.requested() ? interrupt.exit_status() : 0;
   } catch (const std::exception& e) {

@@ -127,7 +127,7 @@ class Session {
       if (quit_) break;
       if (playing_) dirty |= advance();
       if (!dirty && !busy) continue;
-      if (!show(dirty)) continue;  // minimised
+      if (!show(dirty, result)) continue;  // minimised
       if (frames_ == 0) first = Clock::now();
       ++frames_;
       result.seconds = std::chrono::duration<double>(Clock::now() - first).count();
@@ -274,13 +274,21 @@ class Session {
   // (LiveOptions::max_spp): the panel's colours alone, not a simulated eye's view.
   bool refining() const { return path_ && !display_ && samples_ > 0 && samples_ < live_.max_spp; }
 
-  // Traces the view and shows it; false when the window had no room. A
-  // path-traced view that did not `change` adds samples to the last.
-  bool show(bool changed) {
+  // Traces the view and shows it, adding each part's time to `spent`;
+  // false when the window had no room. A path-traced view that did not
+  // `change` adds samples to the last.
+  bool show(bool changed, LiveResult& spent) {
     const auto t0 = Clock::now();
+    auto since = t0;
+    auto lap = [&since](double& into) {
+      const auto now = Clock::now();
+      into += std::chrono::duration<double>(now - since).count();
+      since = now;
+    };
     holoray::RenderStats stats;
     try {
       follow();
+      lap(spent.layout_seconds);
       camera_.emplace(place());
       RenderSettings settings = source_.settings;
       if (const auto angle = camera_->pixel_angle()) settings.footprint = {0, *angle};
@@ -311,7 +319,9 @@ class Session {
           gpu_->trace(gpu::camera_frames(context, *camera_, wanted, spp, 0, H), W, H, stats, first);
           samples_ = spp;
         }
+        lap(spent.trace_seconds);
         if (!presenter_->show(pack, window_->framebuffer_size())) return false;
+        lap(spent.show_seconds);
       } else {
         // What an eye sees through the display (preview/simulate.hpp), from
         // the panel image traced on the device and read back once per view.
@@ -321,12 +331,14 @@ class Session {
           gpu_->readback({}, panel_image_, stats);
           retrace_ = false;
         }
+        lap(spent.trace_seconds);
         SimulateOptions so;
         so.eye_mm = eye_mm_;
         so.width = std::max(1, window_->framebuffer_size()[0]);
         simulated_ = simulate_view(panel_image_.colour, *display_, so);
         if (!presenter_->show_image(simulated_.data.data(), simulated_.width, simulated_.height, window_->framebuffer_size()))
           return false;
+        lap(spent.show_seconds);
         pack = {};
         pack.shown = {simulated_.width, simulated_.height};
       }
