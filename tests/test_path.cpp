@@ -382,7 +382,7 @@ namespace holoray {
 namespace {
 
 // A lights file's area light of power P over a floor: its radiance is
-// P / (4 A) (Cycles' convention, measured against Blender 3.4), and under
+// P / (pi A) (Cycles 4's, measured against Blender 4.3), and under
 // its centre the floor shows rho / pi times the square's form-factor
 // irradiance; above it (its unlit side) nothing. Drawn by the light's own
 // sampling and met by the BSDF's rays, MIS-weighted.
@@ -393,12 +393,12 @@ TEST(PathIntegrator, AnAreaLightFromALightsFileLightsOneSideAsItsFormFactorSays)
       "shape = \"rectangle\"\nsize = [0.8, 0.8]\npower = 12.8\n",
       "lights.toml");
   ASSERT_EQ(lights.area_lights.size(), 1u);
-  EXPECT_NEAR(lights.area_lights[0].radiance.x, 12.8 / (4 * 0.64), 1e-12);
+  EXPECT_NEAR(lights.area_lights[0].radiance.x, 12.8 / (M_PI * 0.64), 1e-12);
   desc.area_lights = lights.area_lights;
   const RenderScene scene(desc);
   const EnvironmentMap black(Vec3{0, 0, 0});
   const RenderContext ctx(scene, path_settings(scene, &black, 3));
-  const double L = 5, A = 0.4, s = std::sqrt(1 + A * A);
+  const double L = 12.8 / (M_PI * 0.64), A = 0.4, s = std::sqrt(1 + A * A);
   const double expected = 0.5 / M_PI * 2 * L * 2 * (A / s * std::atan(A / s));
   // The same light turned over, facing away from the floor: its back is dark.
   desc.area_lights[0].normal = -desc.area_lights[0].normal;

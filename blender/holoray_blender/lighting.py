@@ -52,8 +52,12 @@ def write_lights(scene, path):
             shape = light.shape.lower()
             sx, sy = light.size * scale.x, (light.size_y if shape in ("rectangle", "ellipse") else light.size) * scale.y
             size = f"[{sx:.9g}, {sy:.9g}]" if shape in ("rectangle", "ellipse") else f"{sx:.9g}"
+            # The file takes watts as Cycles 4 does (radiance P / (pi A));
+            # Cycles 3 gave an area light P / (4 A), the same light as
+            # pi / 4 of its power in Cycles 4 (lights.md, "Lights file").
+            power = light.energy * (math.pi / 4 if bpy.app.version < (4, 0, 0) else 1)
             lines += ['type = "area"', f"position = {_vec(pos)}", f"direction = {_vec(down)}", f"right = {_vec(right)}",
-                      f'shape = "{shape}"', f"size = {size}", f"power = {light.energy:.9g}"]
+                      f'shape = "{shape}"', f"size = {size}", f"power = {power:.9g}"]
         else:
             continue
         lines.append(f"colour = {colour}")

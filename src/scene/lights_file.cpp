@@ -89,7 +89,11 @@ class LightsParser : TomlFields {
       a.axis_v = up * (sy / 2);
       const double area = a.ellipse ? M_PI * sx * sy / 4 : sx * sy;
       const double power = number(t, "power", 0, kBig).value_or(10);
-      a.radiance = colour * (power / (4 * area));
+      // A Lambertian emitter of radiance L over area A emits pi A L: Cycles
+      // since 4.0 (a21af93, "Fix wrong conversion from power to radiance of
+      // area lights"). Cycles 3.x took P / (4 A); the add-on writes a
+      // Blender 3 area light's power as 4.0 would need it for the same light.
+      a.radiance = colour * (power / (M_PI * area));
       out.area_lights.push_back(a);
       return;
     }

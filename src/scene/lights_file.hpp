@@ -19,9 +19,10 @@ struct LightsFile {
 
 /// Parses a lights file's `text` (TOML; `source` names it in messages).
 /// Conversions, as Cycles renders Blender's lights (measured against Blender
-/// 3.4): a point or spot light of power P W and colour c has intensity
-/// c P / (4 pi) W/sr, a sun of strength S gives irradiance S, an area light
-/// of power P and area A has radiance c P / (4 A), one-sided. Throws
+/// 3.4 and 4.3): a point or spot light of power P W and colour c has
+/// intensity c P / (4 pi) W/sr, a sun of strength S gives irradiance S, an
+/// area light of power P and area A has radiance c P / (pi A), one-sided
+/// (Cycles 4's; Cycles 3 took c P / (4 A)). Throws
 /// ParseError at file:line:col for a malformed file, an unknown key, a
 /// value out of range.
 LightsFile parse_lights_file(std::string_view text, const std::string& source);
