@@ -26,13 +26,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 BLENDER = shutil.which("blender")
 
 
-def blender_major():
-    out = subprocess.run([BLENDER, "--version"], capture_output=True, text=True, timeout=120).stdout
-    return int(out.split()[1].split(".")[0]) if out.startswith("Blender ") else 0
-
-
+# `blender --version`'s first line ("Blender 3.4.1"), read once: it picks the
+# floors and keys the kept Cycles renders.
+BLENDER_VERSION = (subprocess.run([BLENDER, "--version"], capture_output=True, text=True, timeout=120).stdout.splitlines()
+                   or [""])[0] if BLENDER else ""
 pytestmark = pytest.mark.skipif(BLENDER is None, reason="Blender is not installed")
-BLENDER_MAJOR = min(blender_major(), 4) if BLENDER else 0
+BLENDER_MAJOR = min(int(BLENDER_VERSION.split()[1].split(".")[0]), 4) if BLENDER_VERSION.startswith("Blender ") else 0
 # The model the add-on takes for this Blender (holoray_blender/job.py):
 # --blender-principled is Blender 3.x's Principled BSDF (Burley's diffuse
 # under the specular layer); Blender 4's (Principled v2, Debian 13's 4.3)
@@ -52,11 +51,10 @@ ORACLE_CACHE = os.path.join(HERE, "..", "data", "cycles_oracle")
 
 
 def oracle_key(scene):
-    version = subprocess.run([BLENDER, "--version"], capture_output=True, text=True, timeout=120).stdout.splitlines()[0]
     h = hashlib.sha256()
     with open(os.path.join(HERE, "path_oracle.py"), "rb") as f:
         h.update(f.read())
-    h.update(f"{version}|{scene}|{CYCLES_SAMPLES}|{WIDTH}x{HEIGHT}".encode())
+    h.update(f"{BLENDER_VERSION}|{scene}|{CYCLES_SAMPLES}|{WIDTH}x{HEIGHT}".encode())
     return h.hexdigest()[:16]
 
 
