@@ -239,10 +239,11 @@ void bind_render(py::module_& m) {
       [](const py::object& scene_or_world, const py::handle& camera, std::optional<int> threads, int spp,
          std::optional<int> max_depth, const std::vector<std::string>& aovs, const py::object& progress,
          const std::string& device, const std::string& integrator, const py::object& environment,
-         double environment_strength, double environment_rotation, bool blender_principled) {
+         double environment_strength, double environment_rotation, bool blender_principled, int share_views) {
         api::RenderOptions o =
             light_options(integrator, environment, environment_strength, environment_rotation, blender_principled, max_depth);
         o.device = device;
+        o.share_views = share_views;
         const api::Camera cam = camera_of(camera, "camera");
         if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
         if (spp < 1) throw py::value_error("spp: expected at least 1 sample per pixel");
@@ -307,12 +308,15 @@ void bind_render(py::module_& m) {
       py::arg("max_depth") = py::none(), py::arg("aovs") = std::vector<std::string>{}, py::arg("progress") = py::none(),
       py::arg("device") = "cpu", py::arg("integrator") = "whitted", py::arg("environment") = py::none(),
       py::arg("environment_strength") = 1.0, py::arg("environment_rotation") = 0.0, py::arg("blender_principled") = false,
+      py::arg("share_views") = 0,
       "Renders scene (a Scene, or a World built once for many renders) through camera: Result. With a World, the light "
       "options left at their defaults take the world's. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
       "progress(fraction) is called on the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else lavapipe) "
       "or 'gpu:N'; stats['device'] names it. integrator: 'whitted' or 'path' (docs/lights.md); with 'path', "
       "environment: an equirectangular .hdr/.exr file or a colour (r, g, b), times environment_strength, turned by "
-      "environment_rotation degrees about the up axis; blender_principled: glTF materials as Blender's Principled BSDF.");
+      "environment_rotation degrees about the up axis; blender_principled: glTF materials as Blender's Principled BSDF; "
+      "share_views: a Quilt's views, path traced on the CPU, each take the samples of this many views on each side "
+      "(docs/guide/light.md).");
   m.def(
       "gpu_devices",
       [] {

@@ -76,6 +76,9 @@ struct Environment {
 /// refracting scene's rays only multiply.
 inline constexpr int kMaxDepth = 16;
 
+/// The most views on each side RenderOptions::share_views takes samples from.
+inline constexpr int kMaxShareViews = 16;
+
 struct RenderOptions {
   int threads = 0;    ///< worker threads; 0: all cores
   int spp = 1;        ///< samples per pixel, >= 1 (sample 0 at the centre)
@@ -94,6 +97,13 @@ struct RenderOptions {
   /// from Blender, to render what Cycles renders (docs/lights.md). The
   /// Blender add-on sets it.
   bool blender_principled = false;
+  /// A quilt under the path integrator on the CPU: each view also takes the
+  /// samples of this many views on each side (0 to kMaxShareViews) whose
+  /// first surface point it sees, with the BSDF evaluated for its own eye
+  /// (docs/guide/light.md, "Quilts: views sharing samples"). About 1 + 2S
+  /// samples a pixel for the price of one and a little, where the views
+  /// see the same surface; mirror and glass are not shared. 0: none.
+  int share_views = 0;
   Aovs aovs;
   Style style = Style::automatic;
   ShadowCacheOptions cache;

@@ -141,7 +141,7 @@ def render(scene: Scene | World, camera: Camera, *, threads: int | None = None, 
            progress: Callable[[float], object] | None = None, device: str = "cpu",
            integrator: str = "whitted", environment: str | Sequence[float] | None = None,
            environment_strength: float = 1.0, environment_rotation: float = 0.0,
-           blender_principled: bool = False) -> Result:
+           blender_principled: bool = False, share_views: int = 0) -> Result:
     """Renders scene through camera. Releases the GIL; Ctrl-C raises
     KeyboardInterrupt within half a second; progress(fraction) is called on
     the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else
@@ -151,8 +151,10 @@ def render(scene: Scene | World, camera: Camera, *, threads: int | None = None, 
     colour (r, g, b) (default: the scene's background colour), times
     environment_strength, turned by environment_rotation degrees about the
     scene's up axis as a Blender Mapping node turns it; blender_principled
-    shades glTF materials as Blender 3.x's Principled BSDF. Raises
-    ValueError naming the argument, SceneError."""
+    shades glTF materials as Blender 3.x's Principled BSDF; share_views
+    (a Quilt, path traced on the CPU): each view also takes the samples of
+    this many views on each side that see the same surface (0 to 16;
+    docs/guide/light.md). Raises ValueError naming the argument, SceneError."""
 
 def gpu_devices() -> list[str]:
     """The machine's Vulkan devices ('0: llvmpipe (...), CPU, Vulkan 1.3, 2.0

@@ -20,6 +20,7 @@
 #include "render/environment.hpp"
 #include "render/renderer.hpp"
 #include "render/shadow_cache.hpp"
+#include "render/view_sharing.hpp"
 #include "holoray/stopwatch.hpp"
 
 namespace holoray::api {
@@ -44,6 +45,7 @@ void check_options(const RenderOptions& o) {
   if (o.spp < 1) throw std::invalid_argument(fmt::format("spp: expected at least 1 sample per pixel, got {}", o.spp));
   if (o.threads < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", o.threads));
   static_assert(kMaxDepth == kDepthCap, "the API's depth limit is the renderer's");
+  static_assert(kMaxShareViews == kMaxSharedViews, "the API's sharing limit is the renderer's");
   parse_device(o.device);
   if (o.max_depth < 0 || o.max_depth > kDepthCap)
     throw std::invalid_argument(fmt::format("max_depth: expected 1 to {} (0: the scene's), got {}", kDepthCap, o.max_depth));
@@ -52,6 +54,12 @@ void check_options(const RenderOptions& o) {
   if (!(o.cache.memory_mib >= 0) || !std::isfinite(o.cache.memory_mib))
     throw std::invalid_argument(fmt::format("cache memory: must be 0 MiB or more, got {}", o.cache.memory_mib));
   check_light(o.integrator, o.environment, o.cache.enabled);
+  if (o.share_views < 0 || o.share_views > kMaxShareViews)
+    throw std::invalid_argument(fmt::format("share_views: expected 0 to {} views on each side, got {}", kMaxShareViews, o.share_views));
+  if (o.share_views > 0 && o.integrator != Integrator::path)
+    throw std::invalid_argument("share_views: views share path samples: go with the path integrator");
+  if (o.share_views > 0 && parse_device(o.device).gpu)
+    throw std::invalid_argument("share_views: views share their samples on the CPU only");
 }
 
 // A mesh file's camera, and where the focal plane stands when the file
@@ -139,6 +147,8 @@ void place_camera(RendererState& s, const SceneDesc& desc, const Camera& camera,
   const holoray::LensArray* array_camera = frame_camera.lens_array();
   if ((frame_camera.get<PanelView>() || frame_camera.get<LookingGlassCamera>()) && (a.albedo || a.depth || a.normal || a.id))
     throw std::invalid_argument("aovs: not written for native panel images yet (colour only)");
+  if (options.share_views > 0 && !frame_camera.get<QuiltCamera>())
+    throw std::invalid_argument("share_views: goes with a quilt, whose views share their samples");
   if (options.cache.enabled && !array_camera)
     throw std::invalid_argument("`cache`: goes with the integral camera (its cells are sized in lens pitches)");
 
@@ -273,6 +283,7 @@ Result Renderer::render(std::optional<std::array<int, 2>> rows) const {
   ro.aovs = aov_set(s.options.aovs);
   ro.style = s.style;
   ro.rows = rows;
+  ro.share_views = s.options.share_views;
   const std::function<void(double)>& progress = s.options.progress;
   // Called after each tile: a stop request ends the render there (the
   // tile schedule rethrows on the calling thread once every worker is out).

@@ -150,6 +150,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
   cmd->add_option("--quilt-view", o.quilt_view, "With --quilt: render only view K (0 = leftmost) as a plain image, named as -o says")
       ->check(in_range(0))
       ->needs(quilt);
+  cmd->add_option("--share-views", o.share_views,
+                  "With --quilt and --integrator path: each view also takes the samples of S views on each side that see "
+                  "the same surface, the BSDF evaluated for its own eye (about 1 + 2S samples a pixel; 0: none)")
+      ->check(in_range(0, api::kMaxShareViews))
+      ->needs(quilt);
   for (CLI::Option* a : array_options) quilt->excludes(a);
   quilt->excludes(display);
   lg->excludes(quilt);
@@ -187,7 +192,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                {{"Output", {"--output", "--aov", "--encoding", "--exr-compression", "--quiet", "--progress"}},
                 {"Scene", {"--camera-name", "--texture-path"}},
                 {"Camera", {"--camera", "--resolution", "--sample-at", "--shift", "--display", "--looking-glass", "--views", "--quilt",
-                            "--view-cone", "--quilt-view", "--focus-distance"}},
+                            "--view-cone", "--quilt-view", "--share-views", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
                 {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
@@ -266,7 +271,10 @@ void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const
   else
     fmt::print("trace      {:.3f} s, {} spp, {} threads, {}{}\n", st.trace_seconds, o.spp,
              o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(),
-             o.light.integrator == "path" ? std::string("path integrator") : fmt::format("{} style", renderer.style_name()),
+             o.light.integrator == "path"
+                 ? std::string("path integrator") +
+                       (o.share_views > 0 ? fmt::format(", views sharing samples with {} on each side", o.share_views) : "")
+                 : fmt::format("{} style", renderer.style_name()),
              world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
                                                world.size(), gather_s, band_bytes / 1048576.0)
                                  : "");
@@ -307,6 +315,7 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.integrator = light.integrator;
     ropt.environment = light.environment;
     ropt.blender_principled = light.blender_principled;
+    ropt.share_views = o.share_views;
     ropt.aovs = aovs;
     ropt.style = style;
     // Several ranks on a machine share its GPUs out, one each in turn.

@@ -32,6 +32,7 @@ struct RenderCommandOptions {
   std::string camera_name;            ///< --camera-name NAME: the mesh file's camera
   std::vector<std::string> texture_paths;  ///< --texture-path DIR, repeatable
   int quilt_view = -1;                ///< --quilt-view K: only view K, as a plain image
+  int share_views = 0;                ///< --share-views S: a quilt's views share path samples with S on each side
   CacheCommandOptions cache;
   bool quiet = false;
   bool progress_lines = false;  ///< --progress: `progress F` lines on stderr

@@ -32,6 +32,8 @@ struct HrPathDevice {
   SurfacePoint* first;  ///< the first hit's surface, hit, and whether there was one (optional)
   Hit* first_hit;
   bool* hit_found;
+  FirstVertexRecord* record = nullptr;  ///< optional: the first vertex's light (path_tracer.hpp)
+  int depth = 0;                        ///< the last ray traced's vertex, while recording
 };
 
 struct HrPathHit {
@@ -48,6 +50,10 @@ static inline const Vec3& hr_path_hit_ns(const HrPathHit& h) { return h.sp.ns; }
 static inline bool hr_path_trace(HrPathDevice& d, const Vec3& o, const Vec3& dir, double tmin, double tmax, int depth,
                                  HrPathHit& h) {
   const Ray ray{o, dir, tmin, tmax};
+  if (d.record) {
+    d.depth = depth;
+    if (depth == 2) d.record->bounce_dir = dir, d.record->bounced = true;
+  }
   if (!d.scene.accel().intersect(ray, h.hit, depth == 1 ? RayCoherence::coherent : RayCoherence::incoherent)) return false;
   // Built in place (a prvalue's guaranteed elision): assigned, the 136-byte
   // record was copied each bounce, 2 % of a path.
@@ -62,11 +68,18 @@ static inline bool hr_path_trace(HrPathDevice& d, const Vec3& o, const Vec3& dir
   // seen at the distance along this ray, as Whitted's shading and the GPU's
   // hook read it; the AOVs above keep the material's own colour, as theirs.
   if (h.sp.material->model == ShadingModel::tachyon) h.sp.colour = d.scene.surface_colour(h.sp, length(h.sp.position - o));
+  if (depth == 1 && d.record) d.record->hit = h.hit, d.record->surface = h.sp;
   return true;
 }
 
 static inline Vec3 hr_path_unblocked(HrPathDevice& d, const Vec3& from, const Vec3& dir, double tmax, const Vec3& term) {
-  return d.scene.accel().occluded(Ray{from, dir, 0, tmax}) ? Vec3{0, 0, 0} : term;
+  if (d.scene.accel().occluded(Ray{from, dir, 0, tmax})) return {};
+  if (d.record && d.depth == 1) {  // a next-event term at the first vertex
+    FirstVertexRecord& r = *d.record;
+    if (r.terms == FirstVertexRecord::kMaxTerms) r.overflow = true;
+    else r.dir[r.terms] = dir, r.incoming[r.terms++] = term;
+  }
+  return term;
 }
 
 static inline void hr_path_count(HrPathDevice& d, int kind) {
@@ -79,9 +92,10 @@ static inline double hr_path_epsilon(HrPathDevice& d) { return d.scene.epsilon()
 static inline int hr_path_max_depth(HrPathDevice& d) { return d.scene.max_depth(); }
 
 // A Tachyon light's sphere: its colour, unshaded.
-static inline bool hr_path_light_sphere(HrPathDevice&, const HrPathHit& h, Vec3& colour) {
+static inline bool hr_path_light_sphere(HrPathDevice& d, const HrPathHit& h, Vec3& colour) {
   if (!h.sp.material->emitter) return false;
   colour = h.sp.colour;
+  if (d.record && d.depth == 1) d.record->sphere = true;
   return true;
 }
 
@@ -96,7 +110,9 @@ static inline Vec3 hr_path_emission(HrPathDevice& d, const HrPathHit& h, const V
                                                    static_cast<float>(std::fabs(dot(h.sp.ng, dir))));
     w = hr_power_heuristic(last_pdf, pdf_light);
   }
-  return d.scene.emission(h.sp, hit.t) * w;
+  const Vec3 e = d.scene.emission(h.sp, hit.t) * w;
+  if (d.record && d.depth == 1) d.record->emission = e;
+  return e;
 }
 
 // Which lobe each model's terms become: shading/bsdf.h. `entering`: the ray
@@ -174,11 +190,82 @@ static inline bool hr_path_emitter_sample(HrPathDevice& d, vec2 u_pick, vec2 u_e
 
 namespace holoray {
 
+namespace {
+
+using shading::HrPathDevice;
+
+bool any_positive(const shading::vec3& v) { return v.x > 0 || v.y > 0 || v.z > 0; }
+
+// Turns the record of a traced path into FirstVertexRecord's terms: each
+// next-event term over f at x, the bounce's share (what the path gathered
+// past x) over f along the bounce, and whether it may be shared.
+void finish_record(HrPathDevice& d, FirstVertexRecord& r, const Vec3& radiance, bool found) {
+  if (!found || r.sphere || r.overflow) return;
+  const shading::HrPathHit h{r.hit, r.surface};
+  const shading::HrPathVertex v = shading::hr_path_vertex(d, h, r.eye_dir);
+  if (any_positive(v.bsdf.mirror) || (any_positive(v.bsdf.transmit) && !(v.bsdf.transmit_alpha > 0))) return;
+  r.shareable = true;
+  r.radiance = radiance;
+  // f = albedo cos / pi whatever the eye (hr_bsdf_eval): the terms need no
+  // second look.
+  r.lambert = !(v.bsdf.alpha > 0) && !any_positive(v.bsdf.transmit) && !(v.bsdf.principled > 0);
+  if (r.lambert) return;
+  Vec3 rest = radiance - r.emission;
+  for (int k = 0; k < r.terms; ++k) rest -= r.incoming[k];
+  rest = {std::fmax(rest.x, 0.0), std::fmax(rest.y, 0.0), std::fmax(rest.z, 0.0)};  // rounding
+  if (r.bounced && (rest.x > 0 || rest.y > 0 || rest.z > 0)) {
+    if (r.terms == FirstVertexRecord::kMaxTerms) {
+      r.shareable = false;
+      return;
+    }
+    r.dir[r.terms] = r.bounce_dir, r.incoming[r.terms++] = rest;
+  }
+  for (int k = 0; k < r.terms; ++k) {
+    const shading::vec3 f = shading::hr_bsdf_eval(v.bsdf, v.wo, shading::hr_to_local(to_f(r.dir[k]), v.t, v.b, v.n));
+    auto over = [](double term, float fk) { return fk > 0 ? term / fk : 0.0; };
+    r.incoming[k] = {over(r.incoming[k].x, f.x), over(r.incoming[k].y, f.y), over(r.incoming[k].z, f.z)};
+  }
+}
+
+}  // namespace
+
 Vec3 path_radiance(const RenderContext& scene, const Ray& eye, shading::HrSampler& sampler, RayCounts& counts,
-                   SurfacePoint* first, Hit* first_hit, bool* hit_found) {
+                   SurfacePoint* first, Hit* first_hit, bool* hit_found, FirstVertexRecord* record) {
+  bool found = false;
+  if (record) {
+    *record = {};
+    record->eye_dir = eye.dir;
+    if (!hit_found) hit_found = &found;
+  }
   if (hit_found) *hit_found = false;
-  shading::HrPathDevice d{scene, counts, scene.settings().environment, scene.settings().emitters, first, first_hit, hit_found};
-  return shading::hr_path_radiance(d, eye.org, eye.dir, eye.tnear, eye.tfar, sampler);
+  HrPathDevice d{scene, counts, scene.settings().environment, scene.settings().emitters, first, first_hit, hit_found, record};
+  const Vec3 radiance = shading::hr_path_radiance(d, eye.org, eye.dir, eye.tnear, eye.tfar, sampler);
+  if (record) finish_record(d, *record, radiance, *hit_found);
+  return radiance;
+}
+
+bool path_radiance_toward(const RenderContext& scene, const FirstVertexRecord& r, const Vec3& dir, Vec3& out) {
+  // The record's side of the surface must face this eye too.
+  const Vec3& ng = r.surface.ng;
+  if ((dot(ng, r.eye_dir) <= 0) != (dot(ng, dir) <= 0)) return false;
+  if (r.lambert) {
+    // The same frame at x for both eyes (hr_path_vertex): the shading
+    // normal, unless it turns from the eye.
+    const Vec3 ns = dot(ng, r.eye_dir) <= 0 ? r.surface.ns : -r.surface.ns;
+    if ((dot(ns, r.eye_dir) < 0) != (dot(ns, dir) < 0)) return false;
+    out = r.radiance;
+    return true;
+  }
+  RayCounts unused;
+  HrPathDevice d{scene, unused, nullptr, nullptr, nullptr, nullptr, nullptr};
+  const shading::HrPathHit h{r.hit, r.surface};
+  const shading::HrPathVertex v = shading::hr_path_vertex(d, h, dir);
+  out = r.emission;
+  for (int k = 0; k < r.terms; ++k) {
+    const shading::vec3 f = shading::hr_bsdf_eval(v.bsdf, v.wo, shading::hr_to_local(to_f(r.dir[k]), v.t, v.b, v.n));
+    out += Vec3{f.x * r.incoming[k].x, f.y * r.incoming[k].y, f.z * r.incoming[k].z};
+  }
+  return true;
 }
 
 }  // namespace holoray

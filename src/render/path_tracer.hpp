@@ -23,13 +23,51 @@
 
 namespace holoray {
 
+/// One path sample's first vertex x and the light it gathered there, kept
+/// so that another eye that sees x can take the same sample
+/// (render/view_sharing.hpp). The sample's radiance toward its own eye is
+/// emission + sum_k f(wo, dir[k]) incoming[k] (f the BSDF at x times
+/// |cos|, shading/bsdf.h): next-event estimation's terms, each already
+/// MIS-weighted and unblocked, and the bounce's, whose incoming light is
+/// the rest of the path over the BSDF's density. Evaluated with another
+/// eye's wo, the same sum estimates x's radiance toward that eye without
+/// bias: the weights and densities do not depend on wo (Veach 1997, 9.2).
+struct FirstVertexRecord {
+  static constexpr int kMaxTerms = 16;
+  /// False: nothing to share (no surface met, a light's sphere, a delta
+  /// lobe at x, whose light goes one way only, or more than kMaxTerms terms).
+  bool shareable = false;
+  /// The BSDF at x is Lambert's alone: its radiance is `radiance` toward any eye.
+  bool lambert = false;
+  Vec3 radiance;
+  Hit hit;
+  SurfacePoint surface;
+  Vec3 eye_dir;   ///< the sample's eye ray direction (world, unit)
+  Vec3 emission;  ///< what x emits toward the eye (the same toward any)
+  int terms = 0;
+  Vec3 dir[kMaxTerms];       ///< toward the light (world, unit)
+  Vec3 incoming[kMaxTerms];  ///< its light over f (linear RGB)
+  // While the path is traced: the next-event terms as f times the light,
+  // the bounce's direction, and whether the terms overflowed.
+  Vec3 bounce_dir;
+  bool bounced = false, overflow = false, sphere = false;
+};
+
 /// Radiance (linear RGB) arriving along `ray` (world; the eye ray of a
 /// pixel sample), its random numbers from `sampler` (its first pair is the
 /// caller's: the pixel position). `first` (optional) gets the first hit's
 /// surface and `first_t` its distance along the ray; `hit_found` says
-/// whether there was one. Counts its rays into `counts`.
+/// whether there was one. Counts its rays into `counts`. `record`
+/// (optional) gets the first vertex's light (FirstVertexRecord).
 Vec3 path_radiance(const RenderContext& scene, const Ray& ray, shading::HrSampler& sampler, RayCounts& counts,
-                   SurfacePoint* first = nullptr, Hit* first_hit = nullptr, bool* hit_found = nullptr);
+                   SurfacePoint* first = nullptr, Hit* first_hit = nullptr, bool* hit_found = nullptr,
+                   FirstVertexRecord* record = nullptr);
+
+/// The radiance a shareable `record`'s sample sends from its x along
+/// `dir` (world, unit: from another eye toward x): its terms with the BSDF
+/// evaluated for that eye. False where that eye sees x's other side (the
+/// terms were gathered on the record's side).
+bool path_radiance_toward(const RenderContext& scene, const FirstVertexRecord& record, const Vec3& dir, Vec3& out);
 
 /// What a ray that left the scene sees under the path integrator: the
 /// environment along `dir` (world, unit), else the background colour.

@@ -63,6 +63,9 @@ struct RenderOptions {
   /// it): the buffers hold just those rows, row 0 being image row rows[0].
   /// Pixels are computed as in the whole image, bit for bit. Empty: every row.
   std::optional<std::array<int, 2>> rows;
+  /// A quilt's views under the path integrator: each takes the samples of
+  /// this many views on each side (render/view_sharing.hpp); 0: none.
+  int share_views = 0;
   /// Called from worker threads with the fraction done; must be thread-safe.
   std::function<void(double)> progress;
 };

@@ -1,6 +1,7 @@
 #include "render/view_renderer.hpp"
 
 #include "render/line_renderer.hpp"
+#include "render/view_sharing.hpp"
 
 namespace holoray {
 
@@ -20,6 +21,7 @@ FrameBuffers render_view(const RenderContext& scene, const PinholeCamera& camera
 
 FrameBuffers render_quilt(const RenderContext& scene, const QuiltCamera& camera, const RenderOptions& opt,
                           RenderStats& stats) {
+  if (opt.share_views > 0) return render_quilt_shared(scene, camera, opt, stats);
   return detail::render_lines(scene, camera, opt, stats, detail::eye_ray);
 }
 

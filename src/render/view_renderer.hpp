@@ -25,7 +25,9 @@ FrameBuffers render_view(const RenderContext& scene, const PinholeCamera& camera
 /// pass over the whole quilt image, as render_view renders one view, so the
 /// scene is built once and the threads never wait for a view to finish.
 /// With one sample per pixel, tile k of the result is render_view of quilt
-/// view k (more samples jitter by quilt pixel, not view pixel).
+/// view k (more samples jitter by quilt pixel, not view pixel). With
+/// options.share_views, the views share their path samples
+/// (render/view_sharing.hpp).
 FrameBuffers render_quilt(const RenderContext& scene, const QuiltCamera& camera, const RenderOptions& options,
                           RenderStats& stats);
 

@@ -114,6 +114,9 @@ CASES = {
                              holoray.Quilt(3, 2, view_resolution=(24, 32), view_cone=40.0)),
     "quilt_cone25": lambda f: _case(["--quilt", "4x3", "--resolution", "20x16", "--view-cone", "25"],
                                     holoray.Quilt(4, 3, view_resolution=(20, 16), view_cone=25.0)),
+    "quilt_path_shared_views": lambda f: _case(
+        ["--quilt", "4x2", "--resolution", "20x16", "--integrator", "path", "--spp", "2", "--share-views", "2"],
+        holoray.Quilt(4, 2, view_resolution=(20, 16)), integrator="path", spp=2, share_views=2),
     "display_slanted_rgb": lambda f: _case(["--display", f["slanted.toml"]], holoray.Display(f["slanted.toml"])),
     "display_whole_pixels_square": lambda f: _case(["--display", f["square.toml"]], holoray.Display(f["square.toml"])),
     "display_hex_bgr_pseudoscopic": lambda f: _case(["--display", f["hex.toml"]], holoray.Display(str(f["hex.toml"]))),

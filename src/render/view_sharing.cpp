@@ -1,0 +1,197 @@
+#include "render/view_sharing.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "render/path_tracer.hpp"
+#include "render/tiles.hpp"
+#include "util/parallel.hpp"
+
+namespace holoray {
+
+namespace {
+
+constexpr int kTile = 32;
+constexpr double kFixedScale = 16777216.0;  // 2^24: taken samples' fixed point
+constexpr double kMaxTaken = 1e9;           // a sample's channel is clamped there: the sums cannot overflow
+constexpr float kMinNormalCos = 0.8f;       // 37 degrees
+
+// What a pixel's centre ray met: the z-buffer the other views' samples are
+// tested against. t infinite: nothing.
+struct Centre {
+  float t = INFINITY;
+  float p[3] = {0, 0, 0};  ///< the point (world)
+  float n[3] = {0, 0, 0};  ///< unit geometric normal, toward the eye
+};
+
+// The samples a pixel took from its neighbours, added by any thread.
+struct Taken {
+  int64_t sum[3] = {0, 0, 0};  ///< fixed point, kFixedScale
+  uint32_t count = 0;
+};
+
+// A pixel's own samples, written by the thread that traces it.
+struct Own {
+  float shared[3] = {0, 0, 0};  ///< the sum of those whose first vertex is shared
+  float others[3] = {0, 0, 0};
+  uint32_t shared_count = 0;
+};
+
+int64_t fixed(double c) { return std::llround(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, kMaxTaken) * kFixedScale); }
+
+void take(Taken& t, const Vec3& c) {
+  std::atomic_ref<int64_t>(t.sum[0]).fetch_add(fixed(c.x), std::memory_order_relaxed);
+  std::atomic_ref<int64_t>(t.sum[1]).fetch_add(fixed(c.y), std::memory_order_relaxed);
+  std::atomic_ref<int64_t>(t.sum[2]).fetch_add(fixed(c.z), std::memory_order_relaxed);
+  std::atomic_ref<uint32_t>(t.count).fetch_add(1, std::memory_order_relaxed);
+}
+
+// The first pass: each quilt pixel's centre ray.
+std::vector<Centre> centres(const RenderContext& scene, const QuiltCamera& camera, int threads, RayCounts& counts) {
+  const int W = camera.width(), H = camera.height();
+  std::vector<Centre> out(static_cast<size_t>(W) * H);
+  parallel_for_n(H, threads, [&](int j) {
+    for (int i = 0; i < W; ++i) {
+      const PixelLine line = camera.line(i, j);
+      const Ray ray{line.origin, line.dir, 0, INFINITY};
+      Hit hit;
+      if (!scene.accel().intersect(ray, hit, RayCoherence::coherent)) continue;
+      const SurfacePoint sp = scene.surface(ray, hit);
+      Vec3 n = normalize(sp.ng);
+      if (dot(n, line.dir) > 0) n = -n;
+      const Vec3& p = sp.position;
+      out[static_cast<size_t>(j) * W + i] =
+          Centre{static_cast<float>(hit.t),
+                 {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)},
+                 {static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z)}};
+    }
+  });
+  counts.eye += static_cast<uint64_t>(W) * H;
+  return out;
+}
+
+// Whether x (a record's first vertex) lies on the surface the centre ray
+// of `c` met in `view`: within one pixel's footprint of its tangent plane,
+// its normal within 37 degrees (the z-buffer test).
+bool on_centre_surface(const PinholeCamera& view, const Centre& c, const FirstVertexRecord& r, double epsilon) {
+  if (!std::isfinite(c.t)) return false;
+  const Vec3 n{c.n[0], c.n[1], c.n[2]};
+  const double footprint = view.pixel_size() * (view.desc().ortho_height > 0 ? 1.0 : c.t);
+  if (std::fabs(dot(r.surface.position - Vec3{c.p[0], c.p[1], c.p[2]}, n)) > footprint + 4 * epsilon) return false;
+  return std::fabs(dot(normalize(r.surface.ng), n)) >= kMinNormalCos;
+}
+
+// Where view u sees the record's x: its quilt pixel index and the
+// direction from its eye, or false (outside it, or off the surface its
+// pixel's centre meets).
+bool seen_by(const QuiltCamera& camera, const std::vector<Centre>& centre, int u, const FirstVertexRecord& r,
+             double epsilon, size_t& index, Vec3& dir) {
+  const PinholeCamera& view = camera.view(u);
+  PanelHit h;
+  if (!view.project(r.surface.position, h)) return false;
+  const QuiltDesc& q = camera.desc();
+  const int qi = h.i + (u % q.columns) * q.view_width, qj = h.j + (q.rows - 1 - u / q.columns) * q.view_height;
+  index = static_cast<size_t>(qj) * camera.width() + qi;
+  if (!on_centre_surface(view, centre[index], r, epsilon)) return false;
+  dir = view.line(h.i, h.j, h.u, h.v).dir;
+  return true;
+}
+
+}  // namespace
+
+FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& camera, const RenderOptions& opt,
+                                 RenderStats& stats) {
+  if (scene.settings().integrator != Integrator::path)
+    throw std::invalid_argument("sharing samples between a quilt's views needs the path integrator");
+  if (opt.share_views < 1 || opt.share_views > kMaxSharedViews)
+    throw std::invalid_argument(fmt::format("views shared: expected 1 to {} on each side, got {}", kMaxSharedViews, opt.share_views));
+  if (opt.rows) throw std::invalid_argument("sharing samples between a quilt's views takes the whole quilt, not a band of rows");
+  if (opt.spp < 1) throw std::invalid_argument(fmt::format("samples per pixel must be at least 1, got {}", opt.spp));
+  const int W = camera.width(), H = camera.height(), views = camera.desc().columns * camera.desc().rows;
+  const auto start = std::chrono::steady_clock::now();
+  RayCounts first_pass;
+  const std::vector<Centre> centre = centres(scene, camera, opt.threads, first_pass);
+  FrameBuffers fb = allocate_frame(W, H, opt.aovs);
+  std::vector<Taken> taken(static_cast<size_t>(W) * H);
+  std::vector<Own> own(static_cast<size_t>(W) * H);
+  const int tiles_x = (W + kTile - 1) / kTile, tiles = tiles_x * ((H + kTile - 1) / kTile);
+  std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles));
+  std::atomic<int> tiles_done{0};
+  const double epsilon = scene.epsilon();
+  parallel_for_n(tiles, opt.threads, [&](int tile) {
+    RayCounts counts;
+    FirstVertexRecord rec;
+    const int x0 = tile % tiles_x * kTile, y0 = tile / tiles_x * kTile;
+    for (int j = y0; j < std::min(y0 + kTile, H); ++j)
+      for (int i = x0; i < std::min(x0 + kTile, W); ++i) {
+        const int v = camera.view_at(i, j);
+        const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
+        const shading::vec2 shift = shading::hr_pixel_shift(seed);
+        Vec3 shared, others;
+        uint32_t shared_count = 0;
+        SurfacePoint first;
+        Hit first_hit;
+        bool first_found = false;
+        PixelLine first_line{};
+        for (int k = 0; k < opt.spp; ++k) {
+          shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
+          const shading::vec2 u = shading::hr_pixel_position(sampler, shift);
+          const PixelLine line = camera.line(i, j, u.x, u.y);
+          if (k == 0) first_line = line;
+          ++counts.eye;
+          const Vec3 c = path_radiance(scene, Ray{line.origin, line.dir, 0, INFINITY}, sampler, counts, k == 0 ? &first : nullptr,
+                                       k == 0 ? &first_hit : nullptr, k == 0 ? &first_found : nullptr, &rec);
+          // Pooled with what the neighbours give only where they could give
+          // it: on the surface this pixel's centre meets.
+          if (!rec.shareable || !on_centre_surface(camera.view(v), centre[static_cast<size_t>(j) * W + i], rec, epsilon)) {
+            others += c;
+            continue;
+          }
+          shared += c, ++shared_count;
+          for (int w = std::max(0, v - opt.share_views); w <= std::min(views - 1, v + opt.share_views); ++w) {
+            size_t index;
+            Vec3 dir, seen;
+            if (w == v || !seen_by(camera, centre, w, rec, epsilon, index, dir)) continue;
+            if (path_radiance_toward(scene, rec, dir, seen)) take(taken[index], seen);
+          }
+        }
+        Own& o = own[static_cast<size_t>(j) * W + i];
+        o = Own{{static_cast<float>(shared.x), static_cast<float>(shared.y), static_cast<float>(shared.z)},
+                {static_cast<float>(others.x), static_cast<float>(others.y), static_cast<float>(others.z)},
+                shared_count};
+        store_pixel(fb, opt.aovs, i, j, Vec3{}, first_found ? &first : nullptr, first_hit.t, -first_line.dir);
+      }
+    tile_counts[static_cast<size_t>(tile)] = counts;
+    const int done = ++tiles_done;
+    if (opt.progress) opt.progress(static_cast<double>(done) / tiles);
+  });
+  // Every sample is in: each pixel's colour (the header's formula).
+  parallel_for_n(H, opt.threads, [&](int j) {
+    for (int i = 0; i < W; ++i) {
+      const size_t p = static_cast<size_t>(j) * W + i;
+      const Own& o = own[p];
+      const Taken& t = taken[p];
+      float* out = fb.colour.at(i, j);
+      for (int c = 0; c < 3; ++c) {
+        double value = o.others[c] / opt.spp;
+        if (o.shared_count > 0)
+          value += (static_cast<double>(o.shared_count) / opt.spp) * (o.shared[c] + t.sum[c] / kFixedScale) /
+                   (o.shared_count + t.count);
+        out[c] = static_cast<float>(value);
+      }
+    }
+  });
+  stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.rays = first_pass;
+  for (const RayCounts& c : tile_counts) stats.rays += c;
+  return fb;
+}
+
+}  // namespace holoray
