@@ -120,6 +120,10 @@ class HoloraySettings(bpy.types.PropertyGroup):
                 "exact and fast, no World light")])
     samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,
                          description="Samples per pixel (path tracing; Whitted: antialiasing)")
+    share_views: IntProperty(
+        name="Shared views", default=0, min=0, max=16,
+        description="A quilt path traced on the CPU: each view also takes the samples of this many views on each side "
+                    "that see the same surface; less noise where light, not edges, makes it (docs/guide/light.md). 0: none")
     max_depth: IntProperty(name="Ray depth", default=0, min=0, max=16,
                            description="0: 5, holoray's default (path tracing: Cycles' bounces plus 1)")
     threads: IntProperty(name="Threads", default=0, min=0, description="0: all cores")

@@ -68,6 +68,8 @@ class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(s, "integrator")
         layout.prop(s, "samples")
+        if s.camera == "QUILT" and s.integrator == "PATH" and s.device == "CPU":
+            layout.prop(s, "share_views")
         layout.prop(s, "max_depth")
         layout.prop(s, "device")
         if s.device == "GPU":

@@ -202,10 +202,13 @@ bool any_positive(const shading::vec3& v) { return v.x > 0 || v.y > 0 || v.z > 0
 void finish_record(HrPathDevice& d, FirstVertexRecord& r, const Vec3& radiance, bool found) {
   if (!found || r.sphere || r.overflow) return;
   const shading::HrPathHit h{r.hit, r.surface};
-  const shading::HrPathVertex v = shading::hr_path_vertex(d, h, r.eye_dir);
+  r.vertex = shading::hr_path_vertex(d, h, r.eye_dir);
+  const shading::HrPathVertex& v = r.vertex;
   if (any_positive(v.bsdf.mirror) || (any_positive(v.bsdf.transmit) && !(v.bsdf.transmit_alpha > 0))) return;
   r.shareable = true;
   r.radiance = radiance;
+  const Vec3 ns = dot(r.surface.ng, r.eye_dir) <= 0 ? r.surface.ns : -r.surface.ns;
+  r.shading_normal = dot(ns, r.eye_dir) < 0;
   // f = albedo cos / pi whatever the eye (hr_bsdf_eval): the terms need no
   // second look.
   r.lambert = !(v.bsdf.alpha > 0) && !any_positive(v.bsdf.transmit) && !(v.bsdf.principled > 0);
@@ -221,7 +224,8 @@ void finish_record(HrPathDevice& d, FirstVertexRecord& r, const Vec3& radiance, 
     r.dir[r.terms] = r.bounce_dir, r.incoming[r.terms++] = rest;
   }
   for (int k = 0; k < r.terms; ++k) {
-    const shading::vec3 f = shading::hr_bsdf_eval(v.bsdf, v.wo, shading::hr_to_local(to_f(r.dir[k]), v.t, v.b, v.n));
+    r.dir_local[k] = shading::hr_to_local(to_f(r.dir[k]), v.t, v.b, v.n);
+    const shading::vec3 f = shading::hr_bsdf_eval(v.bsdf, v.wo, r.dir_local[k]);
     auto over = [](double term, float fk) { return fk > 0 ? term / fk : 0.0; };
     r.incoming[k] = {over(r.incoming[k].x, f.x), over(r.incoming[k].y, f.y), over(r.incoming[k].z, f.z)};
   }
@@ -233,8 +237,7 @@ Vec3 path_radiance(const RenderContext& scene, const Ray& eye, shading::HrSample
                    SurfacePoint* first, Hit* first_hit, bool* hit_found, FirstVertexRecord* record) {
   bool found = false;
   if (record) {
-    *record = {};
-    record->eye_dir = eye.dir;
+    record->clear(eye.dir);
     if (!hit_found) hit_found = &found;
   }
   if (hit_found) *hit_found = false;
@@ -248,21 +251,25 @@ bool path_radiance_toward(const RenderContext& scene, const FirstVertexRecord& r
   // The record's side of the surface must face this eye too.
   const Vec3& ng = r.surface.ng;
   if ((dot(ng, r.eye_dir) <= 0) != (dot(ng, dir) <= 0)) return false;
+  // The same frame at x for both eyes (hr_path_vertex): the shading
+  // normal, unless it turns from the eye.
+  const Vec3 ns = dot(ng, r.eye_dir) <= 0 ? r.surface.ns : -r.surface.ns;
+  if (r.shading_normal != (dot(ns, dir) < 0)) return false;
   if (r.lambert) {
-    // The same frame at x for both eyes (hr_path_vertex): the shading
-    // normal, unless it turns from the eye.
-    const Vec3 ns = dot(ng, r.eye_dir) <= 0 ? r.surface.ns : -r.surface.ns;
-    if ((dot(ns, r.eye_dir) < 0) != (dot(ns, dir) < 0)) return false;
     out = r.radiance;
     return true;
   }
-  RayCounts unused;
-  HrPathDevice d{scene, unused, nullptr, nullptr, nullptr, nullptr, nullptr};
-  const shading::HrPathHit h{r.hit, r.surface};
-  const shading::HrPathVertex v = shading::hr_path_vertex(d, h, dir);
+  const shading::HrPathVertex& v = r.vertex;
+  const shading::vec3 wo = shading::hr_to_local(to_f(-dir), v.t, v.b, v.n);
+  shading::HrBsdf bsdf = v.bsdf;
+  if (any_positive(bsdf.transmit)) {  // glTF's transmitted share is 1 - F at the eye's angle (hr_gltf_bsdf)
+    RayCounts unused;
+    HrPathDevice d{scene, unused, nullptr, nullptr, nullptr, nullptr, nullptr};
+    bsdf = shading::hr_path_bsdf(d, shading::HrPathHit{r.hit, r.surface}, wo.z, dot(ng, dir) <= 0);
+  }
   out = r.emission;
   for (int k = 0; k < r.terms; ++k) {
-    const shading::vec3 f = shading::hr_bsdf_eval(v.bsdf, v.wo, shading::hr_to_local(to_f(r.dir[k]), v.t, v.b, v.n));
+    const shading::vec3 f = shading::hr_bsdf_eval(bsdf, wo, r.dir_local[k]);
     out += Vec3{f.x * r.incoming[k].x, f.y * r.incoming[k].y, f.z * r.incoming[k].z};
   }
   return true;

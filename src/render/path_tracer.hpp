@@ -19,6 +19,7 @@
 #include "render/ray_counts.hpp"
 #include "render/render_context.hpp"
 #include "render/renderer.hpp"
+#include "render/path_records.h"
 #include "shading/sampler.h"
 
 namespace holoray {
@@ -39,18 +40,32 @@ struct FirstVertexRecord {
   bool shareable = false;
   /// The BSDF at x is Lambert's alone: its radiance is `radiance` toward any eye.
   bool lambert = false;
+  /// x's shading normal faces the eye (else the geometric one stood in:
+  /// hr_path_vertex), which another eye must share for `vertex`'s frame.
+  bool shading_normal = false;
   Vec3 radiance;
   Hit hit;
   SurfacePoint surface;
+  shading::HrPathVertex vertex;  ///< x as the integrator saw it: its frame and BSDF (wo: this eye's)
   Vec3 eye_dir;   ///< the sample's eye ray direction (world, unit)
   Vec3 emission;  ///< what x emits toward the eye (the same toward any)
   int terms = 0;
-  Vec3 dir[kMaxTerms];       ///< toward the light (world, unit)
-  Vec3 incoming[kMaxTerms];  ///< its light over f (linear RGB)
-  // While the path is traced: the next-event terms as f times the light,
-  // the bounce's direction, and whether the terms overflowed.
+  shading::vec3 dir_local[kMaxTerms];  ///< toward the light, in `vertex`'s frame
+  Vec3 incoming[kMaxTerms];            ///< its light over f (linear RGB)
+  // While the path is traced: the next-event terms (f times the light,
+  // their directions in the world), the bounce's direction, and whether
+  // the terms overflowed.
+  Vec3 dir[kMaxTerms];
   Vec3 bounce_dir;
   bool bounced = false, overflow = false, sphere = false;
+
+  /// Ready for the next path: what the last one left is forgotten.
+  void clear(const Vec3& eye) {
+    shareable = lambert = bounced = overflow = sphere = false;
+    terms = 0;
+    emission = {};
+    eye_dir = eye;
+  }
 };
 
 /// Radiance (linear RGB) arriving along `ray` (world; the eye ray of a

@@ -100,7 +100,8 @@ bool seen_by(const QuiltCamera& camera, const std::vector<Centre>& centre, int u
   const int qi = h.i + (u % q.columns) * q.view_width, qj = h.j + (q.rows - 1 - u / q.columns) * q.view_height;
   index = static_cast<size_t>(qj) * camera.width() + qi;
   if (!on_centre_surface(view, centre[index], r, epsilon)) return false;
-  dir = view.line(h.i, h.j, h.u, h.v).dir;
+  // The eye's ray through x: from the eye, or along the axis when orthographic.
+  dir = view.desc().ortho_height > 0 ? view.axis() : normalize(r.surface.position - view.frame().origin);
   return true;
 }
 

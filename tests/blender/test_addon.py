@@ -198,6 +198,23 @@ def test_a_quilt_has_its_views_size_times_its_layout(tmp_path):
     assert "Traceback" not in log
 
 
+def test_a_quilts_views_share_their_samples_the_same_both_ways(tmp_path):
+    # Shared views (path tracing, the default, on the CPU) reach holoray
+    # through the module and through the program alike: the same image,
+    # and not the unshared one.
+    build("quilt", tmp_path)
+    images = {}
+    for backend, share in (("MODULE", 2), ("PROGRAM", 2), ("PROGRAM", 0)):
+        python = f"bpy.context.scene.holoray.share_views = {share}; bpy.context.scene.holoray.samples = 4"
+        log = render(tmp_path, backend=backend, python=python)
+        assert f"({backend.lower()})" in log and "Traceback" not in log, log[-3000:]
+        images[backend, share] = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
+        (tmp_path / "frame_0001.exr").unlink()
+    module, program, unshared = images["MODULE", 2], images["PROGRAM", 2], images["PROGRAM", 0]
+    assert np.abs(module - program).max() <= 1.2e-7 * max(1.0, np.abs(program).max())
+    assert np.abs(program - unshared).max() > 1e-3
+
+
 def test_the_array_stands_at_the_focus_distance_facing_the_camera(tmp_path):
     # A plane square to the view at the focus distance: every lens's centre
     # line meets it at the lens itself (line parameter t = 0).
