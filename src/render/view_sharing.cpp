@@ -44,7 +44,8 @@ struct Own {
   uint32_t shared_count = 0;
 };
 
-int64_t fixed(double c) { return std::llround(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, kMaxTaken) * kFixedScale); }
+// Non-negative: rounded by adding a half (llround was 1.6 % of a shared render).
+int64_t fixed(double c) { return static_cast<int64_t>(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, kMaxTaken) * kFixedScale + 0.5); }
 
 void take(Taken& t, const Vec3& c) {
   std::atomic_ref<int64_t>(t.sum[0]).fetch_add(fixed(c.x), std::memory_order_relaxed);
