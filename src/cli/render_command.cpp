@@ -315,6 +315,10 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     ropt.integrator = light.integrator;
     ropt.environment = light.environment;
     ropt.blender_principled = light.blender_principled;
+    if (o.share_views > 0 && light.integrator != api::Integrator::path)
+      throw std::invalid_argument("--share-views: views share path samples: go with --integrator path");
+    if (o.share_views > 0 && o.device != "cpu")
+      throw std::invalid_argument("--share-views: views share their samples on the CPU only: leave --device at cpu");
     ropt.share_views = o.share_views;
     ropt.aovs = aovs;
     ropt.style = style;
