@@ -161,7 +161,8 @@ void place_camera(RendererState& s, const SceneDesc& desc, const Camera& camera,
   const int64_t held = share.held_rows, copied = share.copied_rows;
   const int64_t samples = static_cast<int64_t>(frame_camera.panel_samples_per_row()) * held;
   const AovSet aovs = aov_set(a);
-  const uint64_t need = frame_bytes(held * width, aovs) + static_cast<uint64_t>(copied * width) * 12 + frame_bytes(samples, aovs);
+  const uint64_t need = frame_bytes(held * width, aovs) + static_cast<uint64_t>(copied * width) * 12 + frame_bytes(samples, aovs) +
+                        (options.share_views > 0 ? shared_views_bytes(int64_t{width} * height) : 0);
   const uint64_t have = physical_memory_bytes();
   if (have && need > have / 10 * 8)
     throw std::length_error(fmt::format("a {}x{} image needs {:.2f} GiB of buffers{}, more than 80% of this machine's {:.2f} GiB",

@@ -108,6 +108,10 @@ bool seen_by(const QuiltCamera& camera, const std::vector<Centre>& centre, int u
 
 }  // namespace
 
+uint64_t shared_views_bytes(int64_t pixels) {
+  return static_cast<uint64_t>(pixels) * (sizeof(Centre) + sizeof(Taken) + sizeof(Own));
+}
+
 FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& camera, const RenderOptions& opt,
                                  RenderStats& stats) {
   if (scene.settings().integrator != Integrator::path)

@@ -36,6 +36,11 @@ namespace holoray {
 /// public kMaxShareViews).
 inline constexpr int kMaxSharedViews = 16;
 
+/// Bytes render_quilt_shared holds besides the frame for a quilt of
+/// `pixels`: the first pass's points and each pixel's own and taken sums.
+/// Computed without allocating, for the memory bound.
+uint64_t shared_views_bytes(int64_t pixels);
+
 /// Renders `camera`'s quilt under the path integrator, each view taking the
 /// samples of `opt.share_views` (1 to kMaxSharedViews) views on each side,
 /// in view order. Throws std::invalid_argument under Whitted's integrator,
