@@ -66,8 +66,8 @@ void QuiltCamera::project(const Vec3& p_world, std::vector<PanelHit>& out) const
   for (int k = 0; k < static_cast<int>(views_.size()); ++k) {
     PanelHit h;
     if (!views_[static_cast<size_t>(k)].project(p_world, h)) continue;
-    h.i += (k % q_.columns) * q_.view_width;
-    h.j += (q_.rows - 1 - k / q_.columns) * q_.view_height;
+    h.i = quilt_x(k, h.i);
+    h.j = quilt_y(k, h.j);
     out.push_back(h);
   }
 }

@@ -62,6 +62,10 @@ class QuiltCamera {
   PixelLine line(int i, int j, double u = 0.5, double v = 0.5) const {
     return views_[static_cast<size_t>(view_at(i, j))].line(i % q_.view_width, j % q_.view_height, u, v);
   }
+  /// The quilt pixel of view k's pixel (i, j): its tile's corner added
+  /// (view 0's tile bottom left, as documented above).
+  int quilt_x(int k, int i) const { return i + k % q_.columns * q_.view_width; }
+  int quilt_y(int k, int j) const { return j + (q_.rows - 1 - k / q_.columns) * q_.view_height; }
   /// One hit per view that sees the point, in quilt pixels.
   void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 

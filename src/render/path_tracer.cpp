@@ -199,6 +199,10 @@ bool any_positive(const shading::vec3& v) { return v.x > 0 || v.y > 0 || v.z > 0
 // Turns the record of a traced path into FirstVertexRecord's terms: each
 // next-event term over f at x, the bounce's share (what the path gathered
 // past x) over f along the bounce, and whether it may be shared.
+// The shading normal on the side of the surface an eye looking along
+// `eye_dir` sees, as hr_path_vertex turns it.
+Vec3 eye_side_normal(const SurfacePoint& s, const Vec3& eye_dir) { return dot(s.ng, eye_dir) <= 0 ? s.ns : -s.ns; }
+
 void finish_record(HrPathDevice& d, FirstVertexRecord& r, const Vec3& radiance, bool found) {
   if (!found || r.sphere || r.overflow) return;
   const shading::HrPathHit h{r.hit, r.surface};
@@ -207,8 +211,7 @@ void finish_record(HrPathDevice& d, FirstVertexRecord& r, const Vec3& radiance, 
   if (any_positive(v.bsdf.mirror) || (any_positive(v.bsdf.transmit) && !(v.bsdf.transmit_alpha > 0))) return;
   r.shareable = true;
   r.radiance = radiance;
-  const Vec3 ns = dot(r.surface.ng, r.eye_dir) <= 0 ? r.surface.ns : -r.surface.ns;
-  r.shading_normal = dot(ns, r.eye_dir) < 0;
+  r.shading_normal = dot(eye_side_normal(r.surface, r.eye_dir), r.eye_dir) < 0;
   // f = albedo cos / pi whatever the eye (hr_bsdf_eval): the terms need no
   // second look.
   r.lambert = !(v.bsdf.alpha > 0) && !any_positive(v.bsdf.transmit) && !(v.bsdf.principled > 0);
@@ -253,8 +256,7 @@ bool path_radiance_toward(const RenderContext& scene, const FirstVertexRecord& r
   if ((dot(ng, r.eye_dir) <= 0) != (dot(ng, dir) <= 0)) return false;
   // The same frame at x for both eyes (hr_path_vertex): the shading
   // normal, unless it turns from the eye.
-  const Vec3 ns = dot(ng, r.eye_dir) <= 0 ? r.surface.ns : -r.surface.ns;
-  if (r.shading_normal != (dot(ns, dir) < 0)) return false;
+  if (r.shading_normal != (dot(eye_side_normal(r.surface, r.eye_dir), dir) < 0)) return false;
   if (r.lambert) {
     out = r.radiance;
     return true;

@@ -11,17 +11,13 @@
 #include <vector>
 
 #include "render/path_tracer.hpp"
-#include "render/tiles.hpp"
 #include "util/parallel.hpp"
 
 namespace holoray {
 
 namespace {
 
-constexpr int kTile = 32;
-constexpr double kFixedScale = 16777216.0;  // 2^24: taken samples' fixed point
-constexpr double kMaxTaken = 1e9;           // a sample's channel is clamped there: the sums cannot overflow
-constexpr float kMinNormalCos = 0.8f;       // 37 degrees
+constexpr float kMinNormalCos = 0.8f;  // 37 degrees
 
 // What a pixel's centre ray met: the z-buffer the other views' samples are
 // tested against. t infinite: nothing.
@@ -31,28 +27,18 @@ struct Centre {
   float n[3] = {0, 0, 0};  ///< unit geometric normal, toward the eye
 };
 
-// The samples a pixel took from its neighbours, added by any thread.
+// The samples a pixel took from its neighbours.
 struct Taken {
-  int64_t sum[3] = {0, 0, 0};  ///< fixed point, kFixedScale
+  float sum[3] = {0, 0, 0};
   uint32_t count = 0;
 };
 
-// A pixel's own samples, written by the thread that traces it.
+// A pixel's own samples.
 struct Own {
-  float shared[3] = {0, 0, 0};  ///< the sum of those whose first vertex is shared
+  float shared[3] = {0, 0, 0};  ///< the sum of those on the centre's surface
   float others[3] = {0, 0, 0};
   uint32_t shared_count = 0;
 };
-
-// Non-negative: rounded by adding a half (llround was 1.6 % of a shared render).
-int64_t fixed(double c) { return static_cast<int64_t>(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, kMaxTaken) * kFixedScale + 0.5); }
-
-void take(Taken& t, const Vec3& c) {
-  std::atomic_ref<int64_t>(t.sum[0]).fetch_add(fixed(c.x), std::memory_order_relaxed);
-  std::atomic_ref<int64_t>(t.sum[1]).fetch_add(fixed(c.y), std::memory_order_relaxed);
-  std::atomic_ref<int64_t>(t.sum[2]).fetch_add(fixed(c.z), std::memory_order_relaxed);
-  std::atomic_ref<uint32_t>(t.count).fetch_add(1, std::memory_order_relaxed);
-}
 
 // The first pass: each quilt pixel's centre ray.
 std::vector<Centre> centres(const RenderContext& scene, const QuiltCamera& camera, int threads, RayCounts& counts) {
@@ -78,31 +64,30 @@ std::vector<Centre> centres(const RenderContext& scene, const QuiltCamera& camer
   return out;
 }
 
-// Whether x (a record's first vertex) lies on the surface the centre ray
-// of `c` met in `view`: within one pixel's footprint of its tangent plane,
-// its normal within 37 degrees (the z-buffer test).
-bool on_centre_surface(const PinholeCamera& view, const Centre& c, const FirstVertexRecord& r, double epsilon) {
+// Whether x, with unit geometric normal n_x, lies on the surface the
+// centre ray of `c` met in `view`: within one pixel's footprint of its
+// tangent plane, its normal within 37 degrees (the z-buffer test).
+bool on_centre_surface(const PinholeCamera& view, const Centre& c, const Vec3& x, const Vec3& n_x, double epsilon) {
   if (!std::isfinite(c.t)) return false;
   const Vec3 n{c.n[0], c.n[1], c.n[2]};
   const double footprint = view.pixel_size() * (view.desc().ortho_height > 0 ? 1.0 : c.t);
-  if (std::fabs(dot(r.surface.position - Vec3{c.p[0], c.p[1], c.p[2]}, n)) > footprint + 4 * epsilon) return false;
-  return std::fabs(dot(normalize(r.surface.ng), n)) >= kMinNormalCos;
+  if (std::fabs(dot(x - Vec3{c.p[0], c.p[1], c.p[2]}, n)) > footprint + 4 * epsilon) return false;
+  return std::fabs(dot(n_x, n)) >= kMinNormalCos;
 }
 
-// Where view u sees the record's x: its quilt pixel index and the
-// direction from its eye, or false (outside it, or off the surface its
-// pixel's centre meets).
-bool seen_by(const QuiltCamera& camera, const std::vector<Centre>& centre, int u, const FirstVertexRecord& r,
+// Where view u sees x (unit normal n), taken from row `row` of another
+// view: its quilt pixel index and the direction from its eye, or false
+// (outside it, off the surface its pixel's centre meets, or on another
+// row, which only rounding can give).
+bool seen_by(const QuiltCamera& camera, const std::vector<Centre>& centre, int u, int row, const Vec3& x, const Vec3& n,
              double epsilon, size_t& index, Vec3& dir) {
   const PinholeCamera& view = camera.view(u);
   PanelHit h;
-  if (!view.project(r.surface.position, h)) return false;
-  const QuiltDesc& q = camera.desc();
-  const int qi = h.i + (u % q.columns) * q.view_width, qj = h.j + (q.rows - 1 - u / q.columns) * q.view_height;
-  index = static_cast<size_t>(qj) * camera.width() + qi;
-  if (!on_centre_surface(view, centre[index], r, epsilon)) return false;
+  if (!view.project(x, h) || h.j != row) return false;
+  index = static_cast<size_t>(camera.quilt_y(u, h.j)) * camera.width() + camera.quilt_x(u, h.i);
+  if (!on_centre_surface(view, centre[index], x, n, epsilon)) return false;
   // The eye's ray through x: from the eye, or along the axis when orthographic.
-  dir = view.desc().ortho_height > 0 ? view.axis() : normalize(r.surface.position - view.frame().origin);
+  dir = view.desc().ortho_height > 0 ? view.axis() : normalize(x - view.frame().origin);
   return true;
 }
 
@@ -123,23 +108,28 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
   const int W = camera.width(), H = camera.height(), views = camera.desc().columns * camera.desc().rows;
   const auto start = std::chrono::steady_clock::now();
   RayCounts first_pass;
+  const double epsilon = scene.epsilon();
   const std::vector<Centre> centre = centres(scene, camera, opt.threads, first_pass);
   FrameBuffers fb = allocate_frame(W, H, opt.aovs);
   std::vector<Taken> taken(static_cast<size_t>(W) * H);
   std::vector<Own> own(static_cast<size_t>(W) * H);
-  const int tiles_x = (W + kTile - 1) / kTile, tiles = tiles_x * ((H + kTile - 1) / kTile);
-  std::vector<RayCounts> tile_counts(static_cast<size_t>(tiles));
-  std::atomic<int> tiles_done{0};
-  const double epsilon = scene.epsilon();
-  parallel_for_n(tiles, opt.threads, [&](int tile) {
+  // A point is seen on the same row of every view (they differ by a move
+  // along the image's right vector: quilt_camera.hpp), so one task traces
+  // one row of every view and every sample it shares stays in that row: no
+  // two tasks write one pixel, and each pixel's sums are added in one order,
+  // the same for any thread count.
+  const int view_width = camera.desc().view_width, view_height = camera.desc().view_height;
+  std::vector<RayCounts> row_counts(static_cast<size_t>(view_height));
+  std::atomic<int> rows_done{0};
+  parallel_for_n(view_height, opt.threads, [&](int row) {
     RayCounts counts;
     FirstVertexRecord rec;
-    const int x0 = tile % tiles_x * kTile, y0 = tile / tiles_x * kTile;
-    for (int j = y0; j < std::min(y0 + kTile, H); ++j)
-      for (int i = x0; i < std::min(x0 + kTile, W); ++i) {
-        const int v = camera.view_at(i, j);
+    for (int v = 0; v < views; ++v)
+      for (int column = 0; column < view_width; ++column) {
+        const int i = camera.quilt_x(v, column), j = camera.quilt_y(v, row);
         const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
         const shading::vec2 shift = shading::hr_pixel_shift(seed);
+        const size_t p = static_cast<size_t>(j) * W + i;
         Vec3 shared, others;
         uint32_t shared_count = 0;
         SurfacePoint first;
@@ -156,7 +146,8 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
                                        k == 0 ? &first_hit : nullptr, k == 0 ? &first_found : nullptr, &rec);
           // Pooled with what the neighbours give only where they could give
           // it: on the surface this pixel's centre meets.
-          if (!rec.shareable || !on_centre_surface(camera.view(v), centre[static_cast<size_t>(j) * W + i], rec, epsilon)) {
+          const Vec3 x = rec.surface.position, n = rec.shareable ? normalize(rec.surface.ng) : Vec3{};
+          if (!rec.shareable || !on_centre_surface(camera.view(v), centre[p], x, n, epsilon)) {
             others += c;
             continue;
           }
@@ -164,19 +155,22 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
           for (int w = std::max(0, v - opt.share_views); w <= std::min(views - 1, v + opt.share_views); ++w) {
             size_t index;
             Vec3 dir, seen;
-            if (w == v || !seen_by(camera, centre, w, rec, epsilon, index, dir)) continue;
-            if (path_radiance_toward(scene, rec, dir, seen)) take(taken[index], seen);
+            if (w == v || !seen_by(camera, centre, w, row, x, n, epsilon, index, dir)) continue;
+            if (!path_radiance_toward(scene, rec, dir, seen)) continue;
+            Taken& t = taken[index];
+            t.sum[0] += static_cast<float>(seen.x), t.sum[1] += static_cast<float>(seen.y), t.sum[2] += static_cast<float>(seen.z);
+            ++t.count;
           }
         }
-        Own& o = own[static_cast<size_t>(j) * W + i];
+        Own& o = own[p];
         o = Own{{static_cast<float>(shared.x), static_cast<float>(shared.y), static_cast<float>(shared.z)},
                 {static_cast<float>(others.x), static_cast<float>(others.y), static_cast<float>(others.z)},
                 shared_count};
         store_pixel(fb, opt.aovs, i, j, Vec3{}, first_found ? &first : nullptr, first_hit.t, -first_line.dir);
       }
-    tile_counts[static_cast<size_t>(tile)] = counts;
-    const int done = ++tiles_done;
-    if (opt.progress) opt.progress(static_cast<double>(done) / tiles);
+    row_counts[static_cast<size_t>(row)] = counts;
+    const int done = ++rows_done;
+    if (opt.progress) opt.progress(static_cast<double>(done) / view_height);
   });
   // Every sample is in: each pixel's colour (the header's formula).
   parallel_for_n(H, opt.threads, [&](int j) {
@@ -188,15 +182,14 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
       for (int c = 0; c < 3; ++c) {
         double value = o.others[c] / opt.spp;
         if (o.shared_count > 0)
-          value += (static_cast<double>(o.shared_count) / opt.spp) * (o.shared[c] + t.sum[c] / kFixedScale) /
-                   (o.shared_count + t.count);
+          value += (static_cast<double>(o.shared_count) / opt.spp) * (o.shared[c] + t.sum[c]) / (o.shared_count + t.count);
         out[c] = static_cast<float>(value);
       }
     }
   });
   stats.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.rays = first_pass;
-  for (const RayCounts& c : tile_counts) stats.rays += c;
+  for (const RayCounts& c : row_counts) stats.rays += c;
   return fb;
 }
 
