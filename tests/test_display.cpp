@@ -372,6 +372,38 @@ TEST(Quilt, ViewsShareTheFocalPlaneAndShowParallaxAroundIt) {
   }
 }
 
+// Every view sees a point on the same row: the views differ by a move
+// along the image's right vector. A shared quilt gives each task one row of
+// all the views on the strength of it (render/view_sharing.hpp). Points
+// before, on and beyond the focal plane, on a mirrored screen too.
+TEST(Quilt, EveryViewSeesAPointOnTheSameRow) {
+  const SceneDesc desc = small_scene();
+  QuiltDesc q;
+  q.columns = 4, q.rows = 3, q.view_width = 40, q.view_height = 30, q.view_cone_deg = 40;
+  int checked = 0;
+  for (const bool mirrored : {false, true}) {
+    PinholeDesc centre = view_of(*desc.viewpoint, 40, 30);
+    centre.mirrored = mirrored;
+    const QuiltCamera cam(q, centre);
+    const Vec3 d = normalize(centre.at - centre.from), r = normalize(cross(d, centre.up)), u = cross(r, d);
+    const double D = length(centre.at - centre.from);
+    for (double a = -0.3; a <= 0.3; a += 0.1)
+      for (double b = -0.25; b <= 0.25; b += 0.05)
+        for (const double depth : {0.5, 1.0, 2.5}) {
+          const Vec3 p = centre.from + (d + r * a + u * b) * (D * depth);
+          PanelHit h0;
+          if (!cam.view(0).project(p, h0)) continue;
+          for (int k = 1; k < 12; ++k) {
+            PanelHit h;
+            if (!cam.view(k).project(p, h)) continue;
+            EXPECT_NEAR(h.j + h.v, h0.j + h0.v, 1e-9) << "view " << k << ", mirrored " << mirrored;
+            ++checked;
+          }
+        }
+  }
+  EXPECT_GT(checked, 500);
+}
+
 TEST(Quilt, FilesAreNamedAsLookingGlassToolsReadThem) {
   QuiltDesc q;  // 8x6 of 420x560: Looking Glass Portrait
   EXPECT_EQ(quilt_file_name("out.png", q), "out_qs8x6a0.75.png");
