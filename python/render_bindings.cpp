@@ -239,11 +239,14 @@ void bind_render(py::module_& m) {
       [](const py::object& scene_or_world, const py::handle& camera, std::optional<int> threads, int spp,
          std::optional<int> max_depth, const std::vector<std::string>& aovs, const py::object& progress,
          const std::string& device, const std::string& integrator, const py::object& environment,
-         double environment_strength, double environment_rotation, bool blender_principled, int share_views) {
+         double environment_strength, double environment_rotation, bool blender_principled, int share_views,
+         int64_t seed) {
         api::RenderOptions o =
             light_options(integrator, environment, environment_strength, environment_rotation, blender_principled, max_depth);
         o.device = device;
         o.share_views = share_views;
+        if (seed < 0 || seed > 4294967295LL) throw py::value_error("seed: expected 0 to 4294967295, got " + std::to_string(seed));
+        o.seed = static_cast<uint32_t>(seed);
         const api::Camera cam = camera_of(camera, "camera");
         if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
         if (spp < 1) throw py::value_error("spp: expected at least 1 sample per pixel");
@@ -308,7 +311,7 @@ void bind_render(py::module_& m) {
       py::arg("max_depth") = py::none(), py::arg("aovs") = std::vector<std::string>{}, py::arg("progress") = py::none(),
       py::arg("device") = "cpu", py::arg("integrator") = "whitted", py::arg("environment") = py::none(),
       py::arg("environment_strength") = 1.0, py::arg("environment_rotation") = 0.0, py::arg("blender_principled") = false,
-      py::arg("share_views") = 0,
+      py::arg("share_views") = 0, py::arg("seed") = 0,
       "Renders scene (a Scene, or a World built once for many renders) through camera: Result. With a World, the light "
       "options left at their defaults take the world's. Releases the GIL; Ctrl-C raises KeyboardInterrupt within half a second; "
       "progress(fraction) is called on the calling thread. device: 'cpu', 'gpu' (the first Vulkan GPU, else lavapipe) "
@@ -316,7 +319,7 @@ void bind_render(py::module_& m) {
       "environment: an equirectangular .hdr/.exr file or a colour (r, g, b), times environment_strength, turned by "
       "environment_rotation degrees about the up axis; blender_principled: glTF materials as Blender's Principled BSDF; "
       "share_views: a Quilt's views, path traced on the CPU, each take the samples of this many views on each side "
-      "(docs/guide/light.md).");
+      "(docs/guide/light.md); seed: the path integrator's, renders with different seeds having independent noise.");
   m.def(
       "gpu_devices",
       [] {

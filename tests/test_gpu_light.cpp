@@ -92,6 +92,24 @@ TEST(GpuPathIntegrator, EmissiveSurfacesLightAsOnTheCpu) {
   EXPECT_GE(both_devices(scene, view(40, 30), o), kAgree);
 }
 
+// A seed draws the same samples on both devices: seeded, the two images
+// agree as unseeded ones do, and differ from the unseeded.
+TEST(GpuPathIntegrator, ASeedDrawsTheSameSamplesOnBothDevices) {
+  TempDir dir;
+  write_text(dir.file("s.mtl"), "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 4 3 2\n");
+  write_text(dir.file("s.obj"),
+             "mtllib s.mtl\nv -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv -0.3 1 -0.3\nv 0.3 1 -0.3\nv 0.3 1 0.3\nv -0.3 1 0.3\n"
+             "usemtl floor\nf 1 4 3 2\nusemtl lamp\nf 5 6 7 8\n");
+  const Scene scene = Scene::load(dir.file("s.obj"));
+  RenderOptions o;
+  o.spp = 4;
+  Result unseeded, seeded;
+  EXPECT_GE(both_devices(scene, view(40, 30), o, &unseeded), kAgree);
+  o.seed = 12345;
+  EXPECT_GE(both_devices(scene, view(40, 30), o, &seeded), kAgree);
+  EXPECT_LT(api::psnr(unseeded.colour, seeded.colour), kAgree - 10);
+}
+
 // glTF's rough thin-walled transmission (shading/bsdf.h): a rough glass
 // square in front of a glowing one, lit through the glass by both the
 // BSDF's rays and the light sampling from behind it.

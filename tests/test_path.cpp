@@ -277,6 +277,43 @@ TEST(PathIntegrator, NoiseFallsByAboutSixDecibelsPerFourTimesTheSamples) {
   }
 }
 
+// Two seeds draw unrelated samples: the squared difference of their images
+// is the sum of each one's error against a converged image (the cross term,
+// their noises' correlation, near zero), as for two independent renders.
+// One seed renders the same image twice; Whitted's integrator, which draws
+// no random samples, refuses a seed.
+TEST(PathIntegrator, RendersWithDifferentSeedsHaveIndependentNoise) {
+  const test::TempDir tmp;
+  const std::string file = tmp.path.string() + "/s.nff";
+  std::ofstream(file) << "v\nfrom 0 -4 1\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 8 8\n"
+                         "f 0.7 0.6 0.5 1 0 0 0 1\ns 0 0 0 1\np 4\n-4 -4 -1\n4 -4 -1\n4 4 -1\n-4 4 -1\n";
+  const api::Scene scene = api::Scene::load(file);
+  api::Pinhole view;
+  view.width = view.height = 40;
+  auto render = [&](uint32_t seed, int spp) {
+    api::RenderOptions o;
+    o.integrator = api::Integrator::path;
+    o.environment.colour = std::array<double, 3>{1, 0.9, 0.8};
+    o.spp = spp;
+    o.seed = seed;
+    return api::Renderer(scene, api::Camera{view}, o).render().colour;
+  };
+  auto mse = [](const api::Image& a, const api::Image& b) {
+    double sum = 0;
+    for (size_t k = 0; k < a.size(); ++k) sum += (double(a.data()[k]) - b.data()[k]) * (double(a.data()[k]) - b.data()[k]);
+    return sum / double(a.size());
+  };
+  const api::Image ref = render(1000, 2048), a = render(0, 4), again = render(0, 4), b = render(1, 4);
+  EXPECT_EQ(mse(a, again), 0.0);
+  const double apart = mse(a, b), sum = mse(a, ref) + mse(b, ref);
+  EXPECT_GT(apart, 0.0);
+  EXPECT_NEAR(apart, sum, 0.15 * sum) << "seeds 0 and 1 apart " << apart << ", their errors' sum " << sum;
+  api::RenderOptions whitted;
+  whitted.seed = 3;
+  EXPECT_EQ(test::error_of([&] { api::Renderer(scene, api::Camera{view}, whitted); }),
+            "seed: Whitted's integrator draws no random samples: go with the path integrator");
+}
+
 // What the path integrator does not do yet is refused, saying why.
 TEST(PathIntegrator, TheApiRefusesWhatItCannotRenderSayingWhy) {
   const test::TempDir tmp;

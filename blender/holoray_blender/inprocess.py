@@ -85,7 +85,7 @@ def render(hr, gltf, job, progress):
         environment = w["environment"] or w["colour"]
         light = dict(integrator="path", blender_principled=job["blender_principled"], environment=environment,
                      environment_strength=w["strength"] if environment is not None else 1.0,
-                     environment_rotation=w["rotation"], share_views=job["share_views"])
+                     environment_rotation=w["rotation"], share_views=job["share_views"], seed=job["seed"])
     result = hr.render(scene, camera(hr, job), threads=job["threads"] or None, max_depth=job["max_depth"] or None,
                        aovs=job["aovs"], progress=progress, device=job["device"], spp=job["samples"], **light)
     return result, list(scene.warnings)

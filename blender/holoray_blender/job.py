@@ -25,8 +25,10 @@ def spec(scene, settings, camera_object, width, height, lights_file=None):
     defaults), 'device' ('cpu', 'gpu' or 'gpu:N'), 'aovs' (the AOVs the camera gives:
     none for panels), 'integrator' ('whitted' or 'path'), 'samples', and
     for path tracing 'world' (lighting.world()'s), 'lights' (the lights
-    file written for it, `lights_file`), 'blender_principled' and
-    'share_views' (a quilt's, on the CPU; else 0)."""
+    file written for it, `lights_file`), 'blender_principled',
+    'share_views' (a quilt's, on the CPU; else 0) and 'seed' (the
+    samples' seed, plus the frame's number with an animated seed, as
+    Cycles' Seed and Use Animated Seed)."""
     s = settings
     out = {"max_depth": s.max_depth, "threads": s.threads, "device": devices.device_argument(s),
            "integrator": "path" if path_tracing(s) else "whitted", "samples": s.samples, "world": None, "lights": None}
@@ -40,6 +42,7 @@ def spec(scene, settings, camera_object, width, height, lights_file=None):
         out["blender_principled"] = bpy.app.version < (4, 0, 0)
         # A quilt's views share their samples on the CPU only.
         out["share_views"] = s.share_views if s.camera == "QUILT" and out["device"] == "cpu" else 0
+        out["seed"] = (s.seed + (scene.frame_current if s.use_animated_seed else 0)) % 2**32
     if s.camera == "INTEGRAL":
         place = placement.array_placement(camera_object, width / height, s.mode == "PSEUDOSCOPIC")
         out.update(camera="integral", grid=s.grid.lower(), lenses=(s.lenses_x, s.lenses_y if s.grid != "LENTICULAR" else 1),
@@ -102,6 +105,8 @@ def cli_args(job):
         args += ["--integrator", "path"] + (["--blender-principled"] if job["blender_principled"] else [])
         if job["share_views"]:
             args += ["--share-views", str(job["share_views"])]
+        if job["seed"]:
+            args += ["--seed", str(job["seed"])]
         if job["lights"]:
             args += ["--lights", job["lights"]]
         w = job["world"]

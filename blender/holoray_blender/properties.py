@@ -124,6 +124,11 @@ class HoloraySettings(bpy.types.PropertyGroup):
         name="Shared views", default=0, min=0, max=16,
         description="A quilt path traced on the CPU: each view also takes the samples of this many views on each side "
                     "that see the same surface; less noise where light, not edges, makes it (docs/guide/light.md). 0: none")
+    seed: IntProperty(name="Seed", default=0, min=0,
+                      description="Path tracing: the samples' seed; renders with different seeds have independent noise")
+    use_animated_seed: BoolProperty(name="Animated seed", default=False,
+                                    description="Path tracing: the frame's number added to the seed, so that each frame's "
+                                                "noise is its own")
     max_depth: IntProperty(name="Ray depth", default=0, min=0, max=16,
                            description="0: 5, holoray's default (path tracing: Cycles' bounces plus 1)")
     threads: IntProperty(name="Threads", default=0, min=0, description="0: all cores")

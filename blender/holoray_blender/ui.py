@@ -68,6 +68,10 @@ class HOLORAY_PT_tracing(_RenderPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(s, "integrator")
         layout.prop(s, "samples")
+        if s.integrator == "PATH":
+            row = layout.row(align=True)
+            row.prop(s, "seed")
+            row.prop(s, "use_animated_seed", text="", icon="TIME")
         if s.camera == "QUILT" and s.integrator == "PATH" and s.device == "CPU":
             layout.prop(s, "share_views")
         layout.prop(s, "max_depth")

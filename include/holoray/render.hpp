@@ -104,6 +104,12 @@ struct RenderOptions {
   /// samples a pixel for the price of one and a little, where the views
   /// see the same surface; mirror and glass are not shared. 0: none.
   int share_views = 0;
+  /// The path integrator's seed: renders with different seeds draw
+  /// unrelated samples, so their noise is independent (Cycles' Seed); one
+  /// seed gives the same image every time. Whitted's integrator draws no
+  /// random samples: a seed other than 0 with it is refused
+  /// (std::invalid_argument).
+  uint32_t seed = 0;
   Aovs aovs;
   Style style = Style::automatic;
   ShadowCacheOptions cache;

@@ -60,6 +60,8 @@ void check_options(const RenderOptions& o) {
     throw std::invalid_argument("share_views: views share path samples: go with the path integrator");
   if (o.share_views > 0 && parse_device(o.device).gpu)
     throw std::invalid_argument("share_views: views share their samples on the CPU only");
+  if (o.seed != 0 && o.integrator != Integrator::path)
+    throw std::invalid_argument("seed: Whitted's integrator draws no random samples: go with the path integrator");
 }
 
 // A mesh file's camera, and where the focal plane stands when the file
@@ -229,6 +231,7 @@ void Renderer::set_up(const World& world, const RenderOptions& options, Clock::t
   s.world = detail::WorldAccess::state(world);
   const RenderScene& scene = *s.world->render_scene;
   s.settings = s.world->settings;
+  s.settings.sample_salt = options.seed;
   const FrameCamera& frame_camera = s.camera();
   const DeviceChoice device = parse_device(options.device);
   // Embree's hierarchy is the CPU path's (built once for all the world's

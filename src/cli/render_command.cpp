@@ -165,6 +165,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
     for (CLI::Option* b : {origin, normal, up})
       if (a != b) a->needs(b);
   cmd->add_option("--spp", o.spp, "Samples per pixel (jittered inside the pixel)")->check(in_range(1))->capture_default_str();
+  cmd->add_option("--seed", o.seed,
+                  "With --integrator path: the samples' seed, 0 to 4294967295; renders with different seeds have "
+                  "independent noise (as Cycles' Seed)")
+      ->check(in_range(0, 4294967295.0))
+      ->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(in_range(0))->capture_default_str();
   cmd->add_option("--max-depth", o.max_depth, "Ray-tree depth limit, eye ray = 1 (default: the scene's Tachyon raydepth, else 5, the SPD's)")
       ->check(in_range(1, api::kMaxDepth));
@@ -195,7 +200,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& o) {
                             "--view-cone", "--quilt-view", "--share-views", "--focus-distance"}},
                 {"Lens array", {"--grid", "--lenses", "--pixels-per-lens", "--rows", "--fov-lens", "--gap", "--pitch", "--mode",
                                 "--view-distance", "--origin", "--normal", "--up"}},
-                {"Tracing", {"--device", "--spp", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
+                {"Tracing", {"--device", "--spp", "--seed", "--threads", "--max-depth", "--style", "--cache", "--cache-cell", "--cache-memory"}},
                 {"Light", light_option_names(true)}},
                {"holoray render examples/primitives.nff --grid hex --lenses 48x48 --pixels-per-lens 10 -o eia.png",
                 "holoray render examples/primitives.nff --display examples/displays/lenticular_4k.toml -o panel.png"},
@@ -273,6 +278,7 @@ void print_summary(const RenderCommandOptions& o, const api::Scene& scene, const
              o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency(),
              o.light.integrator == "path"
                  ? std::string("path integrator") +
+                       (o.seed != 0 ? fmt::format(", seed {}", o.seed) : "") +
                        (o.share_views > 0 ? fmt::format(", views sharing samples with {} on each side", o.share_views) : "")
                  : fmt::format("{} style", renderer.style_name()),
              world.distributed() ? fmt::format(" per rank; {} ranks, bands of rows, wall time with the gather in {:.3f} s ({:.1f} MiB)",
@@ -320,6 +326,9 @@ int run_render(const RenderCommandOptions& o, const cluster::World& world) {
     if (o.share_views > 0 && o.device != "cpu")
       throw std::invalid_argument("--share-views: views share their samples on the CPU only: leave --device at cpu");
     ropt.share_views = o.share_views;
+    if (o.seed != 0 && light.integrator != api::Integrator::path)
+      throw std::invalid_argument("--seed: Whitted's integrator draws no random samples: go with --integrator path");
+    ropt.seed = static_cast<uint32_t>(o.seed);
     ropt.aovs = aovs;
     ropt.style = style;
     // Several ranks on a machine share its GPUs out, one each in turn.

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct RenderCommandOptions {
   std::string scene, output;
   std::string grid = "square", mode = "orthoscopic", lenses = "64x64", aovs, encoding = "auto", style = "auto", device = "cpu";
   int pixels_per_lens = 8, rows = 0, spp = 1, threads = 0, max_depth = 0;  // max_depth 0: the scene's, else 5
+  int64_t seed = 0;  // 0 to 2^32 - 1 (api::RenderOptions::seed)
   LightCommandOptions light;  ///< --integrator, --lights, --environment...
   double fov_lens = NAN, gap = NAN, pitch = NAN, view_distance = INFINITY;  // NaN: not given
   std::string origin, normal, up;

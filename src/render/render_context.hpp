@@ -43,7 +43,8 @@ struct RenderSettings {
   /// Appendix B: for scenes exported from Blender, compared with Cycles.
   bool principled = false;
   /// Mixed into every pixel's sampler seed: two renders with different
-  /// salts (a shot's frames) draw unrelated samples.
+  /// salts draw unrelated samples (api::RenderOptions::seed; a shot's
+  /// frames all take 0, as Cycles' frames take one seed by default).
   uint32_t sample_salt = 0;
 };
 

@@ -198,21 +198,25 @@ def test_a_quilt_has_its_views_size_times_its_layout(tmp_path):
     assert "Traceback" not in log
 
 
-def test_a_quilts_views_share_their_samples_the_same_both_ways(tmp_path):
-    # Shared views (path tracing, the default, on the CPU) reach holoray
-    # through the module and through the program alike: the same image,
-    # and not the unshared one.
+def test_shared_views_and_the_seed_reach_holoray_the_same_both_ways(tmp_path):
+    # Shared views (path tracing, the default, on the CPU) and the seed
+    # reach holoray through the module and through the program alike: the
+    # same image, and not the unshared or unseeded one.
     build("quilt", tmp_path)
     images = {}
-    for backend, share in (("MODULE", 2), ("PROGRAM", 2), ("PROGRAM", 0)):
-        python = f"bpy.context.scene.holoray.share_views = {share}; bpy.context.scene.holoray.samples = 4"
+    for backend, share, seed in (("MODULE", 2, 0), ("PROGRAM", 2, 0), ("PROGRAM", 0, 0), ("MODULE", 0, 5), ("PROGRAM", 0, 5)):
+        python = (f"bpy.context.scene.holoray.share_views = {share}; bpy.context.scene.holoray.seed = {seed}; "
+                  "bpy.context.scene.holoray.samples = 4")
         log = render(tmp_path, backend=backend, python=python)
         assert f"({backend.lower()})" in log and "Traceback" not in log, log[-3000:]
-        images[backend, share] = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
+        images[backend, share, seed] = holoray.read_image(tmp_path / "frame_0001.exr")[:, :, :3]
         (tmp_path / "frame_0001.exr").unlink()
-    module, program, unshared = images["MODULE", 2], images["PROGRAM", 2], images["PROGRAM", 0]
-    assert np.abs(module - program).max() <= 1.2e-7 * max(1.0, np.abs(program).max())
-    assert np.abs(program - unshared).max() > 1e-3
+    close = lambda a, b: np.abs(a - b).max() <= 1.2e-7 * max(1.0, np.abs(b).max())
+    unshared = images["PROGRAM", 0, 0]
+    assert close(images["MODULE", 2, 0], images["PROGRAM", 2, 0])
+    assert np.abs(images["PROGRAM", 2, 0] - unshared).max() > 1e-3
+    assert close(images["MODULE", 0, 5], images["PROGRAM", 0, 5])
+    assert np.abs(images["PROGRAM", 0, 5] - unshared).max() > 1e-3
 
 
 def test_the_array_stands_at_the_focus_distance_facing_the_camera(tmp_path):

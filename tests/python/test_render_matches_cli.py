@@ -117,6 +117,9 @@ CASES = {
     "quilt_path_shared_views": lambda f: _case(
         ["--quilt", "4x2", "--resolution", "20x16", "--integrator", "path", "--spp", "2", "--share-views", "2"],
         holoray.Quilt(4, 2, view_resolution=(20, 16)), integrator="path", spp=2, share_views=2),
+    "pinhole_path_seed": lambda f: _case(
+        ["--camera", "pinhole", "--resolution", "48x32", "--integrator", "path", "--spp", "2", "--seed", "9"],
+        holoray.Pinhole(resolution=(48, 32)), integrator="path", spp=2, seed=9),
     "display_slanted_rgb": lambda f: _case(["--display", f["slanted.toml"]], holoray.Display(f["slanted.toml"])),
     "display_whole_pixels_square": lambda f: _case(["--display", f["square.toml"]], holoray.Display(f["square.toml"])),
     "display_hex_bgr_pseudoscopic": lambda f: _case(["--display", f["hex.toml"]], holoray.Display(str(f["hex.toml"]))),
