@@ -78,15 +78,20 @@ TEST(GpuPathIntegrator, AnAreaLightFromALightsFileLightsTheCornellBoxAsOnTheCpu)
   EXPECT_GT(sum / double(n * 3), 0.05);
 }
 
-// Emissive triangles are drawn as lights by power (render/emitters.hpp) on
-// both devices, and met by the BSDF's rays with the same MIS weights.
-TEST(GpuPathIntegrator, EmissiveSurfacesLightAsOnTheCpu) {
-  TempDir dir;
+// A floor lit only by an emissive square above it (an OBJ's Ke).
+Scene lamp_over_floor(const TempDir& dir) {
   write_text(dir.file("s.mtl"), "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 4 3 2\n");
   write_text(dir.file("s.obj"),
              "mtllib s.mtl\nv -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv -0.3 1 -0.3\nv 0.3 1 -0.3\nv 0.3 1 0.3\nv -0.3 1 0.3\n"
              "usemtl floor\nf 1 4 3 2\nusemtl lamp\nf 5 6 7 8\n");
-  const Scene scene = Scene::load(dir.file("s.obj"));
+  return Scene::load(dir.file("s.obj"));
+}
+
+// Emissive triangles are drawn as lights by power (render/emitters.hpp) on
+// both devices, and met by the BSDF's rays with the same MIS weights.
+TEST(GpuPathIntegrator, EmissiveSurfacesLightAsOnTheCpu) {
+  TempDir dir;
+  const Scene scene = lamp_over_floor(dir);
   RenderOptions o;
   o.spp = 16;
   EXPECT_GE(both_devices(scene, view(40, 30), o), kAgree);
@@ -96,11 +101,7 @@ TEST(GpuPathIntegrator, EmissiveSurfacesLightAsOnTheCpu) {
 // agree as unseeded ones do, and differ from the unseeded.
 TEST(GpuPathIntegrator, ASeedDrawsTheSameSamplesOnBothDevices) {
   TempDir dir;
-  write_text(dir.file("s.mtl"), "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 4 3 2\n");
-  write_text(dir.file("s.obj"),
-             "mtllib s.mtl\nv -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv -0.3 1 -0.3\nv 0.3 1 -0.3\nv 0.3 1 0.3\nv -0.3 1 0.3\n"
-             "usemtl floor\nf 1 4 3 2\nusemtl lamp\nf 5 6 7 8\n");
-  const Scene scene = Scene::load(dir.file("s.obj"));
+  const Scene scene = lamp_over_floor(dir);
   RenderOptions o;
   o.spp = 4;
   Result unseeded, seeded;
