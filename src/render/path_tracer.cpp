@@ -196,13 +196,13 @@ using shading::HrPathDevice;
 
 bool any_positive(const shading::vec3& v) { return v.x > 0 || v.y > 0 || v.z > 0; }
 
-// Turns the record of a traced path into FirstVertexRecord's terms: each
-// next-event term over f at x, the bounce's share (what the path gathered
-// past x) over f along the bounce, and whether it may be shared.
 // The shading normal on the side of the surface an eye looking along
 // `eye_dir` sees, as hr_path_vertex turns it.
 Vec3 eye_side_normal(const SurfacePoint& s, const Vec3& eye_dir) { return dot(s.ng, eye_dir) <= 0 ? s.ns : -s.ns; }
 
+// Turns the record of a traced path into FirstVertexRecord's terms: each
+// next-event term over f at x, the bounce's share (what the path gathered
+// past x) over f along the bounce, and whether it may be shared.
 void finish_record(HrPathDevice& d, FirstVertexRecord& r, const Vec3& radiance, bool found) {
   if (!found || r.sphere || r.overflow) return;
   const shading::HrPathHit h{r.hit, r.surface};

@@ -40,6 +40,11 @@ struct Own {
   uint32_t shared_count = 0;
 };
 
+void take(Taken& t, const Vec3& c) {
+  t.sum[0] += static_cast<float>(c.x), t.sum[1] += static_cast<float>(c.y), t.sum[2] += static_cast<float>(c.z);
+  ++t.count;
+}
+
 // The first pass: each quilt pixel's centre ray.
 std::vector<Centre> centres(const RenderContext& scene, const QuiltCamera& camera, int threads, RayCounts& counts) {
   const int W = camera.width(), H = camera.height();
@@ -156,10 +161,7 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
             size_t index;
             Vec3 dir, seen;
             if (w == v || !seen_by(camera, centre, w, row, x, n, epsilon, index, dir)) continue;
-            if (!path_radiance_toward(scene, rec, dir, seen)) continue;
-            Taken& t = taken[index];
-            t.sum[0] += static_cast<float>(seen.x), t.sum[1] += static_cast<float>(seen.y), t.sum[2] += static_cast<float>(seen.z);
-            ++t.count;
+            if (path_radiance_toward(scene, rec, dir, seen)) take(taken[index], seen);
           }
         }
         Own& o = own[p];
