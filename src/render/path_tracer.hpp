@@ -96,16 +96,18 @@ struct PathFirstHit {
   SurfacePoint surface;
 };
 
-/// The sum of the `spp` samples of pixel (i, j) under the path integrator,
+/// Each of the `spp` samples of pixel (i, j) under the path integrator,
 /// placed in it by the pixel's sampler (shading/sampler.h: sample 0 at the
-/// centre). `primary(u, v, pr, escape)` gives the pixel's primary ray at
+/// centre), given to `sample(c)` as its radiance c (linear RGB) in sample
+/// order. `primary(u, v, pr, escape)` gives the pixel's primary ray at
 /// (u, v) in the pixel, or false with `escape` the direction (world, unit)
 /// its light would arrive along when its line misses the scene: every
 /// camera's renderer says only that. `first` gets sample 0's hit.
-template <class Primary>
-Vec3 path_pixel_sum(const RenderContext& scene, int i, int j, int spp, RayCounts& counts, Primary&& primary,
-                    PathFirstHit& first) {
-  Vec3 sum;
+/// `record` (optional) holds, while `sample` runs, that sample's first
+/// vertex (FirstVertexRecord; not shareable for a line that missed).
+template <class Primary, class Sample>
+void path_pixel_samples(const RenderContext& scene, int i, int j, int spp, RayCounts& counts, Primary&& primary,
+                        PathFirstHit& first, FirstVertexRecord* record, Sample&& sample) {
   first = PathFirstHit{};
   const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
   const shading::vec2 shift = shading::hr_pixel_shift(seed);
@@ -115,16 +117,25 @@ Vec3 path_pixel_sum(const RenderContext& scene, int i, int j, int spp, RayCounts
     PrimaryRay pr;
     Vec3 escape;
     if (!primary(u.x, u.y, pr, escape)) {
-      sum += path_escape(scene, escape);
+      if (record) record->clear(escape);
+      sample(path_escape(scene, escape));
       continue;
     }
     ++counts.eye;
     SurfacePoint sp;
     Hit hit;
     bool found = false;
-    sum += path_radiance(scene, pr.ray, sampler, counts, &sp, &hit, &found);
+    sample(path_radiance(scene, pr.ray, sampler, counts, &sp, &hit, &found, record));
     if (k == 0 && found) first = PathFirstHit{true, pr, hit, sp};
   }
+}
+
+/// The sum of path_pixel_samples' samples.
+template <class Primary>
+Vec3 path_pixel_sum(const RenderContext& scene, int i, int j, int spp, RayCounts& counts, Primary&& primary,
+                    PathFirstHit& first) {
+  Vec3 sum;
+  path_pixel_samples(scene, i, j, spp, counts, primary, first, nullptr, [&](const Vec3& c) { sum += c; });
   return sum;
 }
 

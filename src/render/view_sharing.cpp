@@ -132,29 +132,23 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
     for (int v = 0; v < views; ++v)
       for (int column = 0; column < view_width; ++column) {
         const int i = camera.quilt_x(v, column), j = camera.quilt_y(v, row);
-        const uint32_t seed = shading::hr_pixel_seed(static_cast<uint32_t>(i), static_cast<uint32_t>(j), scene.settings().sample_salt);
-        const shading::vec2 shift = shading::hr_pixel_shift(seed);
         const size_t p = static_cast<size_t>(j) * W + i;
         Vec3 shared, others;
         uint32_t shared_count = 0;
-        SurfacePoint first;
-        Hit first_hit;
-        bool first_found = false;
-        PixelLine first_line{};
-        for (int k = 0; k < opt.spp; ++k) {
-          shading::HrSampler sampler = shading::hr_sampler(seed, static_cast<uint32_t>(k));
-          const shading::vec2 u = shading::hr_pixel_position(sampler, shift);
-          const PixelLine line = camera.line(i, j, u.x, u.y);
-          if (k == 0) first_line = line;
-          ++counts.eye;
-          const Vec3 c = path_radiance(scene, Ray{line.origin, line.dir, 0, INFINITY}, sampler, counts, k == 0 ? &first : nullptr,
-                                       k == 0 ? &first_hit : nullptr, k == 0 ? &first_found : nullptr, &rec);
+        PathFirstHit first;
+        const auto eye_ray = [&](double pu, double pv, PrimaryRay& pr, Vec3& escape) {
+          const PixelLine line = camera.line(i, j, pu, pv);
+          pr = PrimaryRay{Ray{line.origin, line.dir, 0, INFINITY}, 0, 1};
+          escape = line.dir;
+          return true;
+        };
+        path_pixel_samples(scene, i, j, opt.spp, counts, eye_ray, first, &rec, [&](const Vec3& c) {
           // Pooled with what the neighbours give only where they could give
           // it: on the surface this pixel's centre meets.
           const Vec3 x = rec.surface.position, n = rec.shareable ? normalize(rec.surface.ng) : Vec3{};
           if (!rec.shareable || !on_centre_surface(camera.view(v), centre[p], x, n, epsilon)) {
             others += c;
-            continue;
+            return;
           }
           shared += c, ++shared_count;
           for (int w = std::max(0, v - opt.share_views); w <= std::min(views - 1, v + opt.share_views); ++w) {
@@ -163,12 +157,12 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
             if (w == v || !seen_by(camera, centre, w, row, x, n, epsilon, index, dir)) continue;
             if (path_radiance_toward(scene, rec, dir, seen)) take(taken[index], seen);
           }
-        }
+        });
         Own& o = own[p];
         o = Own{{static_cast<float>(shared.x), static_cast<float>(shared.y), static_cast<float>(shared.z)},
                 {static_cast<float>(others.x), static_cast<float>(others.y), static_cast<float>(others.z)},
                 shared_count};
-        store_pixel(fb, opt.aovs, i, j, Vec3{}, first_found ? &first : nullptr, first_hit.t, -first_line.dir);
+        store_pixel(fb, opt.aovs, i, j, Vec3{}, first.found ? &first.surface : nullptr, first.hit.t, -first.primary.ray.dir);
       }
     row_counts[static_cast<size_t>(row)] = counts;
     const int done = ++rows_done;
