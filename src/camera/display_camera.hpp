@@ -85,6 +85,10 @@ class DisplayCamera {
   /// project nowhere.
   void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
+  /// The constants its lines are computed from (camera/line_constants.h),
+  /// which the GPU's kernel reads too (gpu/shaders/layout.h, GpuFrame).
+  const camera_lines::HrPanelGrid& line_constants() const { return grid_; }
+
  private:
   // Across- and along-axis coordinates of a lens-plane point (lenticular).
   double across(const Vec3& p) const { return camera_lines::hr_panel_across(grid_, p); }

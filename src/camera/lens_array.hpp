@@ -154,6 +154,10 @@ class LensArray {
   /// Row-major lens number, lx + ly * lens_count_x().
   int lens_number(LensIndex l) const { return l.x + l.y * lens_count_x(); }
 
+  /// The constants its lines are computed from (camera/line_constants.h),
+  /// which the GPU's kernel reads too (gpu/shaders/layout.h, GpuFrame).
+  const camera_lines::HrLensGrid& line_constants() const { return grid_; }
+
  private:
   LensIndex hex_lens_of_pixel(int i, int j) const;
   void project_local(const Vec3& x, std::vector<PanelHit>& out) const;

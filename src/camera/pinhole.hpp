@@ -105,6 +105,10 @@ class PinholeCamera {
   /// Camera::project: the one pixel of project(p, PanelHit&), if any.
   void project(const Vec3& p_world, std::vector<PanelHit>& out) const;
 
+  /// The constants its lines are computed from (camera/line_constants.h),
+  /// which the GPU's kernel reads too (gpu/shaders/layout.h, GpuFrame).
+  const camera_lines::HrPinhole& line_constants() const { return lines_; }
+
  private:
   PinholeDesc desc_;
   Frame frame_;            // x = image right, y = image up, z = -d (toward the eye)

@@ -43,18 +43,10 @@ int hr_round(float x) { return int(floor(x + 0.5)); }
 HR_FN hr_vec3 hr_to_world_point(HrFrame f, hr_vec3 p) { return f.origin + f.x * p.x + f.y * p.y + f.z * p.z; }
 HR_FN hr_vec3 hr_to_world_dir(HrFrame f, hr_vec3 d) { return f.x * d.x + f.y * d.y + f.z * d.z; }
 
-// ---- the integral camera's lens array (camera/lens_array.hpp) ----
+// Each camera's constants, as its line functions below take them.
+#include "camera/line_constants.h"
 
-/// A lens array over its panel, whole pixels per lens: `grid` one of
-/// HR_LINE_GRID_*; lenses_y is 1 for a lenticular sheet. Lengths in scene
-/// units: s the pixel pitch (pitch / pixels_per_lens), half_w and half_h
-/// half the panel, row_step a hex grid's row spacing (pitch sqrt(3)/2).
-/// A lenticular sheet's lines converge on a viewer at view_distance when
-/// `converging` is 1, else stay level (an infinite distance).
-struct HrLensGrid {
-  int grid, pixels_per_lens, lenses_x, lenses_y, converging;
-  hr_real pitch, gap, s, half_w, half_h, row_step, view_distance;
-};
+// ---- the integral camera's lens array (camera/lens_array.hpp) ----
 
 /// The hex lens of pixel (i, j): the nearest centre, in pixel units from the
 /// top-left corner (x offsets are multiples of 1/2, so ties within a row
@@ -133,17 +125,6 @@ HR_FN void hr_lens_array_line(HrLensGrid g, int i, int j, hr_real u, hr_real v, 
 
 // ---- a display's panel, lenses of any pitch (camera/display_camera.hpp) ----
 
-/// A display's lens grid over its panel, sample by sample (one or three a
-/// pixel): sample_width across, pixel_pitch down; `left` where the grid
-/// starts on the middle row (across the axis for a lenticular sheet, whose
-/// axes lean by the slant: sin_slant, cos_slant); row_step a hex grid's row
-/// spacing. Lengths in scene units. Lenticular lines converge on a viewer
-/// at view_distance when `converging` is 1.
-struct HrPanelGrid {
-  int grid, converging;
-  hr_real pitch, gap, sample_width, pixel_pitch, half_w, half_h, left, row_step, sin_slant, cos_slant, view_distance;
-};
-
 /// Sample c of row j at (u, v) inside it, on the panel plane z = -gap.
 HR_FN hr_vec3 hr_panel_sample_point(HrPanelGrid g, int c, int j, hr_real u, hr_real v) {
   return hr_vec3((hr_real(c) + u) * g.sample_width - g.half_w, g.half_h - (hr_real(j) + v) * g.pixel_pitch, -g.gap);
@@ -217,15 +198,6 @@ HR_FN void hr_panel_line(HrPanelGrid g, int c, int j, hr_real u, hr_real v, HR_O
 
 // ---- a pinhole view (camera/pinhole.hpp) ----
 
-/// A pinhole (or orthographic, `ortho` 1) view of width x height pixels;
-/// `pixel` one pixel's size on the image plane at distance 1 (orthographic:
-/// on the eye's plane); (sample_u, sample_v) where in its pixel the sample
-/// at (0.5, 0.5) lands; the window shifted by (shift_x, shift_y).
-struct HrPinhole {
-  int width, height, ortho;
-  hr_real pixel, sample_u, sample_v, shift_x, shift_y;
-};
-
 /// Where pixel (i, j)'s sample at (u, v) lies on the image plane (the
 /// view's frame; distance 1, orthographic: the eye's plane), its window
 /// shifted by (shift_x, shift_y).
@@ -253,16 +225,6 @@ HR_FN void hr_pinhole_line(HrPinhole c, HrFrame f, int i, int j, hr_real u, hr_r
 }
 
 // ---- a Looking Glass's native panel (display/looking_glass.hpp) ----
-
-/// A Looking Glass's panel as the continuous version of its quilt: `views`
-/// views over a cone of view_cone_deg degrees, each the `centre` view
-/// (perspective, no vertical shift) sheared about the zero-parallax plane
-/// at `distance`.
-struct HrLookingGlass {
-  HrPinhole centre;
-  int views;
-  hr_real view_cone_deg, distance;
-};
 
 /// The subpixel cell of pixel (i, j) (the calibration's cell pattern
 /// 0 to 4, as the official shader's GetCellForPixel: the row counted from

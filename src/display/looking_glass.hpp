@@ -114,6 +114,10 @@ class LookingGlassCamera {
   double pixel_size() const { return pixel_; }
   int views() const { return views_; }
 
+  /// The constants its lines are computed from (camera/line_constants.h),
+  /// which the GPU's kernel reads too (gpu/shaders/layout.h, GpuFrame).
+  const camera_lines::HrLookingGlass& line_constants() const { return lines_; }
+
  private:
   LookingGlassCalibration c_;
   PinholeDesc centre_;

@@ -357,9 +357,9 @@ namespace {
 // the rows rendered, and the renderer's box (the scene's bounds grown
 // by epsilon: renderer.cpp, grown()) that lens arrays and panels clip to.
 GpuFrame scene_frame(const RenderContext& context, const AovSet& aovs, int row0, int row1) {
-  GpuFrame f;
+  GpuFrame f{};
   const double eps = context.epsilon();
-  f.extent.w = float(eps);
+  f.clip = {0, INFINITY, float(eps), 0};
   const int bits_ = (aovs.albedo ? HR_AOV_ALBEDO : 0) | (aovs.depth ? HR_AOV_DEPTH : 0) | (aovs.normal ? HR_AOV_NORMAL : 0) |
                     (aovs.id ? HR_AOV_ID : 0);
   f.counts = {int(context.lights().size()), bits_, context.max_depth(), int(context.object_count())};
@@ -399,8 +399,7 @@ void set_frame(GpuFrame& f, const Frame& fr) {
   f.origin = v4(fr.origin), f.axis_x = v4(fr.x), f.axis_y = v4(fr.y), f.axis_z = v4(fr.z);
 }
 
-// The kernel hands F.mode.y (a lens array's) and F.panel_kind.z (a panel's)
-// to the shared line functions as their grid.
+// F.mode.y names a lens array's grid as the shared line functions do.
 static_assert(HR_GRID_SQUARE == HR_LINE_GRID_SQUARE && HR_GRID_HEX == HR_LINE_GRID_HEX &&
               HR_GRID_LENTICULAR == HR_LINE_GRID_LENTICULAR);
 int grid_of(Grid g) { return g == Grid::square ? HR_GRID_SQUARE : g == Grid::hex ? HR_GRID_HEX : HR_GRID_LENTICULAR; }
@@ -413,6 +412,28 @@ double high_part(double x) {
 }
 double fraction(double x) { return x - std::floor(x); }
 
+// A CPU camera's constants in float, as the kernel reads them (GpuFrame).
+// Each field is named, so that one added to camera/line_constants.h and not
+// here is a compiler warning (missing initializer).
+HrLensGrid narrowed(const camera_lines::HrLensGrid& g) {
+  return {.grid = g.grid, .pixels_per_lens = g.pixels_per_lens, .lenses_x = g.lenses_x, .lenses_y = g.lenses_y,
+          .converging = g.converging, .pitch = float(g.pitch), .gap = float(g.gap), .s = float(g.s), .half_w = float(g.half_w),
+          .half_h = float(g.half_h), .row_step = float(g.row_step), .view_distance = float(g.view_distance)};
+}
+HrPanelGrid narrowed(const camera_lines::HrPanelGrid& g) {
+  return {.grid = g.grid, .converging = g.converging, .pitch = float(g.pitch), .gap = float(g.gap),
+          .sample_width = float(g.sample_width), .pixel_pitch = float(g.pixel_pitch), .half_w = float(g.half_w),
+          .half_h = float(g.half_h), .left = float(g.left), .row_step = float(g.row_step), .sin_slant = float(g.sin_slant),
+          .cos_slant = float(g.cos_slant), .view_distance = float(g.view_distance)};
+}
+HrPinhole narrowed(const camera_lines::HrPinhole& c) {
+  return {.width = c.width, .height = c.height, .ortho = c.ortho, .pixel = float(c.pixel), .sample_u = float(c.sample_u),
+          .sample_v = float(c.sample_v), .shift_x = float(c.shift_x), .shift_y = float(c.shift_y)};
+}
+HrLookingGlass narrowed(const camera_lines::HrLookingGlass& g) {
+  return {.centre = narrowed(g.centre), .views = g.views, .view_cone_deg = float(g.view_cone_deg), .distance = float(g.distance)};
+}
+
 }  // namespace
 
 GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, const AovSet& aovs, int spp, int row0,
@@ -420,12 +441,9 @@ GpuFrame frame_constants(const RenderContext& context, const LensArray& camera, 
   const LensArrayDesc& d = camera.desc();
   GpuFrame f = scene_frame(context, aovs, row0, row1);
   set_frame(f, d.frame);
-  f.lens = {float(d.pitch), float(d.gap), float(camera.pixel_pitch()),
-            d.grid == Grid::lenticular && std::isfinite(d.view_distance) ? float(d.view_distance) : 0.0f};
-  const double s = camera.pixel_pitch();
-  f.extent = {float(camera.width() * s / 2), float(camera.height() * s / 2), float(d.pitch * std::sqrt(3.0) / 2), f.extent.w};
-  f.size = {camera.width(), camera.height(), d.pixels_per_lens, d.lenses_x};
-  f.mode = {d.lenses_y, grid_of(d.grid), d.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
+  f.lens_grid = narrowed(camera.line_constants());
+  f.size = {camera.width(), camera.height(), 0, 0};
+  f.mode = {0, grid_of(d.grid), d.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
   f.tile = {0, 0, camera.width(), 0};
   return f;
 }
@@ -435,14 +453,14 @@ GpuFrame frame_constants(const RenderContext& context, const PinholeCamera& came
   const PinholeDesc& d = camera.desc();
   GpuFrame f = scene_frame(context, aovs, row0, row1);
   set_frame(f, camera.frame());
-  f.size = {camera.width(), camera.height(), 1, 1};
+  f.pinhole = narrowed(camera.line_constants());
+  f.size = {camera.width(), camera.height(), 0, 0};
   // The normals face the eye, as a pseudoscopic array's face the lens.
-  f.mode = {1, HR_PINHOLE, HR_PSEUDOSCOPIC, spp};
+  f.mode = {0, HR_PINHOLE, HR_PSEUDOSCOPIC, spp};
   f.tile = {0, 0, camera.width(), 0};
   // Not clipped to the box: w of box_hi alone says whether the scene is empty.
   f.box_lo = {0, 0, 0, 0}, f.box_hi = {0, 0, 0, context.bounds().empty() ? 1.0f : 0.0f};
-  f.view = {float(camera.pixel_size()), float(d.shift_x), float(d.shift_y), float(d.sample_u)};
-  f.view_clip = {float(d.sample_v), float(d.clip_near), float(d.clip_far), d.ortho_height > 0 ? 1.0f : 0.0f};
+  f.clip.x = float(d.clip_near), f.clip.y = float(d.clip_far);
   return f;
 }
 
@@ -451,33 +469,23 @@ GpuFrame frame_constants(const RenderContext& context, const DisplayCamera& came
   const DisplayGeometry& g = camera.geometry();
   GpuFrame f = scene_frame(context, AovSet{}, row0, row1);
   set_frame(f, g.frame);
-  f.lens = {float(g.pitch), float(g.gap), float(g.pixel_pitch),
-            g.grid == Grid::lenticular && std::isfinite(g.view_distance) ? float(g.view_distance) : 0.0f};
-  f.extent = {float(g.width * g.pixel_pitch / 2), float(g.height * g.pixel_pitch / 2), float(g.pitch * std::sqrt(3.0) / 2),
-              f.extent.w};
-  f.size = {camera.width(), camera.height(), 1, 1};
-  f.mode = {1, HR_DISPLAY, g.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
+  f.panel_grid = narrowed(camera.line_constants());
+  f.size = {camera.width(), camera.height(), 0, 0};
+  f.mode = {0, HR_DISPLAY, g.mode == RecordingMode::orthoscopic ? HR_ORTHOSCOPIC : HR_PSEUDOSCOPIC, spp};
   f.tile = {0, 0, g.width, 0};
-  // DisplayCamera's left_: the grid starts at the panel's left edge moved
-  // by the offset, measured across the lenticules for a sheet.
-  const double half_w = g.width * g.pixel_pitch / 2;
-  const double left = g.grid == Grid::lenticular ? (-half_w + g.offset) * std::cos(g.slant_rad) : -half_w + g.offset;
-  f.panel = {float(camera.sample_width()), float(left), float(std::sin(g.slant_rad)), float(std::cos(g.slant_rad))};
-  f.panel_kind = {g.samples_per_pixel, red_first ? 1 : 0, grid_of(g.grid), g.width};
+  f.panel_kind = {g.samples_per_pixel, red_first ? 1 : 0, 0, 0};
   return f;
 }
 
 GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera& camera, int spp, int row0, int row1) {
   const LookingGlassCalibration& c = camera.calibration();
-  const PinholeDesc& centre = camera.centre();
   GpuFrame f = scene_frame(context, AovSet{}, row0, row1);
   set_frame(f, camera.frame());
-  f.size = {camera.width(), camera.height(), 1, 1};
-  f.mode = {1, HR_LOOKING_GLASS, HR_PSEUDOSCOPIC, spp};
+  f.looking_glass = narrowed(camera.line_constants());
+  f.size = {camera.width(), camera.height(), 0, 0};
+  f.mode = {0, HR_LOOKING_GLASS, HR_PSEUDOSCOPIC, spp};
   f.tile = {0, 0, c.width, 0};
   f.box_lo = {0, 0, 0, 0}, f.box_hi = {0, 0, 0, context.bounds().empty() ? 1.0f : 0.0f};  // eye rays, unclipped
-  f.view = {float(camera.pixel_size()), float(centre.shift_x), 0, float(centre.sample_u)};
-  f.view_clip = {float(centre.sample_v), 0, INFINITY, 0};
   // looking_glass_view()'s phase, a = (u + s subp + v tilt) L - center
   // with u = (i + 1/2) / W and v = (H - j - 1/2) / H, as i A + j B + K_s
   // with K_s (the cell's subpixel offsets and the constant) taken mod 1 here,
@@ -487,7 +495,7 @@ GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera&
   const double L = c.pitch * W / c.dpi * std::cos(std::atan(1 / c.slope));
   const double A = L / W, B = -tilt * L / H, C = 0.5 * L / W + (H - 0.5) / H * tilt * L - c.center;
   f.panel = {float(high_part(A)), float(A - high_part(A)), float(high_part(B)), float(B - high_part(B))};
-  f.panel_kind = {3, 1, camera.views(), c.width};
+  f.panel_kind = {3, 1, 0, 0};
   f.cell_kind = {c.cell_pattern, int(c.cells.size()), 0, 0};
   if (c.cells.empty()) {
     for (int s = 0; s < 3; ++s) (&f.cells[0].x)[s] = float(fraction(s * (flip / (3 * W)) * L + C));
@@ -496,7 +504,6 @@ GpuFrame frame_constants(const RenderContext& context, const LookingGlassCamera&
       for (int s = 0; s < 3; ++s)
         (&f.cells[k].x)[s] = float(fraction((c.cells[k].dx[s] / W + c.cells[k].dy[s] / H * tilt) * L + C));
   }
-  f.panel_view = {0, float(c.view_cone_deg), float(camera.distance()), 0};
   return f;
 }
 

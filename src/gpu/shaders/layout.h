@@ -1,6 +1,7 @@
 // holoray/gpu: the records the host writes and the compute shaders read,
-// declared once for both (std430: every member a 16-byte vector, so C++ and
-// GLSL agree on every offset). Included by gpu_scene.hpp (C++) and by
+// declared once for both (std430: every member a 16-byte vector, or, last
+// in GpuFrame, a record of 4-byte scalars, so C++ and GLSL agree on every
+// offset). Included by gpu_scene.hpp (C++) and by
 // trace.comp (GLSL, through glslc's #include). World frame, scene units,
 // float; the CPU path keeps doubles, and the tests hold the two together.
 #ifndef HOLORAY_GPU_LAYOUT_H
@@ -13,8 +14,12 @@ struct vec4 { float x = 0, y = 0, z = 0, w = 0; };
 struct ivec4 { int32_t x = 0, y = 0, z = 0, w = 0; };
 struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_STRUCT struct alignas(16)
+// The cameras' constants in float, as the kernel reads them (GpuFrame).
+using hr_real = float;
+#include "camera/line_constants.h"
 #else
 #define HR_STRUCT struct
+#include "camera/pixel_lines.h"
 #endif
 
 // Primitive references in a leaf: the kind in the top two bits.
@@ -28,7 +33,7 @@ struct uvec4 { uint32_t x = 0, y = 0, z = 0, w = 0; };
 #define HR_GRID_HEX 1
 #define HR_GRID_LENTICULAR 2
 #define HR_PINHOLE 3  // not a grid: the scene's pinhole view (camera/pinhole.hpp)
-#define HR_DISPLAY 4  // a display's panel (camera/display_camera.hpp): its grid in GpuFrame::panel_kind
+#define HR_DISPLAY 4  // a display's panel (camera/display_camera.hpp): its grid in GpuFrame::panel_grid
 #define HR_LOOKING_GLASS 5  // a Looking Glass's native panel (display/looking_glass.hpp)
 #define HR_ORTHOSCOPIC 0
 #define HR_PSEUDOSCOPIC 1
@@ -265,14 +270,16 @@ HR_STRUCT GpuWaveShadow {
   vec4 origin_tmax, dir, term;
 };
 
-/// What one frame's dispatches share: the lens array (camera-model.md),
-/// the scene's box and constants, and the output's size and AOVs.
+/// What one frame's dispatches share: the camera (its frame, its kind and,
+/// last, its constants), the scene's box and constants, and the output's
+/// size and AOVs.
 HR_STRUCT GpuFrame {
-  vec4 origin, axis_x, axis_y, axis_z;  // the array's frame (world)
-  vec4 lens;       // pitch, gap, pixel pitch s, lenticular view distance (0: infinite)
-  vec4 extent;      // half width, half height (W s / 2, H s / 2), hex row step, epsilon
-  ivec4 size;      // W, H, P (pixels per lens), lenses_x
-  ivec4 mode;      // lenses_y, grid, recording mode, spp
+  vec4 origin, axis_x, axis_y, axis_z;  // the camera's frame (world)
+  // A pinhole view's clipping range along its axis: near, far (0 and
+  // infinity: none); z: the scene's epsilon.
+  vec4 clip;
+  ivec4 size;      // W, H (a panel's: its samples across, its rows); z, w unused
+  ivec4 mode;      // x unused; the camera's kind (HR_GRID_*, HR_PINHOLE, HR_DISPLAY, HR_LOOKING_GLASS), recording mode, spp
   ivec4 counts;    // lights, AOV bits, max depth, objects
   ivec4 rows;      // the rows rendered: first, end (the image's buffers hold these alone)
   vec4 box_lo, box_hi;  // the scene's bounds (world) grown by the margin; w: margin
@@ -285,30 +292,21 @@ HR_STRUCT GpuFrame {
   // A mesh texture's footprint (RenderSettings::footprint): a pixel's width
   // at distance d is x + y d, world units.
   vec4 footprint;
-  // A pinhole view (grid HR_PINHOLE): pixel size at distance 1 (or in scene
-  // units, orthographic), window shift x and y, the sample's offset in u;
-  // its offset in v, the clipping range along the axis (near, far: 0 and
-  // infinity for none), 1 for an orthographic view.
-  vec4 view, view_clip;
   // Where the camera's pixels go in the image: pixel (i, j) is image pixel
   // (x + i, y + j), rows `z` pixels apart (a quilt's view in its tile;
   // 0, 0, width for the others).
   ivec4 tile;
   // The panels, whose samples are subpixels (HR_DISPLAY, HR_LOOKING_GLASS;
   // size.x counts samples, tile.z pixels). panel_kind: samples per pixel
-  // (1 or 3), 1 when red is the leftmost subpixel, the display's grid or
-  // the Looking Glass's views, the panel's width in pixels.
-  // HR_DISPLAY: panel = sample width, the lens grid's left edge (across the
-  // lenticules for a sheet), sine and cosine of the slant.
+  // (1 or 3), 1 when red is the leftmost subpixel; z, w unused.
   // HR_LOOKING_GLASS: the view phase a = i A + j B + cells[cell][s] (mod 1)
   // of subpixel s of pixel (i, j), with panel = A and B each split in two
   // (hi, lo; i A_hi and j B_hi exact in float, so that the phase keeps its
   // fraction across a whole panel); cell_kind = cell pattern, cells (0:
-  // none, cells[0] serves); panel_view = -, view cone (degrees), |at - from|.
+  // none, cells[0] serves).
   vec4 panel;
   ivec4 panel_kind;
   ivec4 cell_kind;
-  vec4 panel_view;
   vec4 cells[HR_MAX_CELLS];
   // The path integrator (HR_FEATURE_PATH): area lights, emitters, the
   // environment image's width and height (0, 0: the constant env_constant);
@@ -319,6 +317,15 @@ HR_STRUCT GpuFrame {
   ivec4 path_counts;
   ivec4 path_flags;
   vec4 env_constant, env_turn;
+  // The camera's constants as camera/pixel_lines.h's line functions take
+  // them: the CPU camera's own record (camera/line_constants.h) in float.
+  // The kind mode.y names reads its own (HR_GRID_*: lens_grid; HR_DISPLAY:
+  // panel_grid; HR_PINHOLE: pinhole; HR_LOOKING_GLASS: looking_glass); the
+  // others are zero. Scalars: last, after every 16-byte vector.
+  HrLensGrid lens_grid;
+  HrPanelGrid panel_grid;
+  HrPinhole pinhole;
+  HrLookingGlass looking_glass;
 };
 
 #ifdef __cplusplus

@@ -137,7 +137,7 @@ void hr_path_count(inout HrPathDevice d, int kind) {
   else ++d.rays.z;
 }
 
-float hr_path_epsilon(inout HrPathDevice d) { return F.extent.w; }
+float hr_path_epsilon(inout HrPathDevice d) { return F.clip.z; }
 int hr_path_max_depth(inout HrPathDevice d) { return F.counts.z; }
 
 bool hr_path_light_sphere(inout HrPathDevice d, HrPathHit h, out vec3 colour) {
@@ -247,7 +247,7 @@ bool hr_path_emitter_sample(inout HrPathDevice d, vec2 u_pick, vec2 u_emit, vec3
   dist = sqrt(dist2);
   dir /= dist;
   float cos_l = abs(dot(normalize(cross(e1, e2)), dir));  // emission is two-sided
-  if (!(dist > 2.0 * F.extent.w && cos_l > 0.0)) return false;
+  if (!(dist > 2.0 * F.clip.z && cos_l > 0.0)) return false;
   pdf = e.z / e.w * dist2 / cos_l;
   GpuMaterial m = materials[object_material[floatBitsToInt(tri.ng.w)]];
   le = emission_at(k, m, b, dist) * (1.0 / pdf);

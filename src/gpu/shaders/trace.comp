@@ -510,37 +510,12 @@ bool walk_bvh(vec3 o, vec3 d, float tmin, float tmax, bool any, out Hit h) {
 
 // ---- the cameras: their lines are camera/pixel_lines.h, the CPU's text ----
 
-// The frame's camera as the shared line functions take it (gpu_scene.cpp
-// lays the fields out per camera kind).
+// The frame's camera as the shared line functions take it (its constants
+// are GpuFrame's lens_grid, panel_grid, pinhole and looking_glass).
 HrFrame camera_frame() {
   HrFrame f;
   f.origin = F.origin.xyz, f.x = F.axis_x.xyz, f.y = F.axis_y.xyz, f.z = F.axis_z.xyz;
   return f;
-}
-
-HrLensGrid lens_grid() {
-  HrLensGrid g;
-  g.grid = F.mode.y, g.pixels_per_lens = F.size.z, g.lenses_x = F.size.w, g.lenses_y = F.mode.x;
-  g.converging = F.lens.w > 0.0 ? 1 : 0;
-  g.pitch = F.lens.x, g.gap = F.lens.y, g.s = F.lens.z, g.half_w = F.extent.x, g.half_h = F.extent.y;
-  g.row_step = F.extent.z, g.view_distance = F.lens.w;
-  return g;
-}
-
-HrPanelGrid panel_grid() {
-  HrPanelGrid g;
-  g.grid = F.panel_kind.z, g.converging = F.lens.w > 0.0 ? 1 : 0;
-  g.pitch = F.lens.x, g.gap = F.lens.y, g.sample_width = F.panel.x, g.pixel_pitch = F.lens.z;
-  g.half_w = F.extent.x, g.half_h = F.extent.y, g.left = F.panel.y, g.row_step = F.extent.z;
-  g.sin_slant = F.panel.z, g.cos_slant = F.panel.w, g.view_distance = F.lens.w;
-  return g;
-}
-
-HrPinhole pinhole_view() {
-  HrPinhole c;
-  c.width = F.size.x, c.height = F.size.y, c.ortho = F.view_clip.w != 0.0 ? 1 : 0;
-  c.pixel = F.view.x, c.sample_u = F.view.w, c.sample_v = F.view_clip.x, c.shift_x = F.view.y, c.shift_y = F.view.z;
-  return c;
 }
 
 // Subpixel c (s = c mod 3 of pixel i) of row j of a Looking Glass: its view
@@ -551,10 +526,7 @@ HrPinhole pinhole_view() {
 // CPU's form in float would lose the view's fraction across a 2K panel.
 void looking_glass_line(int c, int j, float u, float v, out vec3 origin, out vec3 dir) {
   int i = c / 3, s = c - 3 * i;
-  HrLookingGlass g;
-  g.centre = pinhole_view();  // the centre view's constants, laid out as a pinhole view's
-  g.centre.width = F.panel_kind.w;  // pixels, not the subpixels F.size.x counts
-  g.views = F.panel_kind.z, g.view_cone_deg = F.panel_view.y, g.distance = F.panel_view.z;
+  HrLookingGlass g = F.looking_glass;
   int cell = hr_looking_glass_cell(F.cell_kind.x, F.cell_kind.y, g.centre.height, i, j);
   float a = fract(float(i) * F.panel.x) + float(i) * F.panel.y + fract(float(j) * F.panel.z) + float(j) * F.panel.w +
             F.cells[cell][s];
@@ -570,14 +542,14 @@ void pixel_line(int i, int j, float u, float v, out vec3 origin, out vec3 dir) {
     return;
   }
   if (grid == HR_PINHOLE) {
-    hr_pinhole_line(pinhole_view(), camera_frame(), i, j, u, v, origin, dir);
+    hr_pinhole_line(F.pinhole, camera_frame(), i, j, u, v, origin, dir);
     return;
   }
   vec3 c, d;
   if (kPanel)
-    hr_panel_line(panel_grid(), i, j, u, v, c, d);
+    hr_panel_line(F.panel_grid, i, j, u, v, c, d);
   else
-    hr_lens_array_line(lens_grid(), i, j, u, v, c, d);
+    hr_lens_array_line(F.lens_grid, i, j, u, v, c, d);
   HrFrame f = camera_frame();
   origin = hr_to_world_point(f, c);
   dir = normalize(hr_to_world_dir(f, d));
@@ -626,7 +598,7 @@ EyeRay eye_ray(int i, int j, vec2 uv) {
   // clipping planes, perpendicular to its axis (view_renderer.cpp): a ray at
   // cosine ca to the axis meets them at clip / ca.
   float ca = dot(ld, -F.axis_z.xyz);
-  bool aimed = ca > 0.0 || (F.view_clip.y == 0.0 && isinf(F.view_clip.z));
+  bool aimed = ca > 0.0 || (F.clip.x == 0.0 && isinf(F.clip.y));
   e.traced = pinhole ? F.box_hi.w == 0.0 && aimed : F.box_hi.w == 0.0 && t0 <= t1 && (e.ortho || t1 > 0.0);
   e.empty_aimed = pinhole && aimed && !e.traced;
   e.o = lo, e.d = ld, e.t_sign = 1.0, e.optic0 = 0.0, e.tmin = 0.0, e.tmax = kInf;
@@ -640,8 +612,8 @@ EyeRay eye_ray(int i, int j, vec2 uv) {
     e.d = -ld;
     e.t_sign = -1.0, e.optic0 = start, e.tmin = -start, e.tmax = -(t0 - margin);
   } else if (pinhole) {
-    bool clipped = !(F.view_clip.y == 0.0 && isinf(F.view_clip.z));
-    e.tmin = clipped ? F.view_clip.y / ca : 0.0, e.tmax = clipped ? F.view_clip.z / ca : kInf;
+    bool clipped = !(F.clip.x == 0.0 && isinf(F.clip.y));
+    e.tmin = clipped ? F.clip.x / ca : 0.0, e.tmax = clipped ? F.clip.y / ca : kInf;
   } else {
     e.tmin = max(0.0, t0 - margin), e.tmax = t1 + margin;
   }
@@ -865,7 +837,7 @@ float tachyon_shadow(vec3 o, vec3 d, float tmax, inout uint shadow_rays) {
       filter_ *= m.ks_shine_t_ior.z;
       if (filter_ < kMinContrib) return 0.0;
     }
-    tnear = max(h.t, tnear) + F.extent.w;
+    tnear = max(h.t, tnear) + F.clip.z;
     if (!(tnear < tmax)) return filter_;
     ++shadow_rays;
   }
@@ -1409,7 +1381,7 @@ void main() {
       log_pixel = ivec2(i, j);
       uvec4 rays = uvec4(0u);  // eye, shadow, reflected, refracted
       uint last_run = 0x0fffffffu;  // the pixel's last run of queued shadow rays (none: past any capacity)
-      float eps = F.extent.w;
+      float eps = F.clip.z;
       int spp = F.mode.w, max_depth = F.counts.z, aovs = F.counts.y;
       vec3 sum = vec3(0.0);
       bool first_hit = false;

@@ -100,7 +100,7 @@ void whitted_wave_shade() {
       c += r.weight * F.background.xyz;
     } else {
       float optic = h.t + (r.depth == 1 ? uintBitsToFloat(g.rng.w) : 0.0);
-      whitted_hit(r, h, optic, pixel.x, pixel.y, band.sample_index == 0, g.line_sign, F.extent.w, F.mode.w, F.counts.z,
+      whitted_hit(r, h, optic, pixel.x, pixel.y, band.sample_index == 0, g.line_sign, F.clip.z, F.mode.w, F.counts.z,
                   F.counts.y, first_hit, rays, last_run, c);
     }
     // Depth first: the hit's last ray pushed is traced next, its others go
