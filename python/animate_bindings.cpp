@@ -44,9 +44,21 @@ py::dict row_dict(const api::FrameRow& r) {
 // holoray.animate's keyword options, as `holoray animate`'s, underscored.
 api::AnimateOptions options_of(const py::dict& kw) {
   api::AnimateOptions o;
+  // The light keywords, as render()'s: gathered, then checked together.
+  std::string integrator = "whitted";
+  py::object environment = py::none();
+  double environment_strength = 1, environment_rotation = 0;
+  bool blender_principled = false;
   for (const auto& [key, value] : kw) {
     const std::string k = py::str(key);
-    if (k == "method") {
+    if (k == "integrator") integrator = py::str(value);
+    else if (k == "environment") environment = py::reinterpret_borrow<py::object>(value);
+    else if (k == "environment_strength") environment_strength = value.cast<double>();
+    else if (k == "environment_rotation") environment_rotation = value.cast<double>();
+    else if (k == "blender_principled") blender_principled = value.cast<bool>();
+    else if (k == "seed") o.seed = checked_seed(value.cast<int64_t>());
+    else if (k == "animated_seed") o.animated_seed = value.cast<bool>();
+    else if (k == "method") {
       const std::string v = py::str(value);
       if (v == "full") o.method = api::Method::full;
       else if (v == "reproject") o.method = api::Method::reproject;
@@ -102,6 +114,11 @@ api::AnimateOptions options_of(const py::dict& kw) {
       throw py::type_error("animate() got an unexpected keyword argument '" + k + "'");
     }
   }
+  const api::RenderOptions light =
+      light_options(integrator, environment, environment_strength, environment_rotation, blender_principled, std::nullopt);
+  o.integrator = light.integrator;
+  o.environment = light.environment;
+  o.blender_principled = light.blender_principled;
   return o;
 }
 

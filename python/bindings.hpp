@@ -3,7 +3,11 @@
 
 #include <pybind11/pybind11.h>
 
+#include <optional>
+#include <string>
+
 #include "holoray/camera.hpp"
+#include "holoray/render.hpp"
 
 namespace holoray::python {
 
@@ -18,5 +22,14 @@ void bind_web(py::module_& m);      ///< write_web (web_bindings.cpp)
 
 /// A camera object of this module as the API's camera; TypeError otherwise.
 api::Camera camera_of(const py::handle& camera, const char* name);
+
+/// render()'s, World()'s and animate()'s light keywords as a RenderOptions
+/// with them set: integrator 'whitted' or 'path', environment a file name,
+/// a colour (r, g, b) or None. ValueError naming the keyword otherwise.
+api::RenderOptions light_options(const std::string& integrator, const py::object& environment, double environment_strength,
+                                 double environment_rotation, bool blender_principled, std::optional<int> max_depth);
+
+/// The path integrator's seed (api::RenderOptions::seed); ValueError outside 0 to 2^32 - 1.
+uint32_t checked_seed(int64_t seed);
 
 }  // namespace holoray::python

@@ -184,7 +184,11 @@ void bind_cameras(py::module_& m) {
            py::arg("path"), py::arg("views") = 48, py::kw_only(), py::arg("focus_distance") = py::none());
 }
 
-// The light options of render() and World(): a RenderOptions with them set.
+uint32_t checked_seed(int64_t seed) {
+  if (seed < 0 || seed > 4294967295LL) throw py::value_error("seed: expected 0 to 4294967295, got " + std::to_string(seed));
+  return static_cast<uint32_t>(seed);
+}
+
 api::RenderOptions light_options(const std::string& integrator, const py::object& environment, double environment_strength,
                                  double environment_rotation, bool blender_principled, std::optional<int> max_depth) {
   api::RenderOptions o;
@@ -245,8 +249,7 @@ void bind_render(py::module_& m) {
             light_options(integrator, environment, environment_strength, environment_rotation, blender_principled, max_depth);
         o.device = device;
         o.share_views = share_views;
-        if (seed < 0 || seed > 4294967295LL) throw py::value_error("seed: expected 0 to 4294967295, got " + std::to_string(seed));
-        o.seed = static_cast<uint32_t>(seed);
+        o.seed = checked_seed(seed);
         const api::Camera cam = camera_of(camera, "camera");
         if (threads && *threads < 1) throw py::value_error("threads: expected at least 1 (None: all cores)");
         if (spp < 1) throw py::value_error("spp: expected at least 1 sample per pixel");

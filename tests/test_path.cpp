@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "holoray/animate.hpp"
 #include "holoray/render.hpp"
 #include "holoray/scene.hpp"
 #include "image/metrics.hpp"
@@ -525,6 +526,50 @@ TEST(PathIntegrator, AnimatedFramesArePathTracedAsTheStill) {
                               "tracing traces every frame in full)"),
             std::string::npos)
       << reuse.output;
+}
+
+// `animate --seed S` draws every frame's samples as `render --seed S`;
+// with --animated-seed, frame f's as `render --seed S+f` (Cycles' Animated
+// Seed), so a shot where nothing moves changes noise from frame to frame.
+// Under Whitted's integrator both are refused, by the CLI and the API.
+TEST(PathIntegrator, AnimatedSeedsDrawEachFramesSamplesAsTheStillOfItsSeed) {
+  test::TempDir dir;
+  const std::string scene = test::source_dir() + "/tests/data/pinhole/spheres.nff";
+  test::write_text(dir.file("shot.toml"), "frames = 3\nspp = 2\n[[object]]\nscene = \"" + scene + "\"\n");
+  const std::string view = " --camera pinhole --resolution 40x30 --integrator path --environment-colour 0.3,0.4,0.5";
+  const auto frames_of = [&](const std::string& seeds, const std::string& out) {
+    const auto run = test::run_cli("animate " + dir.file("shot.toml") + view + seeds + " --format exr -o " + dir.file(out) + " -q");
+    EXPECT_EQ(run.status, 0) << run.output;
+    std::vector<FloatSamples> f;
+    for (int k = 0; k < 3; ++k) f.push_back(as_rgb(read_image(dir.file(fmt::format("{}/frame_{:04d}.exr", out, k)))).data);
+    return f;
+  };
+  const auto still = [&](int seed) {
+    const std::string out = dir.file(fmt::format("still_{}.exr", seed));
+    const auto run = test::run_cli("render " + scene + view + " --spp 2 --seed " + std::to_string(seed) + " -o " + out + " -q");
+    EXPECT_EQ(run.status, 0) << run.output;
+    return as_rgb(read_image(out)).data;
+  };
+  const auto fixed = frames_of(" --seed 7", "fixed");
+  const auto animated = frames_of(" --seed 7 --animated-seed", "animated");
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(fixed[static_cast<size_t>(k)], still(7)) << "frame " << k;
+    EXPECT_EQ(animated[static_cast<size_t>(k)], still(7 + k)) << "frame " << k;
+  }
+  EXPECT_NE(animated[1], animated[0]) << "a new seed, new noise";
+  const auto whitted = test::run_cli("animate " + dir.file("shot.toml") + " --camera pinhole --seed 3 -o " + dir.file("w") + " -q");
+  EXPECT_EQ(whitted.status, 1);
+  EXPECT_NE(whitted.output.find("--seed: Whitted's integrator draws no random samples: go with --integrator path"),
+            std::string::npos)
+      << whitted.output;
+  api::AnimateOptions o;
+  o.animated_seed = true;
+  try {
+    api::Animation a(dir.file("shot.toml"), o);
+    ADD_FAILURE() << "an animated seed under Whitted's integrator was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "`animated_seed`: Whitted's integrator draws no random samples: go with the path integrator");
+  }
 }
 
 }  // namespace

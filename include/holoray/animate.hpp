@@ -76,6 +76,13 @@ struct AnimateOptions {
   Integrator integrator = Integrator::whitted;
   Environment environment;  ///< as RenderOptions::environment
   bool blender_principled = false;  ///< as RenderOptions::blender_principled
+  /// The path integrator's seed, as RenderOptions::seed: every frame's, or,
+  /// with `animated_seed`, seed + the frame's number (mod 2^32; Cycles'
+  /// Animated Seed), so that each frame draws noise of its own. Whitted's
+  /// integrator draws no random samples: either is refused with it
+  /// (std::invalid_argument).
+  uint32_t seed = 0;
+  bool animated_seed = false;
 };
 
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).

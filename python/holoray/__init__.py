@@ -142,7 +142,11 @@ def animate(shot_path, *, output=None, **options):
     Display or LookingGlass), report (also trace in full: row['psnr']), cache,
     encoding, frames ('A:B', N or (a, b)), device ('cpu', 'gpu' or 'gpu:N':
     every frame traced in full on that device), camera_name and texture_path (as
-    load_scene's: they replace and extend the shot file's). output: a folder the frames are
+    load_scene's: they replace and extend the shot file's), and render()'s light:
+    integrator ('whitted' or 'path': every frame path traced in full),
+    environment, environment_strength, environment_rotation, blender_principled,
+    seed (every frame's) and animated_seed (True: seed + the frame's number, so
+    that each frame's noise is its own). output: a folder the frames are
     also written to, as the CLI names them (frame_NNNN.png). The render runs
     on its own thread, a frame or two ahead; Ctrl-C or leaving the loop stops it."""
     shot_path = os.fspath(shot_path)

@@ -100,6 +100,9 @@ void choose_method(const AnimateOptions& o, AnimationState& s) {
   const bool glass = choice.get<Desc::LookingGlass>() != nullptr;
   const bool panel = glass || choice.get<Desc::Display>();
   const char* what = glass ? "`LookingGlass`" : "`Display`";
+  if (o.integrator != Integrator::path && (o.seed != 0 || o.animated_seed))
+    throw std::invalid_argument(fmt::format("`{}`: Whitted's integrator draws no random samples: go with the path integrator",
+                                            o.seed != 0 ? "seed" : "animated_seed"));
   if (o.integrator == Integrator::path) {
     constexpr const char* kWhy = "goes with `method` full (reuse reprojects Whitted's shading; path tracing traces every frame in full)";
     if (o.method == Method::reproject || o.method == Method::reverse)
@@ -233,6 +236,10 @@ std::string describe_animation(const AnimateOptions& o, const AnimationState& s)
                      o.leak_check ? "" : ", no leak check");
   else if (so.method == holoray::Method::reverse)
     d += fmt::format("method     reverse: {}, eye rays traced, reuse {}\n", key_rule, s.reuse);
+  else if (so.integrator == holoray::Integrator::path)
+    d += fmt::format("method     full path tracing{}\n", so.animated_seed ? fmt::format(", seed {} + the frame's number", so.seed)
+                                                       : so.seed != 0   ? fmt::format(", seed {}", so.seed)
+                                                                        : "");
   else
     d += "method     full ray tracing\n";
   return d;
@@ -277,6 +284,8 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     so.environment = s.environment.get();
     so.principled = o.blender_principled;
     so.skip_headlights = o.environment.given();
+    so.seed = o.seed;
+    so.animated_seed = o.animated_seed;
   }
   if (const DeviceChoice device = parse_device(o.device); device.gpu) {
     RenderOptions ro;
@@ -290,6 +299,7 @@ Animation::Animation(const std::string& shot_path, const AnimateOptions& o) : st
     first_settings.environment = so.environment;
     first_settings.principled = so.principled;
     first_settings.skip_headlights = so.skip_headlights;
+    first_settings.sample_salt = so.seed;
     s.gpu = std::make_unique<GpuExecutor>(device, RenderContext(shot.scene(), first_settings), camera0, ro);
     so.trace = [gpu = s.gpu.get()](const RenderContext& context, const FrameCamera& camera, const holoray::RenderOptions& o,
                                    holoray::RenderStats& stats) {

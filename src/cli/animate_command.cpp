@@ -131,6 +131,13 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
       ->check(in_range(0, 51))
       ->needs("--video");
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(in_range(0))->capture_default_str();
+  cmd->add_option("--seed", o.seed,
+                  "With --integrator path: the samples' seed, 0 to 4294967295, every frame's (as Cycles' Seed)")
+      ->check(in_range(0, 4294967295.0))
+      ->capture_default_str();
+  cmd->add_flag("--animated-seed", o.animated_seed,
+                "With --integrator path: each frame's seed is --seed plus the frame's number, so that each frame's "
+                "noise is its own (as Cycles' Animated Seed)");
   add_device_option(*cmd, o.device,
                     "on a GPU every frame is traced in full (--method full; reuse stays on the CPU), the scene laid out "
                     "again where something moved");
@@ -146,7 +153,7 @@ CLI::App* add_animate_command(CLI::App& app, AnimateCommandOptions& o) {
                 {"Reuse", {"--method", "--reuse", "--fill", "--rebuild-above", "--reach", "--no-leak-check", "--cache",
                            "--cache-cell", "--cache-memory"}},
                 {"Keyframes", {"--keyframe-interval", "--keyframe-motion", "--max-keyframe-interval"}},
-                {"Tracing", {"--device", "--threads"}},
+                {"Tracing", {"--device", "--threads", "--seed", "--animated-seed"}},
                 {"Light", light_option_names(false)},
                 {"Farms and interruptions", {"--frames", "--resume"}}},
                {"holoray animate examples/shots/swinging_box.toml -o frames/ --video frames/shot.mkv",
@@ -294,6 +301,11 @@ AnimateChoice choose(const AnimateCommandOptions& o) {
   ao.leak_check = !o.no_leak_check;
   const LightChoice light = light_choice(o.light);
   ao.integrator = light.integrator;
+  if (light.integrator != api::Integrator::path && (o.seed != 0 || o.animated_seed))
+    throw std::invalid_argument(fmt::format("{}: Whitted's integrator draws no random samples: go with --integrator path",
+                                            o.seed != 0 ? "--seed" : "--animated-seed"));
+  ao.seed = static_cast<uint32_t>(o.seed);
+  ao.animated_seed = o.animated_seed;
   ao.environment = light.environment;
   ao.blender_principled = light.blender_principled;
   c.ext = pick<std::string>("--format", o.format, {{"png", "png"}, {"exr", "exr"}});

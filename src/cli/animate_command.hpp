@@ -26,6 +26,8 @@ struct AnimateCommandOptions {
   double keyframe_motion = 4;           ///< auto: most pixels a point image moves from its keyframe
   int max_keyframe_interval = 32;       ///< auto: longest run of frames between keyframes
   int threads = 0;
+  int64_t seed = 0;            ///< --seed: 0 to 2^32 - 1 (api::AnimateOptions::seed)
+  bool animated_seed = false;  ///< --animated-seed
   std::string device = "cpu";  ///< --device
   double rebuild_above = 5;  // percent of holes
   bool resume = false, no_leak_check = false, quiet = false, verbose = false;

@@ -44,7 +44,8 @@ struct RenderSettings {
   bool principled = false;
   /// Mixed into every pixel's sampler seed: two renders with different
   /// salts draw unrelated samples (api::RenderOptions::seed; a shot's
-  /// frames all take 0, as Cycles' frames take one seed by default).
+  /// frames take AnimateOptions::seed, plus the frame's number where the seed
+  /// is animated, as Cycles').
   uint32_t sample_salt = 0;
 };
 

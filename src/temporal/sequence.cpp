@@ -173,6 +173,7 @@ class SequenceRun {
       emitters_ = std::make_unique<EmissiveTriangles>(shot_.scene());
       settings_.emitters = emitters_->empty() ? nullptr : emitters_.get();
       settings_.skip_headlights = opt_.skip_headlights || !emitters_->empty();
+      settings_.sample_salt = opt_.seed + (opt_.animated_seed ? static_cast<uint32_t>(f) : 0u);
     }
     return RenderContext(shot_.scene(), settings_);
   }

@@ -85,6 +85,10 @@ struct SequenceOptions {
   const EnvironmentMap* environment = nullptr;
   bool principled = false;
   bool skip_headlights = false;
+  /// The path integrator's samples (RenderSettings::sample_salt): `seed` for
+  /// every frame, plus the frame's number with `animated_seed`.
+  uint32_t seed = 0;
+  bool animated_seed = false;
 };
 
 /// What one frame cost and how it was made (the paper's Tables 1 and 2).

@@ -128,6 +128,23 @@ def test_pinhole_camera_option_equals_the_cli(tmp, run_cli):
         np.testing.assert_array_equal(colour, read_image(tmp / "cli" / f"frame_{index:04d}.exr"))
 
 
+def test_path_traced_frames_with_an_animated_seed_equal_the_cli(tmp, run_cli):
+    # render()'s light keywords, and the seed: frame f of an animated seed S
+    # is drawn with seed S + f, so the frames' noise differs where a fixed
+    # seed's stays put.
+    light = ("--integrator", "path", "--environment-colour", "0.3,0.4,0.5", "--seed", "5", "--animated-seed")
+    run_cli("animate", SHOT, "-o", tmp / "cli", "--format", "exr", "--frames", "0:1", "--camera", "pinhole",
+            "--resolution", "48x32", "--threads", THREADS, "-q", *light)
+    options = dict(frames="0:1", camera=holoray.Pinhole(resolution=(48, 32)), threads=THREADS, integrator="path",
+                   environment=(0.3, 0.4, 0.5), seed=5)
+    animated = list(holoray.animate(SHOT, animated_seed=True, **options))
+    for index, colour, _ in animated:
+        np.testing.assert_array_equal(colour, read_image(tmp / "cli" / f"frame_{index:04d}.exr"))
+    fixed = list(holoray.animate(SHOT, **options))
+    np.testing.assert_array_equal(fixed[0][1], animated[0][1])  # frame 0: seed 5 either way
+    assert not np.array_equal(fixed[1][1], animated[1][1])
+
+
 def test_stopping_early_leaves_only_whole_frames(tmp):
     out = tmp / "out"
     it = holoray.animate(SHOT, output=out, threads=THREADS)

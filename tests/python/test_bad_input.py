@@ -315,7 +315,8 @@ def test_render_of_something_that_is_not_a_camera_raises_type_error(scene):
 def test_bad_animate_option_raises_value_error_naming_it(tmp, repo):
     shot = repo / "examples" / "shots" / "swinging_box.toml"
     for option, value in (("method", "guess"), ("fill", "paint"), ("reach", "far"), ("keyframe_interval", -3),
-                          ("frames", "7:3"), ("frames", "40:60"), ("threads", -1)):
+                          ("frames", "7:3"), ("frames", "40:60"), ("threads", -1), ("integrator", "radiosity"),
+                          ("environment", (1, 2)), ("seed", -1), ("seed", 2**32), ("animated_seed", True)):
         with pytest.raises(ValueError) as info:
             next(iter(holoray.animate(shot, output=tmp / "out", **{option: value})))
         assert option in str(info.value) or option.replace("_", "-") in str(info.value), (option, str(info.value))
