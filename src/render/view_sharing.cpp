@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "render/line_renderer.hpp"
 #include "render/path_tracer.hpp"
 #include "util/parallel.hpp"
 
@@ -138,9 +139,8 @@ FrameBuffers render_quilt_shared(const RenderContext& scene, const QuiltCamera& 
         PathFirstHit first;
         const auto eye_ray = [&](double pu, double pv, PrimaryRay& pr, Vec3& escape) {
           const PixelLine line = camera.line(i, j, pu, pv);
-          pr = PrimaryRay{Ray{line.origin, line.dir, 0, INFINITY}, 0, 1};
           escape = line.dir;
-          return true;
+          return detail::eye_ray(line, pr);  // as the unshared quilt's (render_quilt)
         };
         path_pixel_samples(scene, i, j, opt.spp, counts, eye_ray, first, &rec, [&](const Vec3& c) {
           // Pooled with what the neighbours give only where they could give
